@@ -1,0 +1,428 @@
+"""Compiled (numba) scalar kernels of every damper model and peak-velocity estimator.
+
+This module is the single source of the damper physics: the vectorised array API of
+:mod:`mrsuspension.dampers` loops over these functions, and the simulation engine and the
+hardware-in-the-loop loop call them sample by sample. Short symbols follow
+``MODEL_SPEC.md`` sections 2-3; the mapping to domain names is given at each constant.
+
+A damper is described by four flat arrays so that one compiled step can serve every
+model:
+
+``kind``
+    model code (:data:`LINEAR`, :data:`BINGHAM`, :data:`WANG`, :data:`SPENCER`);
+``p``
+    parameter vector (layout: the ``*_`` index constants below);
+``s``
+    internal state held over a time step (zero-order hold): ``[v_m, sgn(a_d), -, -]``
+    for the dissertation's model, ``[y, z, u, initialised]`` for Spencer's;
+``ek, ep, es``
+    the peak-velocity estimator's code, parameters and buffer.
+
+A time step is ``damper_sample`` (latch the held internals from the state at the start of
+the step), any number of ``damper_force`` calls (e.g. the four RK4 stages) and
+``damper_advance`` (integrate internal dynamics over the step).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+# ----------------------------------------------------------------------------------
+# model codes
+LINEAR = 0
+BINGHAM = 1
+WANG = 2
+SPENCER = 3
+
+STATE_SIZE = 4
+
+# Dissertation (Wang) model, eqs. (2.7)-(2.21); symmetric sets use K1C = K1E = k1, K5 = K6 = 0.
+W_A0 = 0  # a0, hysteresis slope alpha at v_m = 0 [s/m]
+W_A1 = 1  # a1, transition-force growth [s/m]
+W_A2 = 2  # a2, current-gain sigmoid slope [1/A]
+W_A3 = 3  # a3, slope of H(i) in v_h [1/A]
+W_A4 = 4  # a4, decay of the linear-rise coefficient [s/m]
+W_I0 = 5  # I0, current-gain bias [A]
+W_I1 = 6  # I1, H(i) bias [A]
+W_K0 = 7  # k0, decay of alpha with v_m [s/m]
+W_K1C = 8  # k1c (compression, v_d >= 0) linear rise [s/m]
+W_K1E = 9  # k1e (rebound, v_d < 0) linear rise [s/m]
+W_K2 = 10  # k2, current-gain amplitude
+W_K3 = 11  # k3, H(i) amplitude
+W_K4 = 12  # k4, v_h / v_m (negative: upper branch = decreasing velocity)
+W_K5 = 13  # k5, force offset F_b / (C_i F_t)
+W_K6 = 14  # k6, velocity offset v_b / v_m
+W_F0 = 15  # F0, seal friction [N]
+W_KD = 16  # k_d, force gain (sections 5.3 / 6.2)
+W_VHI = 17  # 1.0: v_h from (2.12) (current dependent); 0.0: (2.13)
+W_SIZE = 18
+
+# Spencer et al. (1997) modified Bouc-Wen, MODEL_SPEC section 2.5.
+S_C0A, S_C0B, S_K0, S_C1A, S_C1B, S_K1, S_X0 = 0, 1, 2, 3, 4, 5, 6
+S_ALA, S_ALB, S_GAM, S_BET, S_A, S_N, S_ETA, S_VPA = 7, 8, 9, 10, 11, 12, 13, 14
+S_SIZE = 15
+
+# Bingham with current-linear coefficients: F = (fc_a + fc_b i) sgn(v) + (c0_a + c0_b i) v + f0.
+B_FCA, B_FCB, B_C0A, B_C0B, B_F0 = 0, 1, 2, 3, 4
+B_SIZE = 5
+
+# Peak-velocity estimators (spec section 2.4).
+EST_KNOWN = 0  # ep = [v_m]
+EST_INSTANT = 1  # ep = [v_min, v_max]; eq. (2.14), clamped
+EST_WINDOW = 2  # ep = [v_min, v_max, n_window]; peak |v_d| over the last n samples, clamped
+# window buffer layout: es = [head, count, step, values(n+1)..., step indices(n+1)...]
+
+
+@njit(cache=True)
+def sigmoid(u: float) -> float:
+    """Logistic function 1/(1+exp(-u)), evaluated without overflow."""
+    if u >= 0.0:
+        return 1.0 / (1.0 + math.exp(-u))
+    e = math.exp(u)
+    return e / (1.0 + e)
+
+
+@njit(cache=True)
+def sign(u: float) -> float:
+    """sgn(u) with sgn(0) = 0."""
+    if u > 0.0:
+        return 1.0
+    if u < 0.0:
+        return -1.0
+    return 0.0
+
+
+# ----------------------------------------------------------------------------------
+# the dissertation's model
+@njit(cache=True)
+def current_gain(p: np.ndarray, i: float) -> float:
+    """C_i(i) = 1 + k2 sigma(a2 (i + I0)) - k2 sigma(a2 I0), eq. (2.9); C_i(0) = 1."""
+    return 1.0 + p[W_K2] * (sigmoid(p[W_A2] * (i + p[W_I0])) - sigmoid(p[W_A2] * p[W_I0]))
+
+
+@njit(cache=True)
+def hysteresis_current_factor(p: np.ndarray, i: float) -> float:
+    """H(i) of eq. (2.12); 1 for the simplified (2.13) variant."""
+    if p[W_VHI] == 0.0:
+        return 1.0
+    return 1.0 + p[W_K3] * (sigmoid(p[W_A3] * (i + p[W_I1])) - sigmoid(p[W_A3] * p[W_I1]))
+
+
+@njit(cache=True)
+def transition_force(p: np.ndarray, vm: float) -> float:
+    """F_t = F0 (1 + exp(a1 v_m)), eq. (2.7)."""
+    return p[W_F0] * (1.0 + math.exp(p[W_A1] * vm))
+
+
+@njit(cache=True)
+def hysteresis_slope(p: np.ndarray, vm: float) -> float:
+    """alpha = a0 / (1 + k0 v_m), eq. (2.11)."""
+    return p[W_A0] / (1.0 + p[W_K0] * vm)
+
+
+@njit(cache=True)
+def linear_rise(p: np.ndarray, v: float, vm: float) -> float:
+    """1 + k_v |v_d| with k_v = k1 exp(-a4 v_m), eqs. (2.5), (2.10), (2.18), (2.21)."""
+    k1 = p[W_K1C] if v >= 0.0 else p[W_K1E]
+    return 1.0 + k1 * math.exp(-p[W_A4] * vm) * abs(v)
+
+
+@njit(cache=True)
+def passive_hysteron(p: np.ndarray, v: float, sgn_a: float, vm: float) -> float:
+    """Passive hysteron F_h of eq. (2.8) with v_h of (2.13), as used by the inverse model."""
+    vh = sgn_a * p[W_K4] * vm
+    return (
+        transition_force(p, vm)
+        * math.tanh(0.5 * hysteresis_slope(p, vm) * (v + vh))
+        * linear_rise(p, v, vm)
+    )
+
+
+@njit(cache=True)
+def wang_force(p: np.ndarray, v: float, sgn_a: float, i: float, vm: float) -> float:
+    """Damper force of eqs. (2.15) and (2.19), with the force gain k_d.
+
+    ``F_d = k_d C_i (F_t tanh(alpha (v_d + v_h + v_b)/2) - F_b)(1 + k_v |v_d|)``,
+    ``F_b = k5 C_i F_t``, ``v_b = k6 v_m``; k5 = k6 = 0 and k1c = k1e give the symmetric
+    model (2.15); k4 = 0 the mean model.
+    """
+    ci = current_gain(p, i)
+    ft = transition_force(p, vm)
+    vh = sgn_a * p[W_K4] * vm * hysteresis_current_factor(p, i)  # (2.12)/(2.13)
+    vb = p[W_K6] * vm  # (2.20)
+    fb = p[W_K5] * ci * ft  # (2.20)
+    tanh = math.tanh(0.5 * hysteresis_slope(p, vm) * (v + vh + vb))
+    return p[W_KD] * ci * (ft * tanh - fb) * linear_rise(p, v, vm)
+
+
+@njit(cache=True)
+def wang_inverse(
+    p: np.ndarray, target: float, v: float, sgn_a: float, vm: float, i_max: float
+) -> float:
+    """Inverse model, spec section 2.3: the current whose force magnitude is |target|.
+
+    The passive hysteron uses the (2.13) form of v_h (current independent), as in the
+    dissertation, so the inverse is exact for the (2.13) variant. (2.9) is inverted
+    directly (the printed closed form (2.17) is garbled, erratum 6).
+    """
+    denom = p[W_KD] * abs(passive_hysteron(p, v, sgn_a, vm))
+    if denom == 0.0:
+        # the damper produces no force at this state whatever the current
+        return 0.0 if target == 0.0 else i_max
+    c = abs(target) / denom
+    if c <= 1.0:
+        return 0.0
+    y = (c - 1.0) / p[W_K2] + sigmoid(p[W_A2] * p[W_I0])
+    if y >= 1.0:
+        return i_max
+    i = -p[W_I0] - math.log(1.0 / y - 1.0) / p[W_A2]
+    if i < 0.0:
+        return 0.0
+    if i > i_max:
+        return i_max
+    return i
+
+
+# ----------------------------------------------------------------------------------
+# peers
+@njit(cache=True)
+def bingham_force(p: np.ndarray, v: float, i: float) -> float:
+    """Bingham plastic model with current-linear yield force and viscosity."""
+    return (p[B_FCA] + p[B_FCB] * i) * sign(v) + (p[B_C0A] + p[B_C0B] * i) * v + p[B_F0]
+
+
+@njit(cache=True)
+def spencer_ydot(p: np.ndarray, x: float, xd: float, y: float, z: float, u: float) -> float:
+    """Internal velocity y' of the modified Bouc-Wen model."""
+    alpha = p[S_ALA] + p[S_ALB] * u
+    c0 = p[S_C0A] + p[S_C0B] * u
+    c1 = p[S_C1A] + p[S_C1B] * u
+    return (alpha * z + c0 * xd + p[S_K0] * (x - y)) / (c0 + c1)
+
+
+@njit(cache=True)
+def spencer_force(p: np.ndarray, x: float, xd: float, y: float, z: float, u: float) -> float:
+    """F = c1 y' + k1 (x - x0)."""
+    c1 = p[S_C1A] + p[S_C1B] * u
+    return c1 * spencer_ydot(p, x, xd, y, z, u) + p[S_K1] * (x - p[S_X0])
+
+
+@njit(cache=True)
+def _spencer_rates(
+    p: np.ndarray, x: float, xd: float, y: float, z: float, u: float, command: float
+) -> tuple[float, float, float]:
+    yd = spencer_ydot(p, x, xd, y, z, u)
+    w = xd - yd
+    az = abs(z)
+    n = p[S_N]
+    zd = -p[S_GAM] * abs(w) * z * az ** (n - 1.0) - p[S_BET] * w * az**n + p[S_A] * w
+    ud = -p[S_ETA] * (u - command)
+    return yd, zd, ud
+
+
+@njit(cache=True)
+def spencer_advance(
+    p: np.ndarray, s: np.ndarray, x: float, xd: float, i: float, dt: float
+) -> None:
+    """Integrate (y, z, u) over ``dt`` with x' held, by RK4 sub-steps sized for stability."""
+    command = p[S_VPA] * i
+    y, z, u = s[0], s[1], s[2]
+    c0 = p[S_C0A] + p[S_C0B] * u
+    c1 = p[S_C1A] + p[S_C1B] * u
+    alpha = p[S_ALA] + p[S_ALB] * u
+    n = p[S_N]
+    az = abs(z)
+    # largest eigenvalue estimate of the (y, z, u) dynamics
+    rate = (p[S_GAM] + p[S_BET]) * n * az ** max(n - 1.0, 0.0) * (abs(xd) + 1e-3)
+    rate += (p[S_A] + (p[S_GAM] + p[S_BET]) * az**n) * alpha / (c0 + c1)
+    rate += p[S_K0] / (c0 + c1) + p[S_ETA]
+    nsub = int(min(max(math.ceil(dt * rate / 1.5), 1.0), 10000.0))
+    h = dt / nsub
+    for k in range(nsub):
+        xs = x + xd * k * h
+        y1, z1, u1 = _spencer_rates(p, xs, xd, y, z, u, command)
+        y2, z2, u2 = _spencer_rates(
+            p, xs + 0.5 * h * xd, xd, y + 0.5 * h * y1, z + 0.5 * h * z1, u + 0.5 * h * u1, command
+        )
+        y3, z3, u3 = _spencer_rates(
+            p, xs + 0.5 * h * xd, xd, y + 0.5 * h * y2, z + 0.5 * h * z2, u + 0.5 * h * u2, command
+        )
+        y4, z4, u4 = _spencer_rates(p, xs + h * xd, xd, y + h * y3, z + h * z3, u + h * u3, command)
+        y += h * (y1 + 2.0 * y2 + 2.0 * y3 + y4) / 6.0
+        z += h * (z1 + 2.0 * z2 + 2.0 * z3 + z4) / 6.0
+        u += h * (u1 + 2.0 * u2 + 2.0 * u3 + u4) / 6.0
+    s[0], s[1], s[2] = y, z, u
+
+
+# ----------------------------------------------------------------------------------
+# peak-velocity estimators
+@njit(cache=True)
+def _clamp(u: float, lo: float, hi: float) -> float:
+    return lo if u < lo else (hi if u > hi else u)
+
+
+@njit(cache=True)
+def estimator_pointwise(ek: int, ep: np.ndarray, x: float, v: float, a: float) -> float:
+    """v_m of a freshly reset estimator that has seen one sample."""
+    if ek == EST_KNOWN:
+        return ep[0]
+    if ek == EST_INSTANT:
+        return _clamp(math.sqrt(max(v * v - a * x, 0.0)), ep[0], ep[1])  # (2.14)
+    return _clamp(abs(v), ep[0], ep[1])
+
+
+@njit(cache=True)
+def estimator_update(
+    ek: int, ep: np.ndarray, es: np.ndarray, x: float, v: float, a: float
+) -> float:
+    """Feed one sample to the estimator and return the new v_m."""
+    if ek != EST_WINDOW:
+        return estimator_pointwise(ek, ep, x, v, a)
+    # exact sliding maximum of |v| over the last n samples (monotonic deque in a ring)
+    n = int(ep[2])
+    cap = n + 1
+    head = int(es[0])
+    count = int(es[1])
+    step = es[2]
+    w = abs(v)
+    while count > 0 and es[3 + (head + count - 1) % cap] <= w:
+        count -= 1
+    pos = (head + count) % cap
+    es[3 + pos] = w
+    es[3 + cap + pos] = step
+    count += 1
+    while es[3 + cap + head] <= step - n:
+        head = (head + 1) % cap
+        count -= 1
+    es[0] = head
+    es[1] = count
+    es[2] = step + 1.0
+    return _clamp(es[3 + head], ep[0], ep[1])
+
+
+# ----------------------------------------------------------------------------------
+# one interface for every model
+@njit(cache=True)
+def damper_sample(
+    kind: int,
+    p: np.ndarray,
+    s: np.ndarray,
+    ek: int,
+    ep: np.ndarray,
+    es: np.ndarray,
+    x: float,
+    v: float,
+    a: float,
+    i: float,
+) -> None:
+    """Latch the internals held over the coming step from the sampled state.
+
+    ``a`` is the acceleration available to a sampled controller: in closed loop, the
+    previous step's (spec section 2.4 / 7).
+    """
+    if kind == WANG:
+        s[0] = estimator_update(ek, ep, es, x, v, a)
+        s[1] = sign(a)
+    elif kind == SPENCER:
+        if s[3] == 0.0:
+            s[0] = x  # no preload in the k0 spring at start
+            s[1] = 0.0
+            s[2] = p[S_VPA] * i  # coil filter settled on the first command
+            s[3] = 1.0
+
+
+@njit(cache=True)
+def damper_force(
+    kind: int, p: np.ndarray, s: np.ndarray, x: float, v: float, i: float
+) -> float:
+    """Damper force [N] (positive resists compression) with the held internals ``s``."""
+    if kind == WANG:
+        return wang_force(p, v, s[1], i, s[0])
+    if kind == LINEAR:
+        return p[0] * v
+    if kind == BINGHAM:
+        return bingham_force(p, v, i)
+    return spencer_force(p, x, v, s[0], s[1], s[2])
+
+
+@njit(cache=True)
+def damper_advance(
+    kind: int, p: np.ndarray, s: np.ndarray, x: float, v: float, i: float, dt: float
+) -> None:
+    """Integrate the damper's internal dynamics over one step of length ``dt``."""
+    if kind == SPENCER:
+        spencer_advance(p, s, x, v, i, dt)
+
+
+@njit(cache=True)
+def damper_series(
+    kind: int,
+    p: np.ndarray,
+    s: np.ndarray,
+    ek: int,
+    ep: np.ndarray,
+    es: np.ndarray,
+    x: np.ndarray,
+    v: np.ndarray,
+    a: np.ndarray,
+    i: np.ndarray,
+    dt: float,
+    force: np.ndarray,
+    peak_velocity: np.ndarray,
+) -> None:
+    """Causal response to sampled motion and current (fills ``force``, ``peak_velocity``)."""
+    for k in range(x.shape[0]):
+        damper_sample(kind, p, s, ek, ep, es, x[k], v[k], a[k], i[k])
+        force[k] = damper_force(kind, p, s, x[k], v[k], i[k])
+        peak_velocity[k] = s[0] if kind == WANG else math.nan
+        damper_advance(kind, p, s, x[k], v[k], i[k], dt)
+
+
+@njit(cache=True)
+def damper_pointwise(
+    kind: int,
+    p: np.ndarray,
+    ek: int,
+    ep: np.ndarray,
+    x: np.ndarray,
+    v: np.ndarray,
+    a: np.ndarray,
+    i: np.ndarray,
+    vm: np.ndarray,
+    force: np.ndarray,
+) -> None:
+    """Force of a freshly reset damper at each point (vm NaN: from the estimator)."""
+    s = np.zeros(STATE_SIZE)
+    for k in range(x.shape[0]):
+        if kind == WANG:
+            s[0] = vm[k] if not math.isnan(vm[k]) else estimator_pointwise(ek, ep, x[k], v[k], a[k])
+            s[1] = sign(a[k])
+        elif kind == SPENCER:
+            s[3] = 0.0
+            damper_sample(kind, p, s, ek, ep, ep, x[k], v[k], a[k], i[k])
+        force[k] = damper_force(kind, p, s, x[k], v[k], i[k])
+
+
+@njit(cache=True)
+def wang_inverse_array(
+    p: np.ndarray,
+    ek: int,
+    ep: np.ndarray,
+    target: np.ndarray,
+    x: np.ndarray,
+    v: np.ndarray,
+    a: np.ndarray,
+    vm: np.ndarray,
+    i_max: float,
+    current: np.ndarray,
+    hysteron: np.ndarray,
+) -> None:
+    """:func:`wang_inverse` and :func:`passive_hysteron` over arrays (vm NaN: estimator)."""
+    for k in range(target.shape[0]):
+        m = vm[k] if not math.isnan(vm[k]) else estimator_pointwise(ek, ep, x[k], v[k], a[k])
+        sa = sign(a[k])
+        current[k] = wang_inverse(p, target[k], v[k], sa, m, i_max)
+        hysteron[k] = passive_hysteron(p, v[k], sa, m)

@@ -1,0 +1,263 @@
+"""The dissertation's hysteretic MR-damper model: symmetric (2.15) and asymmetric (2.19).
+
+Both share one compiled kernel (:func:`~mrsuspension.dampers.kernels.wang_force`); the
+symmetric model is the asymmetric one with ``k5 = k6 = 0`` and ``k1c = k1e = k1``, and
+either becomes the *mean* model with ``k4 = 0`` (``hysteresis=False``).
+"""
+
+from __future__ import annotations
+
+from typing import Any, ClassVar, Literal
+
+import numpy as np
+import numpy.typing as npt
+
+from mrsuspension import parameters as _parameters
+from mrsuspension.dampers import kernels as K
+from mrsuspension.dampers.base import DamperModel, FloatArray, ParameterSpec
+from mrsuspension.dampers.peak_velocity import (
+    V_LIMIT,
+    PeakVelocityEstimator,
+    make_estimator,
+)
+from mrsuspension.errors import ValidationError, check_finite, check_range
+
+__all__ = ["WangAsymmetric", "WangSymmetric"]
+
+VhVariant = Literal["2.12", "2.13"]
+
+_COMMON_RULES = {
+    "a0": "positive", "a1": "any", "a2": "nonnegative", "a3": "nonnegative",
+    "a4": "nonnegative", "I0": "any", "I1": "any", "k0": "nonnegative",
+}  # fmt: skip
+
+
+class WangSymmetric(DamperModel):
+    """Symmetric hysteretic model, eq. (2.15), with the force gain ``k_d``.
+
+    Parameters
+    ----------
+    parameters : str, path, ParameterSet or dict, optional
+        Parameter set (default ``"wang-symmetric-low"``, Table 2.2, 0.5-5 Hz).
+    hysteresis : bool
+        ``False`` gives the mean model (``k4 = 0``, so ``v_h = 0``).
+    vh_variant : {"2.12", "2.13"}
+        Zero-force velocity intercept: current dependent (2.12, all 13 identified
+        parameters, default) or the simplified (2.13).
+    force_gain : float
+        ``k_d`` multiplying the force (sections 5.3/6.2; default 1).
+    estimator : str or PeakVelocityEstimator
+        Peak-velocity estimator, ``"window"`` (default), ``"instantaneous"`` or ``"known"``
+        (then pass ``peak_velocity=``), see :mod:`mrsuspension.dampers.peak_velocity`.
+    max_current : float, optional
+        Highest accepted drive current [A] (default: the set's, 0.5 A).
+    **estimator_options
+        Passed to the estimator (``window=``, ``v_min=``, ``v_max=``, ``value=``).
+
+    Examples
+    --------
+    >>> m = WangSymmetric(hysteresis=False)
+    >>> f = m.force(0.0, [-0.2, 0.2], 0.0, 0.2, peak_velocity=0.3)
+    >>> bool(f[0] < 0 < f[1]) and bool(abs(f[0] + f[1]) < 1e-9)
+    True
+    """
+
+    name: ClassVar[str] = "wang-symmetric"
+    kind: ClassVar[int] = K.WANG
+    parameter_rules: ClassVar[dict[str, str]] = {
+        **_COMMON_RULES,
+        "k1": "nonnegative", "k2": "nonnegative", "k3": "any", "k4": "any", "F0": "positive",
+    }  # fmt: skip
+    default_parameters: ClassVar[str] = "wang-symmetric-low"
+    accepts: ClassVar[tuple[str, ...]] = ("wang-symmetric",)
+
+    def __init__(
+        self,
+        parameters: ParameterSpec = None,
+        *,
+        hysteresis: bool = True,
+        vh_variant: VhVariant = "2.12",
+        force_gain: float = 1.0,
+        estimator: str | PeakVelocityEstimator | None = None,
+        max_current: float | None = None,
+        **estimator_options: Any,
+    ) -> None:
+        if vh_variant not in ("2.12", "2.13"):
+            raise ValidationError(f"vh_variant must be '2.12' or '2.13'; got {vh_variant!r}")
+        if not isinstance(hysteresis, bool):
+            raise ValidationError(f"hysteresis must be true or false; got {hysteresis!r}")
+        self.hysteresis = hysteresis
+        self.vh_variant: VhVariant = vh_variant
+        self.force_gain = float(check_range("force_gain", force_gain, 0.0, 100.0, low_inclusive=False))
+        self.estimator = make_estimator(estimator, **estimator_options)
+        super().__init__(parameters, max_current=max_current)
+
+    def _vector(self) -> FloatArray:
+        v = self.values
+        p = np.zeros(K.W_SIZE)
+        for key, idx in (
+            ("a0", K.W_A0), ("a1", K.W_A1), ("a2", K.W_A2), ("a3", K.W_A3), ("a4", K.W_A4),
+            ("I0", K.W_I0), ("I1", K.W_I1), ("k0", K.W_K0), ("k2", K.W_K2), ("k3", K.W_K3),
+            ("k4", K.W_K4), ("F0", K.W_F0),
+        ):  # fmt: skip
+            p[idx] = v[key]
+        p[K.W_K1C] = v["k1c"] if "k1c" in v else v["k1"]
+        p[K.W_K1E] = v["k1e"] if "k1e" in v else v["k1"]
+        p[K.W_K5] = v.get("k5", 0.0)
+        p[K.W_K6] = v.get("k6", 0.0)
+        if not self.hysteresis:
+            p[K.W_K4] = 0.0  # mean model
+        p[K.W_KD] = self.force_gain
+        p[K.W_VHI] = 1.0 if self.vh_variant == "2.12" else 0.0
+        return p
+
+    def _estimator_arrays(self, dt: float) -> tuple[int, FloatArray, FloatArray]:
+        return self.estimator.code, self.estimator.params_for(dt), self.estimator.buffer(dt)
+
+    def _check_peak_velocity(self, peak_velocity: npt.ArrayLike) -> FloatArray:
+        return check_range("peak_velocity", peak_velocity, 0.0, V_LIMIT, unit="m/s")
+
+    def current_gain(self, current: npt.ArrayLike) -> FloatArray:
+        """C_i(i) of eq. (2.9) (1 at zero current).
+
+        Examples
+        --------
+        >>> float(WangSymmetric().current_gain(0.0))
+        1.0
+        """
+        i = self.check_current(current)
+        return np.vectorize(lambda c: K.current_gain(self._p, float(c)), otypes=[float])(i)
+
+    def passive_hysteron(
+        self,
+        velocity: npt.ArrayLike,
+        acceleration: npt.ArrayLike = 0.0,
+        *,
+        stroke: npt.ArrayLike = 0.0,
+        peak_velocity: npt.ArrayLike | None = None,
+    ) -> FloatArray:
+        """F_h of eq. (2.8) (zero current, v_h of (2.13)), the inverse model's reference.
+
+        Note that ``k_d`` is not included: ``F_d = k_d C_i F_h`` for the (2.13) variant.
+        """
+        return self._inverse(0.0, velocity, acceleration, stroke, peak_velocity, None)[1]
+
+    def inverse_current(
+        self,
+        target_force: npt.ArrayLike,
+        velocity: npt.ArrayLike,
+        acceleration: npt.ArrayLike = 0.0,
+        *,
+        stroke: npt.ArrayLike = 0.0,
+        peak_velocity: npt.ArrayLike | None = None,
+        max_current: float | None = None,
+    ) -> FloatArray:
+        """Inverse model (spec section 2.3): drive current that produces ``|target_force|``.
+
+        The damper can only produce the sign of its passive hysteron ``F_h``, so only the
+        magnitude of the target is used. Targets below the passive force give 0 A,
+        targets above the force at ``max_current`` give ``max_current``. The passive
+        hysteron uses the (2.13) form of ``v_h``, so the inverse is exact for models with
+        ``vh_variant="2.13"`` (as in the dissertation's Fig. 2.10 check).
+
+        Examples
+        --------
+        >>> m = WangSymmetric(vh_variant="2.13")
+        >>> f = m.force(0.0, 0.1, -1.0, 0.3, peak_velocity=0.2)
+        >>> float(m.inverse_current(f, 0.1, -1.0, peak_velocity=0.2))  # doctest: +ELLIPSIS
+        0.3000000...
+        """
+        if self.values.get("k5", 0.0) != 0.0 or self.values.get("k6", 0.0) != 0.0:
+            raise ValidationError(
+                "the inverse model (spec section 2.3) is defined for the symmetric model; "
+                f"this {self.name!r} model has k5={self.values.get('k5')}, "
+                f"k6={self.values.get('k6')}"
+            )
+        if not (self._p[K.W_K2] > 0 and self._p[K.W_A2] > 0):
+            raise ValidationError(
+                "the inverse model needs k2 > 0 and a2 > 0 (a current-dependent damper); "
+                f"got k2={self._p[K.W_K2]}, a2={self._p[K.W_A2]}"
+            )
+        return self._inverse(target_force, velocity, acceleration, stroke, peak_velocity, max_current)[0]
+
+    def _inverse(
+        self,
+        target_force: npt.ArrayLike,
+        velocity: npt.ArrayLike,
+        acceleration: npt.ArrayLike,
+        stroke: npt.ArrayLike,
+        peak_velocity: npt.ArrayLike | None,
+        max_current: float | None,
+    ) -> tuple[FloatArray, FloatArray]:
+        i_max = self.max_current
+        if max_current is not None:
+            i_max = float(check_range("max_current", max_current, 0.0, self.max_current, unit="A"))
+        arrays = [
+            check_finite("target_force", target_force),
+            check_finite("stroke", stroke),
+            check_finite("velocity", velocity),
+            check_finite("acceleration", acceleration),
+            np.full((), np.nan) if peak_velocity is None else self._check_peak_velocity(peak_velocity),
+        ]
+        try:
+            b = np.broadcast_arrays(*arrays)
+        except ValueError:
+            raise ValidationError(
+                "input shapes do not broadcast: " + ", ".join(str(q.shape) for q in arrays)
+            ) from None
+        shape = b[0].shape
+        f, x, v, a, vm = (np.ascontiguousarray(q, dtype=float).ravel() for q in b)
+        current, hysteron = np.empty(f.shape), np.empty(f.shape)
+        K.wang_inverse_array(
+            self._p, self.estimator.code, self.estimator.params(), f, x, v, a, vm, i_max,
+            current, hysteron,
+        )  # fmt: skip
+        return current.reshape(shape), hysteron.reshape(shape)
+
+    def describe(self) -> dict[str, Any]:
+        d = super().describe()
+        d.update(
+            hysteresis=self.hysteresis,
+            vh_variant=self.vh_variant,
+            force_gain=self.force_gain,
+            estimator=repr(self.estimator),
+        )
+        return d
+
+    def __repr__(self) -> str:
+        return (
+            f"{type(self).__name__}(parameters={self.parameters.name!r}, "
+            f"hysteresis={self.hysteresis}, vh_variant={self.vh_variant!r}, "
+            f"force_gain={self.force_gain:g}, estimator={self.estimator!r})"
+        )
+
+
+class WangAsymmetric(WangSymmetric):
+    """Asymmetric hysteretic model, eqs. (2.19)-(2.21) (default set: Table 2.3).
+
+    Accepts symmetric sets too (``k1c = k1e = k1``, ``k5 = k6 = 0``): the reduction of
+    section 2.2 of the spec.
+
+    Examples
+    --------
+    >>> m = WangAsymmetric(hysteresis=False)
+    >>> f = m.force(0.0, [-0.2, 0.2], 0.0, 0.2, peak_velocity=0.3)
+    >>> bool(-f[0] > f[1] > 0)  # rebound force exceeds compression force
+    True
+    """
+
+    name: ClassVar[str] = "wang-asymmetric"
+    parameter_rules: ClassVar[dict[str, str]] = {
+        **_COMMON_RULES,
+        "k1c": "nonnegative", "k1e": "nonnegative", "k2": "nonnegative", "k3": "any",
+        "k4": "any", "k5": "any", "k6": "any", "F0": "positive",
+    }  # fmt: skip
+    default_parameters: ClassVar[str] = "wang-asymmetric"
+    accepts: ClassVar[tuple[str, ...]] = ("wang-asymmetric", "wang-symmetric")
+
+    def _convert(self, pset: _parameters.ParameterSet) -> dict[str, float]:
+        values = dict(pset.values)
+        if pset.model == "wang-symmetric" and "k1" in values:
+            k1 = values.pop("k1")
+            values.update(k1c=k1, k1e=k1, k5=0.0, k6=0.0)
+        return values

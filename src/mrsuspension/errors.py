@@ -1,0 +1,105 @@
+"""Errors raised by mrsuspension.
+
+Every error names the offending field, the value it received and what would be valid,
+so that a user can fix the input without reading the source.
+"""
+
+from __future__ import annotations
+
+import difflib
+from collections.abc import Iterable
+
+import numpy as np
+
+__all__ = ["MRSuspensionError", "ValidationError", "did_you_mean"]
+
+
+class MRSuspensionError(Exception):
+    """Base class of every error raised on purpose by mrsuspension."""
+
+
+class ValidationError(MRSuspensionError, ValueError):
+    """An input (argument, parameter, file content) is outside its valid range."""
+
+
+def did_you_mean(name: str, choices: Iterable[str]) -> str:
+    """Return a ``" Did you mean 'x'?"`` hint, or an empty string.
+
+    Examples
+    --------
+    >>> did_you_mean("wang-symetric-low", ["wang-symmetric-low", "bingham"])
+    " Did you mean 'wang-symmetric-low'?"
+    """
+    close = difflib.get_close_matches(name, list(choices), n=1, cutoff=0.6)
+    return f" Did you mean '{close[0]}'?" if close else ""
+
+
+def unknown_name(kind: str, name: str, choices: Iterable[str]) -> ValidationError:
+    """Build the error for a name that is not registered."""
+    choices = sorted(choices)
+    return ValidationError(
+        f"unknown {kind} {name!r}.{did_you_mean(name, choices)} Valid: {', '.join(choices)}."
+    )
+
+
+def check_finite(name: str, value: object) -> np.ndarray:
+    """Return ``value`` as a float array, or raise if any element is NaN or infinite.
+
+    Examples
+    --------
+    >>> check_finite("velocity", [0.1, float("nan")])
+    Traceback (most recent call last):
+    ...
+    mrsuspension.errors.ValidationError: velocity must be finite; got nan at index 1
+    """
+    try:
+        arr = np.asarray(value, dtype=float)
+    except (TypeError, ValueError) as exc:
+        raise ValidationError(f"{name} must be a number or an array of numbers; got {value!r}") from exc
+    if not np.all(np.isfinite(arr)):
+        bad = np.flatnonzero(~np.isfinite(arr.ravel()))[0]
+        where = f" at index {bad}" if arr.ndim else ""
+        raise ValidationError(f"{name} must be finite; got {arr.ravel()[bad]}{where}")
+    return arr
+
+
+def check_range(
+    name: str,
+    value: object,
+    low: float | None = None,
+    high: float | None = None,
+    *,
+    unit: str = "",
+    low_inclusive: bool = True,
+    high_inclusive: bool = True,
+) -> np.ndarray:
+    """Check that every element of ``value`` is finite and inside ``[low, high]``.
+
+    Examples
+    --------
+    >>> check_range("drive current", 0.7, 0.0, 0.5, unit="A")
+    Traceback (most recent call last):
+    ...
+    mrsuspension.errors.ValidationError: drive current must be in [0, 0.5] A; got 0.7 A
+    """
+    arr = check_finite(name, value)
+    flat = arr.ravel()
+    too_low = np.zeros(flat.shape, bool)
+    too_high = np.zeros(flat.shape, bool)
+    if low is not None:
+        too_low = flat < low if low_inclusive else flat <= low
+    if high is not None:
+        too_high = flat > high if high_inclusive else flat >= high
+    bad = too_low | too_high
+    if np.any(bad):
+        k = int(np.flatnonzero(bad)[0])
+        lo = "-inf" if low is None else f"{low:g}"
+        hi = "inf" if high is None else f"{high:g}"
+        lb = "[" if low_inclusive and low is not None else "("
+        rb = "]" if high_inclusive and high is not None else ")"
+        u = f" {unit}" if unit else ""
+        where = f" at index {k}" if arr.ndim else ""
+        raise ValidationError(
+            f"{name} must be in {lb}{lo}, {hi}{rb}{u}; got {flat[k]:g}{u}{where}"
+        )
+    return arr
