@@ -306,6 +306,11 @@ class DamperModel(ABC):
             max_current=self.max_current,
         )
 
+    @property
+    def stateful(self) -> bool:
+        """Whether the force depends on past inputs (internal states or estimator memory)."""
+        return False
+
     def describe(self) -> dict[str, Any]:
         """Plain-data description (model, parameter set, provenance, options)."""
         return {

@@ -123,6 +123,10 @@ class SpencerBoucWen(DamperModel):
     default_parameters: ClassVar[str] = "spencer-1997"
     accepts: ClassVar[tuple[str, ...]] = ("spencer",)
 
+    @property
+    def stateful(self) -> bool:
+        return True
+
     def _convert(self, pset: _parameters.ParameterSet) -> dict[str, float]:
         values = dict(pset.values)
         values.pop("max_voltage", None)  # informative only

@@ -17,10 +17,11 @@ from mrsuspension.dampers import kernels as K
 from mrsuspension.dampers.base import DamperModel, FloatArray, ParameterSpec
 from mrsuspension.dampers.peak_velocity import (
     V_LIMIT,
+    KnownPeak,
     PeakVelocityEstimator,
     make_estimator,
 )
-from mrsuspension.errors import ValidationError, check_finite, check_range
+from mrsuspension.errors import ValidationError, check_finite, check_range, unknown_name
 
 __all__ = ["WangAsymmetric", "WangSymmetric"]
 
@@ -110,6 +111,10 @@ class WangSymmetric(DamperModel):
         p[K.W_KD] = self.force_gain
         p[K.W_VHI] = 1.0 if self.vh_variant == "2.12" else 0.0
         return p
+
+    @property
+    def stateful(self) -> bool:
+        return not isinstance(self.estimator, KnownPeak)
 
     def _estimator_arrays(self, dt: float) -> tuple[int, FloatArray, FloatArray]:
         return self.estimator.code, self.estimator.params_for(dt), self.estimator.buffer(dt)
@@ -213,6 +218,27 @@ class WangSymmetric(DamperModel):
             current, hysteron,
         )  # fmt: skip
         return current.reshape(shape), hysteron.reshape(shape)
+
+    def with_options(self, **changes: Any) -> WangSymmetric:
+        """A copy with some constructor options changed (e.g. ``estimator=KnownPeak(0.2)``).
+
+        Examples
+        --------
+        >>> WangSymmetric().with_options(hysteresis=False).hysteresis
+        False
+        """
+        options: dict[str, Any] = {
+            "hysteresis": self.hysteresis,
+            "vh_variant": self.vh_variant,
+            "force_gain": self.force_gain,
+            "estimator": self.estimator,
+            "max_current": self.max_current,
+        }
+        for key in changes:
+            if key not in options:
+                raise unknown_name(f"option of {type(self).__name__}", key, options)
+        options.update(changes)
+        return type(self)(self.parameters, **options)
 
     def describe(self) -> dict[str, Any]:
         d = super().describe()

@@ -1,0 +1,34 @@
+# Two entry points (see README): `make report` runs the main job, `make test` the test suite.
+# Both create a local virtual environment (.venv) and install the project into it first.
+PYTHON ?= python3
+VENV := .venv
+BIN := $(VENV)/bin
+OUT ?= results
+
+.PHONY: report test lint bench clean
+
+$(BIN)/python:
+	$(PYTHON) -m venv $(VENV)
+	$(BIN)/python -m pip install --quiet --upgrade pip
+
+# reinstall only when the project metadata changes
+$(VENV)/.stamp-install: pyproject.toml | $(BIN)/python
+	$(BIN)/python -m pip install --quiet -e ".[dev,plot]"
+	touch $@
+
+report: $(VENV)/.stamp-install
+	$(BIN)/mrsus reproduce --out $(OUT)
+
+lint: $(VENV)/.stamp-install
+	$(BIN)/ruff check src tests benchmarks examples tools
+	$(BIN)/ruff format --check src tests benchmarks examples tools
+	$(BIN)/mypy
+
+test: $(VENV)/.stamp-install lint
+	$(BIN)/python -m pytest
+
+bench: $(VENV)/.stamp-install
+	$(BIN)/python benchmarks/bench_damper.py
+
+clean:
+	rm -rf $(VENV) .pytest_cache .mypy_cache .ruff_cache $(OUT)
