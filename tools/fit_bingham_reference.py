@@ -18,9 +18,7 @@ from mrsuspension import parameters
 from mrsuspension.characterisation import characterise, table_2_1
 from mrsuspension.dampers import WangSymmetric
 
-conds = [
-    c for c in table_2_1(frequencies=[0.5, 1.5, 2.5, 5.0]) if c.peak_velocity <= 0.75
-]
+conds = [c for c in table_2_1(frequencies=[0.5, 1.5, 2.5, 5.0]) if c.peak_velocity <= 0.75]
 result = characterise(WangSymmetric("wang-symmetric-low"), conds)
 rows, rhs = [], []
 for loop in result.loops:
@@ -64,5 +62,7 @@ pset = parameters.ParameterSet(
 )
 out = Path(__file__).parents[1] / "src/mrsuspension/parameters/data/bingham-wang-low.toml"
 pset.save(out)
-out.write_text("# Bingham peer model fitted to the dissertation's model (see source).\n" + out.read_text())
+out.write_text(
+    "# Bingham peer model fitted to the dissertation's model (see source).\n" + out.read_text()
+)
 print("wrote", out)

@@ -158,7 +158,9 @@ class HarmonicLoop:
         }
 
 
-def _harmonic_setup(model: DamperModel, condition: TestCondition, peak_velocity: str) -> DamperModel:
+def _harmonic_setup(
+    model: DamperModel, condition: TestCondition, peak_velocity: str
+) -> DamperModel:
     if peak_velocity == "known":
         if isinstance(model, WangSymmetric):
             return model.with_options(estimator=KnownPeak(condition.peak_velocity))
@@ -210,7 +212,9 @@ def harmonic_loop(
         float(model.check_current(current)),
     )
     if not (isinstance(points_per_cycle, int) and 8 <= points_per_cycle <= 100_000):
-        raise ValidationError(f"points_per_cycle must be an integer in [8, 100000]; got {points_per_cycle!r}")
+        raise ValidationError(
+            f"points_per_cycle must be an integer in [8, 100000]; got {points_per_cycle!r}"
+        )
     m = _harmonic_setup(model, cond, peak_velocity)
     period = 1.0 / cond.frequency
     sub = max(1, math.ceil(period / points_per_cycle / max_dt))
@@ -226,7 +230,9 @@ def harmonic_loop(
     i: FloatArray | float = cond.current
     if current_shaping is not None:
         i = np.clip(
-            np.asarray(current_shaping(v, np.full_like(v, cond.peak_velocity), cond.current), float),
+            np.asarray(
+                current_shaping(v, np.full_like(v, cond.peak_velocity), cond.current), float
+            ),
             0.0,
             m.max_current,
         )

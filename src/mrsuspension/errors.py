@@ -55,7 +55,9 @@ def check_finite(name: str, value: object) -> np.ndarray:
     try:
         arr = np.asarray(value, dtype=float)
     except (TypeError, ValueError) as exc:
-        raise ValidationError(f"{name} must be a number or an array of numbers; got {value!r}") from exc
+        raise ValidationError(
+            f"{name} must be a number or an array of numbers; got {value!r}"
+        ) from exc
     if not np.all(np.isfinite(arr)):
         bad = np.flatnonzero(~np.isfinite(arr.ravel()))[0]
         where = f" at index {bad}" if arr.ndim else ""
@@ -99,7 +101,5 @@ def check_range(
         rb = "]" if high_inclusive and high is not None else ")"
         u = f" {unit}" if unit else ""
         where = f" at index {k}" if arr.ndim else ""
-        raise ValidationError(
-            f"{name} must be in {lb}{lo}, {hi}{rb}{u}; got {flat[k]:g}{u}{where}"
-        )
+        raise ValidationError(f"{name} must be in {lb}{lo}, {hi}{rb}{u}; got {flat[k]:g}{u}{where}")
     return arr

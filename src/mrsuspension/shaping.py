@@ -142,7 +142,9 @@ def cm_multiplier(switching: npt.ArrayLike, p_c: float, xi_c: float) -> np.ndarr
     0.99999...
     """
     z = check_finite("switching", switching)
-    return np.asarray(_cm_ufunc(z, _check_p("p_c", p_c, open_high=True), _check_positive("xi_c", xi_c)))
+    return np.asarray(
+        _cm_ufunc(z, _check_p("p_c", p_c, open_high=True), _check_positive("xi_c", xi_c))
+    )
 
 
 def onoff_adfg_current(
@@ -190,6 +192,8 @@ def drive_current(
             _check_positive("xi", xi),
             _check_p("p_c", p_c, open_high=True),
             _check_positive("xi_c", xi_c),
-            float(check_range("max_current", max_current, 0.0, 10.0, unit="A", low_inclusive=False)),
+            float(
+                check_range("max_current", max_current, 0.0, 10.0, unit="A", low_inclusive=False)
+            ),
         )
     )

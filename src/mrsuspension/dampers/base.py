@@ -25,6 +25,18 @@ FloatArray = npt.NDArray[np.float64]
 ParameterSpec = str | Path | _parameters.ParameterSet | Mapping[str, float] | None
 
 
+def flat_inputs(
+    *arrays: npt.ArrayLike, names: tuple[str, ...]
+) -> tuple[tuple[int, ...], list[FloatArray]]:
+    """Broadcast arrays together; return the shape and contiguous, writeable 1-D copies."""
+    try:
+        b = np.broadcast_arrays(*[np.asarray(a, dtype=float) for a in arrays])
+    except ValueError:
+        shapes = ", ".join(f"{n} {np.shape(a)}" for n, a in zip(names, arrays, strict=True))
+        raise ValidationError(f"input shapes do not broadcast: {shapes}") from None
+    return b[0].shape, [np.require(q, float, ["C", "W"]).ravel() for q in b]
+
+
 @dataclass(frozen=True)
 class DamperKernel:
     """Flat, compiled-kernel view of a damper with a fresh internal state.
@@ -220,18 +232,13 @@ class DamperModel(ABC):
             vm = np.full((), np.nan)
         else:
             vm = self._check_peak_velocity(peak_velocity)
-        try:
-            bx, bv, ba, bi, bvm = np.broadcast_arrays(x, v, a, i, vm)
-        except ValueError:
-            raise ValidationError(
-                f"input shapes do not broadcast: stroke {x.shape}, velocity {v.shape}, "
-                f"acceleration {a.shape}, current {i.shape}, peak_velocity {vm.shape}"
-            ) from None
-        shape = bx.shape
-        flat = [np.ascontiguousarray(arr, dtype=float).ravel() for arr in (bx, bv, ba, bi, bvm)]
+        shape, flat = flat_inputs(
+            x, v, a, i, vm, names=("stroke", "velocity", "acceleration", "current", "peak_velocity")
+        )
         out = np.empty(flat[0].shape)
         ek, ep, _ = self._estimator_arrays(1.0)
-        K.damper_pointwise(self.kind, self._p, ek, ep, *flat, out)
+        x1, v1, a1, i1, vm1 = flat
+        K.damper_pointwise(self.kind, self._p, ek, ep, x1, v1, a1, i1, vm1, out)
         return out.reshape(shape)
 
     def _check_peak_velocity(self, peak_velocity: npt.ArrayLike) -> FloatArray:
@@ -261,7 +268,9 @@ class DamperModel(ABC):
         """
         t = check_finite("time", time)
         if t.ndim != 1 or t.size < 2:
-            raise ValidationError(f"time must be a 1-D array of at least 2 samples; got shape {t.shape}")
+            raise ValidationError(
+                f"time must be a 1-D array of at least 2 samples; got shape {t.shape}"
+            )
         steps = np.diff(t)
         dt = float(steps.mean())
         if dt <= 0 or np.max(np.abs(steps - dt)) > 1e-6 * dt + 1e-12:

@@ -224,9 +224,7 @@ def _spencer_rates(
 
 
 @njit(cache=True)
-def spencer_advance(
-    p: np.ndarray, s: np.ndarray, x: float, xd: float, i: float, dt: float
-) -> None:
+def spencer_advance(p: np.ndarray, s: np.ndarray, x: float, xd: float, i: float, dt: float) -> None:
     """Integrate (y, z, u) over ``dt`` with x' held, by RK4 sub-steps sized for stability."""
     command = p[S_VPA] * i
     y, z, u = s[0], s[1], s[2]
@@ -326,18 +324,15 @@ def damper_sample(
     if kind == WANG:
         s[0] = estimator_update(ek, ep, es, x, v, a)
         s[1] = sign(a)
-    elif kind == SPENCER:
-        if s[3] == 0.0:
-            s[0] = x  # no preload in the k0 spring at start
-            s[1] = 0.0
-            s[2] = p[S_VPA] * i  # coil filter settled on the first command
-            s[3] = 1.0
+    elif kind == SPENCER and s[3] == 0.0:
+        s[0] = x  # no preload in the k0 spring at start
+        s[1] = 0.0
+        s[2] = p[S_VPA] * i  # coil filter settled on the first command
+        s[3] = 1.0
 
 
 @njit(cache=True)
-def damper_force(
-    kind: int, p: np.ndarray, s: np.ndarray, x: float, v: float, i: float
-) -> float:
+def damper_force(kind: int, p: np.ndarray, s: np.ndarray, x: float, v: float, i: float) -> float:
     """Damper force [N] (positive resists compression) with the held internals ``s``."""
     if kind == WANG:
         return wang_force(p, v, s[1], i, s[0])

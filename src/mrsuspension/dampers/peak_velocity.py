@@ -77,7 +77,9 @@ class PeakVelocityEstimator(ABC):
 
     def pointwise(self, stroke: float, velocity: float, acceleration: float) -> float:
         """v_m of a fresh estimator that has seen this one sample."""
-        return float(K.estimator_pointwise(self.code, self.params(), stroke, velocity, acceleration))
+        return float(
+            K.estimator_pointwise(self.code, self.params(), stroke, velocity, acceleration)
+        )
 
 
 @dataclass(frozen=True)

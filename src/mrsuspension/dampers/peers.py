@@ -135,4 +135,6 @@ class SpencerBoucWen(DamperModel):
     def _check_values(self, set_name: str, values: Any) -> None:
         super()._check_values(set_name, values)
         if values["n"] < 1:
-            raise ValidationError(f"set {set_name!r}: Bouc-Wen exponent n must be >= 1; got {values['n']}")
+            raise ValidationError(
+                f"set {set_name!r}: Bouc-Wen exponent n must be >= 1; got {values['n']}"
+            )

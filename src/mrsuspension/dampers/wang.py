@@ -14,7 +14,7 @@ import numpy.typing as npt
 
 from mrsuspension import parameters as _parameters
 from mrsuspension.dampers import kernels as K
-from mrsuspension.dampers.base import DamperModel, FloatArray, ParameterSpec
+from mrsuspension.dampers.base import DamperModel, FloatArray, ParameterSpec, flat_inputs
 from mrsuspension.dampers.peak_velocity import (
     V_LIMIT,
     KnownPeak,
@@ -89,7 +89,9 @@ class WangSymmetric(DamperModel):
             raise ValidationError(f"hysteresis must be true or false; got {hysteresis!r}")
         self.hysteresis = hysteresis
         self.vh_variant: VhVariant = vh_variant
-        self.force_gain = float(check_range("force_gain", force_gain, 0.0, 100.0, low_inclusive=False))
+        self.force_gain = float(
+            check_range("force_gain", force_gain, 0.0, 100.0, low_inclusive=False)
+        )
         self.estimator = make_estimator(estimator, **estimator_options)
         super().__init__(parameters, max_current=max_current)
 
@@ -183,7 +185,9 @@ class WangSymmetric(DamperModel):
                 "the inverse model needs k2 > 0 and a2 > 0 (a current-dependent damper); "
                 f"got k2={self._p[K.W_K2]}, a2={self._p[K.W_A2]}"
             )
-        return self._inverse(target_force, velocity, acceleration, stroke, peak_velocity, max_current)[0]
+        return self._inverse(
+            target_force, velocity, acceleration, stroke, peak_velocity, max_current
+        )[0]
 
     def _inverse(
         self,
@@ -197,21 +201,16 @@ class WangSymmetric(DamperModel):
         i_max = self.max_current
         if max_current is not None:
             i_max = float(check_range("max_current", max_current, 0.0, self.max_current, unit="A"))
-        arrays = [
+        shape, (f, x, v, a, vm) = flat_inputs(
             check_finite("target_force", target_force),
             check_finite("stroke", stroke),
             check_finite("velocity", velocity),
             check_finite("acceleration", acceleration),
-            np.full((), np.nan) if peak_velocity is None else self._check_peak_velocity(peak_velocity),
-        ]
-        try:
-            b = np.broadcast_arrays(*arrays)
-        except ValueError:
-            raise ValidationError(
-                "input shapes do not broadcast: " + ", ".join(str(q.shape) for q in arrays)
-            ) from None
-        shape = b[0].shape
-        f, x, v, a, vm = (np.ascontiguousarray(q, dtype=float).ravel() for q in b)
+            np.full((), np.nan)
+            if peak_velocity is None
+            else self._check_peak_velocity(peak_velocity),
+            names=("target_force", "stroke", "velocity", "acceleration", "peak_velocity"),
+        )
         current, hysteron = np.empty(f.shape), np.empty(f.shape)
         K.wang_inverse_array(
             self._p, self.estimator.code, self.estimator.params(), f, x, v, a, vm, i_max,

@@ -19,7 +19,7 @@ from __future__ import annotations
 import json
 import math
 import tomllib
-from collections.abc import Iterator, Mapping
+from collections.abc import ItemsView, Iterator, KeysView, Mapping
 from dataclasses import dataclass, field
 from importlib import resources
 from pathlib import Path
@@ -32,7 +32,7 @@ __all__ = ["ParameterSet", "available", "get", "load", "resolve"]
 
 
 @dataclass(frozen=True)
-class ParameterSet(Mapping[str, float]):
+class ParameterSet:
     """A named, immutable set of model parameters with provenance.
 
     Parameters
@@ -80,7 +80,9 @@ class ParameterSet(Mapping[str, float]):
 
     def __post_init__(self) -> None:
         if not isinstance(self.name, str) or not self.name:
-            raise ValidationError(f"parameter set name must be a non-empty string; got {self.name!r}")
+            raise ValidationError(
+                f"parameter set name must be a non-empty string; got {self.name!r}"
+            )
         if not isinstance(self.model, str) or not self.model:
             raise ValidationError(
                 f"parameter set {self.name!r}: 'model' must be a non-empty string; got {self.model!r}"
@@ -107,7 +109,7 @@ class ParameterSet(Mapping[str, float]):
         object.__setattr__(self, "units", MappingProxyType(dict(self.units)))
         object.__setattr__(self, "descriptions", MappingProxyType(dict(self.descriptions)))
 
-    # Mapping interface -------------------------------------------------------------
+    # read-only mapping interface (``values`` is the field holding the numbers) -------
     def __getitem__(self, key: str) -> float:
         try:
             return self.values[key]
@@ -119,6 +121,17 @@ class ParameterSet(Mapping[str, float]):
 
     def __len__(self) -> int:
         return len(self.values)
+
+    def __contains__(self, key: object) -> bool:
+        return key in self.values
+
+    def keys(self) -> KeysView[str]:
+        """Parameter names."""
+        return self.values.keys()
+
+    def items(self) -> ItemsView[str, float]:
+        """(name, value) pairs."""
+        return self.values.items()
 
     def __repr__(self) -> str:
         return f"ParameterSet(name={self.name!r}, model={self.model!r}, {len(self)} parameters)"

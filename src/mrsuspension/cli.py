@@ -1,0 +1,369 @@
+"""The ``mrsus`` command.
+
+``mrsus reproduce`` regenerates the dissertation's analyses into an HTML report (the
+main job); ``mrsus damper ...`` evaluates, characterises and plots damper models. Every
+error in the input is reported in one line on stderr with exit code 2.
+"""
+
+from __future__ import annotations
+
+import json
+import sys
+from collections.abc import Iterator
+from contextlib import contextmanager
+from pathlib import Path
+from typing import Annotated, Any
+
+import typer
+
+from mrsuspension.errors import MRSuspensionError, ValidationError
+
+app = typer.Typer(
+    help="mrsuspension: MR-damper models, semi-active suspension studies and reports.",
+    no_args_is_help=True,
+    pretty_exceptions_enable=False,
+    add_completion=False,
+)
+damper_app = typer.Typer(
+    help="Evaluate, characterise and plot damper models.", no_args_is_help=True
+)
+app.add_typer(damper_app, name="damper")
+
+_WANG = ("wang-symmetric", "wang-asymmetric")
+
+
+@contextmanager
+def _user_errors() -> Iterator[None]:
+    try:
+        yield
+    except MRSuspensionError as exc:
+        typer.echo(f"error: {exc}", err=True)
+        raise typer.Exit(2) from None
+
+
+def _floats(name: str, text: str) -> list[float]:
+    try:
+        values = [float(v) for v in text.split(",") if v.strip()]
+    except ValueError:
+        raise ValidationError(
+            f"--{name} must be a number or comma-separated numbers; got {text!r}"
+        ) from None
+    if not values:
+        raise ValidationError(f"--{name} needs at least one number")
+    return values
+
+
+ModelOpt = Annotated[
+    str,
+    typer.Option(
+        "--model", "-m", help="wang-symmetric | wang-asymmetric | bingham | spencer | linear"
+    ),
+]
+ParamsOpt = Annotated[
+    str | None, typer.Option("--parameters", "-p", help="registered set name or a .toml/.json file")
+]
+HystOpt = Annotated[
+    bool | None,
+    typer.Option("--hysteresis/--mean", help="hysteretic (default) or mean model (k4 = 0)"),
+]
+VhOpt = Annotated[
+    str | None, typer.Option("--vh-variant", help="v_h from (2.12) (default) or (2.13)")
+]
+GainOpt = Annotated[float | None, typer.Option("--force-gain", help="force gain k_d (default 1)")]
+EstOpt = Annotated[
+    str | None,
+    typer.Option("--estimator", help="peak-velocity estimator: window | instantaneous | known"),
+]
+JsonOpt = Annotated[bool, typer.Option("--json", help="print the result as one JSON object")]
+
+
+def _model(
+    model: str,
+    parameters: str | None,
+    hysteresis: bool | None,
+    vh_variant: str | None,
+    force_gain: float | None,
+    estimator: str | None,
+    peak_velocity: float | None = None,
+) -> Any:
+    from mrsuspension.dampers import make_damper
+
+    options: dict[str, Any] = {}
+    wang_only = {
+        "--hysteresis/--mean": ("hysteresis", hysteresis),
+        "--vh-variant": ("vh_variant", vh_variant),
+        "--force-gain": ("force_gain", force_gain),
+        "--estimator": ("estimator", estimator),
+    }
+    for flag, (key, value) in wang_only.items():
+        if value is not None:
+            if model not in _WANG:
+                raise ValidationError(
+                    f"{flag} applies to the dissertation's models ({', '.join(_WANG)}), not {model!r}"
+                )
+            options[key] = value
+    if options.get("estimator") == "known":
+        if peak_velocity is None:
+            raise ValidationError("--estimator known needs --peak-velocity")
+        options["value"] = peak_velocity
+    return make_damper(model, parameters, **options)
+
+
+@app.command()
+def reproduce(
+    out: Annotated[Path, typer.Option("--out", "-o", help="output folder")] = Path("results"),
+    chapters: Annotated[str | None, typer.Option(help="comma-separated chapters, e.g. 2")] = None,
+    quick: Annotated[bool, typer.Option("--quick", help="coarse grids, for a fast check")] = False,
+) -> None:
+    """Regenerate the dissertation's analyses into OUT/index.html (the main job)."""
+    from rich.console import Console
+
+    from mrsuspension.report import build_report
+
+    console = Console(stderr=True)
+    with _user_errors():
+        chosen = None if chapters is None else [int(c) for c in _floats("chapters", chapters)]
+        with console.status("starting") as status:
+            index = build_report(
+                out, chapters=chosen, quick=quick, progress=lambda m: status.update(m)
+            )
+    typer.echo(f"report written to {index}")
+
+
+@damper_app.command("force")
+def damper_force(
+    velocity: Annotated[
+        str, typer.Option("--velocity", "-v", help="v_d [m/s], comma-separated for several")
+    ],
+    model: ModelOpt = "wang-symmetric",
+    parameters: ParamsOpt = None,
+    stroke: Annotated[str, typer.Option("--stroke", "-x", help="x_d [m]")] = "0",
+    acceleration: Annotated[str, typer.Option("--acceleration", "-a", help="a_d [m/s^2]")] = "0",
+    current: Annotated[str, typer.Option("--current", "-i", help="drive current [A]")] = "0",
+    peak_velocity: Annotated[
+        float | None, typer.Option(help="v_m [m/s] (dissertation's models)")
+    ] = None,
+    hysteresis: HystOpt = None,
+    vh_variant: VhOpt = None,
+    force_gain: GainOpt = None,
+    estimator: EstOpt = None,
+    as_json: JsonOpt = False,
+) -> None:
+    """Print a model's force for given stroke, velocity, acceleration and current.
+
+    Comma-separated values broadcast against each other (one value or equal lengths).
+    """
+    import numpy as np
+
+    with _user_errors():
+        m = _model(model, parameters, hysteresis, vh_variant, force_gain, estimator, peak_velocity)
+        arrays = [np.asarray(_floats(n, t)) for n, t in
+                  (("stroke", stroke), ("velocity", velocity), ("acceleration", acceleration), ("current", current))]  # fmt: skip
+        vm = peak_velocity if m.name in _WANG and estimator != "known" else None
+        try:
+            x, v, a, i = np.broadcast_arrays(*arrays)
+        except ValueError:
+            raise ValidationError(
+                "comma-separated inputs must have one value or equal lengths"
+            ) from None
+        f = m.force(x, v, a, i, peak_velocity=vm)
+    if as_json:
+        typer.echo(json.dumps({
+            "model": m.describe(), "stroke": x.tolist(), "velocity": v.tolist(),
+            "acceleration": a.tolist(), "current": i.tolist(), "peak_velocity": vm,
+            "force": f.tolist(),
+        }))  # fmt: skip
+        return
+    typer.echo(f"{m!r}")
+    typer.echo(f"{'x_d [m]':>10} {'v_d [m/s]':>10} {'a_d [m/s2]':>11} {'i [A]':>7} {'F_d [N]':>12}")
+    for row in zip(x, v, a, i, f, strict=True):
+        typer.echo(f"{row[0]:10.4g} {row[1]:10.4g} {row[2]:11.4g} {row[3]:7.3g} {row[4]:12.6g}")
+
+
+@damper_app.command("inverse")
+def damper_inverse(
+    force: Annotated[str, typer.Option("--force", "-f", help="target force F* [N]")],
+    velocity: Annotated[str, typer.Option("--velocity", "-v", help="v_d [m/s]")],
+    acceleration: Annotated[str, typer.Option("--acceleration", "-a", help="a_d [m/s^2]")] = "0",
+    peak_velocity: Annotated[
+        float | None, typer.Option(help="v_m [m/s]; default: model estimator")
+    ] = None,
+    parameters: ParamsOpt = None,
+    hysteresis: HystOpt = None,
+    force_gain: GainOpt = None,
+    as_json: JsonOpt = False,
+) -> None:
+    """Inverse model (spec section 2.3): current that makes the symmetric model produce F*."""
+    import numpy as np
+
+    with _user_errors():
+        m = _model("wang-symmetric", parameters, hysteresis, "2.13", force_gain, None)
+        arrays = [np.asarray(_floats(n, t)) for n, t in
+                  (("force", force), ("velocity", velocity), ("acceleration", acceleration))]  # fmt: skip
+        try:
+            f, v, a = np.broadcast_arrays(*arrays)
+        except ValueError:
+            raise ValidationError(
+                "comma-separated inputs must have one value or equal lengths"
+            ) from None
+        i = m.inverse_current(f, v, a, peak_velocity=peak_velocity)
+    if as_json:
+        typer.echo(json.dumps({"target_force": f.tolist(), "velocity": v.tolist(),
+                               "acceleration": a.tolist(), "current": i.tolist()}))  # fmt: skip
+        return
+    for row in zip(f, v, a, i, strict=True):
+        typer.echo(f"F*={row[0]:g} N  v={row[1]:g} m/s  a={row[2]:g} m/s2  ->  i={row[3]:.6g} A")
+
+
+@damper_app.command("loops")
+def damper_loops(
+    frequency: Annotated[float, typer.Option("--frequency", help="f [Hz]")] = 1.5,
+    amplitude: Annotated[float, typer.Option("--amplitude", help="a_m [m]")] = 0.0125,
+    currents: Annotated[
+        str, typer.Option("--currents", help="comma-separated currents [A]")
+    ] = "0,0.1,0.2,0.3,0.4",
+    model: ModelOpt = "wang-symmetric",
+    parameters: ParamsOpt = None,
+    hysteresis: HystOpt = None,
+    vh_variant: VhOpt = None,
+    force_gain: GainOpt = None,
+    out: Annotated[
+        Path | None, typer.Option("--out", "-o", help="folder for loops.csv and a plot")
+    ] = None,
+    as_json: JsonOpt = False,
+) -> None:
+    """Steady-state F-v and F-x loops of one harmonic test at several currents."""
+    from mrsuspension.characterisation import TestCondition, characterise
+
+    with _user_errors():
+        m = _model(model, parameters, hysteresis, vh_variant, force_gain, None)
+        conds = [TestCondition(frequency, amplitude, i) for i in _floats("currents", currents)]
+        result = characterise(m, conds)
+        files = []
+        if out is not None:
+            files = [str(p) for p in result.save(out)]
+            files.append(str(_plot_result(result, Path(out) / "loops.png")))
+    rows = result.summary_rows()
+    if as_json:
+        typer.echo(json.dumps({"model": result.model, "tests": rows, "files": files}))
+        return
+    _print_rows(rows)
+    for f in files:
+        typer.echo(f"wrote {f}")
+
+
+def _plot_result(result: Any, path: Path) -> Path:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(10, 4), layout="constrained")
+    for loop in result.loops:
+        label = loop.condition.label()
+        ax1.plot(loop.velocity, loop.force, label=label)
+        ax2.plot(loop.stroke * 1e3, loop.force, label=label)
+    ax1.set_xlabel("velocity $v_d$ [m/s]")
+    ax2.set_xlabel("stroke $x_d$ [mm]")
+    for ax in (ax1, ax2):
+        ax.set_ylabel("force $F_d$ [N]")
+        ax.grid(True, alpha=0.3)
+    ax1.legend(fontsize=7)
+    fig.suptitle(f"{result.model['model']} ({result.model['parameter_set']})")
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
+
+
+def _print_rows(rows: list[dict[str, float]]) -> None:
+    keys = list(rows[0])
+    typer.echo("  ".join(f"{k:>14.14}" for k in keys))
+    for r in rows:
+        typer.echo("  ".join(f"{r[k]:14.5g}" for k in keys))
+
+
+@damper_app.command("matrix")
+def damper_matrix(
+    model: ModelOpt = "wang-symmetric",
+    parameters: ParamsOpt = None,
+    hysteresis: HystOpt = None,
+    vh_variant: VhOpt = None,
+    force_gain: GainOpt = None,
+    out: Annotated[
+        Path | None, typer.Option("--out", "-o", help="folder for summary.csv and loops.csv")
+    ] = None,
+    as_json: JsonOpt = False,
+) -> None:
+    """Run the 165 tests of Table 2.1 on a model (summary per test; loops with --out)."""
+    from mrsuspension.characterisation import characterise
+
+    with _user_errors():
+        m = _model(model, parameters, hysteresis, vh_variant, force_gain, None)
+        result = characterise(m, progress=not as_json)
+        files = [str(p) for p in result.save(out)] if out is not None else []
+    rows = result.summary_rows()
+    if as_json:
+        typer.echo(json.dumps({"model": result.model, "tests": rows, "files": files}))
+        return
+    _print_rows(rows)
+    for f in files:
+        typer.echo(f"wrote {f}")
+
+
+@damper_app.command("figures")
+def damper_figures(
+    out: Annotated[Path, typer.Option("--out", "-o", help="output folder")] = Path("results"),
+) -> None:
+    """Regenerate the Chapter 2 figures (2.3-2.11) and their index page."""
+    reproduce(out=out, chapters="2", quick=False)
+
+
+@damper_app.command("sets")
+def damper_sets(
+    name: Annotated[str | None, typer.Argument(help="a set name or file to show")] = None,
+    as_json: JsonOpt = False,
+) -> None:
+    """List the registered parameter sets, or show one with units and provenance."""
+    from mrsuspension import parameters
+
+    with _user_errors():
+        if name is None:
+            sets = [parameters.get(n) for n in parameters.available()]
+            if as_json:
+                typer.echo(
+                    json.dumps(
+                        [{"name": s.name, "model": s.model, "source": s.source} for s in sets]
+                    )
+                )
+                return
+            for s in sets:
+                typer.echo(f"{s.name:22} {s.model:16} {s.source[:80]}")
+            return
+        s = parameters.resolve(name, model="")
+    if as_json:
+        typer.echo(json.dumps(s.to_dict()))
+        return
+    typer.echo(f"{s.name} (model {s.model}, table {s.table})\nsource: {s.source}")
+    for k, v in s.items():
+        typer.echo(f"  {k:14} {v:14.6g} {s.units.get(k, ''):12} {s.descriptions.get(k, '')}")
+
+
+@app.command()
+def version() -> None:
+    """Print the package version."""
+    from mrsuspension import __version__
+
+    typer.echo(__version__)
+
+
+def main() -> None:
+    """Entry point of the ``mrsus`` command."""
+    try:
+        app()
+    except MRSuspensionError as exc:  # pragma: no cover - commands catch their own
+        print(f"error: {exc}", file=sys.stderr)
+        sys.exit(2)
+
+
+if __name__ == "__main__":  # pragma: no cover
+    main()

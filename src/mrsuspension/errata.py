@@ -1,0 +1,89 @@
+"""The dissertation's errata (MODEL_SPEC section 12) and the choice the code makes for each.
+
+This list is the single source: the report prints it and ``docs/errata.md`` explains it
+(a test checks the two agree).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+__all__ = ["ERRATA", "Erratum"]
+
+
+@dataclass(frozen=True)
+class Erratum:
+    """One deviation from the dissertation."""
+
+    number: int
+    location: str
+    printed: str
+    correction: str
+    code: str
+
+
+ERRATA: tuple[Erratum, ...] = (
+    Erratum(
+        1,
+        "eq. (3.1)",
+        "unsprung equation carries the gravity term (m_s + m_u) g",
+        "m_u g, so the model is in equilibrium at rest (spec section 4)",
+        "vehicle model (engine issue)",
+    ),
+    Erratum(
+        2,
+        "eq. (3.37)",
+        "constant-acceleration stage scales the amplitude by f_T/f",
+        "(f_T/f)^2, which keeps the road acceleration constant above f_T",
+        "swept excitation (engine issue)",
+    ),
+    Erratum(
+        3,
+        "eqs. (3.47)/(3.48)",
+        "T_dr garbled",
+        "T_dr = rms(x_d) / rms(z_r), dimensionless",
+        "measures (engine issue)",
+    ),
+    Erratum(
+        4,
+        "eqs. (3.24)/(3.34)",
+        "sign of the switching term",
+        "-K sat(s/eps) with the force acting up on the sprung mass; the seed's own (3.22) frame would need +K",
+        "sliding-mode controller (engine issue)",
+    ),
+    Erratum(
+        5,
+        "eq. (3.34)",
+        "sat(s/eps) undefined",
+        "sat(y) = clip(y, -1, 1)",
+        "sliding-mode controller (engine issue)",
+    ),
+    Erratum(
+        6,
+        "eq. (2.17)",
+        "printed closed form of the inverse model is garbled",
+        "invert C_i of (2.9) directly: i = -I0 - ln(1/y - 1)/a2, y = (C - 1)/k2 + sigma(a2 I0)",
+        "mrsuspension.dampers.kernels.wang_inverse",
+    ),
+    Erratum(
+        7,
+        "eq. (2.14)",
+        "peak-velocity estimate sqrt(v^2 - a x) used in closed loop",
+        "runs away in closed loop; default estimator is the windowed peak of |v_d| over 1 s, clamped to [1e-3, 1] m/s",
+        "mrsuspension.dampers.peak_velocity.WindowPeak",
+    ),
+    Erratum(
+        8,
+        "section 4.2",
+        "calls v_r < 0 compression once",
+        "compression is v_d > 0 everywhere",
+        "sign convention of every model and of the ADFG (S = p for v_d > 0)",
+    ),
+    Erratum(
+        9,
+        "eq. (3.38), pulse speed scaling",
+        "0.64 s / 4.5 m pulse description does not reproduce w0",
+        "w0 = 10.4 rad/s at 50 km/h, scaled linearly with speed",
+        "rounded-pulse excitation (engine issue)",
+    ),
+)

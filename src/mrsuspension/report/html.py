@@ -1,0 +1,225 @@
+"""The HTML report: figures (PNG + SVG), tables and provenance on one index page."""
+
+from __future__ import annotations
+
+import html
+import json
+import platform
+import time
+from collections.abc import Callable, Iterable, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from mrsuspension.errors import ValidationError
+
+__all__ = ["FigureRecord", "build_report"]
+
+
+@dataclass
+class FigureRecord:
+    """A figure with its number, caption, and the numbers behind it."""
+
+    number: str
+    title: str
+    caption: str
+    figure: Any  # matplotlib.figure.Figure
+    data: dict[str, Any] = field(default_factory=dict)
+    files: list[str] = field(default_factory=list)
+
+    @property
+    def slug(self) -> str:
+        """File stem, e.g. ``fig_2_3``."""
+        return "fig_" + self.number.replace(".", "_")
+
+    def save(self, folder: Path, formats: Sequence[str] = ("png", "svg")) -> list[Path]:
+        """Write the figure in each format and close it."""
+        import matplotlib.pyplot as plt
+
+        folder.mkdir(parents=True, exist_ok=True)
+        self.figure.suptitle(f"Fig. {self.number}: {self.title}", fontsize=10)
+        paths = []
+        for fmt in formats:
+            path = folder / f"{self.slug}.{fmt}"
+            self.figure.savefig(path, dpi=110)
+            paths.append(path)
+        plt.close(self.figure)
+        self.files = [p.name for p in paths]
+        return paths
+
+
+_STYLE = """
+body{font-family:system-ui,sans-serif;max-width:1100px;margin:2em auto;padding:0 1em;color:#222}
+h1{font-size:1.6em} h2{border-bottom:1px solid #ccc;padding-bottom:.2em;margin-top:2em}
+figure{margin:1.5em 0;border:1px solid #eee;padding:.5em} figure img{max-width:100%}
+figcaption{font-size:.9em;color:#444} table{border-collapse:collapse;font-size:.85em;margin:.5em 0}
+td,th{border:1px solid #ccc;padding:.2em .5em;text-align:right} th{background:#f4f4f4}
+td.l,th.l{text-align:left} code{background:#f4f4f4;padding:0 .2em} .meta{color:#666;font-size:.85em}
+"""
+
+
+def _table(rows: Sequence[dict[str, Any]], fmt: str = "{:.4g}") -> str:
+    if not rows:
+        return ""
+    keys = list(rows[0])
+    head = "".join(f"<th>{html.escape(str(k))}</th>" for k in keys)
+    body = []
+    for r in rows:
+        cells = []
+        for k in keys:
+            v = r[k]
+            text = fmt.format(v) if isinstance(v, float) else str(v)
+            cls = "" if isinstance(v, int | float) else ' class="l"'
+            cells.append(f"<td{cls}>{html.escape(text)}</td>")
+        body.append("<tr>" + "".join(cells) + "</tr>")
+    return f"<table><tr>{head}</tr>{''.join(body)}</table>"
+
+
+def _chapter_2(
+    folder: Path, quick: bool, progress: Callable[[str], None]
+) -> tuple[str, dict[str, Any]]:
+    from mrsuspension import parameters
+    from mrsuspension.characterisation import characterise, table_2_1
+    from mrsuspension.errata import ERRATA
+    from mrsuspension.report import ch2
+
+    sections: list[str] = []
+    manifest: dict[str, Any] = {"figures": [], "tables": []}
+    for build in ch2.CHAPTER_2_FIGURES:
+        progress(f"chapter 2: {build.__doc__.splitlines()[0] if build.__doc__ else build.__name__}")
+        rec = build()
+        rec.save(folder)
+        manifest["figures"].append(
+            {"number": rec.number, "title": rec.title, "files": rec.files, "data": rec.data}
+        )
+        sections.append(
+            f'<figure id="{rec.slug}"><img src="chapter2/{rec.slug}.png" alt="Fig. {rec.number}">'
+            f"<figcaption><b>Fig. {html.escape(rec.number)}: {html.escape(rec.title)}.</b> "
+            f"{html.escape(rec.caption)} "
+            f'<a href="chapter2/{rec.slug}.svg">SVG</a></figcaption></figure>'
+        )
+    # Table 2.1 on the default model
+    progress("chapter 2: Table 2.1 test matrix on the symmetric model")
+    conds = table_2_1() if not quick else table_2_1(frequencies=[0.5, 1.5, 5.0, 15.0])
+    result = characterise(ch2.band_model(0.5), [c for c in conds if c.frequency <= 5.0])
+    result_hi = characterise(ch2.band_model(7.5), [c for c in conds if c.frequency > 5.0])
+    rows = result.summary_rows() + result_hi.summary_rows()
+    rows.sort(key=lambda r: (r["amplitude [m]"], r["frequency [Hz]"], r["current [A]"]))
+    import csv
+
+    with (folder / "table_2_1_model.csv").open("w", newline="") as fh:
+        w = csv.DictWriter(fh, fieldnames=list(rows[0]))
+        w.writeheader()
+        w.writerows(rows)
+    manifest["tables"].append(
+        {"number": "2.1", "file": "chapter2/table_2_1_model.csv", "rows": len(rows)}
+    )
+    # parameter tables
+    ptables = []
+    for name in ("wang-symmetric-low", "wang-symmetric-high", "wang-asymmetric"):
+        p = parameters.get(name)
+        ptables.append(
+            f"<h3>{html.escape(name)} (Table {p.table})</h3><p class='meta'>{html.escape(p.source)}</p>"
+            + _table(
+                [{"parameter": k, "value": v, "unit": p.units.get(k, "")} for k, v in p.items()]
+            )
+        )
+    errata = _table(
+        [
+            {
+                "#": e.number,
+                "where": e.location,
+                "dissertation": e.printed,
+                "mrsuspension": e.correction,
+            }
+            for e in ERRATA
+        ]
+    )
+    body = (
+        "<h2 id='ch2'>Chapter 2: characterisation and modelling of the MR damper</h2>"
+        + "".join(sections)
+        + f"<h3>Table 2.1 test matrix on the model ({len(rows)} tests)</h3>"
+        "<p>Peak forces, energy per cycle and equivalent damping of every test, with the "
+        "Table 2.2 set of each frequency band: "
+        "<a href='chapter2/table_2_1_model.csv'>table_2_1_model.csv</a>. Tests far outside "
+        "the identified velocity range (about 0.05-0.75 m/s) extrapolate the exponential "
+        "transition force (2.7) and give unphysically large forces.</p>"
+        + _table(
+            [r for r in rows if r["current [A]"] in (0.0, 0.4)][:: 1 if quick else 2], fmt="{:.4g}"
+        )
+        + "<h3>Parameter sets</h3>"
+        + "".join(ptables)
+        + "<h3>Errata applied (MODEL_SPEC section 12)</h3>"
+        + errata
+    )
+    return body, manifest
+
+
+_CHAPTERS: dict[int, Callable[[Path, bool, Callable[[str], None]], tuple[str, dict[str, Any]]]] = {
+    2: _chapter_2,
+}
+
+
+def build_report(
+    out: str | Path = "results",
+    *,
+    chapters: Iterable[int] | None = None,
+    quick: bool = False,
+    progress: Callable[[str], None] | None = None,
+) -> Path:
+    """Regenerate the dissertation's analyses into ``out/index.html``.
+
+    Parameters
+    ----------
+    out : path
+        Output folder (created). Figures go to ``out/chapterN/``.
+    chapters : iterable of int, optional
+        Chapters to build (default: every available one; now: 2).
+    quick : bool
+        Coarser grids for a fast check.
+    progress : callable, optional
+        Called with a message before each step.
+
+    Returns
+    -------
+    pathlib.Path
+        The index page.
+    """
+    from mrsuspension import __version__
+
+    chosen = sorted(_CHAPTERS) if chapters is None else sorted(set(chapters))
+    for c in chosen:
+        if c not in _CHAPTERS:
+            raise ValidationError(
+                f"chapter {c} is not available; available: {', '.join(map(str, sorted(_CHAPTERS)))}"
+            )
+    if not chosen:
+        raise ValidationError("no chapters selected")
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    say = progress or (lambda _msg: None)
+    start = time.perf_counter()
+    bodies: list[str] = []
+    manifest: dict[str, Any] = {"version": __version__, "chapters": {}}
+    for c in chosen:
+        body, info = _CHAPTERS[c](out / f"chapter{c}", quick, say)
+        bodies.append(body)
+        manifest["chapters"][str(c)] = info
+    elapsed = time.perf_counter() - start
+    manifest["run_time_s"] = round(elapsed, 2)
+    (out / "manifest.json").write_text(json.dumps(manifest, indent=2, default=float) + "\n")
+    toc = "".join(f"<li><a href='#ch{c}'>Chapter {c}</a></li>" for c in chosen)
+    page = (
+        "<!doctype html><html><head><meta charset='utf-8'>"
+        "<title>mrsuspension report</title>"
+        f"<style>{_STYLE}</style></head><body>"
+        "<h1>mrsuspension: reproduction of the dissertation's analyses</h1>"
+        f"<p class='meta'>mrsuspension {html.escape(__version__)}, Python "
+        f"{platform.python_version()}, generated {time.strftime('%Y-%m-%d %H:%M:%S')} in "
+        f"{elapsed:.1f} s{' (quick mode)' if quick else ''}. Raw numbers: "
+        "<a href='manifest.json'>manifest.json</a>.</p>"
+        f"<ul>{toc}</ul>" + "".join(bodies) + "</body></html>"
+    )
+    index = out / "index.html"
+    index.write_text(page)
+    return index
