@@ -228,18 +228,61 @@ class DamperModel(ABC):
         v = check_finite("velocity", velocity)
         a = check_finite("acceleration", acceleration)
         i = self.check_current(current)
-        if peak_velocity is None:
-            vm = np.full((), np.nan)
-        else:
-            vm = self._check_peak_velocity(peak_velocity)
-        shape, flat = flat_inputs(
-            x, v, a, i, vm, names=("stroke", "velocity", "acceleration", "current", "peak_velocity")
-        )
-        out = np.empty(flat[0].shape)
+        vm = None if peak_velocity is None else self._check_peak_velocity(peak_velocity)
+        arrays = (x, v, a, i) if vm is None else (x, v, a, i, vm)
+        try:
+            shape = np.broadcast_shapes(*(q.shape for q in arrays))
+        except ValueError:
+            names = ("stroke", "velocity", "acceleration", "current", "peak_velocity")
+            shapes = ", ".join(f"{n} {q.shape}" for n, q in zip(names, arrays, strict=False))
+            raise ValidationError(f"input shapes do not broadcast: {shapes}") from None
+        out = np.asarray(self._force_arrays(x, v, a, i, vm), dtype=float)
+        if out.shape != shape:
+            out = np.broadcast_to(out, shape).copy()
+        return out
+
+    def _force_arrays(
+        self,
+        x: FloatArray,
+        v: FloatArray,
+        a: FloatArray,
+        i: FloatArray,
+        vm: FloatArray | None,
+    ) -> FloatArray:
+        """Force over validated, broadcastable arrays (default: the compiled kernel loop).
+
+        Memoryless models override this with numpy expressions of the same equations,
+        which numpy evaluates with SIMD; a test keeps both paths equal to round-off.
+        """
+        shape, (x1, v1, a1, i1, vm1) = flat_inputs(
+            x, v, a, i, np.full((), np.nan) if vm is None else vm,
+            names=("stroke", "velocity", "acceleration", "current", "peak_velocity"),
+        )  # fmt: skip
+        out = np.empty(x1.shape)
         ek, ep, _ = self._estimator_arrays(1.0)
-        x1, v1, a1, i1, vm1 = flat
         K.damper_pointwise(self.kind, self._p, ek, ep, x1, v1, a1, i1, vm1, out)
         return out.reshape(shape)
+
+    def kernel_force(
+        self,
+        stroke: npt.ArrayLike,
+        velocity: npt.ArrayLike,
+        acceleration: npt.ArrayLike = 0.0,
+        current: npt.ArrayLike = 0.0,
+        *,
+        peak_velocity: npt.ArrayLike | None = None,
+    ) -> FloatArray:
+        """:meth:`force` evaluated point by point by the compiled scalar kernel.
+
+        The simulation engine uses this path; it exists publicly so that tests and
+        benchmarks can hold the two paths against each other.
+        """
+        x = check_finite("stroke", stroke)
+        v = check_finite("velocity", velocity)
+        a = check_finite("acceleration", acceleration)
+        i = self.check_current(current)
+        vm = None if peak_velocity is None else self._check_peak_velocity(peak_velocity)
+        return DamperModel._force_arrays(self, x, v, a, i, vm)
 
     def _check_peak_velocity(self, peak_velocity: npt.ArrayLike) -> FloatArray:
         raise ValidationError(f"model {self.name!r} has no peak-velocity input")

@@ -13,8 +13,9 @@ model:
 ``p``
     parameter vector (layout: the ``*_`` index constants below);
 ``s``
-    internal state held over a time step (zero-order hold): ``[v_m, sgn(a_d), -, -]``
-    for the dissertation's model, ``[y, z, u, initialised]`` for Spencer's;
+    internal state held over a time step (zero-order hold): ``v_m``, ``sgn(a_d)`` and the
+    terms derived from them (``WS_*`` layout) for the dissertation's model,
+    ``[y, z, u, initialised]`` for Spencer's;
 ``ek, ep, es``
     the peak-velocity estimator's code, parameters and buffer.
 
@@ -37,7 +38,7 @@ BINGHAM = 1
 WANG = 2
 SPENCER = 3
 
-STATE_SIZE = 4
+STATE_SIZE = 10
 
 # Dissertation (Wang) model, eqs. (2.7)-(2.21); symmetric sets use K1C = K1E = k1, K5 = K6 = 0.
 W_A0 = 0  # a0, hysteresis slope alpha at v_m = 0 [s/m]
@@ -58,7 +59,14 @@ W_K6 = 14  # k6, velocity offset v_b / v_m
 W_F0 = 15  # F0, seal friction [N]
 W_KD = 16  # k_d, force gain (sections 5.3 / 6.2)
 W_VHI = 17  # 1.0: v_h from (2.12) (current dependent); 0.0: (2.13)
-W_SIZE = 18
+W_SA2 = 18  # derived: sigma(a2 I0), filled by wang_derive
+W_SA3 = 19  # derived: sigma(a3 I1), filled by wang_derive
+W_SIZE = 20
+
+# Held state of the dissertation's model over a step. The motion terms are latched by
+# damper_sample; the current terms are recomputed whenever the current differs from the
+# latched one (so a held current costs nothing in the RK4 stages).
+WS_VM, WS_SGN, WS_I, WS_CI, WS_SHIFT, WS_FT, WS_HALF_ALPHA, WS_DECAY, WS_FB = range(9)
 
 # Spencer et al. (1997) modified Bouc-Wen, MODEL_SPEC section 2.5.
 S_C0A, S_C0B, S_K0, S_C1A, S_C1B, S_K1, S_X0 = 0, 1, 2, 3, 4, 5, 6
@@ -98,9 +106,16 @@ def sign(u: float) -> float:
 # ----------------------------------------------------------------------------------
 # the dissertation's model
 @njit(cache=True)
+def wang_derive(p: np.ndarray) -> None:
+    """Fill the derived slots of a parameter vector (constants of C_i and H)."""
+    p[W_SA2] = sigmoid(p[W_A2] * p[W_I0])
+    p[W_SA3] = sigmoid(p[W_A3] * p[W_I1])
+
+
+@njit(cache=True)
 def current_gain(p: np.ndarray, i: float) -> float:
     """C_i(i) = 1 + k2 sigma(a2 (i + I0)) - k2 sigma(a2 I0), eq. (2.9); C_i(0) = 1."""
-    return 1.0 + p[W_K2] * (sigmoid(p[W_A2] * (i + p[W_I0])) - sigmoid(p[W_A2] * p[W_I0]))
+    return 1.0 + p[W_K2] * (sigmoid(p[W_A2] * (i + p[W_I0])) - p[W_SA2])
 
 
 @njit(cache=True)
@@ -108,7 +123,7 @@ def hysteresis_current_factor(p: np.ndarray, i: float) -> float:
     """H(i) of eq. (2.12); 1 for the simplified (2.13) variant."""
     if p[W_VHI] == 0.0:
         return 1.0
-    return 1.0 + p[W_K3] * (sigmoid(p[W_A3] * (i + p[W_I1])) - sigmoid(p[W_A3] * p[W_I1]))
+    return 1.0 + p[W_K3] * (sigmoid(p[W_A3] * (i + p[W_I1])) - p[W_SA3])
 
 
 @njit(cache=True)
@@ -142,20 +157,48 @@ def passive_hysteron(p: np.ndarray, v: float, sgn_a: float, vm: float) -> float:
 
 
 @njit(cache=True)
-def wang_force(p: np.ndarray, v: float, sgn_a: float, i: float, vm: float) -> float:
-    """Damper force of eqs. (2.15) and (2.19), with the force gain k_d.
+def wang_latch_motion(p: np.ndarray, s: np.ndarray, vm: float, sgn_a: float) -> None:
+    """Latch v_m, sgn(a_d) and the terms that depend on them only (eqs. 2.7, 2.10, 2.11)."""
+    s[WS_VM] = vm
+    s[WS_SGN] = sgn_a
+    s[WS_I] = math.nan  # current terms must be recomputed
+    s[WS_FT] = transition_force(p, vm)
+    s[WS_HALF_ALPHA] = 0.5 * hysteresis_slope(p, vm)
+    s[WS_DECAY] = math.exp(-p[W_A4] * vm)
+
+
+@njit(cache=True)
+def wang_latch_current(p: np.ndarray, s: np.ndarray, i: float) -> None:
+    """Latch the current-dependent terms: C_i (2.9), v_h + v_b (2.12)/(2.13)/(2.20), F_b."""
+    ci = current_gain(p, i)
+    vm = s[WS_VM]
+    s[WS_I] = i
+    s[WS_CI] = ci
+    s[WS_SHIFT] = s[WS_SGN] * p[W_K4] * vm * hysteresis_current_factor(p, i) + p[W_K6] * vm
+    s[WS_FB] = p[W_K5] * ci * s[WS_FT]
+
+
+@njit(cache=True)
+def wang_eval(p: np.ndarray, s: np.ndarray, v: float, i: float) -> float:
+    """Damper force of eqs. (2.15) and (2.19) from the latched state, with the gain k_d.
 
     ``F_d = k_d C_i (F_t tanh(alpha (v_d + v_h + v_b)/2) - F_b)(1 + k_v |v_d|)``,
     ``F_b = k5 C_i F_t``, ``v_b = k6 v_m``; k5 = k6 = 0 and k1c = k1e give the symmetric
     model (2.15); k4 = 0 the mean model.
     """
-    ci = current_gain(p, i)
-    ft = transition_force(p, vm)
-    vh = sgn_a * p[W_K4] * vm * hysteresis_current_factor(p, i)  # (2.12)/(2.13)
-    vb = p[W_K6] * vm  # (2.20)
-    fb = p[W_K5] * ci * ft  # (2.20)
-    tanh = math.tanh(0.5 * hysteresis_slope(p, vm) * (v + vh + vb))
-    return p[W_KD] * ci * (ft * tanh - fb) * linear_rise(p, v, vm)
+    if i != s[WS_I]:  # also true for the NaN set by wang_latch_motion
+        wang_latch_current(p, s, i)
+    k1 = p[W_K1C] if v >= 0.0 else p[W_K1E]
+    tanh = math.tanh(s[WS_HALF_ALPHA] * (v + s[WS_SHIFT]))
+    return p[W_KD] * s[WS_CI] * (s[WS_FT] * tanh - s[WS_FB]) * (1.0 + k1 * s[WS_DECAY] * abs(v))
+
+
+@njit(cache=True)
+def wang_force(p: np.ndarray, v: float, sgn_a: float, i: float, vm: float) -> float:
+    """Force of the dissertation's model at one point (convenience; allocates a state)."""
+    s = np.empty(STATE_SIZE)
+    wang_latch_motion(p, s, vm, sgn_a)
+    return wang_eval(p, s, v, i)
 
 
 @njit(cache=True)
@@ -175,7 +218,7 @@ def wang_inverse(
     c = abs(target) / denom
     if c <= 1.0:
         return 0.0
-    y = (c - 1.0) / p[W_K2] + sigmoid(p[W_A2] * p[W_I0])
+    y = (c - 1.0) / p[W_K2] + p[W_SA2]
     if y >= 1.0:
         return i_max
     i = -p[W_I0] - math.log(1.0 / y - 1.0) / p[W_A2]
@@ -322,8 +365,7 @@ def damper_sample(
     previous step's (spec section 2.4 / 7).
     """
     if kind == WANG:
-        s[0] = estimator_update(ek, ep, es, x, v, a)
-        s[1] = sign(a)
+        wang_latch_motion(p, s, estimator_update(ek, ep, es, x, v, a), sign(a))
     elif kind == SPENCER and s[3] == 0.0:
         s[0] = x  # no preload in the k0 spring at start
         s[1] = 0.0
@@ -335,7 +377,7 @@ def damper_sample(
 def damper_force(kind: int, p: np.ndarray, s: np.ndarray, x: float, v: float, i: float) -> float:
     """Damper force [N] (positive resists compression) with the held internals ``s``."""
     if kind == WANG:
-        return wang_force(p, v, s[1], i, s[0])
+        return wang_eval(p, s, v, i)
     if kind == LINEAR:
         return p[0] * v
     if kind == BINGHAM:
@@ -393,8 +435,8 @@ def damper_pointwise(
     s = np.zeros(STATE_SIZE)
     for k in range(x.shape[0]):
         if kind == WANG:
-            s[0] = vm[k] if not math.isnan(vm[k]) else estimator_pointwise(ek, ep, x[k], v[k], a[k])
-            s[1] = sign(a[k])
+            m = vm[k] if not math.isnan(vm[k]) else estimator_pointwise(ek, ep, x[k], v[k], a[k])
+            wang_latch_motion(p, s, m, sign(a[k]))
         elif kind == SPENCER:
             s[3] = 0.0
             damper_sample(kind, p, s, ek, ep, ep, x[k], v[k], a[k], i[k])

@@ -4,9 +4,11 @@ from __future__ import annotations
 
 from typing import Any, ClassVar
 
+import numpy as np
+
 from mrsuspension import parameters as _parameters
 from mrsuspension.dampers import kernels as K
-from mrsuspension.dampers.base import DamperModel, ParameterSpec
+from mrsuspension.dampers.base import DamperModel, FloatArray, ParameterSpec
 from mrsuspension.errors import ValidationError, check_range
 
 __all__ = ["Bingham", "LinearViscous", "SpencerBoucWen"]
@@ -56,6 +58,11 @@ class LinearViscous(DamperModel):
             )
         super().__init__(parameters, max_current=max_current)
 
+    def _force_arrays(
+        self, x: FloatArray, v: FloatArray, a: FloatArray, i: FloatArray, vm: FloatArray | None
+    ) -> FloatArray:
+        return self.values["c"] * v
+
 
 class Bingham(DamperModel):
     """Bingham plastic model with current-dependent yield force and viscosity.
@@ -79,6 +86,12 @@ class Bingham(DamperModel):
     }  # fmt: skip
     default_parameters: ClassVar[str] = "bingham-wang-low"
     accepts: ClassVar[tuple[str, ...]] = ("bingham",)
+
+    def _force_arrays(
+        self, x: FloatArray, v: FloatArray, a: FloatArray, i: FloatArray, vm: FloatArray | None
+    ) -> FloatArray:
+        q = self.values
+        return (q["fc_a"] + q["fc_b"] * i) * np.sign(v) + (q["c0_a"] + q["c0_b"] * i) * v + q["f0"]
 
     def _check_values(self, set_name: str, values: Any) -> None:
         super()._check_values(set_name, values)

@@ -17,8 +17,10 @@ from mrsuspension.dampers import kernels as K
 from mrsuspension.dampers.base import DamperModel, FloatArray, ParameterSpec, flat_inputs
 from mrsuspension.dampers.peak_velocity import (
     V_LIMIT,
+    InstantaneousPeak,
     KnownPeak,
     PeakVelocityEstimator,
+    WindowPeak,
     make_estimator,
 )
 from mrsuspension.errors import ValidationError, check_finite, check_range, unknown_name
@@ -112,11 +114,65 @@ class WangSymmetric(DamperModel):
             p[K.W_K4] = 0.0  # mean model
         p[K.W_KD] = self.force_gain
         p[K.W_VHI] = 1.0 if self.vh_variant == "2.12" else 0.0
+        K.wang_derive(p)
         return p
 
     @property
     def stateful(self) -> bool:
         return not isinstance(self.estimator, KnownPeak)
+
+    def _force_arrays(
+        self,
+        x: FloatArray,
+        v: FloatArray,
+        a: FloatArray,
+        i: FloatArray,
+        vm: FloatArray | None,
+    ) -> FloatArray:
+        """Eqs. (2.7)-(2.21) as numpy expressions (same equations as ``kernels.wang_force``).
+
+        Each factor is computed on the shape of its own input (a scalar current costs
+        one evaluation of C_i), and the large arrays are updated in place.
+        """
+        p = self._p
+        if vm is None:
+            vm = self._pointwise_peak_velocity(x, v, a)
+        ci = 1.0 + p[K.W_K2] * (1.0 / (1.0 + np.exp(-p[K.W_A2] * (i + p[K.W_I0]))) - p[K.W_SA2])
+        if p[K.W_VHI] != 0.0:
+            h = 1.0 + p[K.W_K3] * (1.0 / (1.0 + np.exp(-p[K.W_A3] * (i + p[K.W_I1]))) - p[K.W_SA3])
+        else:
+            h = np.ones(())
+        ft = p[K.W_F0] * (1.0 + np.exp(p[K.W_A1] * vm))  # (2.7)
+        alpha = p[K.W_A0] / (1.0 + p[K.W_K0] * vm)  # (2.11)
+        decay = np.exp(-p[K.W_A4] * vm)  # (2.10)
+        arg = np.sign(a) * (p[K.W_K4] * vm * h)  # v_h, (2.12)/(2.13)
+        arg = arg + v  # allocates the broadcast shape once
+        if p[K.W_K6] != 0.0:
+            arg += p[K.W_K6] * vm  # v_b, (2.20)
+        arg *= 0.5 * alpha
+        np.tanh(arg, out=arg)
+        arg *= ft
+        if p[K.W_K5] != 0.0:
+            arg -= p[K.W_K5] * ci * ft  # F_b, (2.20)
+        k1 = p[K.W_K1C] if p[K.W_K1C] == p[K.W_K1E] else np.where(v >= 0.0, p[K.W_K1C], p[K.W_K1E])
+        rise = np.abs(v) * (k1 * decay)
+        rise += 1.0
+        arg *= rise
+        arg *= p[K.W_KD] * ci
+        return arg
+
+    def _pointwise_peak_velocity(self, x: FloatArray, v: FloatArray, a: FloatArray) -> FloatArray:
+        """v_m of a fresh estimator per point (vectorised ``kernels.estimator_pointwise``)."""
+        est = self.estimator
+        if isinstance(est, KnownPeak):
+            return np.asarray(est.value)
+        if isinstance(est, InstantaneousPeak):
+            raw, lo, hi = np.sqrt(np.maximum(v * v - a * x, 0.0)), est.v_min, est.v_max  # (2.14)
+        elif isinstance(est, WindowPeak):
+            raw, lo, hi = np.abs(v), est.v_min, est.v_max
+        else:  # pragma: no cover - a user-defined estimator: ask it point by point
+            return np.vectorize(est.pointwise, otypes=[float])(x, v, a)
+        return np.clip(raw, lo, hi)
 
     def _estimator_arrays(self, dt: float) -> tuple[int, FloatArray, FloatArray]:
         return self.estimator.code, self.estimator.params_for(dt), self.estimator.buffer(dt)
