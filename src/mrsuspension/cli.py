@@ -161,7 +161,7 @@ def damper_force(
                   (("stroke", stroke), ("velocity", velocity), ("acceleration", acceleration), ("current", current))]  # fmt: skip
         vm = peak_velocity if m.name in _WANG and estimator != "known" else None
         try:
-            x, v, a, i = np.broadcast_arrays(*arrays)
+            x, v, a, i = (np.array(q) for q in np.broadcast_arrays(*arrays))
         except ValueError:
             raise ValidationError(
                 "comma-separated inputs must have one value or equal lengths"
@@ -201,7 +201,7 @@ def damper_inverse(
         arrays = [np.asarray(_floats(n, t)) for n, t in
                   (("force", force), ("velocity", velocity), ("acceleration", acceleration))]  # fmt: skip
         try:
-            f, v, a = np.broadcast_arrays(*arrays)
+            f, v, a = (np.array(q) for q in np.broadcast_arrays(*arrays))
         except ValueError:
             raise ValidationError(
                 "comma-separated inputs must have one value or equal lengths"

@@ -42,8 +42,10 @@ def unknown_name(kind: str, name: str, choices: Iterable[str]) -> ValidationErro
     )
 
 
-def check_finite(name: str, value: object) -> np.ndarray:
+def check_finite(name: str, value: object, valid: str = "finite") -> np.ndarray:
     """Return ``value`` as a float array, or raise if any element is NaN or infinite.
+
+    ``valid`` says what a valid value is in the message (default ``"finite"``).
 
     Examples
     --------
@@ -61,7 +63,7 @@ def check_finite(name: str, value: object) -> np.ndarray:
     if not np.all(np.isfinite(arr)):
         bad = np.flatnonzero(~np.isfinite(arr.ravel()))[0]
         where = f" at index {bad}" if arr.ndim else ""
-        raise ValidationError(f"{name} must be finite; got {arr.ravel()[bad]}{where}")
+        raise ValidationError(f"{name} must be {valid}; got {arr.ravel()[bad]}{where}")
     return arr
 
 
@@ -84,7 +86,13 @@ def check_range(
     ...
     mrsuspension.errors.ValidationError: drive current must be in [0, 0.5] A; got 0.7 A
     """
-    arr = check_finite(name, value)
+    lo = "-inf" if low is None else f"{low:g}"
+    hi = "inf" if high is None else f"{high:g}"
+    lb = "[" if low_inclusive and low is not None else "("
+    rb = "]" if high_inclusive and high is not None else ")"
+    u = f" {unit}" if unit else ""
+    # a NaN or infinite value is told the valid range too, not only "finite"
+    arr = check_finite(name, value, valid=f"finite and in {lb}{lo}, {hi}{rb}{u}")
     flat = arr.ravel()
     too_low = np.zeros(flat.shape, bool)
     too_high = np.zeros(flat.shape, bool)
@@ -95,11 +103,6 @@ def check_range(
     bad = too_low | too_high
     if np.any(bad):
         k = int(np.flatnonzero(bad)[0])
-        lo = "-inf" if low is None else f"{low:g}"
-        hi = "inf" if high is None else f"{high:g}"
-        lb = "[" if low_inclusive and low is not None else "("
-        rb = "]" if high_inclusive and high is not None else ")"
-        u = f" {unit}" if unit else ""
         where = f" at index {k}" if arr.ndim else ""
         raise ValidationError(f"{name} must be in {lb}{lo}, {hi}{rb}{u}; got {flat[k]:g}{u}{where}")
     return arr

@@ -28,13 +28,20 @@ ParameterSpec = str | Path | _parameters.ParameterSet | Mapping[str, float] | No
 def flat_inputs(
     *arrays: npt.ArrayLike, names: tuple[str, ...]
 ) -> tuple[tuple[int, ...], list[FloatArray]]:
-    """Broadcast arrays together; return the shape and contiguous, writeable 1-D copies."""
+    """Broadcast arrays together; return the shape and contiguous, writeable 1-D arrays."""
+    given = [np.asarray(a, dtype=float) for a in arrays]
     try:
-        b = np.broadcast_arrays(*[np.asarray(a, dtype=float) for a in arrays])
+        shape = np.broadcast_shapes(*(q.shape for q in given))
     except ValueError:
-        shapes = ", ".join(f"{n} {np.shape(a)}" for n, a in zip(names, arrays, strict=True))
+        shapes = ", ".join(f"{n} {q.shape}" for n, q in zip(names, given, strict=True))
         raise ValidationError(f"input shapes do not broadcast: {shapes}") from None
-    return b[0].shape, [np.require(q, float, ["C", "W"]).ravel() for q in b]
+    flat = []
+    for q in given:
+        if q.shape == shape and q.flags.c_contiguous and q.flags.writeable:
+            flat.append(q.ravel())
+        else:  # materialise the broadcast (a copy the compiled loop may read and write)
+            flat.append(np.array(np.broadcast_to(q, shape), dtype=float).ravel())
+    return shape, flat
 
 
 @dataclass(frozen=True)
@@ -334,8 +341,7 @@ class DamperModel(ABC):
         x = series("stroke", stroke)
         v = series("velocity", velocity) if velocity is not None else np.gradient(x, dt)
         a = series("acceleration", acceleration) if acceleration is not None else np.gradient(v, dt)
-        i = series("current", current)
-        self.check_current(i)
+        i = series("drive current", self.check_current(current))  # NaN: say the range too
         kern = self.kernel(dt)
         f = np.empty(n)
         vm = np.empty(n)

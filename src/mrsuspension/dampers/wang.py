@@ -146,7 +146,7 @@ class WangSymmetric(DamperModel):
         alpha = p[K.W_A0] / (1.0 + p[K.W_K0] * vm)  # (2.11)
         decay = np.exp(-p[K.W_A4] * vm)  # (2.10)
         arg = np.sign(a) * (p[K.W_K4] * vm * h)  # v_h, (2.12)/(2.13)
-        arg = arg + v  # allocates the broadcast shape once
+        arg = np.asarray(arg + v)  # allocates the broadcast shape once (0-d for scalars)
         if p[K.W_K6] != 0.0:
             arg += p[K.W_K6] * vm  # v_b, (2.20)
         arg *= 0.5 * alpha

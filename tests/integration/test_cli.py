@@ -1,0 +1,162 @@
+"""The ``mrsus`` command: outputs agree with the library, bad input gives exit code 2."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+from typer.testing import CliRunner
+
+from mrsuspension.cli import app
+from mrsuspension.dampers import WangSymmetric, make_damper
+
+runner = CliRunner()
+
+
+def run(*args: str) -> tuple[int, str, str]:
+    result = runner.invoke(app, list(args))
+    return result.exit_code, result.stdout, result.stderr
+
+
+def test_force_json_matches_library() -> None:
+    code, out, _ = run(
+        "damper",
+        "force",
+        "-v",
+        "0.1,-0.2",
+        "-a",
+        "-1,1",
+        "-i",
+        "0.2",
+        "--peak-velocity",
+        "0.3",
+        "--json",
+    )
+    assert code == 0
+    data = json.loads(out)
+    expected = WangSymmetric().force(0.0, [0.1, -0.2], [-1.0, 1.0], 0.2, peak_velocity=0.3)
+    np.testing.assert_allclose(data["force"], expected, rtol=1e-12)
+    assert data["model"]["parameter_set"] == "wang-symmetric-low"
+
+
+def test_force_for_a_peer_model_and_table_output() -> None:
+    code, out, _ = run("damper", "force", "-m", "linear", "-v", "0.2")
+    assert code == 0
+    assert "500" in out  # 2500 N s/m * 0.2 m/s
+
+
+def test_inverse_recovers_current() -> None:
+    m = WangSymmetric(vh_variant="2.13")
+    f = float(m.force(0.0, 0.1, -1.0, 0.27, peak_velocity=0.2))
+    code, out, _ = run(
+        "damper",
+        "inverse",
+        "-f",
+        str(f),
+        "-v",
+        "0.1",
+        "-a",
+        "-1",
+        "--peak-velocity",
+        "0.2",
+        "--json",
+    )
+    assert code == 0
+    assert json.loads(out)["current"][0] == pytest.approx(0.27, abs=1e-9)
+
+
+@pytest.mark.parametrize(
+    ("args", "message"),
+    [
+        (
+            ("damper", "force", "-v", "0.1", "-i", "0.7"),
+            "drive current must be in [0, 0.5] A; got 0.7",
+        ),
+        (
+            ("damper", "force", "-v", "0.1", "-i", "-0.1"),
+            "drive current must be in [0, 0.5] A; got -0.1",
+        ),
+        (("damper", "force", "-v", "nan"), "velocity must be finite"),
+        (("damper", "force", "-v", "abc"), "--velocity must be a number"),
+        (("damper", "force", "-v", "0.1", "-m", "linar"), "Did you mean 'linear'?"),
+        (
+            ("damper", "force", "-v", "0.1", "-p", "wang-symetric-low"),
+            "Did you mean 'wang-symmetric-low'?",
+        ),
+        (
+            ("damper", "force", "-v", "0.1", "-m", "bingham", "--mean"),
+            "applies to the dissertation's models",
+        ),
+        (("damper", "force", "-v", "0.1", "--estimator", "windw"), "Did you mean 'window'?"),
+        (("damper", "force", "-v", "0.1,0.2", "-i", "0.1,0.2,0.3"), "equal lengths"),
+        (
+            ("damper", "force", "-v", "0.1", "--peak-velocity", "9"),
+            "peak_velocity must be in [0, 5] m/s",
+        ),
+        (("damper", "force", "-v", "0.1", "-p", "missing.toml"), "does not exist"),
+        (("damper", "sets", "nope"), "unknown parameter set 'nope'"),
+        (("reproduce", "--chapters", "9"), "chapter 9 is not available"),
+    ],
+)
+def test_bad_input_exit_code_2_with_message(args: tuple[str, ...], message: str) -> None:
+    code, out, err = run(*args)
+    assert code == 2, out + err
+    assert message in err
+    assert "Traceback" not in out + err
+
+
+def test_malformed_parameter_file(tmp_path: Path) -> None:
+    bad = tmp_path / "bad.toml"
+    bad.write_text('model = "wang-symmetric"\n[parameters]\na0 = "fast"\n')
+    code, _, err = run("damper", "force", "-v", "0.1", "-p", str(bad))
+    assert code == 2
+    assert "a0" in err
+    assert "must be a number" in err
+
+
+def test_loops_and_matrix_write_files(tmp_path: Path) -> None:
+    code, out, _ = run(
+        "damper", "loops", "--currents", "0,0.2", "--out", str(tmp_path / "loops"), "--json"
+    )
+    assert code == 0
+    data = json.loads(out)
+    assert len(data["tests"]) == 2
+    assert (tmp_path / "loops" / "loops.png").stat().st_size > 1000
+    assert (tmp_path / "loops" / "summary.csv").exists()
+    code, out, _ = run("damper", "matrix", "-m", "bingham", "--json")
+    assert code == 0
+    tests = json.loads(out)["tests"]
+    assert len(tests) == 165
+    assert all(t["energy per cycle [J]"] > 0 for t in tests)
+
+
+def test_sets_listing_and_detail() -> None:
+    code, out, _ = run("damper", "sets", "--json")
+    assert code == 0
+    names = {s["name"] for s in json.loads(out)}
+    assert {"wang-symmetric-low", "wang-symmetric-high", "wang-asymmetric", "spencer-1997"} <= names
+    code, out, _ = run("damper", "sets", "wang-asymmetric")
+    assert code == 0
+    assert "k1c" in out
+    assert "Table 2.3" in out
+
+
+def test_installed_entry_point_runs() -> None:
+    """The console script itself (not only the Typer app) works and reports errors."""
+    exe = Path(sys.executable).with_name("mrsus")
+    ok = subprocess.run(
+        [exe, "damper", "force", "-v", "0.1", "--json"], capture_output=True, text=True
+    )
+    assert ok.returncode == 0, ok.stderr
+    assert json.loads(ok.stdout)["force"][0] == pytest.approx(
+        float(make_damper("wang-symmetric").force(0.0, 0.1)), rel=1e-12
+    )
+    bad = subprocess.run(
+        [exe, "damper", "force", "-v", "0.1", "-i", "2"], capture_output=True, text=True
+    )
+    assert bad.returncode == 2
+    assert bad.stderr.startswith("error: drive current")
