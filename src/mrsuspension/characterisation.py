@@ -86,7 +86,7 @@ def table_2_1(
     Examples
     --------
     >>> len(table_2_1(frequencies=[0.5, 1.5, 2.5, 5.0]))  # the low-frequency fit range
-    100
+    95
     """
     fs = TABLE_2_1_FREQUENCIES if frequencies is None else tuple(frequencies)
     ams = TABLE_2_1_AMPLITUDES if amplitudes is None else tuple(amplitudes)

@@ -19,7 +19,7 @@ Examples
 0.5
 >>> float(drive_current(0.4, velocity=-0.2, peak_velocity=0.3, switching=-1.0,
 ...                     p=1.0, xi=4.5, p_c=0.0, xi_c=10.0, max_current=0.5))  # doctest: +ELLIPSIS
-0.37...
+0.387...
 """
 
 from __future__ import annotations
