@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from abc import ABC
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, ClassVar
@@ -25,16 +25,21 @@ FloatArray = npt.NDArray[np.float64]
 ParameterSpec = str | Path | _parameters.ParameterSet | Mapping[str, float] | None
 
 
+def broadcast_shape(arrays: Sequence[FloatArray], names: Sequence[str]) -> tuple[int, ...]:
+    """Common shape of ``arrays``, or an error naming each input's shape."""
+    try:
+        return np.broadcast_shapes(*(q.shape for q in arrays))
+    except ValueError:
+        shapes = ", ".join(f"{n} {q.shape}" for n, q in zip(names, arrays, strict=False))
+        raise ValidationError(f"input shapes do not broadcast: {shapes}") from None
+
+
 def flat_inputs(
     *arrays: npt.ArrayLike, names: tuple[str, ...]
 ) -> tuple[tuple[int, ...], list[FloatArray]]:
     """Broadcast arrays together; return the shape and contiguous, writeable 1-D arrays."""
     given = [np.asarray(a, dtype=float) for a in arrays]
-    try:
-        shape = np.broadcast_shapes(*(q.shape for q in given))
-    except ValueError:
-        shapes = ", ".join(f"{n} {q.shape}" for n, q in zip(names, given, strict=True))
-        raise ValidationError(f"input shapes do not broadcast: {shapes}") from None
+    shape = broadcast_shape(given, names)
     flat = []
     for q in given:
         if q.shape == shape and q.flags.c_contiguous and q.flags.writeable:
@@ -231,22 +236,31 @@ class DamperModel(ABC):
         numpy.ndarray
             Force [N] with the broadcast shape of the inputs (0-d for scalars).
         """
+        x, v, a, i, vm, shape = self._validated(
+            stroke, velocity, acceleration, current, peak_velocity
+        )
+        out = np.asarray(self._force_arrays(x, v, a, i, vm), dtype=float)
+        if out.shape != shape:
+            out = np.broadcast_to(out, shape).copy()
+        return out
+
+    def _validated(
+        self,
+        stroke: npt.ArrayLike,
+        velocity: npt.ArrayLike,
+        acceleration: npt.ArrayLike,
+        current: npt.ArrayLike,
+        peak_velocity: npt.ArrayLike | None,
+    ) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray, FloatArray | None, tuple[int, ...]]:
+        """Check the inputs of :meth:`force`; return them and their broadcast shape."""
         x = check_finite("stroke", stroke)
         v = check_finite("velocity", velocity)
         a = check_finite("acceleration", acceleration)
         i = self.check_current(current)
         vm = None if peak_velocity is None else self._check_peak_velocity(peak_velocity)
         arrays = (x, v, a, i) if vm is None else (x, v, a, i, vm)
-        try:
-            shape = np.broadcast_shapes(*(q.shape for q in arrays))
-        except ValueError:
-            names = ("stroke", "velocity", "acceleration", "current", "peak_velocity")
-            shapes = ", ".join(f"{n} {q.shape}" for n, q in zip(names, arrays, strict=False))
-            raise ValidationError(f"input shapes do not broadcast: {shapes}") from None
-        out = np.asarray(self._force_arrays(x, v, a, i, vm), dtype=float)
-        if out.shape != shape:
-            out = np.broadcast_to(out, shape).copy()
-        return out
+        names = ("stroke", "velocity", "acceleration", "current", "peak_velocity")
+        return x, v, a, i, vm, broadcast_shape(arrays, names)
 
     def _force_arrays(
         self,
@@ -284,11 +298,7 @@ class DamperModel(ABC):
         The simulation engine uses this path; it exists publicly so that tests and
         benchmarks can hold the two paths against each other.
         """
-        x = check_finite("stroke", stroke)
-        v = check_finite("velocity", velocity)
-        a = check_finite("acceleration", acceleration)
-        i = self.check_current(current)
-        vm = None if peak_velocity is None else self._check_peak_velocity(peak_velocity)
+        x, v, a, i, vm, _ = self._validated(stroke, velocity, acceleration, current, peak_velocity)
         return DamperModel._force_arrays(self, x, v, a, i, vm)
 
     def _check_peak_velocity(self, peak_velocity: npt.ArrayLike) -> FloatArray:
