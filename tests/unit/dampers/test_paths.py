@@ -31,7 +31,9 @@ def inputs() -> tuple[np.ndarray, ...]:
 
 
 @pytest.mark.parametrize(("name", "options"), CASES, ids=[f"{n}-{o}" for n, o in CASES])
-def test_vectorised_equals_compiled(name: str, options: dict, inputs: tuple[np.ndarray, ...]) -> None:
+def test_vectorised_equals_compiled(
+    name: str, options: dict, inputs: tuple[np.ndarray, ...]
+) -> None:
     x, v, a, i, vm = inputs
     model = make_damper(name, **options)
     f_vec = model.force(x, v, a, i)
