@@ -52,7 +52,7 @@ V_LIMIT = 5.0
 def _check_clamp(v_min: float, v_max: float) -> None:
     if not (math.isfinite(v_min) and math.isfinite(v_max) and 0.0 < v_min < v_max <= V_LIMIT):
         raise ValidationError(
-            f"peak-velocity clamp must satisfy 0 < v_min < v_max <= {V_LIMIT} m/s; "
+            f"peak-velocity clamp must satisfy 0 < v_min < v_max <= {V_LIMIT:g} m/s; "
             f"got v_min={v_min}, v_max={v_max}"
         )
 
@@ -156,7 +156,7 @@ class KnownPeak(PeakVelocityEstimator):
     def __post_init__(self) -> None:
         if not (math.isfinite(self.value) and 0.0 <= self.value <= V_LIMIT):
             raise ValidationError(
-                f"known peak velocity must be in [0, {V_LIMIT}] m/s; got {self.value}"
+                f"known peak velocity must be in [0, {V_LIMIT:g}] m/s; got {self.value:g} m/s"
             )
 
     def params(self) -> np.ndarray:

@@ -7,6 +7,7 @@ either becomes the *mean* model with ``k4 = 0`` (``hysteresis=False``).
 
 from __future__ import annotations
 
+import dataclasses
 from typing import Any, ClassVar, Literal
 
 import numpy as np
@@ -16,6 +17,7 @@ from mrsuspension import parameters as _parameters
 from mrsuspension.dampers import kernels as K
 from mrsuspension.dampers.base import DamperModel, FloatArray, ParameterSpec, flat_inputs
 from mrsuspension.dampers.peak_velocity import (
+    ESTIMATORS,
     V_LIMIT,
     InstantaneousPeak,
     KnownPeak,
@@ -94,8 +96,24 @@ class WangSymmetric(DamperModel):
         self.force_gain = float(
             check_range("force_gain", force_gain, 0.0, 100.0, low_inclusive=False)
         )
+        self._check_estimator_options(estimator, estimator_options)
         self.estimator = make_estimator(estimator, **estimator_options)
         super().__init__(parameters, max_current=max_current)
+
+    def _check_estimator_options(
+        self, estimator: str | PeakVelocityEstimator | None, options: dict[str, Any]
+    ) -> None:
+        """Name a misspelled keyword as an option of this model, with a did-you-mean."""
+        if not options:
+            return
+        own = ["parameters", "hysteresis", "vh_variant", "force_gain", "estimator", "max_current"]
+        est_cls = (
+            ESTIMATORS.get(estimator or "window") if isinstance(estimator, str | None) else None
+        )
+        allowed = [f.name for f in dataclasses.fields(est_cls)] if est_cls is not None else []  # type: ignore[arg-type]
+        for key in options:
+            if key not in allowed:
+                raise unknown_name(f"option of {type(self).__name__}", key, own + allowed)
 
     def _vector(self) -> FloatArray:
         v = self.values
