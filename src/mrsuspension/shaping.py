@@ -58,12 +58,12 @@ def _onoff(control_current: float, velocity: float, p: float) -> float:
     return p * control_current if velocity > 0.0 else control_current
 
 
-adfg_kernel = njit(cache=True)(_mp)
-cm_kernel = njit(cache=True)(_mc)
-onoff_kernel = njit(cache=True)(_onoff)
+adfg_kernel = njit(cache=True, inline="always")(_mp)
+cm_kernel = njit(cache=True, inline="always")(_mc)
+onoff_kernel = njit(cache=True, inline="always")(_onoff)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def drive_current_kernel(
     i_z: float,
     velocity: float,

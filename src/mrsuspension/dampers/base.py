@@ -281,7 +281,9 @@ class DamperModel(ABC):
         )  # fmt: skip
         out = np.empty(x1.shape)
         ek, ep, _ = self._estimator_arrays(1.0)
-        K.damper_pointwise(self.kind, self._p, ek, ep, x1, v1, a1, i1, vm1, out)
+        K.damper_pointwise(
+            self.kind, self._p, ek, ep, x1, v1, a1, i1, vm1, out, np.zeros(K.STATE_SIZE)
+        )
         return out.reshape(shape)
 
     def kernel_force(
@@ -373,6 +375,11 @@ class DamperModel(ABC):
             estimator_state=es,
             max_current=self.max_current,
         )
+
+    def max_damping_rate(self, max_current: float | None = None) -> float:
+        """Upper bound of ``dF_d/dv_d`` [N s/m] up to ``max_current``: the stiffness a
+        time-stepper must resolve (used for the engine's step-size check)."""
+        raise NotImplementedError
 
     @property
     def stateful(self) -> bool:

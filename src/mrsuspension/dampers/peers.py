@@ -63,6 +63,9 @@ class LinearViscous(DamperModel):
     ) -> FloatArray:
         return self.values["c"] * v
 
+    def max_damping_rate(self, max_current: float | None = None) -> float:
+        return self.values["c"]
+
 
 class Bingham(DamperModel):
     """Bingham plastic model with current-dependent yield force and viscosity.
@@ -92,6 +95,10 @@ class Bingham(DamperModel):
     ) -> FloatArray:
         q = self.values
         return (q["fc_a"] + q["fc_b"] * i) * np.sign(v) + (q["c0_a"] + q["c0_b"] * i) * v + q["f0"]
+
+    def max_damping_rate(self, max_current: float | None = None) -> float:
+        i = self.max_current if max_current is None else max_current
+        return self.values["c0_a"] + max(self.values["c0_b"] * i, 0.0)
 
     def _check_values(self, set_name: str, values: Any) -> None:
         super()._check_values(set_name, values)
@@ -139,6 +146,12 @@ class SpencerBoucWen(DamperModel):
     @property
     def stateful(self) -> bool:
         return True
+
+    def max_damping_rate(self, max_current: float | None = None) -> float:
+        # F = c1 y' with y' following x' through c0/(c0 + c1) and the fast Bouc-Wen
+        # state: bounded by c1 at the highest command voltage
+        i = self.max_current if max_current is None else max_current
+        return self.values["c1a"] + self.values["c1b"] * self.values["volts_per_amp"] * i
 
     def _convert(self, pset: _parameters.ParameterSet) -> dict[str, float]:
         values = dict(pset.values)

@@ -179,6 +179,23 @@ class WangSymmetric(DamperModel):
         arg *= p[K.W_KD] * ci
         return arg
 
+    def max_damping_rate(self, max_current: float | None = None) -> float:
+        """Largest pre-yield slope ``k_d C_i F_t (alpha/2 + k_v)`` over the peak velocities
+        the estimator can report (spec section 7: about 3e5 N s/m at 0.5 A)."""
+        i = self.max_current if max_current is None else max_current
+        est = self.estimator
+        if isinstance(est, KnownPeak):
+            vms = np.array([est.value])
+        else:
+            vmax = getattr(est, "v_max", V_LIMIT)
+            vms = np.linspace(0.0, vmax, 201)
+        p = self._p
+        ci = float(self.current_gain(min(i, self.max_current)))
+        ft = p[K.W_F0] * (1.0 + np.exp(p[K.W_A1] * vms))
+        alpha = p[K.W_A0] / (1.0 + p[K.W_K0] * vms)
+        kv = max(p[K.W_K1C], p[K.W_K1E]) * np.exp(-p[K.W_A4] * vms)
+        return float(np.max(p[K.W_KD] * ci * ft * (0.5 * alpha + kv)))
+
     def _pointwise_peak_velocity(self, x: FloatArray, v: FloatArray, a: FloatArray) -> FloatArray:
         """v_m of a fresh estimator per point (vectorised ``kernels.estimator_pointwise``)."""
         est = self.estimator

@@ -136,6 +136,17 @@ class ParameterSet:
     def __repr__(self) -> str:
         return f"ParameterSet(name={self.name!r}, model={self.model!r}, {len(self)} parameters)"
 
+    def __reduce__(self) -> tuple[Any, ...]:
+        # mapping proxies do not pickle; rebuild from plain dicts (process pools need this)
+        return (
+            ParameterSet,
+            (
+                self.name, self.model, dict(self.values), dict(self.units),
+                dict(self.descriptions), self.source, self.table, self.description,
+                self.frequency_range, self.max_current,
+            ),
+        )  # fmt: skip
+
     def replace(self, **values: float) -> ParameterSet:
         """Return a copy with some values changed (provenance says so)."""
         for key in values:

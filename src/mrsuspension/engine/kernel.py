@@ -1,0 +1,413 @@
+"""The compiled quarter-car step: one function shared by offline runs and the HiL loop.
+
+Performance note: the entry points are compiled without numba's reference counting
+(``_nrt=False``, so they allocate nothing: work arrays come from the caller) and the
+kernels they call are inlined (``inline="always"``). With reference counting on, the
+branches over model kinds kept numba from pruning the per-call reference counts of the
+array arguments, which cost ~30x in the step (measured: 3 ns against 90-110 ns per
+rates evaluation).
+
+Spec sections 4-7. State ``y = [z_s, z_s', z_u, z_u', z_s0, z_s0']`` (the last two are
+the sliding-mode controller's single-DOF reference model, integrated with the plant).
+A step of length ``dt``:
+
+1. latch the damper internals (peak velocity, ``sgn(a_d)``) and the controller's peak
+   velocity from the sampled state, using the **previous step's** acceleration ``a_d``
+   (a sampled controller has nothing newer; spec sections 2.4 and 7);
+2. run the controller once: drive current ``i_d``, held over the step (zero-order hold);
+3. classical RK4 over the step with the road at ``t``, ``t + dt/2`` and ``t + dt``;
+4. evaluate the rates at the new state (accelerations, forces for the record and the
+   next step's ``a_d``), then advance the damper's internal dynamics.
+
+Arrays (layouts by the index constants below): ``vp`` vehicle, ``cp`` controller,
+``mem`` values carried between steps and the step's outputs, ``scratch`` work space
+(``SCRATCH_SIZE``), plus the damper arrays of :mod:`mrsuspension.dampers.kernels`.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from mrsuspension.dampers import kernels as DK
+from mrsuspension.dampers.kernels import NO_REFCOUNT
+from mrsuspension.shaping import drive_current_kernel, onoff_kernel
+
+# vehicle parameters (QuarterCar.params)
+V_MS, V_MU, V_KS, V_KT, V_CT, V_CSKY, V_G, V_DXU = range(8)
+
+# controller codes
+C_PASSIVE = 0
+C_ONOFF_ADFG = 1
+C_POLICY = 2
+C_INVERSE_HILO = 3
+C_SLIDING = 4
+C_IDEAL_SKYHOOK = 5
+C_IDEAL_ONOFF = 6
+
+# controller parameters
+(
+    P_CURRENT,  # passive current / on-off high current [A]
+    P_GAIN,  # k_c
+    P_ORDER,  # n
+    P_POLICY,  # 1..4
+    P_P,  # ADFG asymmetry p (1: SCM, 0: ACM)
+    P_XI,  # ADFG smoothing xi
+    P_PC,  # CM asymmetry p_c
+    P_XIC,  # CM smoothing xi_c
+    P_IMAX,  # i_max [A]
+    P_LAMBDA,  # sliding surface slope
+    P_EPS,  # boundary layer
+    P_PHI,  # sliding condition gain
+    P_BETA,  # mass uncertainty bound
+    P_MS0,  # nominal sprung mass [kg]
+    P_CS,  # skyhook damping c_s [N s/m]
+    P_C0,  # passive damping c_0 [N s/m]
+) = range(16)
+CP_SIZE = 16
+
+# force source in the rates
+F_MODEL = 0  # the damper model at the held current
+F_SKYHOOK = 1  # ideal skyhook (3.12) through an ideal dissipative damper
+F_ONOFF = 2  # Rakheja displacement on-off (3.13) through an ideal dissipative damper
+F_EXTERNAL = 3  # a given force held over the step (hardware in the loop)
+
+# mem: carried between steps and outputs of the last step
+(
+    M_AD,  # previous a_d [m/s^2]
+    M_ID,  # drive current i_d [A] (held)
+    M_IZ,  # controller current i_z [A]
+    M_ZC,  # switching condition z_c
+    M_TARGET,  # target force F* [N] (NaN: none)
+    M_VM,  # controller's peak velocity v_m [m/s]
+    M_FEXT,  # external force [N] for F_EXTERNAL
+    M_AS,  # z_s'' at the end of the step
+    M_AU,  # z_u'' at the end of the step
+    M_FD,  # F_d at the end of the step
+    M_FT,  # F_T at the end of the step
+    M_A0,  # z_s0'' (reference) at the end of the step
+) = range(12)
+MEM_SIZE = 12
+
+NY = 6
+SCRATCH_SIZE = 5 * NY  # k1..k4, y_tmp
+
+
+@njit(cache=True, inline="always")
+def rates(
+    y: np.ndarray,
+    zr: float,
+    zrd: float,
+    vp: np.ndarray,
+    fk: int,
+    dk: int,
+    dp: np.ndarray,
+    ds: np.ndarray,
+    cp: np.ndarray,
+    mem: np.ndarray,
+    reference: bool,
+    dy: np.ndarray,
+) -> tuple[float, float]:
+    """Time derivatives of ``y`` into ``dy``; returns (F_d, F_T)."""
+    zs, vs, zu, vu = y[0], y[1], y[2], y[3]
+    xd = zu - zs
+    vd = vu - vs
+    if fk == F_MODEL:
+        fd = DK.damper_force(dk, dp, ds, xd, vd, mem[M_ID])
+    elif fk == F_SKYHOOK:
+        # (3.12) in the up-positive frame: -c_s z_s' when z_s' v_d < 0, else 0
+        fd = -cp[P_CS] * vs if vs * vd < 0.0 else 0.0
+    elif fk == F_ONOFF:
+        # (3.13): c_s v_d when x_d v_d < 0, else 0
+        fd = cp[P_CS] * vd if xd * vd < 0.0 else 0.0
+    else:
+        fd = mem[M_FEXT]
+    delta = zr - zu + vp[V_DXU]
+    ft = 0.0
+    if delta > 0.0:
+        ft = vp[V_KT] * delta + vp[V_CT] * (zrd - vu)
+        if ft < 0.0:
+            ft = 0.0
+    spring = vp[V_KS] * xd
+    dy[0] = vs
+    dy[1] = (spring + fd - vp[V_CSKY] * vs) / vp[V_MS]
+    dy[2] = vu
+    dy[3] = (ft - (vp[V_MS] + vp[V_MU]) * vp[V_G] - spring - fd) / vp[V_MU]
+    if reference:
+        # single-DOF modified-skyhook reference (3.18), driven by the plant's z_u
+        z0, v0 = y[4], y[5]
+        dy[4] = v0
+        dy[5] = (-cp[P_C0] * (v0 - vu) - cp[P_CS] * v0 - vp[V_KS] * (z0 - zu)) / cp[P_MS0]
+    else:
+        dy[4] = 0.0
+        dy[5] = 0.0
+    return fd, ft
+
+
+@njit(cache=True, inline="always")
+def control(
+    ck: int,
+    cp: np.ndarray,
+    vp: np.ndarray,
+    dp: np.ndarray,
+    y: np.ndarray,
+    ad: float,
+    vm: float,
+    mem: np.ndarray,
+) -> None:
+    """Controller (spec section 6): sets mem[M_ID], M_IZ, M_ZC, M_TARGET."""
+    zs, vs, zu, vu = y[0], y[1], y[2], y[3]
+    xd = zu - zs
+    vd = vu - vs
+    imax = cp[P_IMAX]
+    iz = 0.0
+    zc = math.nan
+    target = math.nan
+    if ck == C_PASSIVE:
+        mem[M_ID] = min(cp[P_CURRENT], imax)
+        mem[M_IZ] = mem[M_ID]
+        mem[M_ZC] = zc
+        mem[M_TARGET] = target
+        return
+    if ck == C_ONOFF_ADFG:
+        # (2.1): p i_H in compression, i_H otherwise
+        i = onoff_kernel(cp[P_CURRENT], vd, cp[P_P])
+        mem[M_ID] = min(max(i, 0.0), imax)
+        mem[M_IZ] = cp[P_CURRENT]
+        mem[M_ZC] = zc
+        mem[M_TARGET] = target
+        return
+    if ck == C_IDEAL_SKYHOOK:
+        mem[M_ID] = 0.0
+        mem[M_IZ] = 0.0
+        mem[M_ZC] = vs * vd
+        mem[M_TARGET] = -cp[P_CS] * vs
+        return
+    if ck == C_IDEAL_ONOFF:
+        mem[M_ID] = 0.0
+        mem[M_IZ] = 0.0
+        mem[M_ZC] = xd * vd
+        mem[M_TARGET] = cp[P_CS] * vd
+        return
+    sgn_a = DK.sign(ad)
+    if ck == C_POLICY:
+        policy = int(cp[P_POLICY])
+        if policy == 1:
+            sig = vs
+            zc = vs * vd
+        elif policy == 2:
+            sig = vd
+            zc = vs * vd
+        elif policy == 3:
+            sig = vd
+            zc = xd * vd
+        else:
+            sig = xd
+            zc = xd * vd
+        n = cp[P_ORDER]
+        mag = abs(sig)
+        if n == 2.0:
+            iz = cp[P_GAIN] * mag * mag  # (3.15), the default order without pow()
+        elif n == 1.0:
+            iz = cp[P_GAIN] * mag
+        else:
+            iz = cp[P_GAIN] * mag**n
+    elif ck == C_INVERSE_HILO:
+        target = vp[V_KS] * xd  # F* = F_k, (3.17)
+        fh = DK.passive_hysteron(dp, vd, sgn_a, vm)
+        iz = DK.wang_inverse(dp, target, vd, sgn_a, vm, imax)
+        zc = fh * target
+    else:  # C_SLIDING, (3.19)-(3.35) in the up-positive frame (erratum 4)
+        z0, v0 = y[4], y[5]
+        ms0 = cp[P_MS0]
+        a0 = (-cp[P_C0] * (v0 - vu) - cp[P_CS] * v0 - vp[V_KS] * (z0 - zu)) / ms0
+        e = zs - z0
+        ed = vs - v0
+        lam = cp[P_LAMBDA]
+        s = ed + lam * e
+        fd0 = -vp[V_KS] * xd + ms0 * a0 - ms0 * lam * ed
+        beta = cp[P_BETA]
+        gain = ms0 * beta * cp[P_PHI] + (beta - 1.0) * (
+            abs(fd0) + vp[V_KS] * abs(zs) + vp[V_KS] * abs(zu)
+        )
+        sat = s / cp[P_EPS]
+        if sat > 1.0:
+            sat = 1.0
+        elif sat < -1.0:
+            sat = -1.0
+        target = fd0 - gain * sat  # (3.34), erratum 5
+        fh = DK.passive_hysteron(dp, vd, sgn_a, vm)
+        iz = DK.wang_inverse(dp, target, vd, sgn_a, vm, imax)
+        zc = -fh * target  # (3.35)
+    # drive current (3.9)/(3.16)
+    mem[M_ID] = drive_current_kernel(iz, vd, vm, zc, cp[P_P], cp[P_XI], cp[P_PC], cp[P_XIC], imax)
+    mem[M_IZ] = iz
+    mem[M_ZC] = zc
+    mem[M_TARGET] = target
+
+
+@njit(cache=True, inline="always", **NO_REFCOUNT)
+def step(
+    y: np.ndarray,
+    dt: float,
+    zr0: float,
+    zrd0: float,
+    zr1: float,
+    zrd1: float,
+    zr2: float,
+    zrd2: float,
+    vp: np.ndarray,
+    fk: int,
+    dk: int,
+    dp: np.ndarray,
+    ds: np.ndarray,
+    dek: int,
+    dep: np.ndarray,
+    des: np.ndarray,
+    ck: int,
+    cp: np.ndarray,
+    cek: int,
+    cep: np.ndarray,
+    ces: np.ndarray,
+    mem: np.ndarray,
+    scratch: np.ndarray,
+) -> None:
+    """Advance ``y`` by one step; road at t (0), t + dt/2 (1), t + dt (2)."""
+    xd = y[2] - y[0]
+    vd = y[3] - y[1]
+    ad = mem[M_AD]
+    DK.damper_sample(dk, dp, ds, dek, dep, des, xd, vd, ad, mem[M_ID])
+    vm = DK.estimator_update(cek, cep, ces, xd, vd, ad)
+    mem[M_VM] = vm
+    control(ck, cp, vp, dp, y, ad, vm, mem)
+    reference = ck == C_SLIDING
+    k1 = scratch[0:NY]
+    k2 = scratch[NY : 2 * NY]
+    k3 = scratch[2 * NY : 3 * NY]
+    k4 = scratch[3 * NY : 4 * NY]
+    yt = scratch[4 * NY : 5 * NY]
+    rates(y, zr0, zrd0, vp, fk, dk, dp, ds, cp, mem, reference, k1)
+    h2 = 0.5 * dt
+    for j in range(NY):
+        yt[j] = y[j] + h2 * k1[j]
+    rates(yt, zr1, zrd1, vp, fk, dk, dp, ds, cp, mem, reference, k2)
+    for j in range(NY):
+        yt[j] = y[j] + h2 * k2[j]
+    rates(yt, zr1, zrd1, vp, fk, dk, dp, ds, cp, mem, reference, k3)
+    for j in range(NY):
+        yt[j] = y[j] + dt * k3[j]
+    rates(yt, zr2, zrd2, vp, fk, dk, dp, ds, cp, mem, reference, k4)
+    h6 = dt / 6.0
+    for j in range(NY):
+        y[j] += h6 * (k1[j] + 2.0 * k2[j] + 2.0 * k3[j] + k4[j])
+    fd, ft = rates(y, zr2, zrd2, vp, fk, dk, dp, ds, cp, mem, reference, k1)
+    mem[M_AS] = k1[1]
+    mem[M_AU] = k1[3]
+    mem[M_A0] = k1[5]
+    mem[M_FD] = fd
+    mem[M_FT] = ft
+    mem[M_AD] = k1[3] - k1[1]
+    DK.damper_advance(dk, dp, ds, xd, vd, mem[M_ID], dt)
+
+
+# recorded signals (columns of the record)
+(
+    R_ZS, R_VS, R_ZU, R_VU, R_ZR, R_VR, R_AS, R_AU, R_FD, R_FT,
+    R_ID, R_IZ, R_ZC, R_TARGET, R_VM, R_ZS0,
+) = range(16)  # fmt: skip
+N_REC = 16
+
+
+@njit(cache=True, inline="always")
+def _record(
+    rec: np.ndarray, row: int, y: np.ndarray, zr: float, zrd: float, mem: np.ndarray
+) -> None:
+    rec[row, R_ZS] = y[0]
+    rec[row, R_VS] = y[1]
+    rec[row, R_ZU] = y[2]
+    rec[row, R_VU] = y[3]
+    rec[row, R_ZR] = zr
+    rec[row, R_VR] = zrd
+    rec[row, R_AS] = mem[M_AS]
+    rec[row, R_AU] = mem[M_AU]
+    rec[row, R_FD] = mem[M_FD]
+    rec[row, R_FT] = mem[M_FT]
+    rec[row, R_ID] = mem[M_ID]
+    rec[row, R_IZ] = mem[M_IZ]
+    rec[row, R_ZC] = mem[M_ZC]
+    rec[row, R_TARGET] = mem[M_TARGET]
+    rec[row, R_VM] = mem[M_VM]
+    rec[row, R_ZS0] = y[4]
+
+
+# divergence limits: which signal ran away
+D_OK, D_STATE, D_FORCE, D_TIRE = 0, 1, 2, 3
+
+
+@njit(cache=True, **NO_REFCOUNT)
+def run(
+    y: np.ndarray,
+    n_steps: int,
+    dt: float,
+    zr: np.ndarray,
+    zrd: np.ndarray,
+    vp: np.ndarray,
+    fk: int,
+    dk: int,
+    dp: np.ndarray,
+    ds: np.ndarray,
+    dek: int,
+    dep: np.ndarray,
+    des: np.ndarray,
+    ck: int,
+    cp: np.ndarray,
+    cek: int,
+    cep: np.ndarray,
+    ces: np.ndarray,
+    mem: np.ndarray,
+    decimate: int,
+    rec: np.ndarray,
+    limits: np.ndarray,
+    scratch: np.ndarray,
+) -> tuple[int, int, int, float]:
+    """``n_steps`` steps with the road sampled every dt/2 (``zr``, ``zrd``: 2 n + 1 values).
+
+    Records row 0 (initial state) and every ``decimate`` steps. Returns
+    ``(status, step, index, value)``: status 0 when every state stayed finite and within
+    ``limits = [max |z|, max |z'|, max |F_d|, max F_T]``, else the first offence.
+    ``scratch`` is work space of ``SCRATCH_SIZE``.
+    """
+    # initial accelerations and forces (for the record and a_d of the first step)
+    DK.damper_sample(dk, dp, ds, dek, dep, des, y[2] - y[0], y[3] - y[1], 0.0, mem[M_ID])
+    fd, ft = rates(y, zr[0], zrd[0], vp, fk, dk, dp, ds, cp, mem, ck == C_SLIDING, scratch[0:NY])
+    mem[M_AS] = scratch[1]
+    mem[M_AU] = scratch[3]
+    mem[M_FD] = fd
+    mem[M_FT] = ft
+    mem[M_AD] = scratch[3] - scratch[1]
+    _record(rec, 0, y, zr[0], zrd[0], mem)
+    row = 1
+    for k in range(n_steps):
+        j = 2 * k
+        step(
+            y, dt, zr[j], zrd[j], zr[j + 1], zrd[j + 1], zr[j + 2], zrd[j + 2], vp, fk, dk, dp,
+            ds, dek, dep, des, ck, cp, cek, cep, ces, mem, scratch,
+        )  # fmt: skip
+        for q in range(NY):
+            if not math.isfinite(y[q]):
+                return D_STATE, k + 1, q, y[q]
+        for q in (0, 2, 4):
+            if abs(y[q]) > limits[0]:
+                return D_STATE, k + 1, q, y[q]
+            if abs(y[q + 1]) > limits[1]:
+                return D_STATE, k + 1, q + 1, y[q + 1]
+        if not abs(mem[M_FD]) <= limits[2]:
+            return D_FORCE, k + 1, 0, mem[M_FD]
+        if not mem[M_FT] <= limits[3]:
+            return D_TIRE, k + 1, 0, mem[M_FT]
+        if (k + 1) % decimate == 0 and row < rec.shape[0]:
+            _record(rec, row, y, zr[j + 2], zrd[j + 2], mem)
+            row += 1
+    return D_OK, n_steps, 0, 0.0

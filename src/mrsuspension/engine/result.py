@@ -1,0 +1,154 @@
+"""Simulation results: named signals with units, exports and plots."""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Iterator, Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+import numpy.typing as npt
+
+from mrsuspension.errors import ValidationError, unknown_name
+
+if TYPE_CHECKING:
+    import pandas as pd
+    import xarray as xr
+    from matplotlib.figure import Figure
+
+__all__ = ["SIGNALS", "SimulationResult"]
+
+#: Recorded signals: name -> (unit, description).
+SIGNALS: dict[str, tuple[str, str]] = {
+    "z_s": ("m", "sprung-mass displacement (up)"),
+    "z_u": ("m", "unsprung-mass displacement (up)"),
+    "z_r": ("m", "road displacement (up)"),
+    "z_s_dot": ("m/s", "sprung-mass velocity"),
+    "z_u_dot": ("m/s", "unsprung-mass velocity"),
+    "z_r_dot": ("m/s", "road velocity"),
+    "z_s_ddot": ("m/s^2", "sprung-mass acceleration"),
+    "z_u_ddot": ("m/s^2", "unsprung-mass acceleration"),
+    "z_r_ddot": ("m/s^2", "road acceleration"),
+    "x_d": ("m", "damper stroke z_u - z_s (compression +)"),
+    "v_d": ("m/s", "damper velocity (compression +)"),
+    "F_d": ("N", "damper force (resists compression +)"),
+    "F_T": ("N", "tire force (total, 0 when lifted off)"),
+    "i_d": ("A", "drive current"),
+    "i_z": ("A", "controller current before shaping"),
+    "z_c": ("-", "switching condition (high current when < 0)"),
+    "F_target": ("N", "controller target force (NaN if none)"),
+    "v_m": ("m/s", "controller peak-velocity estimate"),
+    "z_s0": ("m", "sliding-mode reference displacement"),
+}
+
+
+@dataclass(frozen=True)
+class SimulationResult(Mapping[str, np.ndarray]):
+    """Time histories of one simulation, by signal name (see :data:`SIGNALS`).
+
+    Behaves as a read-only mapping ``name -> array`` and exposes each signal as an
+    attribute (``result.z_s``); ``time`` [s] is the common axis. ``scenario`` holds the
+    plain-data description of what was simulated.
+    """
+
+    time: npt.NDArray[np.float64]
+    signals: dict[str, npt.NDArray[np.float64]]
+    scenario: dict[str, Any] = field(default_factory=dict)
+    dt: float = 0.0
+
+    units: Mapping[str, str] = field(
+        default_factory=lambda: {"time": "s", **{k: u for k, (u, _) in SIGNALS.items()}}
+    )
+
+    def __getitem__(self, key: str) -> npt.NDArray[np.float64]:
+        if key == "time":
+            return self.time
+        try:
+            return self.signals[key]
+        except KeyError:
+            raise unknown_name("signal", key, ["time", *self.signals]) from None
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(["time", *self.signals])
+
+    def __len__(self) -> int:
+        return 1 + len(self.signals)
+
+    def __getattr__(self, key: str) -> npt.NDArray[np.float64]:
+        signals = self.__dict__.get("signals", {})
+        if key in signals:
+            return signals[key]
+        raise AttributeError(key)
+
+    def __repr__(self) -> str:
+        law = self.scenario.get("controller", {}).get("law", "?")
+        return (
+            f"SimulationResult({self.time.size} samples, {self.time[-1]:.3g} s, controller={law!r})"
+        )
+
+    # -- exports -----------------------------------------------------------------------
+    def to_pandas(self) -> pd.DataFrame:
+        """The signals as a DataFrame indexed by time, columns ``"name [unit]"``."""
+        import pandas as pd
+
+        data = {f"{k} [{self.units[k]}]": v for k, v in self.signals.items()}
+        return pd.DataFrame(data, index=pd.Index(self.time, name="time [s]"))
+
+    def to_xarray(self) -> xr.Dataset:
+        """The signals as an xarray Dataset over ``time``, with units and descriptions."""
+        import xarray as xr
+
+        ds = xr.Dataset(
+            {
+                k: ("time", v, {"units": self.units[k], "long_name": SIGNALS.get(k, ("", k))[1]})
+                for k, v in self.signals.items()
+            },
+            coords={"time": ("time", self.time, {"units": "s"})},
+        )
+        ds.attrs["scenario"] = json.dumps(self.scenario, default=str)
+        ds.attrs["dt"] = self.dt
+        return ds
+
+    def save(self, path: str | Path) -> Path:
+        """Write to ``.csv`` (with a JSON side file of the scenario), ``.nc`` or ``.parquet``."""
+        path = Path(path)
+        path.parent.mkdir(parents=True, exist_ok=True)
+        suffix = path.suffix.lower()
+        if suffix == ".csv":
+            header = ",".join(["time [s]", *(f"{k} [{self.units[k]}]" for k in self.signals)])
+            table = np.column_stack([self.time, *self.signals.values()])
+            np.savetxt(path, table, delimiter=",", header=header, comments="", fmt="%.9g")
+            path.with_suffix(".json").write_text(
+                json.dumps({"scenario": self.scenario, "dt": self.dt}, indent=2, default=str)
+            )
+        elif suffix == ".nc":
+            self.to_xarray().to_netcdf(path)
+        elif suffix == ".parquet":
+            df = self.to_pandas()
+            df.attrs = {}
+            df.to_parquet(path)
+        else:
+            raise ValidationError(
+                f"cannot save a result as {suffix!r}; use .csv, .nc (NetCDF) or .parquet"
+            )
+        return path
+
+    def plot(self, signals: tuple[str, ...] = ("z_s_ddot", "x_d", "F_d", "F_T", "i_d")) -> Figure:
+        """Time histories of some signals, one panel each."""
+        import matplotlib
+
+        matplotlib.use("Agg", force=False)
+        import matplotlib.pyplot as plt
+
+        for s in signals:
+            self[s]
+        fig, axes = plt.subplots(len(signals), 1, sharex=True, figsize=(8, 1.8 * len(signals)))
+        for ax, s in zip(np.atleast_1d(axes), signals, strict=True):
+            ax.plot(self.time, self[s], lw=0.8)
+            ax.set_ylabel(f"{s} [{self.units[s]}]")
+            ax.grid(True, alpha=0.3)
+        np.atleast_1d(axes)[-1].set_xlabel("time [s]")
+        fig.tight_layout()
+        return fig

@@ -1,0 +1,411 @@
+"""Running the quarter car: :class:`Simulation` (offline), :class:`Stepper` (tick by tick)
+and :func:`run_many` (batches across processes)."""
+
+from __future__ import annotations
+
+import math
+import os
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from typing import Any, Protocol
+
+import numpy as np
+import numpy.typing as npt
+
+from mrsuspension.control import Controller, Passive
+from mrsuspension.dampers import DamperModel, PeakVelocityEstimator, WangSymmetric, WindowPeak
+from mrsuspension.dampers import kernels as DK
+from mrsuspension.engine import kernel as EK
+from mrsuspension.engine.result import SimulationResult
+from mrsuspension.errors import MRSuspensionError, ValidationError, check_range
+from mrsuspension.vehicle import QuarterCar
+
+__all__ = [
+    "DEFAULT_DT",
+    "RoadInput",
+    "Simulation",
+    "SimulationDiverged",
+    "Stepper",
+    "run_many",
+]
+
+#: Default fixed step [s] (spec section 7).
+DEFAULT_DT = 1e-4
+#: RK4's stability limit on the negative real axis is about 2.785; keep a margin.
+_RK4_LIMIT = 2.5
+#: Divergence limits: |z| [m], |z'| [m/s], |F_d| [N], F_T [N].
+LIMITS = np.array([10.0, 100.0, 1e6, 1e7])
+
+
+class RoadInput(Protocol):
+    """What the engine needs from an excitation (see :mod:`mrsuspension.excitation`)."""
+
+    def displacement(self, t: npt.ArrayLike) -> np.ndarray: ...
+    def velocity(self, t: npt.ArrayLike) -> np.ndarray: ...
+    def acceleration(self, t: npt.ArrayLike) -> np.ndarray: ...
+    def describe(self) -> dict[str, Any]: ...
+
+    @property
+    def duration(self) -> float: ...
+
+
+class SimulationDiverged(MRSuspensionError):
+    """A run left the physical range; the message says when and which signal."""
+
+    def __init__(self, message: str, time: float, signal: str, value: float) -> None:
+        super().__init__(message)
+        self.time = time
+        self.signal = signal
+        self.value = value
+
+
+_STATE_NAMES = ("z_s", "z_s_dot", "z_u", "z_u_dot", "z_s0", "z_s0_dot")
+_STATE_UNITS = ("m", "m/s", "m", "m/s", "m", "m/s")
+
+
+@dataclass(frozen=True)
+class Simulation:
+    """A quarter car with a damper, a controller and a road input.
+
+    Parameters
+    ----------
+    excitation : RoadInput
+        Road displacement ``z_r(t)`` (up positive) with exact velocity/acceleration.
+    vehicle : QuarterCar
+        Vehicle parameters (nominal by default).
+    damper : DamperModel
+        Damper model (default: the dissertation's symmetric hysteretic model).
+    controller : Controller
+        Control law (default: passive at 0 A).
+    max_current : float
+        Drive-current limit i_max [A] (0.5 A in simulations, 0.3 A in HiL).
+    estimator : PeakVelocityEstimator, optional
+        The controller's peak-velocity estimator (for the ADFG multiplier and the inverse
+        model); default: the damper's own, else the 1 s window.
+
+    Examples
+    --------
+    >>> from mrsuspension.excitation import Harmonic
+    >>> from mrsuspension.control import HiLo
+    >>> sim = Simulation(Harmonic(1.5, 0.025), controller=HiLo(1, mode="ACM"))
+    >>> result = sim.run(duration=2.0)
+    >>> result.time[-1], bool(result.i_d.max() <= 0.5)
+    (2.0, True)
+    """
+
+    excitation: RoadInput
+    vehicle: QuarterCar = field(default_factory=QuarterCar)
+    damper: DamperModel = field(default_factory=WangSymmetric)
+    controller: Controller = field(default_factory=Passive)
+    max_current: float = 0.5
+    estimator: PeakVelocityEstimator | None = None
+
+    def __post_init__(self) -> None:
+        check_range("max_current", self.max_current, 0.0, self.damper.max_current, unit="A")
+        symmetric_wang = isinstance(self.damper, WangSymmetric) and (
+            self.damper.values.get("k5", 0.0) == 0.0 and self.damper.values.get("k6", 0.0) == 0.0
+        )
+        if self.controller.needs_inverse and not symmetric_wang:
+            raise ValidationError(
+                f"controller {self.controller.law!r} uses the inverse model (spec section 2.3) "
+                f"and needs the 'wang-symmetric' damper model; got {self.damper.name!r}"
+            )
+
+    # -- helpers ---------------------------------------------------------------------
+    @property
+    def controller_estimator(self) -> PeakVelocityEstimator:
+        """The estimator giving the controller its v_m."""
+        if self.estimator is not None:
+            return self.estimator
+        return getattr(self.damper, "estimator", None) or WindowPeak()
+
+    def stiffness_rate(self) -> float:
+        """Largest decay rate of the linearised model [1/s] (for the step-size check)."""
+        car = self.vehicle
+        if self.controller.force_source == EK.F_MODEL:
+            c = self.damper.max_damping_rate(self.max_current)
+        else:
+            c = float(self.controller.params(self.max_current)[EK.P_CS])
+        rate = c * (1.0 / car.unsprung_mass + 1.0 / car.sprung_mass)
+        rate += car.tire_damping / car.unsprung_mass + car.skyhook_damping / car.sprung_mass
+        omega = math.sqrt((car.suspension_stiffness + car.tire_stiffness) / car.unsprung_mass)
+        return max(rate, omega)
+
+    def max_stable_dt(self) -> float:
+        """Largest fixed step [s] that keeps RK4 stable (with a margin)."""
+        return _RK4_LIMIT / self.stiffness_rate()
+
+    def check_dt(self, dt: float) -> float:
+        """Validate ``dt`` (positive, at most 10 ms, and stable for this model)."""
+        dt = float(check_range("dt", dt, 0.0, 0.01, unit="s", low_inclusive=False))
+        limit = self.max_stable_dt()
+        if dt > limit:
+            raise ValidationError(
+                f"dt = {dt:g} s is too large for stability: the stiffest mode of this model "
+                f"(damper slope up to {self._slope():.3g} N s/m on the {self.vehicle.unsprung_mass:g} kg "
+                f"wheel) needs dt <= {limit:.3g} s"
+            )
+        return dt
+
+    def _slope(self) -> float:
+        if self.controller.force_source == EK.F_MODEL:
+            return self.damper.max_damping_rate(self.max_current)
+        return float(self.controller.params(self.max_current)[EK.P_CS])
+
+    def describe(self) -> dict[str, Any]:
+        """Plain-data description of the scenario."""
+        return {
+            "vehicle": self.vehicle.describe(),
+            "damper": self.damper.describe(),
+            "controller": self.controller.describe(),
+            "excitation": self.excitation.describe(),
+            "max_current": self.max_current,
+            "estimator": repr(self.controller_estimator),
+        }
+
+    def _arrays(self, dt: float) -> dict[str, Any]:
+        kern = self.damper.kernel(dt)
+        est = self.controller_estimator
+        return {
+            "vp": self.vehicle.params(),
+            "fk": self.controller.force_source,
+            "dk": kern.kind,
+            "dp": kern.params,
+            "ds": kern.state,
+            "dek": kern.estimator_code,
+            "dep": kern.estimator_params,
+            "des": kern.estimator_state,
+            "ck": self.controller.code,
+            "cp": self.controller.params(self.max_current),
+            "cek": est.code,
+            "cep": est.params_for(dt),
+            "ces": est.buffer(dt),
+            "mem": np.zeros(EK.MEM_SIZE),
+        }
+
+    # -- running ---------------------------------------------------------------------
+    def run(
+        self,
+        duration: float | None = None,
+        *,
+        dt: float = DEFAULT_DT,
+        output_rate: float = 1000.0,
+    ) -> SimulationResult:
+        """Simulate for ``duration`` seconds (default: the excitation's own duration).
+
+        Parameters
+        ----------
+        duration : float, optional
+            Simulated time [s].
+        dt : float
+            Fixed RK4 step [s] (default 1e-4, spec section 7); checked for stability.
+        output_rate : float
+            Samples per second kept in the result (default 1 kHz; at most 1/dt).
+
+        Raises
+        ------
+        SimulationDiverged
+            When a state, the damper force or the tire force leaves the physical range:
+            the message says when and which signal.
+        """
+        dt = self.check_dt(dt)
+        if duration is None:
+            duration = float(self.excitation.duration)
+        duration = float(check_range("duration", duration, 0.0, 1e5, unit="s", low_inclusive=False))
+        rate = float(
+            check_range("output_rate", output_rate, 0.0, None, unit="Hz", low_inclusive=False)
+        )
+        n = max(1, round(duration / dt))
+        decimate = max(1, round(1.0 / (rate * dt)))
+        t_half = np.arange(2 * n + 1) * (0.5 * dt)
+        zr = np.ascontiguousarray(self.excitation.displacement(t_half), dtype=float)
+        zrd = np.ascontiguousarray(self.excitation.velocity(t_half), dtype=float)
+        if not (np.all(np.isfinite(zr)) and np.all(np.isfinite(zrd))):
+            raise ValidationError("the excitation produced non-finite road values")
+        a = self._arrays(dt)
+        y = np.array([zr[0], 0.0, zr[0], 0.0, zr[0], 0.0])
+        rows = n // decimate + 1
+        rec = np.zeros((rows, EK.N_REC))
+        status, k, idx, value = EK.run(
+            y, n, dt, zr, zrd, a["vp"], a["fk"], a["dk"], a["dp"], a["ds"], a["dek"], a["dep"],
+            a["des"], a["ck"], a["cp"], a["cek"], a["cep"], a["ces"], a["mem"], decimate, rec,
+            LIMITS, np.zeros(EK.SCRATCH_SIZE),
+        )  # fmt: skip
+        if status != EK.D_OK:
+            raise self._diverged(status, k * dt, idx, value, dt)
+        time = np.arange(rows) * (decimate * dt)
+        return self._result(time, rec, dt)
+
+    def _diverged(
+        self, status: int, t: float, idx: int, value: float, dt: float
+    ) -> SimulationDiverged:
+        if status == EK.D_STATE:
+            name, unit = _STATE_NAMES[idx], _STATE_UNITS[idx]
+            limit = LIMITS[0] if idx % 2 == 0 else LIMITS[1]
+        elif status == EK.D_FORCE:
+            name, unit, limit = "F_d", "N", LIMITS[2]
+        else:
+            name, unit, limit = "F_T", "N", LIMITS[3]
+        what = "is not finite" if not math.isfinite(value) else f"exceeds {limit:g} {unit}"
+        return SimulationDiverged(
+            f"simulation diverged at t = {t:.4f} s: {name} = {value:.3g} {unit} {what}. "
+            f"Check dt (= {dt:g} s; stable limit {self.max_stable_dt():.3g} s), the damper's "
+            "peak-velocity estimator (the 'window' default cannot run away) and the inputs.",
+            t,
+            name,
+            value,
+        )
+
+    def _result(self, time: np.ndarray, rec: np.ndarray, dt: float) -> SimulationResult:
+        R = EK
+        signals = {
+            "z_s": rec[:, R.R_ZS],
+            "z_u": rec[:, R.R_ZU],
+            "z_r": rec[:, R.R_ZR],
+            "z_s_dot": rec[:, R.R_VS],
+            "z_u_dot": rec[:, R.R_VU],
+            "z_r_dot": rec[:, R.R_VR],
+            "z_s_ddot": rec[:, R.R_AS],
+            "z_u_ddot": rec[:, R.R_AU],
+            "z_r_ddot": np.asarray(self.excitation.acceleration(time), dtype=float),
+            "x_d": rec[:, R.R_ZU] - rec[:, R.R_ZS],
+            "v_d": rec[:, R.R_VU] - rec[:, R.R_VS],
+            "F_d": rec[:, R.R_FD],
+            "F_T": rec[:, R.R_FT],
+            "i_d": rec[:, R.R_ID],
+            "i_z": rec[:, R.R_IZ],
+            "z_c": rec[:, R.R_ZC],
+            "F_target": rec[:, R.R_TARGET],
+            "v_m": rec[:, R.R_VM],
+            "z_s0": rec[:, R.R_ZS0],
+        }
+        signals = {k: np.ascontiguousarray(v) for k, v in signals.items()}
+        return SimulationResult(time=time, signals=signals, scenario=self.describe(), dt=dt)
+
+    def stepper(self, dt: float = DEFAULT_DT, *, external_force: bool = False) -> Stepper:
+        """Tick-by-tick access to the same compiled step (for a real-time loop)."""
+        return Stepper(self, dt, external_force=external_force)
+
+
+class Stepper:
+    """The engine's compiled step, one tick at a time (the HiL loop's physics).
+
+    The road values at the start, middle and end of the tick are given by the caller
+    (a real-time loop knows them; pass the same value three times for a held road).
+    With ``external_force=True`` the damper force is not computed by a model but given
+    at each tick (the measured force of a real damper), held over the tick.
+
+    Examples
+    --------
+    >>> from mrsuspension.excitation import Harmonic
+    >>> stepper = Simulation(Harmonic(1.0, 0.01)).stepper(1e-4)
+    >>> out = stepper.step(0.0, 0.0628)
+    >>> sorted(out)[:4]
+    ['F_T', 'F_d', 'F_target', 'i_d']
+    """
+
+    def __init__(self, simulation: Simulation, dt: float, *, external_force: bool = False) -> None:
+        self.simulation = simulation
+        self.dt = simulation.check_dt(dt)
+        self.external_force = external_force
+        self.reset()
+
+    def reset(self, road: float = 0.0) -> None:
+        """Back to static equilibrium on a road at height ``road``; fresh internals."""
+        self._a = self.simulation._arrays(self.dt)
+        if self.external_force:
+            self._a["fk"] = EK.F_EXTERNAL
+        self._scratch = np.zeros(EK.SCRATCH_SIZE)
+        self.y = np.array([road, 0.0, road, 0.0, road, 0.0])
+        self.time = 0.0
+
+    def step(
+        self,
+        road: float,
+        road_velocity: float,
+        *,
+        road_mid: tuple[float, float] | None = None,
+        road_end: tuple[float, float] | None = None,
+        damper_force: float | None = None,
+    ) -> dict[str, float]:
+        """Advance one tick; returns the new state and outputs by signal name."""
+        if self.external_force:
+            if damper_force is None or not math.isfinite(damper_force):
+                raise ValidationError(
+                    f"external_force stepper needs a finite damper_force each tick; got {damper_force!r}"
+                )
+            self._a["mem"][EK.M_FEXT] = damper_force
+        elif damper_force is not None:
+            raise ValidationError("damper_force is only accepted with external_force=True")
+        zr1, zrd1 = road_mid if road_mid is not None else (road, road_velocity)
+        zr2, zrd2 = road_end if road_end is not None else (zr1, zrd1)
+        a = self._a
+        EK.step(
+            self.y, self.dt, road, road_velocity, zr1, zrd1, zr2, zrd2, a["vp"], a["fk"], a["dk"],
+            a["dp"], a["ds"], a["dek"], a["dep"], a["des"], a["ck"], a["cp"], a["cek"], a["cep"],
+            a["ces"], a["mem"], self._scratch,
+        )  # fmt: skip
+        self.time += self.dt
+        y, mem = self.y, a["mem"]
+        out = {
+            "time": self.time,
+            "z_s": y[0], "z_s_dot": y[1], "z_u": y[2], "z_u_dot": y[3],
+            "z_s_ddot": mem[EK.M_AS], "z_u_ddot": mem[EK.M_AU],
+            "x_d": y[2] - y[0], "v_d": y[3] - y[1],
+            "F_d": mem[EK.M_FD], "F_T": mem[EK.M_FT], "i_d": mem[EK.M_ID],
+            "i_z": mem[EK.M_IZ], "z_c": mem[EK.M_ZC], "F_target": mem[EK.M_TARGET],
+            "v_m": mem[EK.M_VM],
+        }  # fmt: skip
+        if not all(math.isfinite(y[q]) for q in range(4)):
+            raise SimulationDiverged(
+                f"stepper diverged at t = {self.time:.4f} s: state is not finite",
+                self.time,
+                "state",
+                math.nan,
+            )
+        return out
+
+
+def _run_one(args: tuple[Simulation, float | None, float, float]) -> SimulationResult:
+    sim, duration, dt, rate = args
+    return sim.run(duration, dt=dt, output_rate=rate)
+
+
+def run_many(
+    simulations: Sequence[Simulation],
+    *,
+    duration: float | None = None,
+    dt: float = DEFAULT_DT,
+    output_rate: float = 1000.0,
+    workers: int | None = None,
+    progress: Callable[[int, int], None] | None = None,
+) -> list[SimulationResult]:
+    """Run many simulations, across processes (default: one per CPU core).
+
+    Results come back in the order given. ``progress(done, total)`` is called as runs
+    finish. ``workers=1`` runs in this process.
+    """
+    jobs = [(s, duration, dt, output_rate) for s in simulations]
+    if not jobs:
+        return []
+    n_workers = min(len(jobs), workers or os.cpu_count() or 1)
+    if n_workers <= 1:
+        out = []
+        for k, job in enumerate(jobs):
+            out.append(_run_one(job))
+            if progress:
+                progress(k + 1, len(jobs))
+        return out
+    from concurrent.futures import ProcessPoolExecutor, as_completed
+
+    results: list[SimulationResult | None] = [None] * len(jobs)
+    with ProcessPoolExecutor(max_workers=n_workers) as pool:
+        futures = {pool.submit(_run_one, job): k for k, job in enumerate(jobs)}
+        for done, fut in enumerate(as_completed(futures), start=1):
+            results[futures[fut]] = fut.result()
+            if progress:
+                progress(done, len(jobs))
+    return [r for r in results if r is not None]
+
+
+_ = DK  # the damper kernels are part of the step (imported for documentation links)
