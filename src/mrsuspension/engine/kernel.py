@@ -342,6 +342,35 @@ def _record(
     rec[row, R_ZS0] = y[4]
 
 
+@njit(cache=True, inline="always", **NO_REFCOUNT)
+def start(
+    y: np.ndarray,
+    zr: float,
+    zrd: float,
+    vp: np.ndarray,
+    fk: int,
+    dk: int,
+    dp: np.ndarray,
+    ds: np.ndarray,
+    dek: int,
+    dep: np.ndarray,
+    des: np.ndarray,
+    ck: int,
+    cp: np.ndarray,
+    mem: np.ndarray,
+    scratch: np.ndarray,
+) -> None:
+    """Initial accelerations and forces (for the record and the first step's a_d)."""
+    DK.damper_sample(dk, dp, ds, dek, dep, des, y[2] - y[0], y[3] - y[1], 0.0, mem[M_ID])
+    fd, ft = rates(y, zr, zrd, vp, fk, dk, dp, ds, cp, mem, ck == C_SLIDING, scratch[0:NY])
+    mem[M_AS] = scratch[1]
+    mem[M_AU] = scratch[3]
+    mem[M_A0] = scratch[5]
+    mem[M_FD] = fd
+    mem[M_FT] = ft
+    mem[M_AD] = scratch[3] - scratch[1]
+
+
 # divergence limits: which signal ran away
 D_OK, D_STATE, D_FORCE, D_TIRE = 0, 1, 2, 3
 
@@ -379,14 +408,7 @@ def run(
     ``limits = [max |z|, max |z'|, max |F_d|, max F_T]``, else the first offence.
     ``scratch`` is work space of ``SCRATCH_SIZE``.
     """
-    # initial accelerations and forces (for the record and a_d of the first step)
-    DK.damper_sample(dk, dp, ds, dek, dep, des, y[2] - y[0], y[3] - y[1], 0.0, mem[M_ID])
-    fd, ft = rates(y, zr[0], zrd[0], vp, fk, dk, dp, ds, cp, mem, ck == C_SLIDING, scratch[0:NY])
-    mem[M_AS] = scratch[1]
-    mem[M_AU] = scratch[3]
-    mem[M_FD] = fd
-    mem[M_FT] = ft
-    mem[M_AD] = scratch[3] - scratch[1]
+    start(y, zr[0], zrd[0], vp, fk, dk, dp, ds, dek, dep, des, ck, cp, mem, scratch)
     _record(rec, 0, y, zr[0], zrd[0], mem)
     row = 1
     for k in range(n_steps):

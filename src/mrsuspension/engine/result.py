@@ -88,6 +88,65 @@ class SimulationResult(Mapping[str, np.ndarray]):
             f"SimulationResult({self.time.size} samples, {self.time[-1]:.3g} s, controller={law!r})"
         )
 
+    # -- measures (spec section 9) ------------------------------------------------------
+    def measures(self) -> dict[str, Any]:
+        """The spec section 9 measures suited to the excitation, by their spec names.
+
+        * harmonic: ``T_as``, ``T_au``, ``T_dr``, ``T_ds``, ``T_du``, ``DLC``, ``gamma``,
+          ``mean_current``, ``mean_square_current`` (steady window of spec section 9);
+        * pulse: ``SDR_s``, ``SAR_s``, ``SDR_u``, ``SAR_u``, ``RDR``, ``peak_tire_force``;
+        * road: ``DLC`` (std/mean tire force), ``rms_body_acceleration``,
+          ``wk_rms_body_acceleration`` (ISO 2631-1), ``vdv``, ``rms_stroke``,
+          ``mean_current``.
+        """
+        from mrsuspension import measures as M
+
+        exc = self.scenario.get("excitation", {})
+        kind = exc.get("kind")
+        veh = self.scenario.get("vehicle", {})
+        static_load = (veh.get("sprung_mass", 563.0) + veh.get("unsprung_mass", 90.0)) * 9.81
+        if kind == "harmonic":
+            return M.harmonic_measures(
+                self.time,
+                float(exc["frequency"]),
+                z_s=self.z_s,
+                z_u=self.z_u,
+                z_r=self.z_r,
+                acc_s=self.z_s_ddot,
+                acc_u=self.z_u_ddot,
+                acc_r=self.z_r_ddot,
+                x_d=self.x_d,
+                F_d=self.F_d,
+                F_T=self.F_T,
+                static_load=static_load,
+                i_d=self.i_d,
+            )
+        if kind == "pulse":
+            out: dict[str, Any] = dict(
+                M.shock_ratios(
+                    self.z_s,
+                    self.z_u,
+                    self.z_r,
+                    self.z_s_ddot,
+                    self.z_u_ddot,
+                    self.z_r_ddot,
+                    self.x_d,
+                )
+            )
+            out["peak_tire_force"] = float(np.max(self.F_T))
+            return out
+        if kind == "road":
+            fs = 1.0 / float(self.time[1] - self.time[0])
+            return {
+                "DLC": M.dlc(self.F_T),
+                "rms_body_acceleration": M.rms(self.z_s_ddot),
+                "wk_rms_body_acceleration": M.weighted_rms(self.z_s_ddot, fs),
+                "vdv": M.vdv(self.z_s_ddot, fs),
+                "rms_stroke": M.rms(self.x_d - np.mean(self.x_d)),
+                "mean_current": float(np.mean(self.i_d)),
+            }
+        raise ValidationError(f"no measures defined for excitation kind {kind!r}")
+
     # -- exports -----------------------------------------------------------------------
     def to_pandas(self) -> pd.DataFrame:
         """The signals as a DataFrame indexed by time, columns ``"name [unit]"``."""

@@ -1,0 +1,714 @@
+"""Random roads: elevation profiles over distance driven at a constant speed (spec section 8).
+
+A :class:`RoadProfile` holds an elevation profile ``h(x)`` [m] over distance ``x`` [m]
+and turns it into a time signal ``z_r(t) = h(x_0 + V t)`` through a C2 cubic spline, so
+the road velocity ``V h'`` and acceleration ``V^2 h''`` are exact derivatives of the
+displacement the vehicle sees. Profiles come from a measured file
+(:meth:`RoadProfile.from_csv`), from ISO 8608 synthesis (:func:`iso8608`) or from the
+three presets (:func:`preset_road`) that stand in for the dissertation's Canadian roads.
+"""
+
+from __future__ import annotations
+
+import csv
+import math
+import re
+from collections.abc import Callable, Iterator, Sequence
+from dataclasses import dataclass, field, replace
+from pathlib import Path
+from typing import Any, ClassVar
+
+import numpy as np
+import numpy.typing as npt
+from scipy.interpolate import CubicSpline
+from scipy.signal import welch
+
+from mrsuspension.errors import ValidationError, check_finite, unknown_name
+from mrsuspension.excitation.base import (
+    Excitation,
+    FloatArray,
+    non_negative,
+    positive,
+    time_array,
+)
+from mrsuspension.excitation.deterministic import REFERENCE_SPEED_KMH
+
+__all__ = [
+    "ISO8608_BAND",
+    "ISO8608_CLASSES",
+    "ISO8608_N0",
+    "PRESET_ROADS",
+    "PresetRoad",
+    "RoadProfile",
+    "SpatialPsd",
+    "iso8608",
+    "iso8608_psd",
+    "preset_road",
+]
+
+#: ISO 8608 reference spatial frequency n0 [cycle/m]
+ISO8608_N0 = 0.1
+#: ISO 8608 classes: geometric mean of Gd(n0) [m^3] (spec section 8)
+ISO8608_CLASSES: dict[str, float] = {
+    "A": 16e-6,
+    "B": 64e-6,
+    "C": 256e-6,
+    "D": 1024e-6,
+    "E": 4096e-6,
+    "F": 16384e-6,
+    "G": 65536e-6,
+    "H": 262144e-6,
+}
+#: spatial-frequency band [cycle/m] over which ISO 8608 defines the road spectrum
+ISO8608_BAND = (0.011, 2.83)
+#: fewest profile points a spline road accepts
+MIN_POINTS = 4
+
+
+@dataclass(frozen=True)
+class SpatialPsd:
+    """One-sided spatial PSD of a road profile; unpacks as ``n, Gd = road.spatial_psd()``.
+
+    Attributes
+    ----------
+    spatial_frequency : ndarray
+        Spatial frequency ``n`` [cycle/m].
+    density : ndarray
+        Displacement PSD ``Gd(n)`` [m^3] (m^2 per cycle/m), as in ISO 8608.
+    nperseg : int
+        Welch segment length used (samples).
+    """
+
+    spatial_frequency: FloatArray
+    density: FloatArray
+    nperseg: int
+
+    def __iter__(self) -> Iterator[FloatArray]:
+        yield self.spatial_frequency
+        yield self.density
+
+
+@dataclass(frozen=True, eq=False)
+class RoadProfile(Excitation):
+    """An elevation profile driven at constant speed: ``z_r(t) = h(x_0 + V t)``.
+
+    Parameters
+    ----------
+    distance : array_like
+        Distance along the road ``x`` [m], strictly increasing, at least 4 points (any
+        spacing).
+    elevation : array_like
+        Road elevation ``h(x)`` [m], positive up, finite, same length as ``distance``.
+    speed_kmh : float, optional
+        Vehicle speed ``V`` [km/h], 50 by default (the dissertation uses 50 and 100).
+    fade_in : float, optional
+        Length [m] over which the profile is faded in from zero with a C2 ramp
+        (``6u^5 - 15u^4 + 10u^3``), so a run starting at rest does not begin with a
+        step. 0 (no fade, the data as given) by default.
+    source : str, optional
+        Where the profile comes from (a file name, a preset, an ISO 8608 class...).
+
+    Notes
+    -----
+    The spline is :class:`scipy.interpolate.CubicSpline` (not-a-knot ends), twice
+    continuously differentiable; velocity and acceleration are its derivatives times
+    ``V`` and ``V^2``. Time 0 is the first profile point. Outside the profile
+    (``t < 0`` or ``t > duration``) the road holds its end elevation, with zero velocity
+    and acceleration. The profile's elevation at ``t = 0`` is generally not zero: start
+    the vehicle on it (or use ``fade_in``).
+
+    Examples
+    --------
+    >>> x = np.arange(0.0, 10.0, 0.5)
+    >>> road = RoadProfile(x, 0.01 * np.sin(x), speed_kmh=36.0)  # V = 10 m/s
+    >>> road.duration
+    0.95
+    >>> round(float(road.displacement(0.05)), 5)  # the profile at x = 0.5 m
+    0.00479
+    """
+
+    distance: FloatArray
+    elevation: FloatArray
+    speed_kmh: float = REFERENCE_SPEED_KMH
+    fade_in: float = 0.0
+    source: str = "user data"
+    _spline: CubicSpline = field(init=False, repr=False, compare=False)
+
+    name: ClassVar[str] = "road"
+
+    def __post_init__(self) -> None:
+        distance, elevation = _check_profile(
+            self.distance,
+            self.elevation,
+            lambda i: f"index {i}",
+            lambda i: f"road profile, index {i}",
+        )
+        distance.setflags(write=False)
+        elevation.setflags(write=False)
+        object.__setattr__(self, "distance", distance)
+        object.__setattr__(self, "elevation", elevation)
+        object.__setattr__(
+            self, "speed_kmh", positive("speed_kmh", self.speed_kmh, "km/h", high=500.0)
+        )
+        length = float(distance[-1] - distance[0])
+        object.__setattr__(self, "fade_in", non_negative("fade_in", self.fade_in, "m", high=length))
+        if not isinstance(self.source, str):
+            raise ValidationError(f"source must be a string; got {self.source!r}")
+        object.__setattr__(self, "_spline", CubicSpline(distance, elevation))
+
+    # -- construction ---------------------------------------------------------------
+    @classmethod
+    def from_csv(
+        cls,
+        path: str | Path,
+        speed_kmh: float = REFERENCE_SPEED_KMH,
+        *,
+        columns: tuple[int | str, int | str] | None = None,
+        distance_unit: str | None = None,
+        elevation_unit: str | None = None,
+        delimiter: str | None = None,
+        fade_in: float = 0.0,
+    ) -> RoadProfile:
+        """Read a profile from a CSV file of distance and elevation.
+
+        Blank lines and lines starting with ``#`` are skipped. A header line is optional;
+        it is recognised by a field that is not a number. Delimiters ``,``, ``;``, tab or
+        spaces are detected from the first data line.
+
+        Parameters
+        ----------
+        path : str or Path
+            The file.
+        speed_kmh : float, optional
+            Vehicle speed [km/h], 50 by default.
+        columns : (int or str, int or str), optional
+            Distance and elevation columns, by 0-based index or by header name. By
+            default the header columns named ``distance...`` and ``elevation...`` if
+            there are, else the first two columns.
+        distance_unit, elevation_unit : {"m", "mm"}, optional
+            Units of the columns. By default a unit in the header name (``"elevation
+            [mm]"``, ``"distance (m)"``), else metres.
+        delimiter : str, optional
+            Field delimiter; detected by default.
+        fade_in : float, optional
+            See :class:`RoadProfile`.
+
+        Raises
+        ------
+        ValidationError
+            Missing file, malformed line (the message names it), NaN/inf, unsorted or
+            repeated distance, fewer than 4 points, unknown unit or column.
+
+        Examples
+        --------
+        >>> import tempfile, os
+        >>> with tempfile.TemporaryDirectory() as d:
+        ...     p = os.path.join(d, "road.csv")
+        ...     _ = open(p, "w").write("distance [m],elevation [mm]\\n0,0\\n1,2\\n2,1\\n3,-1\\n")
+        ...     road = RoadProfile.from_csv(p, speed_kmh=36.0)
+        >>> road.elevation
+        array([ 0.   ,  0.002,  0.001, -0.001])
+        """
+        path = Path(path)
+        if not path.is_file():
+            raise ValidationError(f"road profile file not found: {str(path)!r}")
+        try:
+            text = path.read_text(encoding="utf-8-sig")
+        except (OSError, UnicodeDecodeError) as exc:
+            raise ValidationError(f"cannot read road profile file {str(path)!r}: {exc}") from None
+        where = f"road profile {path.name!r}"
+        rows = [
+            (k, line)
+            for k, line in enumerate(text.splitlines(), start=1)
+            if line.strip() and not line.lstrip().startswith("#")
+        ]
+        if not rows:
+            raise ValidationError(f"{where} holds no data")
+        if delimiter is None:
+            delimiter = _detect_delimiter(rows[0][1])
+        split = _splitter(delimiter)
+        header: list[str] | None = None
+        first = split(rows[0][1])
+        if not all(_is_number(f) for f in first):
+            header = first
+            rows = rows[1:]
+        i_dist, i_elev = _resolve_columns(columns, header, where)
+        d_scale = _unit_scale("distance_unit", distance_unit, header, i_dist)
+        e_scale = _unit_scale("elevation_unit", elevation_unit, header, i_elev)
+        lines: list[int] = []
+        dist: list[float] = []
+        elev: list[float] = []
+        for lineno, line in rows:
+            fields = split(line)
+            if len(fields) <= max(i_dist, i_elev):
+                raise ValidationError(
+                    f"{where}, line {lineno}: expected at least {max(i_dist, i_elev) + 1} "
+                    f"columns, got {len(fields)}: {line.strip()!r}"
+                )
+            for label, i, out in (("distance", i_dist, dist), ("elevation", i_elev, elev)):
+                try:
+                    out.append(float(fields[i]))
+                except ValueError:
+                    raise ValidationError(
+                        f"{where}, line {lineno}: {label} is not a number: {fields[i]!r}"
+                    ) from None
+            lines.append(lineno)
+        distance, elevation = _check_profile(
+            np.array(dist) * d_scale,
+            np.array(elev) * e_scale,
+            lambda i: f"line {lines[i]}",
+            lambda i: f"{where}, line {lines[i]}",
+            what=where,
+        )
+        return cls(distance, elevation, speed_kmh, fade_in=fade_in, source=str(path))
+
+    def scaled(self, factor: float) -> RoadProfile:
+        """A copy with every elevation multiplied by ``factor`` (> 0).
+
+        The HiL tests drive the rough road at 50 %: ``preset_road("rough").scaled(0.5)``.
+        """
+        k = positive("factor", factor, "", high=1e3)
+        return replace(self, elevation=self.elevation * k, source=f"{self.source}, scaled x{k:g}")
+
+    def with_speed(self, speed_kmh: float) -> RoadProfile:
+        """The same profile driven at another speed [km/h]."""
+        return replace(self, speed_kmh=speed_kmh)
+
+    def to_csv(self, path: str | Path) -> Path:
+        """Write ``distance [m],elevation [m]`` with a header; :meth:`from_csv` reads it back."""
+        path = Path(path)
+        with path.open("w", newline="") as fh:
+            writer = csv.writer(fh)
+            writer.writerow(["distance [m]", "elevation [m]"])
+            for x, h in zip(self.distance, self.elevation, strict=True):
+                writer.writerow([repr(float(x)), repr(float(h))])
+        return path
+
+    # -- properties -----------------------------------------------------------------
+    @property
+    def speed(self) -> float:
+        """Vehicle speed ``V`` [m/s]."""
+        return self.speed_kmh / 3.6
+
+    @property
+    def length(self) -> float:
+        """Profile length [m]."""
+        return float(self.distance[-1] - self.distance[0])
+
+    @property
+    def spacing(self) -> float:
+        """Median distance between profile points [m] (to 12 significant digits)."""
+        return float(f"{np.median(np.diff(self.distance)):.12g}")
+
+    @property
+    def duration(self) -> float:
+        """Time to drive the profile, ``length / V`` [s]."""
+        return self.length / self.speed
+
+    @property
+    def peak_elevation(self) -> float:
+        """Largest ``|h|`` over the profile points [m]."""
+        return float(np.max(np.abs(self.elevation)))
+
+    @property
+    def rms_elevation(self) -> float:
+        """RMS elevation of the profile points [m]."""
+        return float(np.sqrt(np.mean(self.elevation**2)))
+
+    def __repr__(self) -> str:
+        return (
+            f"RoadProfile(source={self.source!r}, length={self.length:g} m, "
+            f"{self.distance.size} points, speed_kmh={self.speed_kmh:g})"
+        )
+
+    # -- the time signal --------------------------------------------------------------
+    def _derivatives(self, t: npt.ArrayLike, order: int) -> FloatArray:
+        tt = time_array(t)
+        x0 = float(self.distance[0])
+        x = x0 + self.speed * tt
+        inside = (x >= x0) & (x <= self.distance[-1])
+        xc = np.clip(x, x0, self.distance[-1])
+        h = [self._spline(xc, k) for k in range(order + 1)]
+        if self.fade_in > 0.0:  # product rule with the C2 ramp w(x)
+            u = np.clip((xc - x0) / self.fade_in, 0.0, 1.0)
+            w = [
+                u**3 * (10.0 - 15.0 * u + 6.0 * u * u),
+                30.0 * u * u * (1.0 - u) ** 2 / self.fade_in,
+                60.0 * u * (1.0 - u) * (1.0 - 2.0 * u) / self.fade_in**2,
+            ]
+            if order == 0:
+                value = w[0] * h[0]
+            elif order == 1:
+                value = w[1] * h[0] + w[0] * h[1]
+            else:
+                value = w[2] * h[0] + 2.0 * w[1] * h[1] + w[0] * h[2]
+        else:
+            value = h[order]
+        if order == 0:
+            return np.asarray(value, dtype=float)
+        return np.where(inside, value * self.speed**order, 0.0)
+
+    def displacement(self, t: npt.ArrayLike) -> FloatArray:
+        """``z_r(t) = h(x_0 + V t)`` [m] (the end elevations outside the profile)."""
+        return self._derivatives(t, 0)
+
+    def velocity(self, t: npt.ArrayLike) -> FloatArray:
+        """``dz_r/dt = V h'(x)`` [m/s] (zero outside the profile)."""
+        return self._derivatives(t, 1)
+
+    def acceleration(self, t: npt.ArrayLike) -> FloatArray:
+        """``d2z_r/dt2 = V^2 h''(x)`` [m/s^2] (zero outside the profile)."""
+        return self._derivatives(t, 2)
+
+    def elevation_at(self, x: npt.ArrayLike) -> FloatArray:
+        """The spline profile ``h(x)`` [m] at distances ``x`` [m] (without fade-in)."""
+        xx = check_finite("distance", x)
+        return np.asarray(self._spline(xx), dtype=float)
+
+    def spatial_psd(self, nperseg: int | None = None) -> SpatialPsd:
+        """One-sided spatial PSD ``Gd(n)`` [m^3] of the profile (Welch, Hann, 50 % overlap).
+
+        Profiles with uneven spacing are first resampled from the spline at the median
+        spacing. ``nperseg`` defaults to 512 points (153.6 m at 0.3 m spacing), or the
+        whole profile if shorter. The mean is removed from every segment.
+
+        Examples
+        --------
+        >>> road = iso8608("C", length=2000.0, seed=1)
+        >>> n, gd = road.spatial_psd()
+        >>> k = np.argmin(abs(n - 0.1))
+        >>> bool(0.5 < gd[k] / 256e-6 < 2.0)  # Gd(0.1 cycle/m) of class C
+        True
+        """
+        dx = self.spacing
+        d = np.diff(self.distance)
+        if np.allclose(d, dx, rtol=1e-6, atol=0.0):
+            h = np.asarray(self.elevation, dtype=float)
+        else:
+            x = self.distance[0] + dx * np.arange(int(self.length / dx) + 1)
+            h = np.asarray(self._spline(x), dtype=float)
+        if nperseg is None:
+            seg = min(h.size, 512)
+        else:
+            if isinstance(nperseg, bool) or not isinstance(nperseg, int | np.integer):
+                raise ValidationError(f"nperseg must be an integer; got {nperseg!r}")
+            if not MIN_POINTS <= nperseg <= h.size:
+                raise ValidationError(
+                    f"nperseg must be in [{MIN_POINTS}, {h.size}] (the profile's points); got {nperseg}"
+                )
+            seg = int(nperseg)
+        n, gd = welch(h, fs=1.0 / dx, window="hann", nperseg=seg, noverlap=seg // 2)
+        return SpatialPsd(np.asarray(n, dtype=float), np.asarray(gd, dtype=float), seg)
+
+    def describe(self) -> dict[str, Any]:
+        """Plain data: kind, source, speed, length, spacing, points, peak/rms elevation."""
+        return {
+            "kind": self.name,
+            "source": self.source,
+            "speed_kmh": self.speed_kmh,
+            "length": self.length,
+            "spacing": self.spacing,
+            "points": int(self.distance.size),
+            "peak_elevation": self.peak_elevation,
+            "rms_elevation": self.rms_elevation,
+            "fade_in": self.fade_in,
+            "duration": self.duration,
+        }
+
+
+# -- checks and CSV helpers -------------------------------------------------------------
+def _check_profile(
+    distance: object,
+    elevation: object,
+    at: Callable[[int], str],
+    prefix: Callable[[int], str],
+    what: str = "road profile",
+) -> tuple[FloatArray, FloatArray]:
+    """Validate a profile; ``at(i)`` / ``prefix(i)`` name point ``i`` in messages."""
+    arrays = []
+    for label, value in (("distance", distance), ("elevation", elevation)):
+        try:
+            arr = np.array(value, dtype=float)
+        except (TypeError, ValueError):
+            raise ValidationError(
+                f"{what}: {label} must be an array of numbers; got {value!r}"
+            ) from None
+        if arr.ndim != 1:
+            raise ValidationError(f"{what}: {label} must be one-dimensional; got shape {arr.shape}")
+        bad = np.flatnonzero(~np.isfinite(arr))
+        if bad.size:
+            i = int(bad[0])
+            raise ValidationError(f"{prefix(i)}: {label} must be finite; got {arr[i]}")
+        arrays.append(arr)
+    d, h = arrays
+    if d.size != h.size:
+        raise ValidationError(
+            f"{what}: distance and elevation must have the same length; got {d.size} and {h.size}"
+        )
+    if d.size < MIN_POINTS:
+        raise ValidationError(
+            f"{what} needs at least {MIN_POINTS} points for a cubic spline; got {d.size}"
+        )
+    step = np.diff(d)
+    bad = np.flatnonzero(step <= 0.0)
+    if bad.size:
+        i = int(bad[0])
+        if step[i] == 0.0:
+            raise ValidationError(
+                f"{what}: repeated distance {d[i]:g} m at {at(i)} and {at(i + 1)}; "
+                "distance must be strictly increasing"
+            )
+        raise ValidationError(
+            f"{what}: distance must be strictly increasing; {d[i + 1]:g} m at {at(i + 1)} "
+            f"follows {d[i]:g} m at {at(i)}"
+        )
+    return d, h
+
+
+def _is_number(text: str) -> bool:
+    try:
+        float(text)
+    except ValueError:
+        return False
+    return True
+
+
+def _detect_delimiter(line: str) -> str:
+    for candidate in (",", ";", "\t"):
+        if candidate in line:
+            return candidate
+    return " "
+
+
+def _splitter(delimiter: str) -> Callable[[str], list[str]]:
+    if delimiter == " ":
+        return lambda line: line.split()
+    return lambda line: [f.strip() for f in line.split(delimiter)]
+
+
+_UNIT = re.compile(r"[\[(]\s*(mm|m)\s*[\])]", re.IGNORECASE)
+_SCALES = {"m": 1.0, "mm": 1e-3}
+
+
+def _resolve_columns(
+    columns: Sequence[int | str] | None, header: list[str] | None, where: str
+) -> tuple[int, int]:
+    names = [_UNIT.sub("", h).strip().lower() for h in header] if header else []
+    if columns is None:
+        if names:
+            dist = [i for i, n in enumerate(names) if n.startswith("distance")]
+            elev = [i for i, n in enumerate(names) if n.startswith("elevation")]
+            if dist and elev:
+                return dist[0], elev[0]
+        return 0, 1
+    if isinstance(columns, str) or len(columns) != 2:
+        raise ValidationError(
+            f"columns must be a pair (distance column, elevation column); got {columns!r}"
+        )
+    out = []
+    for label, col in zip(("distance", "elevation"), columns, strict=True):
+        if isinstance(col, str):
+            if header is None:
+                raise ValidationError(
+                    f"{where} has no header line, so column {col!r} cannot be found; "
+                    "give 0-based column indices instead"
+                )
+            key = col.strip().lower()
+            matches = [
+                i for i, n in enumerate(names) if n == key or header[i].strip().lower() == key
+            ]
+            if not matches:
+                raise unknown_name(f"{label} column in {where}", col, [h.strip() for h in header])
+            out.append(matches[0])
+        elif isinstance(col, int | np.integer) and not isinstance(col, bool) and col >= 0:
+            out.append(int(col))
+        else:
+            raise ValidationError(
+                f"{label} column must be a 0-based index or a header name; got {col!r}"
+            )
+    return out[0], out[1]
+
+
+def _unit_scale(option: str, unit: str | None, header: list[str] | None, column: int) -> float:
+    if unit is None:
+        if header is not None and column < len(header):
+            m = _UNIT.search(header[column])
+            if m:
+                return _SCALES[m.group(1).lower()]
+        return 1.0
+    if unit not in _SCALES:
+        raise unknown_name(f"unit for {option}", str(unit), _SCALES)
+    return _SCALES[unit]
+
+
+# -- ISO 8608 synthesis ----------------------------------------------------------------
+def iso8608_psd(road_class: str, spatial_frequency: npt.ArrayLike) -> FloatArray:
+    """ISO 8608 displacement PSD ``Gd(n) = Gd(n0) (n/n0)^-2`` [m^3] of a class (A-H).
+
+    Examples
+    --------
+    >>> iso8608_psd("C", [0.1, 1.0])
+    array([2.56e-04, 2.56e-06])
+    """
+    gd0 = ISO8608_CLASSES[_road_class(road_class)]
+    n = check_finite("spatial_frequency", spatial_frequency)
+    if np.any(n <= 0):
+        raise ValidationError("spatial_frequency must be > 0 cycle/m")
+    return np.asarray(gd0 * (n / ISO8608_N0) ** -2.0, dtype=float)
+
+
+def _road_class(road_class: object) -> str:
+    if not isinstance(road_class, str):
+        raise ValidationError(f"road_class must be a letter A-H; got {road_class!r}")
+    key = road_class.strip().upper()
+    if key not in ISO8608_CLASSES:
+        raise unknown_name("ISO 8608 road class", road_class, ISO8608_CLASSES)
+    return key
+
+
+def iso8608(
+    road_class: str,
+    length: float = 500.0,
+    spacing: float = 0.3,
+    seed: int = 0,
+    speed_kmh: float = REFERENCE_SPEED_KMH,
+    *,
+    band: tuple[float, float] = ISO8608_BAND,
+    fade_in: float = 0.0,
+) -> RoadProfile:
+    """Synthesise a road of an ISO 8608 class as a sum of cosines with random phases.
+
+    ``h(x) = sum_k sqrt(2 Gd(n_k) dn) cos(2 pi n_k x + phi_k)`` over the spatial
+    frequencies ``n_k = k dn``, ``dn = 1/(N spacing)``, inside ``band`` and below the
+    Nyquist frequency ``1/(2 spacing)``; ``Gd(n) = Gd(n0) (n/n0)^-2`` with ``n0 = 0.1``
+    cycle/m and the class's geometric-mean ``Gd(n0)``. The phases are uniform in
+    ``[0, 2 pi)`` from ``numpy.random.default_rng(seed)``, so a seed gives the same road
+    every time. The profile is periodic over ``N spacing``; its PSD matches ``Gd(n)``
+    in the band.
+
+    Parameters
+    ----------
+    road_class : str
+        ISO 8608 class, ``"A"`` (very good) to ``"H"`` (very poor).
+    length : float, optional
+        Profile length [m] (rounded down to a whole number of ``spacing``), 500 m.
+    spacing : float, optional
+        Distance between points [m], 0.3 m.
+    seed : int, optional
+        Seed of the random phases.
+    speed_kmh : float, optional
+        Vehicle speed [km/h].
+    band : (float, float), optional
+        Spatial-frequency band [cycle/m]; ISO 8608's 0.011-2.83 cycle/m by default.
+    fade_in : float, optional
+        See :class:`RoadProfile`.
+
+    Examples
+    --------
+    >>> road = iso8608("C", seed=7)
+    >>> road.distance.size, round(road.length, 1)
+    (1667, 499.8)
+    >>> bool(np.array_equal(road.elevation, iso8608("C", seed=7).elevation))
+    True
+    """
+    key = _road_class(road_class)
+    L = positive("length", length, "m", high=1e6)
+    dx = positive("spacing", spacing, "m", high=L / (MIN_POINTS - 1))
+    if isinstance(seed, bool) or not isinstance(seed, int | np.integer) or seed < 0:
+        raise ValidationError(f"seed must be an integer >= 0; got {seed!r}")
+    if isinstance(band, str) or not isinstance(band, Sequence) or len(band) != 2:
+        raise ValidationError(f"band must be a pair (n_min, n_max) [cycle/m]; got {band!r}")
+    n_lo = positive("band[0]", band[0], "cycle/m", high=1e3)
+    n_hi = positive("band[1]", band[1], "cycle/m", high=1e3)
+    if n_hi <= n_lo:
+        raise ValidationError(f"band must have n_max > n_min; got {band!r}")
+    points = math.floor(L / dx + 1e-9) + 1
+    dn = 1.0 / (points * dx)
+    k = np.arange(1, (points - 1) // 2 + 1)  # strictly below the Nyquist frequency
+    n = k * dn
+    keep = (n >= n_lo) & (n <= n_hi)
+    if not np.any(keep):
+        raise ValidationError(
+            f"no spatial frequency of a {points * dx:g} m profile at {dx:g} m spacing lies in "
+            f"the band {n_lo:g}-{n_hi:g} cycle/m (resolution {dn:g}, Nyquist {0.5 / dx:g})"
+        )
+    gd0 = ISO8608_CLASSES[key]
+    amp = np.sqrt(2.0 * gd0 * (n[keep] / ISO8608_N0) ** -2.0 * dn)
+    phase = np.random.default_rng(int(seed)).uniform(0.0, 2.0 * math.pi, size=int(keep.sum()))
+    spectrum = np.zeros(points // 2 + 1, dtype=complex)
+    spectrum[k[keep]] = 0.5 * points * amp * np.exp(1j * phase)
+    # the inverse real FFT is the sum of the cosines at x_j = j dx
+    elevation = np.asarray(np.fft.irfft(spectrum, n=points), dtype=np.float64)
+    distance = np.asarray(dx * np.arange(points), dtype=np.float64)
+    source = (
+        f"ISO 8608 class {key}, seed {int(seed)}, band {n_lo:g}-{min(n_hi, 0.5 / dx):g} cycle/m"
+    )
+    return RoadProfile(distance, elevation, speed_kmh, fade_in=fade_in, source=source)
+
+
+# -- presets -------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class PresetRoad:
+    """Recipe of a preset road: ISO 8608 shape, fixed seed, band, scaled to a peak.
+
+    The ISO class does not enter: every class has the same ``n^-2`` shape, and the
+    scaling to ``peak_elevation`` sets the level.
+    """
+
+    name: str
+    peak_elevation: float  # m, spec section 8 / section 3.5.2
+    seed: int
+    band: tuple[float, float]
+    description: str
+
+
+#: The dissertation filtered its road data to the 0-2 cycle/m band (section 3.5.2);
+#: ISO 8608's lower band limit 0.011 cycle/m keeps the synthesis finite. At 0.3 m
+#: spacing the Nyquist frequency (1.67 cycle/m) already lies inside that band.
+_PRESET_BAND = (ISO8608_BAND[0], 2.0)
+
+PRESET_ROADS: dict[str, PresetRoad] = {
+    p.name: p
+    for p in (
+        PresetRoad("smooth", 0.004, 86081, _PRESET_BAND, "stand-in for the smooth Canadian road"),
+        PresetRoad("medium-rough", 0.0075, 86082, _PRESET_BAND, "stand-in for the medium-rough Canadian road"),
+        PresetRoad("rough", 0.015, 86083, _PRESET_BAND, "stand-in for the rough Canadian road"),
+    )
+}  # fmt: skip
+
+
+def preset_road(
+    name: str, speed_kmh: float = REFERENCE_SPEED_KMH, *, fade_in: float = 0.0
+) -> RoadProfile:
+    """One of the three preset roads, ``"smooth"``, ``"medium-rough"`` or ``"rough"``.
+
+    **Stand-ins**: the dissertation's measured Canadian road profiles (section 3.5.2) are
+    not available. Each preset is a 500 m profile at 0.3 m spacing synthesised with
+    :func:`iso8608` (fixed seed, the ISO ``n^-2`` spectral shape) in the 0.011-2 cycle/m
+    band, then scaled so that its peak ``|elevation|`` is the dissertation's: 4, 7.5 and
+    15 mm. Only the peak matches the dissertation; the spectra are ISO 8608 shapes, not
+    the measured ones. The resulting levels are ``Gd(n0)`` = 1.9e-6, 6.1e-6 and
+    1.8e-5 m^3 (ISO class A or smoother; rms elevation 1.3, 2.3 and 4.1 mm). Every call
+    returns the same profile bit for bit.
+
+    Examples
+    --------
+    >>> road = preset_road("rough")
+    >>> round(road.peak_elevation, 6), road.distance.size, road.spacing
+    (0.015, 1667, 0.3)
+    >>> preset_road("medium-rough", speed_kmh=100.0).duration
+    17.9928
+    """
+    if not isinstance(name, str) or name not in PRESET_ROADS:
+        raise unknown_name("preset road", str(name), PRESET_ROADS)
+    p = PRESET_ROADS[name]
+    base = iso8608("A", 500.0, 0.3, p.seed, speed_kmh, band=p.band)  # shape only
+    elevation = base.elevation * (p.peak_elevation / base.peak_elevation)
+    return RoadProfile(
+        base.distance,
+        elevation,
+        speed_kmh,
+        fade_in=fade_in,
+        source=f"preset {name!r} (stand-in: ISO 8608 shape, seed {p.seed}, scaled to a "
+        f"{p.peak_elevation * 1e3:g} mm peak)",
+    )

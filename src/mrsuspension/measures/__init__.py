@@ -1,0 +1,96 @@
+"""Performance measures (MODEL_SPEC section 9): pure functions on arrays.
+
+Every function takes plain numpy arrays in SI units, with an explicit sampling rate
+(``fs``) or time array where it needs one; nothing here knows about the engine.
+
+==========================  =====================================================
+harmonic, steady state      :func:`steady_window`, :func:`rms`,
+                            :func:`transmissibility`, :func:`T_as`, :func:`T_au`,
+                            :func:`T_dr`, :func:`T_ds`, :func:`T_du`, :func:`dlc`,
+                            :func:`asymmetry_ratio`, :func:`current_statistics`,
+                            :func:`force_tracking_error`, :func:`harmonic_measures`
+shock (rounded pulse)       :func:`shock_ratios`, :func:`dtr`, :func:`peak`
+random road                 :func:`psd` (Welch, 512 Hz, 8192, Hann, 50 %),
+                            :func:`dlc` (mean load), :func:`rms`
+ISO 2631-1 (beyond seed)    :func:`wk_weighting`, :func:`wk_filter`,
+                            :func:`weighted_rms`, :func:`vdv`
+==========================  =====================================================
+
+Examples
+--------
+>>> import numpy as np
+>>> from mrsuspension import measures
+>>> t = np.arange(0.0, 14.0, 1e-3)
+>>> z_r = 0.025 * np.sin(2 * np.pi * 1.5 * t)
+>>> w = measures.steady_window(t, 1.5)
+>>> measures.T_dr(0.4 * z_r, z_r, window=w)
+0.4
+"""
+
+from __future__ import annotations
+
+from mrsuspension.measures._checks import Window
+from mrsuspension.measures.iso2631 import (
+    WK_CONSTANTS,
+    vdv,
+    weighted_rms,
+    wk_filter,
+    wk_sos,
+    wk_weighting,
+)
+from mrsuspension.measures.shock import dtr, peak, shock_ratios
+from mrsuspension.measures.spectral import (
+    PSD_FS,
+    PSD_NPERSEG,
+    PowerSpectrum,
+    ShortRecordWarning,
+    psd,
+)
+from mrsuspension.measures.steady import (
+    G,
+    T_as,
+    T_au,
+    T_dr,
+    T_ds,
+    T_du,
+    asymmetry_ratio,
+    current_statistics,
+    dlc,
+    force_tracking_error,
+    harmonic_measures,
+    rms,
+    steady_window,
+    transmissibility,
+)
+
+__all__ = [
+    "PSD_FS",
+    "PSD_NPERSEG",
+    "WK_CONSTANTS",
+    "G",
+    "PowerSpectrum",
+    "ShortRecordWarning",
+    "T_as",
+    "T_au",
+    "T_dr",
+    "T_ds",
+    "T_du",
+    "Window",
+    "asymmetry_ratio",
+    "current_statistics",
+    "dlc",
+    "dtr",
+    "force_tracking_error",
+    "harmonic_measures",
+    "peak",
+    "psd",
+    "rms",
+    "shock_ratios",
+    "steady_window",
+    "transmissibility",
+    "vdv",
+    "weighted_rms",
+    "wk_filter",
+    "wk_sos",
+    "wk_weighting",
+]

@@ -1,0 +1,151 @@
+"""ISO 2631-1 frequency weighting Wk (vertical whole-body vibration), weighted RMS and VDV.
+
+Beyond the dissertation (spec section 9). The Wk weighting is the product of four
+analog filters (ISO 2631-1:1997, Annex A), with ``s = j 2 pi f`` and ``w_i = 2 pi f_i``:
+
+* band limiting, high-pass ``s^2 / (s^2 + s w1/Q1 + w1^2)``, f1 = 0.4 Hz, Q1 = 1/sqrt(2);
+* band limiting, low-pass ``w2^2 / (s^2 + s w2/Q2 + w2^2)``, f2 = 100 Hz, Q2 = 1/sqrt(2);
+* acceleration-velocity transition ``(1 + s/w3) / (1 + s/(Q4 w4) + s^2/w4^2)``,
+  f3 = f4 = 12.5 Hz, Q4 = 0.63;
+* upward step ``(1 + s/(Q5 w5) + s^2/w5^2) / (1 + s/(Q6 w6) + s^2/w6^2) (w5/w6)^2``,
+  f5 = 2.37 Hz, Q5 = 0.91, f6 = 3.35 Hz, Q6 = 0.91.
+
+In the time domain each section is mapped by the bilinear transform with its corner
+frequencies pre-warped, so every corner sits at its analog frequency for any sampling
+rate above 200 Hz (twice f2).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import numpy.typing as npt
+from scipy.signal import bilinear_zpk, sosfilt, zpk2sos
+
+from mrsuspension.errors import ValidationError, check_finite
+from mrsuspension.measures._checks import FloatArray, rate, signal
+
+__all__ = ["WK_CONSTANTS", "vdv", "weighted_rms", "wk_filter", "wk_sos", "wk_weighting"]
+
+#: Wk filter constants, ISO 2631-1 Table A.2 (frequencies in Hz; spec section 9)
+WK_CONSTANTS: dict[str, float] = {
+    "f1": 0.4,
+    "f2": 100.0,
+    "Q1": 1.0 / math.sqrt(2.0),
+    "Q2": 1.0 / math.sqrt(2.0),
+    "f3": 12.5,
+    "f4": 12.5,
+    "Q4": 0.63,
+    "f5": 2.37,
+    "Q5": 0.91,
+    "f6": 3.35,
+    "Q6": 0.91,
+}
+
+
+def wk_weighting(freq: npt.ArrayLike) -> FloatArray:
+    """Magnitude ``|Wk(f)|`` of the ISO 2631-1 Wk weighting at frequencies ``freq`` [Hz].
+
+    Examples
+    --------
+    >>> np.round(wk_weighting([1.0, 4.0, 6.3, 20.0]), 3)
+    array([0.482, 0.967, 1.054, 0.636])
+    """
+    f = check_finite("freq", freq)
+    if np.any(f < 0):
+        raise ValidationError("freq must be >= 0 Hz")
+    c = WK_CONSTANTS
+    s = 2j * np.pi * f
+    w1, w2, w3, w4, w5, w6 = (2 * np.pi * c[k] for k in ("f1", "f2", "f3", "f4", "f5", "f6"))
+    high = s**2 / (s**2 + s * w1 / c["Q1"] + w1**2)
+    low = w2**2 / (s**2 + s * w2 / c["Q2"] + w2**2)
+    transition = (1 + s / w3) / (1 + s / (c["Q4"] * w4) + (s / w4) ** 2)
+    step = (1 + s / (c["Q5"] * w5) + (s / w5) ** 2) / (1 + s / (c["Q6"] * w6) + (s / w6) ** 2)
+    return np.asarray(np.abs(high * low * transition * step * (w5 / w6) ** 2), dtype=float)
+
+
+def _min_fs() -> float:
+    return 2.0 * WK_CONSTANTS["f2"]
+
+
+def wk_sos(fs: float) -> FloatArray:
+    """Second-order sections of the digital Wk filter at sampling rate ``fs`` [Hz] (> 200 Hz).
+
+    Examples
+    --------
+    >>> wk_sos(1000.0).shape
+    (4, 6)
+    """
+    rate_hz = rate("fs", fs)
+    if rate_hz <= _min_fs():
+        raise ValidationError(
+            f"fs must be > {_min_fs():g} Hz (twice the Wk band limit f2 = "
+            f"{WK_CONSTANTS['f2']:g} Hz) for the Wk filter; got {rate_hz:g} Hz: resample first"
+        )
+    c = WK_CONSTANTS
+
+    def warp(f_hz: float) -> float:  # pre-warped analog corner [rad/s]
+        return 2.0 * rate_hz * math.tan(math.pi * f_hz / rate_hz)
+
+    def poles(w: float, q: float) -> list[complex]:  # roots of s^2 + s w/q + w^2
+        return [complex(r) for r in np.roots([1.0, w / q, w * w])]
+
+    w1, w2, w3, w4, w5, w6 = (warp(c[k]) for k in ("f1", "f2", "f3", "f4", "f5", "f6"))
+    zeros: list[complex] = [0j, 0j]  # high-pass
+    pole_list = poles(w1, c["Q1"]) + poles(w2, c["Q2"]) + poles(w4, c["Q4"]) + poles(w6, c["Q6"])
+    zeros += [complex(-w3), *poles(w5, c["Q5"])]
+    # gains of the monic forms: high-pass 1, low-pass w2^2, transition w4^2/w3, and the
+    # step (1 + s/(Q5 w5) + s^2/w5^2)/(1 + s/(Q6 w6) + s^2/w6^2) (w5/w6)^2 is monic/monic
+    gain = w2**2 * w4**2 / w3
+    z_d, p_d, k_d = bilinear_zpk(np.array(zeros), np.array(pole_list), gain, rate_hz)
+    return np.asarray(zpk2sos(z_d, p_d, k_d), dtype=float)
+
+
+def wk_filter(acc: npt.ArrayLike, fs: float) -> FloatArray:
+    """Wk-weighted acceleration: ``acc`` [m/s^2] sampled at ``fs`` [Hz] through the Wk filter.
+
+    A causal filter starting from rest (as a measuring instrument does): the first
+    seconds carry the start transient of the 0.4 Hz high-pass.
+
+    Examples
+    --------
+    >>> fs = 1000.0
+    >>> t = np.arange(0.0, 30.0, 1 / fs)
+    >>> aw = wk_filter(np.sin(2 * np.pi * 4.0 * t), fs)
+    >>> round(float(np.max(np.abs(aw[-2000:]))), 2)  # |Wk(4 Hz)| = 0.967
+    0.97
+    """
+    a = signal("acc", acc)
+    return np.asarray(sosfilt(wk_sos(fs), a), dtype=float)
+
+
+def weighted_rms(acc: npt.ArrayLike, fs: float) -> float:
+    """Wk-weighted RMS acceleration ``a_w`` [m/s^2] over the whole record (ISO 2631-1 6.4.2).
+
+    Examples
+    --------
+    >>> fs = 1000.0
+    >>> t = np.arange(0.0, 60.0, 1 / fs)
+    >>> round(weighted_rms(np.sin(2 * np.pi * 6.3 * t), fs) * math.sqrt(2), 2)  # |Wk(6.3)|
+    1.05
+    """
+    aw = wk_filter(acc, fs)
+    return float(np.sqrt(np.mean(aw * aw)))
+
+
+def vdv(acc: npt.ArrayLike, fs: float, *, weighted: bool = True) -> float:
+    """Fourth-power vibration dose value ``(integral a_w^4 dt)^(1/4)`` [m/s^1.75] (ISO 2631-1 6.3.2).
+
+    ``weighted=False`` skips the Wk filter (the raw acceleration's dose).
+
+    Examples
+    --------
+    >>> fs = 1000.0
+    >>> t = np.arange(0.0, 8.0, 1 / fs)
+    >>> round(vdv(2.0 * np.sin(2 * np.pi * 5 * t), fs, weighted=False), 4)  # (3/8 A^4 T)^(1/4)
+    2.6321
+    """
+    rate("fs", fs)
+    a = wk_filter(acc, fs) if weighted else signal("acc", acc)
+    return float((np.sum(a**4) / float(fs)) ** 0.25)

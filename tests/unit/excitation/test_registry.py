@@ -1,0 +1,132 @@
+"""The excitation registry and ``make_excitation`` (the scenario ``[excitation]`` table)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from mrsuspension.errors import ValidationError
+from mrsuspension.excitation import (
+    EXCITATION_OPTIONS,
+    EXCITATIONS,
+    Excitation,
+    Harmonic,
+    RoadProfile,
+    RoundedPulse,
+    SteppedSweep,
+    make_excitation,
+    preset_road,
+)
+
+
+def _raises(call, *fragments: str) -> str:
+    with pytest.raises(ValidationError) as info:
+        call()
+    message = str(info.value)
+    for fragment in fragments:
+        assert fragment in message, (fragment, message)
+    return message
+
+
+def test_registry_kinds():
+    assert set(EXCITATIONS) == {"harmonic", "swept", "pulse", "road"}
+    assert set(EXCITATION_OPTIONS) == set(EXCITATIONS)
+    for kind, cls in EXCITATIONS.items():
+        assert cls.name == kind
+
+
+# the minimal options of each kind, as a scenario would give them
+MINIMAL = {
+    "harmonic": {"frequency": 1.5, "amplitude": 0.025},
+    "swept": {"amplitude": 0.025},
+    "pulse": {"amplitude": 0.05, "severity": 2},
+    "road": {"profile": "smooth"},
+}
+
+
+@pytest.mark.parametrize("kind", sorted(MINIMAL))
+def test_every_kind_builds_and_describes_itself(kind):
+    exc = make_excitation(kind, **MINIMAL[kind])
+    assert isinstance(exc, EXCITATIONS[kind])
+    d = exc.describe()
+    assert d["kind"] == kind
+    assert exc.duration > 0
+    if isinstance(exc, Excitation):
+        t = np.linspace(0.0, exc.duration, 257)
+        for signal in (exc.displacement(t), exc.velocity(t), exc.acceleration(t)):
+            assert signal.shape == t.shape
+            assert np.all(np.isfinite(signal))
+        t0, t1 = exc.measure_window()
+        assert 0.0 <= t0 < t1 <= exc.duration + 1e-12
+
+
+def test_harmonic():
+    assert make_excitation("harmonic", frequency=1.5, amplitude=0.025) == Harmonic(1.5, 0.025)
+
+
+def test_swept_defaults_and_options():
+    sweep = make_excitation("swept", amplitude=0.025)
+    assert isinstance(sweep, SteppedSweep)
+    assert len(sweep) == 30
+    assert sweep.frequencies[0] == pytest.approx(0.5)
+    assert sweep.frequencies[-1] == pytest.approx(15.0)
+    assert sweep.transition_frequency == 2.1
+    custom = make_excitation("swept", amplitude=0.01, transition_frequency=2.0, frequencies=[1, 4])
+    assert custom.amplitudes == pytest.approx([0.01, 0.0025])
+
+
+def test_pulse_speed_option():
+    p = make_excitation("pulse", amplitude=0.035, severity=3, speed=100.0, delay=0.2)
+    assert isinstance(p, RoundedPulse)
+    assert p.omega == pytest.approx(20.8)
+    assert p.delay == 0.2
+    assert make_excitation("pulse", amplitude=0.02, severity=1, omega0=5.0).omega == 5.0
+
+
+def test_road_preset_scale_and_speed():
+    road = make_excitation("road", profile="rough", speed=100.0, scale=0.5)
+    assert isinstance(road, RoadProfile)
+    assert road.peak_elevation == pytest.approx(0.0075)
+    assert road.speed_kmh == 100.0
+    np.testing.assert_array_equal(road.elevation, preset_road("rough").elevation * 0.5)
+
+
+def test_road_iso_class():
+    road = make_excitation("road", iso_class="D", seed=3, length=200.0, spacing=0.25)
+    assert road.distance.size == 801
+    assert "class D, seed 3" in road.source
+
+
+def test_road_csv_relative_to_base_dir(tmp_path):
+    (tmp_path / "roads").mkdir()
+    (tmp_path / "roads" / "r.csv").write_text("0,0\n1,1\n2,2\n3,1\n")
+    road = make_excitation("road", profile="roads/r.csv", base_dir=tmp_path, elevation_unit="mm")
+    assert road.elevation[1] == pytest.approx(0.001)
+
+
+@pytest.mark.parametrize(
+    ("kind", "options", "fragments"),
+    [
+        ("harmonc", {}, ("unknown excitation kind 'harmonc'", "Did you mean 'harmonic'?")),
+        (
+            "harmonic",
+            {"frequncy": 1.0, "amplitude": 0.01},
+            ("'frequncy'", "Did you mean 'frequency'?"),
+        ),
+        ("harmonic", {"amplitude": 0.01}, ("needs 'frequency'",)),
+        ("pulse", {"amplitude": 0.01, "severity": 1, "speed_kmh": 50}, ("Did you mean 'speed'?",)),
+        ("pulse", {"amplitude": 0.01}, ("needs 'severity'",)),
+        ("swept", {"amplitude": 0.01, "frequencies": [1, 1]}, ("repeat",)),
+        ("road", {}, ("exactly one of 'profile'",)),
+        ("road", {"profile": "rough", "iso_class": "C"}, ("exactly one of",)),
+        ("road", {"profile": "ruogh"}, ("unknown road profile 'ruogh'", "Did you mean 'rough'?")),
+        ("road", {"profile": "rough", "seed": 2}, ("'seed' only applies with 'iso_class'",)),
+        ("road", {"iso_class": "C", "elevation_unit": "mm"}, ("only applies to a CSV",)),
+        ("road", {"profile": "rough", "scale": -1.0}, ("scale",)),
+        ("road", {"profile": "missing/road.csv"}, ("not found", "road.csv")),
+        ("road", {"profile": 3}, ("preset name or a file path",)),
+        ("road", {"iso_class": "Q"}, ("ISO 8608 road class 'Q'",)),
+    ],
+)
+def test_bad_options(kind, options, fragments):
+    _raises(lambda: make_excitation(kind, **options), *fragments)
