@@ -9,13 +9,13 @@ from __future__ import annotations
 
 import json
 import sys
-from collections.abc import Iterator
-from contextlib import contextmanager
 from pathlib import Path
 from typing import Annotated, Any
 
 import typer
 
+from mrsuspension._cli_errors import _user_errors
+from mrsuspension.cli_sim import simulate_command, sweep_command
 from mrsuspension.errors import MRSuspensionError, ValidationError
 
 app = typer.Typer(
@@ -28,17 +28,10 @@ damper_app = typer.Typer(
     help="Evaluate, characterise and plot damper models.", no_args_is_help=True
 )
 app.add_typer(damper_app, name="damper")
+app.command("simulate")(simulate_command)
+app.command("sweep")(sweep_command)
 
 _WANG = ("wang-symmetric", "wang-asymmetric")
-
-
-@contextmanager
-def _user_errors() -> Iterator[None]:
-    try:
-        yield
-    except MRSuspensionError as exc:
-        typer.echo(f"error: {exc}", err=True)
-        raise typer.Exit(2) from None
 
 
 def _floats(name: str, text: str) -> list[float]:
@@ -346,6 +339,47 @@ def damper_sets(
     typer.echo(f"{s.name} (model {s.model}, table {s.table})\nsource: {s.source}")
     for k, v in s.items():
         typer.echo(f"  {k:14} {v:14.6g} {s.units.get(k, ''):12} {s.descriptions.get(k, '')}")
+
+
+@app.command()
+def bench(
+    as_json: JsonOpt = False,
+    quick: Annotated[
+        bool, typer.Option("--quick", help="1 s runs and a 6-frequency sweep")
+    ] = False,
+    workers: Annotated[
+        int | None, typer.Option(help="processes for the sweep (default: all cores)")
+    ] = None,
+) -> None:
+    """Time the engine against scipy, LSODA and plain-Python RK4 baselines, and a sweep."""
+    from rich.console import Console
+
+    from mrsuspension.bench import run_benchmarks
+
+    console = Console(stderr=True)
+    with _user_errors(), console.status("benchmarking") as status:
+        res = run_benchmarks(quick=quick, workers=workers, say=lambda m: status.update(m))
+    if as_json:
+        typer.echo(json.dumps(res))
+        return
+    typer.echo(
+        f"single run ({res['duration_s']:g} s simulated, dt = 1e-4 s): {res['single_run_s']:.3f} s"
+    )
+    typer.echo(
+        f"  vs scipy RK45: {res['speedup_vs_scipy']:.1f}x ({res['scipy_baseline_s']:.2f} s, "
+        f"relative rms difference {res['scipy_relative_rms_difference']:.1e})"
+    )
+    typer.echo(f"  vs scipy LSODA: {res['speedup_vs_lsoda']:.1f}x ({res['lsoda_s']:.2f} s)")
+    typer.echo(
+        f"  vs plain-Python RK4: {res['speedup_vs_python_rk4']:.1f}x ({res['python_rk4_s']:.2f} s, "
+        f"max difference {res['python_rk4_max_difference_m']:.1e} m)"
+    )
+    typer.echo(
+        f"sweep: {res['sweep_runs']} runs, {res['sweep_steps'] / 1e6:.1f} M steps in {res['sweep_s']:.2f} s "
+        f"({res['sweep_ns_per_step_per_core']:.0f} ns per step per core)"
+    )
+    compiled = "skipped" if res["compile_s"] is None else f"{res['compile_s']:.1f} s"
+    typer.echo(f"compile (fresh, no cache): {compiled}; first call: {res['first_call_s']:.2f} s")
 
 
 @app.command()

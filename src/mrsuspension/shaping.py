@@ -76,7 +76,8 @@ def drive_current_kernel(
     max_current: float,
 ) -> float:
     """i_d = clip(M_p M_c i_z, 0, i_max), eqs. (3.9)/(3.16)."""
-    i = adfg_kernel(velocity, peak_velocity, p, xi) * cm_kernel(switching, p_c, xi_c) * i_z
+    mp = 1.0 if p == 1.0 else adfg_kernel(velocity, peak_velocity, p, xi)  # SCM: M_p = 1
+    i = mp * cm_kernel(switching, p_c, xi_c) * i_z
     if i < 0.0:
         return 0.0
     if i > max_current:

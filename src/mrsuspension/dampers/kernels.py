@@ -293,7 +293,7 @@ def _spencer_rates(
     return yd, zd, ud
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)  # not inlined: large, and dominated by its own sub-steps
 def spencer_advance(p: np.ndarray, s: np.ndarray, x: float, xd: float, i: float, dt: float) -> None:
     """Integrate (y, z, u) over ``dt`` with x' held, by RK4 sub-steps sized for stability."""
     command = p[S_VPA] * i

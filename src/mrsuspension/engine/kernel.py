@@ -91,8 +91,11 @@ F_EXTERNAL = 3  # a given force held over the step (hardware in the loop)
 ) = range(12)
 MEM_SIZE = 12
 
+#: controller estimator code meaning "use the damper's latched v_m" (dissertation's model)
+EST_SHARED = -1
+
 NY = 6
-SCRATCH_SIZE = 5 * NY  # k1..k4, y_tmp
+SCRATCH_SIZE = 6 * NY  # k1..k4, rates at the new state, y_tmp
 
 
 @njit(cache=True, inline="always")
@@ -279,36 +282,47 @@ def step(
     vd = y[3] - y[1]
     ad = mem[M_AD]
     DK.damper_sample(dk, dp, ds, dek, dep, des, xd, vd, ad, mem[M_ID])
-    vm = DK.estimator_update(cek, cep, ces, xd, vd, ad)
+    if cek == EST_SHARED:
+        vm = ds[DK.WS_VM]  # the damper's own estimate (same estimator, same samples)
+    else:
+        vm = DK.estimator_update(cek, cep, ces, xd, vd, ad)
     mem[M_VM] = vm
     control(ck, cp, vp, dp, y, ad, vm, mem)
     reference = ck == C_SLIDING
-    k1 = scratch[0:NY]
-    k2 = scratch[NY : 2 * NY]
-    k3 = scratch[2 * NY : 3 * NY]
-    k4 = scratch[3 * NY : 4 * NY]
-    yt = scratch[4 * NY : 5 * NY]
-    rates(y, zr0, zrd0, vp, fk, dk, dp, ds, cp, mem, reference, k1)
-    h2 = 0.5 * dt
-    for j in range(NY):
-        yt[j] = y[j] + h2 * k1[j]
-    rates(yt, zr1, zrd1, vp, fk, dk, dp, ds, cp, mem, reference, k2)
-    for j in range(NY):
-        yt[j] = y[j] + h2 * k2[j]
-    rates(yt, zr1, zrd1, vp, fk, dk, dp, ds, cp, mem, reference, k3)
-    for j in range(NY):
-        yt[j] = y[j] + dt * k3[j]
-    rates(yt, zr2, zrd2, vp, fk, dk, dp, ds, cp, mem, reference, k4)
-    h6 = dt / 6.0
-    for j in range(NY):
-        y[j] += h6 * (k1[j] + 2.0 * k2[j] + 2.0 * k3[j] + k4[j])
-    fd, ft = rates(y, zr2, zrd2, vp, fk, dk, dp, ds, cp, mem, reference, k1)
-    mem[M_AS] = k1[1]
-    mem[M_AU] = k1[3]
-    mem[M_A0] = k1[5]
+    # the four RK4 stages and the evaluation at the new state share one call site of
+    # rates() (stage 4), which keeps the inlined code, and the compile time, small
+    yt = scratch[5 * NY : 6 * NY]
+    fd = 0.0
+    ft = 0.0
+    for st in range(5):
+        if st == 0:
+            zr, zrd, h = zr0, zrd0, 0.0
+        elif st < 3:
+            zr, zrd, h = zr1, zrd1, 0.5 * dt
+        else:
+            zr, zrd, h = zr2, zrd2, dt
+        if st < 4:
+            for j in range(NY):
+                yt[j] = y[j] + h * scratch[(st - 1) * NY + j] if st > 0 else y[j]
+        else:
+            for j in range(NY):
+                y[j] += (dt / 6.0) * (
+                    scratch[j]
+                    + 2.0 * scratch[NY + j]
+                    + 2.0 * scratch[2 * NY + j]
+                    + scratch[3 * NY + j]
+                )
+                yt[j] = y[j]
+        fd, ft = rates(
+            yt, zr, zrd, vp, fk, dk, dp, ds, cp, mem, reference, scratch[st * NY : (st + 1) * NY]
+        )
+    k5 = scratch[4 * NY : 5 * NY]
+    mem[M_AS] = k5[1]
+    mem[M_AU] = k5[3]
+    mem[M_A0] = k5[5]
     mem[M_FD] = fd
     mem[M_FT] = ft
-    mem[M_AD] = k1[3] - k1[1]
+    mem[M_AD] = k5[3] - k5[1]
     DK.damper_advance(dk, dp, ds, xd, vd, mem[M_ID], dt)
 
 

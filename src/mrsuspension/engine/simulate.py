@@ -26,6 +26,7 @@ __all__ = [
     "Simulation",
     "SimulationDiverged",
     "Stepper",
+    "measures_of",
     "run_many",
 ]
 
@@ -166,6 +167,7 @@ class Simulation:
     def _arrays(self, dt: float) -> dict[str, Any]:
         kern = self.damper.kernel(dt)
         est = self.controller_estimator
+        shared = self.estimator is None and kern.kind == DK.WANG
         return {
             "vp": self.vehicle.params(),
             "fk": self.controller.force_source,
@@ -177,7 +179,7 @@ class Simulation:
             "des": kern.estimator_state,
             "ck": self.controller.code,
             "cp": self.controller.params(self.max_current),
-            "cek": est.code,
+            "cek": EK.EST_SHARED if shared else est.code,
             "cep": est.params_for(dt),
             "ces": est.buffer(dt),
             "mem": np.zeros(EK.MEM_SIZE),
@@ -221,8 +223,9 @@ class Simulation:
         rate = float(
             check_range("output_rate", output_rate, 0.0, None, unit="Hz", low_inclusive=False)
         )
-        n = max(1, round(duration / dt))
         decimate = max(1, round(1.0 / (rate * dt)))
+        # whole output intervals covering the duration (the record ends at or after it)
+        n = max(1, math.ceil(duration / (dt * decimate) - 1e-9)) * decimate
         t_half = np.arange(2 * n + 1) * (0.5 * dt)
         zr = np.ascontiguousarray(self.excitation.displacement(t_half), dtype=float)
         zrd = np.ascontiguousarray(self.excitation.velocity(t_half), dtype=float)
@@ -377,9 +380,17 @@ class Stepper:
         return out
 
 
-def _run_one(args: tuple[Simulation, float | None, float, float]) -> SimulationResult:
-    sim, duration, dt, rate = args
-    return sim.run(duration, dt=dt, output_rate=rate)
+def measures_of(result: SimulationResult) -> dict[str, Any]:
+    """``result.measures()``: a picklable reducer for :func:`run_many` (sweeps)."""
+    return result.measures()
+
+
+def _run_one(
+    args: tuple[Simulation, float | None, float, float, Callable[[SimulationResult], Any] | None],
+) -> Any:
+    sim, duration, dt, rate, reduce = args
+    result = sim.run(duration, dt=dt, output_rate=rate)
+    return result if reduce is None else reduce(result)
 
 
 def run_many(
@@ -390,13 +401,16 @@ def run_many(
     output_rate: float = 1000.0,
     workers: int | None = None,
     progress: Callable[[int, int], None] | None = None,
-) -> list[SimulationResult]:
+    reduce: Callable[[SimulationResult], Any] | None = None,
+) -> list[Any]:
     """Run many simulations, across processes (default: one per CPU core).
 
     Results come back in the order given. ``progress(done, total)`` is called as runs
-    finish. ``workers=1`` runs in this process.
+    finish. ``workers=1`` runs in this process. ``reduce`` (a module-level function, so
+    it can be sent to the workers) maps each result before it is returned, e.g.
+    :func:`measures_of` for sweeps, which keeps the traffic between processes small.
     """
-    jobs = [(s, duration, dt, output_rate) for s in simulations]
+    jobs = [(s, duration, dt, output_rate, reduce) for s in simulations]
     if not jobs:
         return []
     n_workers = min(len(jobs), workers or os.cpu_count() or 1)
@@ -409,14 +423,11 @@ def run_many(
         return out
     from concurrent.futures import ProcessPoolExecutor, as_completed
 
-    results: list[SimulationResult | None] = [None] * len(jobs)
+    results: list[Any] = [None] * len(jobs)
     with ProcessPoolExecutor(max_workers=n_workers) as pool:
         futures = {pool.submit(_run_one, job): k for k, job in enumerate(jobs)}
         for done, fut in enumerate(as_completed(futures), start=1):
             results[futures[fut]] = fut.result()
             if progress:
                 progress(done, len(jobs))
-    return [r for r in results if r is not None]
-
-
-_ = DK  # the damper kernels are part of the step (imported for documentation links)
+    return results

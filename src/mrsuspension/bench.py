@@ -1,0 +1,268 @@
+"""Engine benchmarks (``mrsus bench``): figures as ratios against baselines run in the same process.
+
+Model of every timed run: the nominal quarter car with the dissertation's hysteretic
+damper (Table 2.2 low set, v_h of (2.12), 1 s window estimator) under skyhook hi-lo
+policy I (SCM, k_c = 3, n = 2, p_c = 0, xi_c = 10), road ``0.025 sin(2 pi 1.5 t)``.
+
+Baselines are written here in plain Python, independent of the package's kernels:
+
+* ``scipy``: :func:`scipy.integrate.solve_ivp` (RK45, rtol 1e-6, atol 1e-9) on a right-hand
+  side that evaluates the controller continuously, with ``v_m`` a 1 s window over the
+  right-hand-side calls and ``sgn(a_d)`` from the previous call (what a researcher would
+  write); ``LSODA`` likewise;
+* ``python_rk4``: the engine's own algorithm (fixed-step RK4, zero-order hold of the
+  controller, previous-step ``a_d``) in plain Python; it must agree with the engine to
+  round-off, which the benchmark checks.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from collections import deque
+from collections.abc import Callable
+from typing import Any
+
+import numpy as np
+
+__all__ = ["run_benchmarks"]
+
+F, A = 1.5, 0.025
+W = 2.0 * math.pi * F
+
+
+class _Plain:
+    """Quarter car + Wang model + policy I, in plain Python (math module)."""
+
+    def __init__(self) -> None:
+        from mrsuspension import parameters
+
+        p = dict(parameters.get("wang-symmetric-low").items())
+        self.p = p
+        self.sa2 = 1.0 / (1.0 + math.exp(-p["a2"] * p["I0"]))
+        self.sa3 = 1.0 / (1.0 + math.exp(-p["a3"] * p["I1"]))
+        self.ms, self.mu, self.ks, self.kt, self.ct = 563.0, 90.0, 57_000.0, 285_000.0, 100.0
+        self.g = 9.81
+        self.dxu = (self.ms + self.mu) * self.g / self.kt
+
+    def force(self, v: float, sgn_a: float, i: float, vm: float) -> float:
+        p = self.p
+        ci = 1 + p["k2"] * (1 / (1 + math.exp(-p["a2"] * (i + p["I0"]))) - self.sa2)
+        h = 1 + p["k3"] * (1 / (1 + math.exp(-p["a3"] * (i + p["I1"]))) - self.sa3)
+        ft = p["F0"] * (1 + math.exp(p["a1"] * vm))
+        alpha = p["a0"] / (1 + p["k0"] * vm)
+        kv = p["k1"] * math.exp(-p["a4"] * vm)
+        vh = sgn_a * p["k4"] * vm * h
+        return ci * ft * math.tanh(0.5 * alpha * (v + vh)) * (1 + kv * abs(v))
+
+    @staticmethod
+    def current(vs: float, vd: float) -> float:
+        iz = 3.0 * vs * vs
+        zc = vs * vd
+        s = 0.0 if zc >= 0 else 1.0
+        mc = 0.5 + (2 / math.pi) * (s - 0.5) * abs(math.atan(10.0 * zc))
+        return min(max(mc * iz, 0.0), 0.5)
+
+    def rates(self, y: list[float], t: float, i: float, vm: float, sgn_a: float) -> list[float]:
+        zs, vs, zu, vu = y
+        zr, zrd = A * math.sin(W * t), A * W * math.cos(W * t)
+        xd, vd = zu - zs, vu - vs
+        fd = self.force(vd, sgn_a, i, vm)
+        delta = zr - zu + self.dxu
+        ft = max(0.0, self.kt * delta + self.ct * (zrd - vu)) if delta > 0 else 0.0
+        return [
+            vs,
+            (self.ks * xd + fd) / self.ms,
+            vu,
+            (ft - (self.ms + self.mu) * self.g - self.ks * xd - fd) / self.mu,
+        ]
+
+
+class _Window:
+    def __init__(self, n: int) -> None:
+        self.n, self.buf, self.k = n, deque[tuple[int, float]](), 0
+
+    def update(self, v: float) -> float:
+        w = abs(v)
+        while self.buf and self.buf[-1][1] <= w:
+            self.buf.pop()
+        self.buf.append((self.k, w))
+        while self.buf[0][0] <= self.k - self.n:
+            self.buf.popleft()
+        self.k += 1
+        return min(max(self.buf[0][1], 1e-3), 1.0)
+
+
+def python_rk4(duration: float, dt: float = 1e-4) -> np.ndarray:
+    """The engine's algorithm in plain Python; returns z_s at every step."""
+    m = _Plain()
+    win = _Window(round(1.0 / dt))
+    y = [0.0, 0.0, 0.0, 0.0]
+    r0 = m.rates(y, 0.0, 0.0, 1e-3, 0.0)
+    ad = r0[3] - r0[1]
+    win.update(0.0)  # the engine's start() feeds the first sample once before stepping
+    n = round(duration / dt)
+    out = np.empty(n)
+    for k in range(n):
+        t = k * dt
+        vs, vd = y[1], y[3] - y[1]
+        vm = win.update(vd)
+        sgn = 1.0 if ad > 0 else (-1.0 if ad < 0 else 0.0)
+        i = m.current(vs, vd)
+        k1 = m.rates(y, t, i, vm, sgn)
+        k2 = m.rates([y[j] + 0.5 * dt * k1[j] for j in range(4)], t + 0.5 * dt, i, vm, sgn)
+        k3 = m.rates([y[j] + 0.5 * dt * k2[j] for j in range(4)], t + 0.5 * dt, i, vm, sgn)
+        k4 = m.rates([y[j] + dt * k3[j] for j in range(4)], t + dt, i, vm, sgn)
+        y = [y[j] + dt / 6 * (k1[j] + 2 * k2[j] + 2 * k3[j] + k4[j]) for j in range(4)]
+        r = m.rates(y, t + dt, i, vm, sgn)
+        ad = r[3] - r[1]
+        out[k] = y[0]
+    return out
+
+
+def scipy_baseline(duration: float, method: str = "RK45") -> tuple[np.ndarray, np.ndarray, int]:
+    """solve_ivp on a continuous-time right-hand side; returns (t, z_s, evaluations)."""
+    from scipy.integrate import solve_ivp
+
+    m = _Plain()
+    hist: deque[tuple[float, float]] = deque()
+    last = {"ad": 0.0}
+
+    def rhs(t: float, y: np.ndarray) -> list[float]:
+        vs, vd = y[1], y[3] - y[1]
+        w = abs(vd)
+        while hist and hist[-1][1] <= w:
+            hist.pop()
+        hist.append((t, w))
+        while hist[0][0] < t - 1.0:
+            hist.popleft()
+        vm = min(max(hist[0][1], 1e-3), 1.0)
+        ad = last["ad"]
+        sgn = 1.0 if ad > 0 else (-1.0 if ad < 0 else 0.0)
+        r = m.rates(list(y), t, m.current(vs, vd), vm, sgn)
+        last["ad"] = r[3] - r[1]
+        return r
+
+    t_eval = np.arange(0.0, duration, 1e-3)
+    sol = solve_ivp(
+        rhs, (0.0, duration), [0.0] * 4, method=method, rtol=1e-6, atol=1e-9, t_eval=t_eval
+    )
+    return sol.t, sol.y[0], int(sol.nfev)
+
+
+def _best(fn: Callable[[], Any], repeat: int) -> float:
+    best = math.inf
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        fn()
+        best = min(best, time.perf_counter() - t0)
+    return best
+
+
+def _fresh_compile(sim: Any) -> float:
+    """Seconds to compile the engine's run loop without numba's on-disk cache."""
+    from numba import njit
+
+    from mrsuspension.engine import kernel as EK
+
+    fresh = njit(**EK.NO_REFCOUNT)(EK.run.py_func)
+    a = sim._arrays(1e-4)
+    n = 10
+    th = np.arange(2 * n + 1) * 5e-5
+    args = (
+        np.zeros(6), n, 1e-4, np.ascontiguousarray(sim.excitation.displacement(th)),
+        np.ascontiguousarray(sim.excitation.velocity(th)), a["vp"], a["fk"], a["dk"], a["dp"],
+        a["ds"], a["dek"], a["dep"], a["des"], a["ck"], a["cp"], a["cek"], a["cep"], a["ces"],
+        a["mem"], 1, np.zeros((n + 1, EK.N_REC)), np.array([10.0, 100.0, 1e6, 1e7]),
+        np.zeros(EK.SCRATCH_SIZE),
+    )  # fmt: skip
+    t0 = time.perf_counter()
+    fresh(*args)
+    return time.perf_counter() - t0
+
+
+def run_benchmarks(
+    *,
+    quick: bool = False,
+    workers: int | None = None,
+    fresh_compile: bool | None = None,
+    say: Callable[[str], None] = lambda _m: None,
+) -> dict[str, Any]:
+    """Time the engine and its baselines; see the module docstring for what is compared.
+
+    ``quick`` simulates 1 s instead of 10 s and sweeps 6 frequencies instead of 60;
+    ``fresh_compile`` (default: not quick) also times a compilation of the step without
+    numba's on-disk cache (``compile_s``; None when skipped).
+    """
+    from mrsuspension.control import HiLo, Passive, SlidingMode
+    from mrsuspension.dampers import WangSymmetric
+    from mrsuspension.engine import Simulation, measures_of, run_many
+    from mrsuspension.excitation import Harmonic, log_frequencies, two_stage_amplitude
+
+    duration = 1.0 if quick else 10.0
+    sim = Simulation(Harmonic(F, A), controller=HiLo(1, mode="SCM"))
+    say("first call (compiles, or loads numba's on-disk cache)")
+    t0 = time.perf_counter()
+    sim.run(0.01)
+    first_call = time.perf_counter() - t0
+    compile_s = None
+    if fresh_compile if fresh_compile is not None else not quick:
+        compile_s = _fresh_compile(sim)
+
+    say(f"engine: {duration:g} s at dt = 1e-4 s")
+    single = _best(lambda: sim.run(duration, output_rate=1000.0), 3)
+    engine = sim.run(duration, output_rate=1e4)
+
+    say("plain-Python RK4 of the same algorithm")
+    t0 = time.perf_counter()
+    plain = python_rk4(duration)
+    python_s = time.perf_counter() - t0
+    rk4_diff = float(np.max(np.abs(plain - engine.z_s[1:])))
+
+    say("scipy solve_ivp RK45 (rtol 1e-6, atol 1e-9)")
+    t0 = time.perf_counter()
+    ts, zs, nfev = scipy_baseline(duration, "RK45")
+    scipy_s = time.perf_counter() - t0
+    ref = np.interp(ts, engine.time, engine.z_s)
+    scipy_diff = float(np.sqrt(np.mean((zs - ref) ** 2)) / np.sqrt(np.mean(ref**2)))
+    say("scipy solve_ivp LSODA")
+    t0 = time.perf_counter()
+    scipy_baseline(duration, "LSODA")
+    lsoda_s = time.perf_counter() - t0
+
+    nf = 6 if quick else 60
+    say(f"sweep: {nf} frequencies x 4 controllers on {workers or 'all'} cores")
+    fs = log_frequencies(nf, 0.5, 15.0)
+    controllers = [Passive(), HiLo(1, mode="SCM"), HiLo(1, mode="ACM"), SlidingMode()]
+    sims = [
+        Simulation(
+            Harmonic(f, float(two_stage_amplitude(f, 0.025))),
+            controller=c,
+            damper=WangSymmetric(force_gain=2.5 if c.needs_inverse else 1.0),
+        )
+        for c in controllers
+        for f in fs
+    ]
+    t0 = time.perf_counter()
+    rows = run_many(sims, reduce=measures_of, workers=workers)
+    sweep_s = time.perf_counter() - t0
+    steps = sum(round(s.excitation.duration / 1e-4) for s in sims)
+    return {
+        "duration_s": duration,
+        "single_run_s": single,
+        "scipy_baseline_s": scipy_s,
+        "speedup_vs_scipy": scipy_s / single,
+        "scipy_rhs_evaluations": nfev,
+        "scipy_relative_rms_difference": scipy_diff,
+        "lsoda_s": lsoda_s,
+        "speedup_vs_lsoda": lsoda_s / single,
+        "python_rk4_s": python_s,
+        "speedup_vs_python_rk4": python_s / single,
+        "python_rk4_max_difference_m": rk4_diff,
+        "sweep_runs": len(rows),
+        "sweep_steps": steps,
+        "sweep_s": sweep_s,
+        "sweep_ns_per_step_per_core": sweep_s * min(len(sims), workers or 2) / steps * 1e9,
+        "compile_s": compile_s,
+        "first_call_s": first_call,
+    }

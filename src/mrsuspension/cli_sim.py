@@ -1,0 +1,328 @@
+"""``mrsus simulate`` and ``mrsus sweep``: run scenario files from the command line.
+
+The functions here are plain typer command functions; :mod:`mrsuspension.cli` registers
+them (``app.command("simulate")(simulate_command)``). Input errors and diverging runs are
+reported in one line on stderr with exit code 2.
+"""
+
+from __future__ import annotations
+
+import csv
+import importlib.util
+import json
+import math
+from collections.abc import Callable, Iterator, Mapping, Sequence
+from contextlib import contextmanager
+from pathlib import Path
+from typing import Annotated, Any
+
+import typer
+
+from mrsuspension._cli_errors import _user_errors
+from mrsuspension.engine.result import SimulationResult
+from mrsuspension.engine.simulate import measures_of, run_many
+from mrsuspension.errors import ValidationError
+from mrsuspension.excitation import (
+    DEFAULT_SWEEP_POINTS,
+    Harmonic,
+    SteppedSweep,
+    log_frequencies,
+)
+from mrsuspension.scenario import Scenario
+
+__all__ = ["parse_frequencies", "simulate_command", "sweep_command"]
+
+#: measures shown in the transmissibility plot of a sweep
+SWEEP_PLOT = ("T_as", "T_au", "T_dr", "DLC")
+
+ScenarioArg = Annotated[
+    Path, typer.Argument(help="scenario TOML file (see docs/scenarios.md)", show_default=False)
+]
+JsonOpt = Annotated[bool, typer.Option("--json", help="print the measures as JSON on stdout")]
+
+
+# -- helpers ------------------------------------------------------------------------------
+def _clean(value: Any) -> Any:
+    """JSON-safe value: numpy scalars to Python, NaN/inf to None."""
+    if isinstance(value, Mapping):
+        return {str(k): _clean(v) for k, v in value.items()}
+    if isinstance(value, list | tuple):
+        return [_clean(v) for v in value]
+    if hasattr(value, "item") and callable(value.item):
+        value = value.item()
+    if isinstance(value, float) and not math.isfinite(value):
+        return None
+    return value
+
+
+def _run_row(excitation: Harmonic, measures: Mapping[str, Any]) -> dict[str, Any]:
+    """``frequency``, ``amplitude`` and the harmonic measures of one sweep run."""
+    return {
+        "frequency": float(excitation.frequency),
+        "amplitude": float(excitation.amplitude),
+        **measures,
+    }
+
+
+def parse_frequencies(text: str) -> list[float]:
+    """Parse ``--frequencies``: a comma list (``"1,1.5,4"``) or ``"log:N:fmin:fmax"``.
+
+    Examples
+    --------
+    >>> parse_frequencies("1, 2.5")
+    [1.0, 2.5]
+    >>> [round(f, 3) for f in parse_frequencies("log:3:1:100")]
+    [1.0, 10.0, 100.0]
+    """
+    text = text.strip()
+    if text.lower().startswith("log:"):
+        parts = text.split(":")
+        if len(parts) != 4:
+            raise ValidationError(
+                f"--frequencies log form is 'log:N:fmin:fmax' (e.g. log:30:0.5:15); got {text!r}"
+            )
+        try:
+            n = int(parts[1])
+            lo, hi = float(parts[2]), float(parts[3])
+        except ValueError:
+            raise ValidationError(
+                f"--frequencies 'log:N:fmin:fmax' needs an integer N and numbers; got {text!r}"
+            ) from None
+        return [float(f) for f in log_frequencies(n, lo, hi)]
+    try:
+        values = [float(v) for v in text.split(",") if v.strip()]
+    except ValueError:
+        raise ValidationError(
+            f"--frequencies must be comma-separated numbers [Hz] or 'log:N:fmin:fmax'; got {text!r}"
+        ) from None
+    if not values:
+        raise ValidationError("--frequencies needs at least one frequency [Hz]")
+    return values
+
+
+@contextmanager
+def _progress(enabled: bool, label: str) -> Iterator[Callable[[int, int], None] | None]:
+    """A rich progress bar on stderr, as a ``progress(done, total)`` callback."""
+    if not enabled:
+        yield None
+        return
+    from rich.console import Console
+    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TimeElapsedColumn
+
+    console = Console(stderr=True)
+    with Progress(
+        "[progress.description]{task.description}",
+        BarColumn(),
+        MofNCompleteColumn(),
+        TimeElapsedColumn(),
+        console=console,
+        transient=False,
+    ) as bar:
+        task = bar.add_task(label, total=None)
+
+        def update(done: int, total: int) -> None:
+            bar.update(task, completed=done, total=total)
+
+        yield update
+
+
+def _write(out: Path, write: Callable[[Path], Any]) -> None:
+    """Create ``out`` and write into it, reporting file-system errors as user errors."""
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+        write(out)
+    except OSError as exc:
+        raise ValidationError(f"cannot write to {str(out)!r}: {exc}") from None
+
+
+def _write_sweep(out: Path, rows: Sequence[Mapping[str, Any]]) -> list[Path]:
+    """``sweep.csv`` and ``sweep.png`` (T_as, T_au, T_dr, DLC against frequency, log x)."""
+    files = [out / "sweep.csv", out / "sweep.png"]
+    keys = list(rows[0])
+    with files[0].open("w", newline="") as fh:
+        writer = csv.DictWriter(fh, fieldnames=keys)
+        writer.writeheader()
+        for row in rows:
+            writer.writerow({k: row[k] for k in keys})
+    import matplotlib
+
+    matplotlib.use("Agg", force=False)
+    import matplotlib.pyplot as plt
+
+    freqs = [r["frequency"] for r in rows]
+    fig, axes = plt.subplots(len(SWEEP_PLOT), 1, sharex=True, figsize=(7, 2.0 * len(SWEEP_PLOT)))
+    for ax, key in zip(axes, SWEEP_PLOT, strict=True):
+        values = [r[key] if r[key] is not None else math.nan for r in rows]
+        ax.plot(freqs, values, "o-", ms=3, lw=1)
+        ax.set_ylabel(key)
+        ax.set_xscale("log")
+        ax.grid(True, which="both", alpha=0.3)
+    axes[-1].set_xlabel("frequency [Hz]")
+    fig.tight_layout()
+    fig.savefig(files[1], dpi=120)
+    plt.close(fig)
+    return files
+
+
+def _write_single(out: Path, result: SimulationResult, measures: Mapping[str, Any]) -> list[Path]:
+    """``result.csv`` (+ ``result.json``), ``result.nc`` if xarray is there, plot, measures."""
+    files = [result.save(out / "result.csv"), out / "result.json"]
+    if importlib.util.find_spec("xarray") is not None:
+        files.append(result.save(out / "result.nc"))
+    import matplotlib.pyplot as plt
+
+    fig = result.plot()
+    fig.savefig(out / "result.png", dpi=120)
+    plt.close(fig)
+    files.append(out / "result.png")
+    (out / "measures.json").write_text(json.dumps(_clean(measures), indent=2))
+    files.append(out / "measures.json")
+    return files
+
+
+def _echo_measures(measures: Mapping[str, Any]) -> None:
+    for key, value in measures.items():
+        text = "n/a" if value is None else f"{value:.6g}" if isinstance(value, float) else value
+        typer.echo(f"{key:>26} = {text}")
+
+
+def _echo_rows(rows: Sequence[Mapping[str, Any]]) -> None:
+    keys = [k for k in rows[0] if k != "amplitude"]
+    typer.echo(" ".join(f"{k:>12}" for k in keys))
+    for row in rows:
+        typer.echo(" ".join(f"{'n/a':>12}" if row[k] is None else f"{row[k]:12.5g}" for k in keys))
+
+
+# -- commands -----------------------------------------------------------------------------
+def simulate_command(
+    scenario: ScenarioArg,
+    out: Annotated[
+        Path | None,
+        typer.Option(
+            "--out", "-o", help="folder for the result (CSV, NetCDF), a plot and measures.json"
+        ),
+    ] = None,
+    as_json: JsonOpt = False,
+    duration: Annotated[
+        float | None,
+        typer.Option("--duration", help="simulated time of each run [s] (overrides the file)"),
+    ] = None,
+) -> None:
+    """Run a scenario file and print its spec section 9 measures.
+
+    A harmonic, pulse or road scenario prints one set of measures (``--json``: one
+    object); a swept scenario prints one row per frequency (``--json``: a list of
+    objects with ``frequency`` and ``amplitude`` added).
+    """
+    with _user_errors():
+        scn = Scenario.load(scenario)
+        with _progress(scn.is_sweep and not as_json, "simulating") as progress:
+            results = scn.run(duration=duration, workers=None, progress=progress)
+        files: list[Path] = []
+        payload: Any
+        if scn.is_sweep:
+            rows = [
+                _clean(_run_row(exc, res.measures()))
+                for exc, res in zip(scn.excitations, results, strict=True)
+                if isinstance(exc, Harmonic)
+            ]
+            payload = rows
+            if out is not None:
+                _write(out, lambda d: files.extend(_write_sweep(d, rows)))
+                _write(out, lambda d: (d / "measures.json").write_text(json.dumps(rows, indent=2)))
+                files.append(out / "measures.json")
+        else:
+            payload = _clean(results[0].measures())
+            if out is not None:
+                _write(out, lambda d: files.extend(_write_single(d, results[0], payload)))
+    if as_json:
+        typer.echo(json.dumps(payload))
+        return
+    if scn.is_sweep:
+        _echo_rows(payload)
+    else:
+        _echo_measures(payload)
+    for f in files:
+        typer.echo(f"wrote {f}")
+
+
+def sweep_command(
+    scenario: ScenarioArg,
+    frequencies: Annotated[
+        str | None,
+        typer.Option(
+            "--frequencies",
+            "-f",
+            help=f"comma-separated [Hz] or 'log:N:fmin:fmax' (default: the scenario's sweep, "
+            f"else log:{DEFAULT_SWEEP_POINTS}:0.5:15)",
+        ),
+    ] = None,
+    amplitude: Annotated[
+        float | None,
+        typer.Option(
+            "--amplitude", "-a", help="low-frequency amplitude a [m] (default: the scenario's)"
+        ),
+    ] = None,
+    out: Annotated[
+        Path | None, typer.Option("--out", "-o", help="folder for sweep.csv and sweep.png")
+    ] = None,
+    as_json: JsonOpt = False,
+    workers: Annotated[
+        int | None, typer.Option("--workers", "-j", help="processes (default: one per core)")
+    ] = None,
+) -> None:
+    """Frequency response of a scenario's vehicle, damper and controller.
+
+    Runs a two-stage stepped sweep (one steady-state harmonic run per frequency at
+    ``a`` up to f_T and ``a (f_T/f)^2`` above) across processes, with a progress bar on
+    stderr (none with ``--json``), and prints T_as, T_au, T_dr, T_ds, T_du, DLC, gamma
+    and the current per frequency (``--json``: a list of objects).
+    """
+    with _user_errors():
+        scn = Scenario.load(scenario)
+        sweep = _sweep_for(scn, frequencies, amplitude)
+        if workers is not None and workers < 1:
+            raise ValidationError(f"--workers must be >= 1; got {workers}")
+        excitations = list(sweep.excitations())
+        sims = scn.simulations(excitations)
+        with _progress(not as_json, "sweep") as progress:
+            results = run_many(
+                sims,
+                dt=scn.dt,
+                output_rate=scn.output_rate,
+                workers=workers,
+                progress=progress,
+                reduce=measures_of,  # measures computed in the workers: little traffic
+            )
+        rows = [_clean(_run_row(e, m)) for e, m in zip(excitations, results, strict=True)]
+        files: list[Path] = []
+        if out is not None:
+            _write(out, lambda d: files.extend(_write_sweep(d, rows)))
+    if as_json:
+        typer.echo(json.dumps(rows))
+        return
+    _echo_rows(rows)
+    for f in files:
+        typer.echo(f"wrote {f}")
+
+
+def _sweep_for(scn: Scenario, frequencies: str | None, amplitude: float | None) -> SteppedSweep:
+    """The stepped sweep of ``mrsus sweep``: options first, then the scenario's excitation."""
+    exc = scn.excitation
+    if frequencies is not None:
+        freqs: Sequence[float] = parse_frequencies(frequencies)
+    elif isinstance(exc, SteppedSweep):
+        freqs = exc.frequencies
+    else:
+        freqs = [float(f) for f in log_frequencies(DEFAULT_SWEEP_POINTS)]
+    if amplitude is None:
+        if isinstance(exc, SteppedSweep | Harmonic):
+            amplitude = exc.amplitude
+        else:
+            raise ValidationError(
+                f"the scenario's excitation is {exc.name!r}: give the sweep amplitude with "
+                "--amplitude (metres, e.g. 0.025)"
+            )
+    if isinstance(exc, SteppedSweep):
+        return SteppedSweep(tuple(freqs), amplitude, exc.transition_frequency)
+    return SteppedSweep(tuple(freqs), amplitude)
