@@ -38,7 +38,17 @@ _WHERE = {
     "run_many": "simulate",
 }
 
-__all__ = sorted(_WHERE)
+__all__ = [
+    "DEFAULT_DT",
+    "SIGNALS",
+    "RoadInput",
+    "Simulation",
+    "SimulationDiverged",
+    "SimulationResult",
+    "Stepper",
+    "measures_of",
+    "run_many",
+]
 
 
 def __getattr__(name: str) -> Any:

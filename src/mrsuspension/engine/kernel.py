@@ -282,10 +282,8 @@ def step(
     vd = y[3] - y[1]
     ad = mem[M_AD]
     DK.damper_sample(dk, dp, ds, dek, dep, des, xd, vd, ad, mem[M_ID])
-    if cek == EST_SHARED:
-        vm = ds[DK.WS_VM]  # the damper's own estimate (same estimator, same samples)
-    else:
-        vm = DK.estimator_update(cek, cep, ces, xd, vd, ad)
+    # EST_SHARED: the damper's own estimate (same estimator, same samples)
+    vm = ds[DK.WS_VM] if cek == EST_SHARED else DK.estimator_update(cek, cep, ces, xd, vd, ad)
     mem[M_VM] = vm
     control(ck, cp, vp, dp, y, ad, vm, mem)
     reference = ck == C_SLIDING
