@@ -29,6 +29,7 @@ test: $(VENV)/.stamp-install lint
 
 bench: $(VENV)/.stamp-install
 	$(BIN)/python benchmarks/bench_damper.py
+	$(BIN)/python benchmarks/bench_engine.py
 
 clean:
 	rm -rf $(VENV) .pytest_cache .mypy_cache .ruff_cache $(OUT)
