@@ -313,3 +313,20 @@ def test_road_static_load_and_mean_tire_force() -> None:
     assert 0.0 < m["DLC"] < 1.0
     assert m["wk_rms_body_acceleration"] > 0.0
     assert math.isfinite(m["vdv"])
+
+
+@pytest.mark.parametrize("suffix", [".nc", ".parquet"])
+def test_result_round_trips_through_standard_formats(tmp_path, suffix: str) -> None:  # type: ignore[no-untyped-def]
+    res = Simulation(HARMONIC, controller=HiLo(1)).run(0.3)
+    path = res.save(tmp_path / f"run{suffix}")
+    if suffix == ".nc":
+        import xarray as xr
+
+        with xr.open_dataset(path) as ds:
+            np.testing.assert_allclose(ds["F_d"].values, res.F_d)
+            assert ds["F_d"].attrs["units"] == "N"
+    else:
+        import pandas as pd
+
+        df = pd.read_parquet(path)
+        np.testing.assert_allclose(df["i_d [A]"].to_numpy(), res.i_d)
