@@ -17,6 +17,7 @@ import typer
 from mrsuspension._cli_errors import _user_errors
 from mrsuspension.cli_sim import simulate_command, sweep_command
 from mrsuspension.errors import MRSuspensionError, ValidationError
+from mrsuspension.identify.cli import identify_command
 
 app = typer.Typer(
     help="mrsuspension: MR-damper models, semi-active suspension studies and reports.",
@@ -30,6 +31,7 @@ damper_app = typer.Typer(
 app.add_typer(damper_app, name="damper")
 app.command("simulate")(simulate_command)
 app.command("sweep")(sweep_command)
+app.command("identify")(identify_command)
 
 _WANG = ("wang-symmetric", "wang-asymmetric")
 

@@ -160,14 +160,15 @@ class DamperModel(ABC):
                 f"parameter set {pset.name!r} is for model {pset.model!r}; "
                 f"model {self.name!r} accepts sets of: {', '.join(self.accepts)}"
             )
-        values = self._convert(pset)
-        self._check_values(pset.name, values)
-        self.parameters = pset
-        self.values: dict[str, float] = values
+        # the limit first: some models check their parameters over 0..max_current
         self.max_current = float(
             check_range("max_current", pset.max_current if max_current is None else max_current,
                         0.0, 10.0, unit="A", low_inclusive=False)
         )  # fmt: skip
+        values = self._convert(pset)
+        self._check_values(pset.name, values)
+        self.parameters = pset
+        self.values: dict[str, float] = values
         self._p = self._vector()
 
     # -- subclass hooks --------------------------------------------------------------

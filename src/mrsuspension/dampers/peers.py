@@ -102,7 +102,7 @@ class Bingham(DamperModel):
 
     def _check_values(self, set_name: str, values: Any) -> None:
         super()._check_values(set_name, values)
-        imax = self.__dict__.get("max_current", 0.5)
+        imax = self.max_current
         for a, b, what in (("fc_a", "fc_b", "yield force"), ("c0_a", "c0_b", "viscosity")):
             if values[a] + values[b] * imax < 0:
                 raise ValidationError(

@@ -12,6 +12,7 @@ from typing import Any, ClassVar, Literal
 
 import numpy as np
 import numpy.typing as npt
+from scipy.special import expit  # overflow-free logistic, like kernels.sigmoid
 
 from mrsuspension import parameters as _parameters
 from mrsuspension.dampers import kernels as K
@@ -155,9 +156,9 @@ class WangSymmetric(DamperModel):
         p = self._p
         if vm is None:
             vm = self._pointwise_peak_velocity(x, v, a)
-        ci = 1.0 + p[K.W_K2] * (1.0 / (1.0 + np.exp(-p[K.W_A2] * (i + p[K.W_I0]))) - p[K.W_SA2])
+        ci = 1.0 + p[K.W_K2] * (expit(p[K.W_A2] * (i + p[K.W_I0])) - p[K.W_SA2])
         if p[K.W_VHI] != 0.0:
-            h = 1.0 + p[K.W_K3] * (1.0 / (1.0 + np.exp(-p[K.W_A3] * (i + p[K.W_I1]))) - p[K.W_SA3])
+            h = 1.0 + p[K.W_K3] * (expit(p[K.W_A3] * (i + p[K.W_I1])) - p[K.W_SA3])
         else:
             h = np.ones(())
         ft = p[K.W_F0] * (1.0 + np.exp(p[K.W_A1] * vm))  # (2.7)

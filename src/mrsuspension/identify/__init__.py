@@ -1,0 +1,69 @@
+"""Parameter identification from measured damper data (MODEL_SPEC section 10, eq. 2.22).
+
+The pipeline of ``mrsus identify``, usable piece by piece:
+
+* :mod:`~mrsuspension.identify.readers` - test records from delimited text or ``.mat``
+  files, column mapping and units (:func:`read_test`);
+* :mod:`~mrsuspension.identify.manifest` - the tests of a campaign (:func:`read_manifest`);
+* :mod:`~mrsuspension.identify.preprocess` - frequency detection, steady whole cycles,
+  resampling to 360 points per loop (:func:`preprocess`);
+* :mod:`~mrsuspension.identify.fit` - global multi-start least squares over all tests
+  (:func:`fit_loops`);
+* :mod:`~mrsuspension.identify.campaign` - all of it, with per-test outcomes
+  (:func:`identify`);
+* :mod:`~mrsuspension.identify.report` - parameter set, tables, plots, HTML;
+* :mod:`~mrsuspension.identify.synthetic` - synthetic campaigns from any model.
+
+Examples
+--------
+>>> import tempfile
+>>> from mrsuspension.identify import identify, synthetic_campaign
+>>> manifest = synthetic_campaign(tempfile.mkdtemp(), "linear", [(2.0, 0.01, 0.0)])
+>>> round(identify(manifest, "linear").parameters["c"], 3)
+2500.0
+"""
+
+from __future__ import annotations
+
+from mrsuspension.identify.campaign import (
+    IdentificationResult,
+    TestOutcome,
+    identify,
+    load_campaign,
+    loop_metrics,
+)
+from mrsuspension.identify.fit import FitError, FitProblem, FitResult, fit_loops
+from mrsuspension.identify.manifest import Manifest, TestEntry, read_manifest
+from mrsuspension.identify.preprocess import (
+    Loop,
+    PreprocessOptions,
+    detect_frequency,
+    preprocess,
+    smooth_derivative,
+)
+from mrsuspension.identify.readers import RawTest, TestDataError, read_test
+from mrsuspension.identify.synthetic import synthetic_campaign
+
+__all__ = [
+    "FitError",
+    "FitProblem",
+    "FitResult",
+    "IdentificationResult",
+    "Loop",
+    "Manifest",
+    "PreprocessOptions",
+    "RawTest",
+    "TestDataError",
+    "TestEntry",
+    "TestOutcome",
+    "detect_frequency",
+    "fit_loops",
+    "identify",
+    "load_campaign",
+    "loop_metrics",
+    "preprocess",
+    "read_manifest",
+    "read_test",
+    "smooth_derivative",
+    "synthetic_campaign",
+]

@@ -1,0 +1,194 @@
+"""The ``mrsus identify`` command (registered by :mod:`mrsuspension.cli`).
+
+``identify_command`` is a plain typer command function; ``app`` runs it on its own
+(``python -m mrsuspension.identify.cli MANIFEST ...``). User errors print one line on
+stderr and exit with code 2; problems with single tests are reported per test and do
+not change the exit code; when no fit succeeded at all (every band failed) the output
+says why and the exit code is 1.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+from typing import Annotated, Any
+
+import typer
+
+from mrsuspension.errors import MRSuspensionError, ValidationError
+
+__all__ = ["app", "identify_command"]
+
+
+def _fixed(text: str | None) -> dict[str, float | None] | None:
+    if text is None:
+        return None
+    out: dict[str, float | None] = {}
+    for tok in (t.strip() for t in text.split(",") if t.strip()):
+        key, sep, value = tok.partition("=")
+        if sep:
+            try:
+                out[key.strip()] = float(value)
+            except ValueError:
+                raise ValidationError(
+                    f"--fix: {tok!r} is not NAME or NAME=VALUE (e.g. k4 or k4=-0.119)"
+                ) from None
+        else:
+            out[key.strip()] = None
+    if not out:
+        raise ValidationError("--fix is empty; e.g. k4 or k3,a3,I1")
+    return out
+
+
+def identify_command(
+    manifest: Annotated[
+        Path, typer.Argument(help="manifest (.csv or .toml) or a folder of test files")
+    ],
+    model: Annotated[
+        str,
+        typer.Option(
+            "--model",
+            "-m",
+            help="model to fit: wang-symmetric | wang-asymmetric | bingham | spencer | linear",
+        ),
+    ] = "wang-symmetric",
+    out: Annotated[
+        Path | None,
+        typer.Option(
+            "--out", "-o", help="folder for parameters.toml, tests.csv, plots, index.html"
+        ),
+    ] = None,
+    as_json: Annotated[
+        bool, typer.Option("--json", help="print the result as one JSON object")
+    ] = False,
+    columns: Annotated[
+        str | None,
+        typer.Option(
+            "--columns",
+            help="which column is which: t,x,v,F (positional, _ skips) "
+            "or t=Time,x=Disp,F=Load; -F flips a sign",
+        ),
+    ] = None,
+    units: Annotated[
+        str | None, typer.Option("--units", help="units, e.g. s,mm,mm/s,kN or x=mm,F=kN")
+    ] = None,
+    current_pattern: Annotated[
+        str | None,
+        typer.Option(
+            "--current-pattern",
+            help=r"regex for the current in file names, e.g. '_(?P<current>[0-9.]+)A'",
+        ),
+    ] = None,
+    start: Annotated[
+        str | None,
+        typer.Option("--start", "-p", help="start parameter set: registered name or .toml/.json"),
+    ] = None,
+    compare: Annotated[
+        str | None,
+        typer.Option("--compare", help="other models fitted for comparison, e.g. bingham,spencer"),
+    ] = None,
+    bands: Annotated[
+        str | None,
+        typer.Option("--bands", help="fit frequency bands separately, e.g. 0.5-5,5-15 [Hz]"),
+    ] = None,
+    points: Annotated[int, typer.Option("--points", help="points per resampled loop")] = 360,
+    remove_offset: Annotated[
+        bool, typer.Option("--remove-offset", help="subtract each loop's mean force")
+    ] = False,
+    max_cycles: Annotated[
+        int | None, typer.Option("--max-cycles", help="use at most the last N steady cycles")
+    ] = None,
+    peak_velocity: Annotated[
+        str, typer.Option("--peak-velocity", help="v_m source: auto | nominal | measured")
+    ] = "auto",
+    fix: Annotated[
+        str | None,
+        typer.Option("--fix", help="parameters held fixed: NAME or NAME=VALUE, comma-separated"),
+    ] = None,
+    vh_variant: Annotated[
+        str | None, typer.Option("--vh-variant", help="dissertation's models: 2.12 or 2.13")
+    ] = None,
+    hysteresis: Annotated[
+        bool | None,
+        typer.Option("--hysteresis/--mean", help="dissertation's models: hysteretic or mean"),
+    ] = None,
+    multistart: Annotated[
+        int | None, typer.Option("--multistart", help="number of starts (default 4 / 1)")
+    ] = None,
+    seed: Annotated[int, typer.Option("--seed", help="seed of the random starts")] = 0,
+    max_nfev: Annotated[
+        int | None, typer.Option("--max-nfev", help="evaluation budget per start")
+    ] = None,
+    name: Annotated[
+        str | None, typer.Option("--name", help="name of the fitted parameter set")
+    ] = None,
+    plots: Annotated[
+        bool, typer.Option("--plots/--no-plots", help="loop plots in --out (needs matplotlib)")
+    ] = True,
+) -> None:
+    """Fit a damper model to the harmonic tests listed in MANIFEST (spec section 10).
+
+    Prints a per-test table (NRMSE, peak-force and energy errors) and the parameters.
+
+    With --out it writes the parameter set the simulator loads, tests.csv, summary.json,
+    loop plots and index.html (docs/identification.md).
+    """
+    from mrsuspension.identify.campaign import identify
+
+    try:
+        options: dict[str, Any] = {}
+        if vh_variant is not None:
+            options["vh_variant"] = vh_variant
+        if hysteresis is not None:
+            options["hysteresis"] = hysteresis
+        if options and model not in ("wang-symmetric", "wang-asymmetric"):
+            raise ValidationError(
+                "--vh-variant and --hysteresis/--mean apply to the dissertation's models "
+                f"(wang-symmetric, wang-asymmetric), not {model!r}"
+            )
+        kwargs: dict[str, Any] = {
+            "columns": columns, "units": units, "current_pattern": current_pattern,
+            "points_per_cycle": points, "remove_offset": remove_offset,
+            "max_cycles": max_cycles, "peak_velocity": peak_velocity, "start": start,
+            "fixed": _fixed(fix), "model_options": options or None, "bands": bands,
+            "compare": compare or (), "multistart": multistart, "seed": seed,
+            "max_nfev": max_nfev, "name": name,
+        }  # fmt: skip
+        if as_json:
+            result = identify(manifest, model, **kwargs)
+        else:
+            from rich.console import Console
+
+            with Console(stderr=True).status("identify") as status:
+                result = identify(manifest, model, progress=lambda m: status.update(m), **kwargs)
+        files = [str(p) for p in result.save(out, plots=plots)] if out is not None else []
+    except MRSuspensionError as exc:
+        typer.echo(f"error: {exc}", err=True)
+        raise typer.Exit(2) from None
+    failed = not result.parameter_sets  # every fit failed: the output says why
+    if as_json:
+        data = result.to_dict()
+        data["files"] = files
+        typer.echo(json.dumps(data))
+        if failed:
+            raise typer.Exit(1)
+        return
+    typer.echo(result.summary_text())
+    if out is None:
+        typer.echo("no files written; --out DIR saves the parameter set, tables, plots and HTML")
+    for f in files:
+        if not f.endswith(".png"):
+            typer.echo(f"wrote {f}")
+    if any(f.endswith(".png") for f in files):
+        typer.echo(
+            f"wrote {sum(f.endswith('.png') for f in files)} loop plots in {Path(out or '.') / 'plots'}"
+        )
+    if failed:
+        raise typer.Exit(1)
+
+
+app = typer.Typer(add_completion=False, pretty_exceptions_enable=False)
+app.command()(identify_command)
+
+if __name__ == "__main__":  # pragma: no cover
+    app()

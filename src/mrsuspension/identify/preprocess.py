@@ -1,0 +1,633 @@
+"""Pre-processing of a harmonic damper test into one steady-state loop.
+
+The dissertation fitted its models to one steady-state cycle per test, 360 points per
+loop (section 2.7; MODEL_SPEC section 10). :func:`preprocess` turns a raw record into
+such a loop and says what it did:
+
+1. checks the signals (NaN, infinite values, time increasing) and puts a jittery time
+   base onto a uniform grid;
+2. detects the excitation frequency (windowed FFT peak, refined by a least-squares
+   sine fit of the displacement; :func:`detect_frequency`);
+3. derives missing signals: velocity and acceleration by a smoothing Savitzky-Golay
+   differentiator (cubic, window 1/20 of the excitation period, at least 5 samples;
+   :func:`smooth_derivative`), displacement by integrating velocity (drift removed);
+4. cuts the record into whole cycles (the last ones), keeps the trailing run of
+   steady cycles (amplitude and force range within ``steady_tolerance`` of the steady
+   value) and resamples each cycle to ``points_per_cycle`` points starting at the
+   upward zero crossing of the displacement (phase 0), as in
+   :func:`mrsuspension.characterisation.harmonic_loop`;
+5. averages the kept cycles (phase averaging), optionally removes the mean force
+   (accumulator preload), and sets the peak velocity ``v_m`` used by the
+   dissertation's models: ``2 pi f a_m`` from the manifest, or the amplitude of the
+   fundamental of the measured velocity.
+
+Examples
+--------
+>>> import numpy as np
+>>> from mrsuspension.identify.readers import RawTest
+>>> t = np.arange(0.0, 2.0, 1e-3)
+>>> x = 0.01 * np.sin(2 * np.pi * 2.5 * t + 0.3)
+>>> raw = RawTest("demo", t, x, None, 2000.0 * np.gradient(x, t))
+>>> loop = preprocess(raw, current=0.1)
+>>> round(loop.frequency, 4), loop.cycles_used, loop.force.size, round(loop.peak_velocity, 4)
+(2.5, 4, 360, 0.1571)
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+import numpy.typing as npt
+
+from mrsuspension.dampers.peak_velocity import V_LIMIT
+from mrsuspension.errors import ValidationError
+from mrsuspension.identify.readers import RawTest, TestDataError
+
+__all__ = [
+    "HarmonicFit",
+    "Loop",
+    "PreprocessOptions",
+    "detect_frequency",
+    "preprocess",
+    "smooth_derivative",
+]
+
+FloatArray = npt.NDArray[np.float64]
+
+PEAK_VELOCITY_SOURCES = ("auto", "nominal", "measured")
+
+
+@dataclass(frozen=True)
+class PreprocessOptions:
+    """Settings of :func:`preprocess`.
+
+    Parameters
+    ----------
+    points_per_cycle : int
+        Points per resampled loop (360, dissertation section 2.7).
+    remove_offset : bool
+        Subtract the mean force of the loop (a gas-spring/accumulator preload that the
+        symmetric models cannot represent). Do not use it for asymmetric dampers.
+    max_cycles : int, optional
+        Average at most this many of the last steady cycles (default: all of them).
+    steady_tolerance : float
+        A cycle is steady when its stroke amplitude and force range are within this
+        fraction of the steady value (median of the later half of the cycles).
+    peak_velocity : {"auto", "nominal", "measured"}
+        v_m for the dissertation's models: ``2 pi f a_m`` from the manifest
+        (``"nominal"``), the fundamental of the measured velocity (``"measured"``), or
+        nominal when the manifest gives frequency and amplitude, else measured.
+    smoothing : float
+        Savitzky-Golay window of the differentiator as a fraction of the period.
+    """
+
+    points_per_cycle: int = 360
+    remove_offset: bool = False
+    max_cycles: int | None = None
+    steady_tolerance: float = 0.05
+    peak_velocity: str = "auto"
+    smoothing: float = 0.05
+
+    def __post_init__(self) -> None:
+        if not (isinstance(self.points_per_cycle, int) and 16 <= self.points_per_cycle <= 100_000):
+            raise ValidationError(
+                f"points per cycle must be an integer in [16, 100000]; got {self.points_per_cycle!r}"
+            )
+        if self.max_cycles is not None and not (
+            isinstance(self.max_cycles, int) and self.max_cycles >= 1
+        ):
+            raise ValidationError(f"max_cycles must be an integer >= 1; got {self.max_cycles!r}")
+        if not 0.0 < self.steady_tolerance <= 1.0:
+            raise ValidationError(
+                f"steady_tolerance must be in (0, 1]; got {self.steady_tolerance!r}"
+            )
+        if self.peak_velocity not in PEAK_VELOCITY_SOURCES:
+            raise ValidationError(
+                f"peak_velocity must be one of {', '.join(PEAK_VELOCITY_SOURCES)}; "
+                f"got {self.peak_velocity!r}"
+            )
+        if not 0.0 < self.smoothing <= 0.5:
+            raise ValidationError(f"smoothing must be in (0, 0.5]; got {self.smoothing!r}")
+
+
+@dataclass(frozen=True)
+class HarmonicFit:
+    """Least-squares sine fit ``y = offset + amplitude sin(2 pi f t + phase)`` (+ trend)."""
+
+    frequency: float
+    amplitude: float
+    phase: float
+    offset: float
+    explained: float  # fraction of the variance explained by the fit
+
+
+@dataclass(frozen=True)
+class Loop:
+    """One steady-state loop of a test, resampled to ``points_per_cycle`` points.
+
+    Arrays over one period starting at phase 0 (displacement rising through its mean):
+    ``time`` [s], ``stroke`` [m], ``velocity`` [m/s], ``acceleration`` [m/s^2],
+    ``force`` [N], ``current`` [A]. ``notes`` say what pre-processing did. With
+    ``offset_removed`` the loop's mean force was subtracted, and the fit compares it with
+    the model loop minus its own mean.
+    """
+
+    label: str
+    time: FloatArray
+    stroke: FloatArray
+    velocity: FloatArray
+    acceleration: FloatArray
+    force: FloatArray
+    current: FloatArray
+    frequency: float
+    amplitude: float
+    peak_velocity: float
+    nominal_frequency: float | None = None
+    nominal_amplitude: float | None = None
+    cycles_found: int = 1
+    cycles_used: int = 1
+    cycle_spread: float = 0.0
+    force_offset: float = 0.0
+    offset_removed: bool = False
+    notes: tuple[str, ...] = field(default=())
+
+    @property
+    def mean_current(self) -> float:
+        """Mean drive current over the loop [A]."""
+        return float(np.mean(self.current))
+
+    @property
+    def force_range(self) -> float:
+        """Peak-to-peak force [N], the normaliser of the residuals (spec section 10)."""
+        return float(np.ptp(self.force))
+
+    def energy_per_cycle(self, force: npt.ArrayLike | None = None) -> float:
+        """Energy dissipated over the loop, closed integral of F dx [J].
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> th = np.linspace(0, 2 * np.pi, 360, endpoint=False)
+        >>> x, v = 0.01 * np.sin(th), 0.01 * np.cos(th)
+        >>> loop = Loop("c", th, x, v, -x, 1000.0 * v, np.zeros(360), 1 / (2 * np.pi), 0.01, 0.01)
+        >>> round(loop.energy_per_cycle(), 3)  # pi c omega a^2 with c omega = 1000
+        0.314
+        """
+        f = self.force if force is None else np.asarray(force, dtype=float)
+        x = np.append(self.stroke, self.stroke[0])
+        ff = np.append(f, f[0])
+        return float(np.sum(0.5 * (ff[1:] + ff[:-1]) * np.diff(x)))
+
+
+# ----------------------------------------------------------------------------------
+def smooth_derivative(signal: npt.ArrayLike, dt: float, window: int, order: int = 1) -> FloatArray:
+    """Savitzky-Golay derivative of a uniformly sampled signal (cubic local fits).
+
+    ``window`` (samples, made odd and at least 5) sets the smoothing; the ends use the
+    fit over the first/last window (``mode="interp"``).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> t = np.arange(0.0, 1.0, 1e-3)
+    >>> v = smooth_derivative(np.sin(2 * np.pi * t), 1e-3, 51)
+    >>> bool(np.max(np.abs(v - 2 * np.pi * np.cos(2 * np.pi * t))) < 1e-3)
+    True
+    """
+    from scipy.signal import savgol_filter
+
+    y = np.asarray(signal, dtype=float)
+    w = max(5, int(window) | 1)
+    if w > y.size:
+        w = y.size if y.size % 2 else y.size - 1
+    if w < 5:
+        return np.gradient(y, dt) if order == 1 else np.gradient(np.gradient(y, dt), dt)
+    return np.asarray(savgol_filter(y, w, 3, deriv=order, delta=dt, mode="interp"), dtype=float)
+
+
+def _sine_fit(t: FloatArray, y: FloatArray, f: float) -> tuple[float, FloatArray]:
+    w = 2.0 * math.pi * f
+    mid = 0.5 * (t[0] + t[-1])
+    span = max(t[-1] - t[0], 1e-12)
+    basis = np.column_stack([np.ones_like(t), (t - mid) / span, np.cos(w * t), np.sin(w * t)])
+    coef, *_ = np.linalg.lstsq(basis, y, rcond=None)
+    resid = y - basis @ coef
+    return float(resid @ resid), coef
+
+
+def detect_frequency(
+    time: npt.ArrayLike, signal: npt.ArrayLike, hint: float | None = None
+) -> HarmonicFit:
+    """Excitation frequency and phase of a (nearly) harmonic, uniformly sampled signal.
+
+    The Hann-windowed FFT peak (zero-padded, parabolic interpolation) gives a first
+    estimate, which a least-squares sine fit (with offset and linear drift) refines;
+    ``hint`` (e.g. the manifest's frequency) is tried as a second starting point and
+    the better fit wins.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> t = np.arange(0.0, 3.0, 1e-3)
+    >>> fit = detect_frequency(t, 0.02 * np.sin(2 * np.pi * 1.37 * t + 1.0) + 0.005)
+    >>> round(fit.frequency, 6), round(fit.amplitude, 6), round(fit.phase, 6)
+    (1.37, 0.02, 1.0)
+    """
+    from scipy.optimize import minimize_scalar
+
+    t = np.asarray(time, dtype=float)
+    y = np.asarray(signal, dtype=float)
+    n = t.size
+    duration = float(t[-1] - t[0])
+    dt = duration / (n - 1)
+    y0 = y - y.mean()
+    total = float(y0 @ y0)
+    if n < 8 or total == 0.0:
+        raise TestDataError("no excitation found: the motion signal is constant")
+    detr = y0 - np.polyval(np.polyfit(t - t[0], y0, 1), t - t[0])
+    nfft = 1 << (math.ceil(math.log2(n)) + 3)
+    spec = np.abs(np.fft.rfft(detr * np.hanning(n), nfft))
+    freqs = np.fft.rfftfreq(nfft, dt)
+    kmin = max(1, int(np.searchsorted(freqs, 0.5 / duration)))
+    k = kmin + int(np.argmax(spec[kmin:-1])) if spec.size > kmin + 1 else kmin
+    if 0 < k < spec.size - 1:
+        a, b, c = np.log(spec[k - 1 : k + 2] + 1e-300)
+        denom = a - 2 * b + c
+        shift = 0.5 * (a - c) / denom if denom != 0 else 0.0
+        f_fft = float(freqs[k] + np.clip(shift, -1, 1) * (freqs[1] - freqs[0]))
+    else:  # pragma: no cover - degenerate spectra
+        f_fft = float(freqs[k])
+    candidates = [f_fft] + ([float(hint)] if hint else [])
+    best: tuple[float, float] | None = None
+    for f0 in candidates:
+        if not f0 > 0:
+            continue
+        half = 0.6 / duration + 0.02 * f0
+        lo, hi = max(f0 - half, 0.25 * f0), f0 + half
+        res = minimize_scalar(
+            lambda f: _sine_fit(t, y0, f)[0],
+            bounds=(lo, hi),
+            method="bounded",
+            options={"xatol": 1e-9 * f0},
+        )
+        if best is None or res.fun < best[1]:
+            best = (float(res.x), float(res.fun))
+    if best is None:  # pragma: no cover - f_fft is always > 0
+        raise TestDataError("no excitation frequency found")
+    f = best[0]
+    _, coef = _sine_fit(t, y0, f)
+    amp = float(math.hypot(coef[2], coef[3]))
+    phase = float(math.atan2(coef[2], coef[3]))
+    return HarmonicFit(
+        frequency=f,
+        amplitude=amp,
+        phase=phase,
+        offset=float(y.mean() + coef[0]),
+        explained=1.0 - best[1] / total,
+    )
+
+
+def _check_signals(raw: RawTest) -> None:
+    for role in ("time", "displacement", "velocity", "acceleration", "force", "current"):
+        value = getattr(raw, role)
+        if value is None:
+            continue
+        arr = np.asarray(value, dtype=float)
+        bad = ~np.isfinite(arr)
+        if np.any(bad):
+            idx = np.flatnonzero(bad.ravel())
+            what = "NaN" if np.isnan(arr.ravel()[idx[0]]) else "infinite"
+            at = f"data row {idx[0] + 1}"
+            if arr.ndim and role != "time" and np.isfinite(raw.time[idx[0]]):
+                at += f", t = {raw.time[idx[0]]:.6g} s"
+            raise TestDataError(
+                f"{role} has {idx.size} {what} value{'s' if idx.size > 1 else ''} "
+                f"(first at {at}); clean or cut the record"
+            )
+    if raw.time.ndim != 1 or raw.time.size < 16:
+        raise TestDataError(f"the record has {raw.time.size} samples; at least 16 are needed")
+    steps = np.diff(raw.time)
+    back = np.flatnonzero(steps <= 0)
+    if back.size:
+        k = int(back[0])
+        raise TestDataError(
+            f"time is not increasing at data row {k + 2} (t = {raw.time[k + 1]:.6g} s after "
+            f"{raw.time[k]:.6g} s; {back.size} place{'s' if back.size > 1 else ''}); "
+            "sort or split the record"
+        )
+
+
+def _uniform(raw: RawTest, notes: list[str]) -> dict[str, FloatArray | None]:
+    t = raw.time
+    steps = np.diff(t)
+    dt = float(np.median(steps))
+    signals: dict[str, FloatArray | None] = {
+        role: (None if getattr(raw, role) is None else np.asarray(getattr(raw, role), float))
+        for role in ("displacement", "velocity", "acceleration", "force")
+    }
+    cur = raw.current
+    signals["current"] = cur if isinstance(cur, np.ndarray) else None
+    jitter = float(np.max(np.abs(steps - dt)) / dt)
+    if jitter <= 0.01:
+        signals["time"] = t
+        return signals
+    n = math.floor((t[-1] - t[0]) / dt + 1e-9) + 1
+    grid = t[0] + dt * np.arange(n)
+    notes.append(
+        f"time steps vary ({steps.min() * 1e3:.4g}-{steps.max() * 1e3:.4g} ms): resampled "
+        f"onto a uniform {dt * 1e3:.4g} ms grid"
+    )
+    big = np.flatnonzero(steps > 5 * dt)
+    if big.size:
+        notes.append(
+            f"{big.size} gap(s) in the time base, the longest {steps.max():.4g} s at "
+            f"t = {t[int(np.argmax(steps))]:.6g} s (bridged by linear interpolation)"
+        )
+    out: dict[str, FloatArray | None] = {"time": grid}
+    for role, value in signals.items():
+        out[role] = None if value is None else np.interp(grid, t, value)
+    return out
+
+
+def _cycle_times(fit: HarmonicFit, start: float, n_points: int) -> FloatArray:
+    """Times of phases 2 pi j / N inside the cycle window [start, start + T)."""
+    period = 1.0 / fit.frequency
+    zero = -fit.phase / (2.0 * math.pi * fit.frequency)  # a time of phase 0
+    offsets = zero + period * np.arange(n_points) / n_points
+    m = np.ceil((start - offsets) / period - 1e-12)
+    return offsets + m * period
+
+
+@dataclass(frozen=True)
+class _Cut:
+    cycles: dict[str, list[FloatArray]]
+    n_full: int
+    amplitudes: FloatArray
+    ranges: FloatArray
+    ref_amplitude: float
+    ref_range: float
+    bad: npt.NDArray[np.intp]
+    first: int
+
+
+def _steady_cycles(
+    t: FloatArray,
+    signals: dict[str, FloatArray],
+    fit: HarmonicFit,
+    n_pts: int,
+    tolerance: float,
+) -> _Cut:
+    """Cut the record into whole cycles (aligned to its end), resample each, and find
+    the trailing run of steady ones."""
+    period = 1.0 / fit.frequency
+    dt = float(t[1] - t[0])
+    t_end = float(t[-1])
+    n_full = math.floor((t_end - float(t[0]) + 0.5 * dt) / period + 1e-9)
+    cycles: dict[str, list[FloatArray]] = {k: [] for k in ("x", "v", "a", "F", "i")}
+    for k in range(n_full):
+        tau = _cycle_times(fit, t_end - (n_full - k) * period, n_pts)
+        for key, series in signals.items():
+            cycles[key].append(np.interp(tau, t, series))
+    amps = np.array([np.ptp(c) / 2 for c in cycles["x"]])
+    ranges = np.array([np.ptp(c) for c in cycles["F"]])
+    later = slice(n_full // 2, None)
+    ref_amp = float(np.median(amps[later]))
+    ref_range = max(float(np.median(ranges[later])), 1e-300)
+    unsteady = (np.abs(amps / ref_amp - 1) > tolerance) | (
+        np.abs(ranges / ref_range - 1) > tolerance
+    )
+    bad = np.flatnonzero(unsteady)
+    first = min(int(bad[-1]) + 1, n_full - 1) if bad.size else 0
+    return _Cut(cycles, n_full, amps, ranges, ref_amp, ref_range, bad, first)
+
+
+def preprocess(
+    raw: RawTest,
+    options: PreprocessOptions | None = None,
+    *,
+    current: float | None = None,
+    frequency: float | None = None,
+    amplitude: float | None = None,
+    label: str | None = None,
+) -> Loop:
+    """Turn a raw harmonic test record into its steady-state loop (module docstring).
+
+    Parameters
+    ----------
+    raw : RawTest
+        The record, in SI units.
+    options : PreprocessOptions, optional
+        Settings (default: 360 points, no offset removal, all steady cycles).
+    current : float, optional
+        Drive current [A] (from the manifest); otherwise the record's current.
+    frequency, amplitude : float, optional
+        Nominal excitation f [Hz] and a_m [m] (from the manifest).
+    label : str, optional
+        Name of the test in messages (default: the record's source).
+
+    Raises
+    ------
+    TestDataError
+        When the record cannot give a loop (NaN, time not increasing, no whole cycle,
+        no current...).
+    """
+    opts = options or PreprocessOptions()
+    notes: list[str] = []
+    _check_signals(raw)
+    sig = _uniform(raw, notes)
+    t = sig["time"]
+    assert t is not None
+    dt = float(t[1] - t[0])
+    x, v, a, force = sig["displacement"], sig["velocity"], sig["acceleration"], sig["force"]
+    assert force is not None
+    motion = x if x is not None else v
+    assert motion is not None
+    fit = detect_frequency(t, motion, hint=frequency)
+    if fit.explained < 0.5:
+        raise TestDataError(
+            "no harmonic excitation found: the best sine explains only "
+            f"{100 * fit.explained:.0f} % of the {'displacement' if x is not None else 'velocity'}"
+            " variance"
+        )
+    if not np.ptp(force) > 0:
+        raise TestDataError("the force is constant over the record; nothing to fit")
+    f = fit.frequency
+    period = 1.0 / f
+    duration = float(t[-1] - t[0])
+    n_full = math.floor((duration + 0.5 * dt) / period + 1e-9)
+    if n_full < 1:
+        raise TestDataError(
+            f"no whole cycle: the record lasts {duration:.4g} s, {duration * f:.2f} periods of "
+            f"the {f:.4g} Hz excitation; at least one whole cycle is needed"
+        )
+    if frequency is not None and abs(f / frequency - 1) > 0.02:
+        notes.append(
+            f"warning: detected {f:.4g} Hz but the manifest says {frequency:g} Hz "
+            f"({100 * (f / frequency - 1):+.1f} %); cycles are cut at the detected frequency"
+        )
+    spc = period / dt
+    window = max(5, round(opts.smoothing * spc) | 1)
+    sg = f"Savitzky-Golay, cubic, {window}-sample window"
+    if x is None:
+        assert v is not None
+        from scipy.integrate import cumulative_trapezoid
+
+        x = cumulative_trapezoid(v, t, initial=0.0)
+        # remove offset and drift (a velocity offset integrates to a ramp), not the sine
+        _, coef = _sine_fit(t, x, f)
+        mid, span = 0.5 * (t[0] + t[-1]), t[-1] - t[0]
+        x = x - coef[0] - coef[1] * (t - mid) / span
+        notes.append("displacement integrated from velocity (offset and drift removed)")
+    if v is None:
+        v = smooth_derivative(x, dt, window, 1)
+        notes.append(f"velocity derived from displacement ({sg})")
+        if a is None:
+            a = smooth_derivative(x, dt, window, 2)
+            notes.append(f"acceleration derived from displacement ({sg})")
+    if a is None:
+        a = smooth_derivative(v, dt, window, 1)
+        notes.append(f"acceleration derived from velocity ({sg})")
+    if spc < opts.points_per_cycle:
+        notes.append(f"upsampled from {spc:.0f} samples per cycle (linear interpolation)")
+
+    # whole cycles, aligned to the end of the record (the steadiest part)
+    n_pts = opts.points_per_cycle
+    signals = {"x": x, "v": v, "a": a, "F": force}
+    if sig["current"] is not None:
+        signals["i"] = sig["current"]
+    cut = _steady_cycles(t, signals, fit, n_pts, opts.steady_tolerance)
+    if cut.first > 0:
+        # a transient (e.g. a ramp-in) biases the frequency: detect it again on the
+        # steady part only and cut again
+        t_steady = float(t[-1]) - (cut.n_full - cut.first) * period
+        sel = t >= t_steady - 0.5 * dt
+        if np.count_nonzero(sel) >= 16:
+            refit = detect_frequency(t[sel], motion[sel], hint=f)
+            if refit.explained >= 0.5 and abs(refit.frequency / f - 1) < 0.05:
+                fit, f, period = refit, refit.frequency, 1.0 / refit.frequency
+                cut = _steady_cycles(t, signals, fit, n_pts, opts.steady_tolerance)
+    cyc, amps, ranges = cut.cycles, cut.amplitudes, cut.ranges
+    bad, first, n_full = cut.bad, cut.first, cut.n_full
+    ref_amp, ref_range = cut.ref_amplitude, cut.ref_range
+    if opts.max_cycles is not None:
+        first = max(first, n_full - opts.max_cycles)
+    kept = list(range(first, n_full))
+    text = f"{n_full} whole cycle{'s' if n_full > 1 else ''} at {f:.4g} Hz"
+    if bad.size:
+        worst = int(bad[np.argmax(np.abs(ranges[bad] / ref_range - 1))])
+        text += (
+            f"; {cut.first} leading cycle{'s' if cut.first > 1 else ''} dropped as not steady (cycle "
+            f"{worst + 1}: stroke {100 * (amps[worst] / ref_amp - 1):+.1f} %, force range "
+            f"{100 * (ranges[worst] / ref_range - 1):+.1f} % off the steady value)"
+        )
+    if opts.max_cycles is not None and first > cut.first:
+        text += f"; the last {len(kept)} used (max_cycles)"
+    if n_full == 1:
+        text += "; only one cycle, steady state not verified"
+    loop_f = np.mean([cyc["F"][k] for k in kept], axis=0)
+    spread = 0.0
+    if len(kept) > 1:
+        dev = np.array([cyc["F"][k] - loop_f for k in kept])
+        spread = float(np.sqrt(np.mean(dev**2)) / max(np.ptp(loop_f), 1e-300))
+        text += f"; {len(kept)} averaged (cycle-to-cycle spread {100 * spread:.2g} % of the force range)"
+    notes.append(text)
+    loop_x = np.mean([cyc["x"][k] for k in kept], axis=0)
+    loop_v = np.mean([cyc["v"][k] for k in kept], axis=0)
+    loop_a = np.mean([cyc["a"][k] for k in kept], axis=0)
+    offset = 0.0
+    if opts.remove_offset:
+        offset = float(np.mean(loop_f))
+        loop_f = loop_f - offset
+        notes.append(f"removed a force offset of {offset:.4g} N (mean force of the loop)")
+    if not np.ptp(loop_f) > 0:
+        raise TestDataError("the force is constant over the loop; nothing to fit")
+
+    # drive current
+    loop_i: FloatArray
+    if current is not None:
+        loop_i = np.full(n_pts, float(current))
+        if cyc["i"]:
+            measured = float(np.mean([cyc["i"][k] for k in kept]))
+            if abs(measured - current) > max(0.005, 0.05 * abs(current)):
+                notes.append(
+                    f"warning: the current column averages {measured:.4g} A; the manifest's "
+                    f"{current:g} A is used"
+                )
+    elif cyc["i"]:
+        per_point = np.mean([cyc["i"][k] for k in kept], axis=0)
+        mean_i = float(per_point.mean())
+        if np.ptp(per_point) > 0.1 * abs(mean_i) + 0.02:
+            loop_i = per_point
+            notes.append(
+                f"current from the file varies {per_point.min():.3g}-{per_point.max():.3g} A "
+                "over the loop; the fit uses it point by point"
+            )
+        else:
+            loop_i = np.full(n_pts, mean_i)
+            notes.append(f"current {mean_i:.4g} A (mean of the file's current column)")
+    elif isinstance(raw.current, float):
+        loop_i = np.full(n_pts, raw.current)
+        notes.append(f"current {raw.current:.4g} A from the file")
+    else:
+        raise TestDataError("no drive current for this test")
+    if np.min(loop_i) < 0:
+        if np.min(loop_i) < -0.02:
+            raise TestDataError(
+                f"the drive current is negative ({np.min(loop_i):.4g} A); currents must be >= 0"
+            )
+        loop_i = np.maximum(loop_i, 0.0)
+        notes.append("small negative currents (sensor offset) clipped to 0 A")
+
+    # peak velocity v_m for the dissertation's models; stroke amplitude of the loop
+    spectrum = np.fft.rfft(loop_v)
+    measured_vm = float(2.0 * np.abs(spectrum[1]) / n_pts)
+    loop_amplitude = float(2.0 * np.abs(np.fft.rfft(loop_x)[1]) / n_pts)
+    has_nominal = frequency is not None and amplitude is not None
+    if opts.peak_velocity == "nominal" and not has_nominal:
+        raise TestDataError(
+            "peak velocity 'nominal' needs the frequency and amplitude in the manifest"
+        )
+    if has_nominal and opts.peak_velocity != "measured":
+        assert frequency is not None
+        assert amplitude is not None
+        vm = 2.0 * math.pi * frequency * amplitude
+        notes.append(f"v_m = 2 pi f a_m = {vm:.4g} m/s (manifest)")
+        if abs(measured_vm / vm - 1) > 0.1:
+            notes.append(
+                f"warning: the measured velocity amplitude {measured_vm:.4g} m/s differs by "
+                f"{100 * (measured_vm / vm - 1):+.0f} % from 2 pi f a_m"
+            )
+    else:
+        vm = measured_vm
+        notes.append(f"v_m = {vm:.4g} m/s (fundamental of the velocity)")
+    if amplitude is not None and abs(loop_amplitude / amplitude - 1) > 0.1:
+        notes.append(
+            f"warning: stroke amplitude {loop_amplitude * 1e3:.4g} mm differs from the manifest's "
+            f"{amplitude * 1e3:g} mm"
+        )
+    if not 0.0 < vm <= V_LIMIT:
+        raise TestDataError(
+            f"peak velocity {vm:.4g} m/s is outside (0, {V_LIMIT:g}] m/s; check the units"
+        )
+    return Loop(
+        label=label or raw.source,
+        time=period * np.arange(n_pts) / n_pts,
+        stroke=loop_x,
+        velocity=loop_v,
+        acceleration=loop_a,
+        force=loop_f,
+        current=loop_i,
+        frequency=f,
+        amplitude=loop_amplitude,
+        peak_velocity=vm,
+        nominal_frequency=frequency,
+        nominal_amplitude=amplitude,
+        cycles_found=n_full,
+        cycles_used=len(kept),
+        cycle_spread=spread,
+        force_offset=offset,
+        offset_removed=opts.remove_offset,
+        notes=tuple(raw.notes) + tuple(notes),
+    )
