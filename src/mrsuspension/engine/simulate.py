@@ -123,11 +123,7 @@ class Simulation:
     def stiffness_rate(self) -> float:
         """Largest decay rate of the linearised model [1/s] (for the step-size check)."""
         car = self.vehicle
-        if self.controller.force_source == EK.F_MODEL:
-            c = self.damper.max_damping_rate(self.max_current)
-        else:
-            c = float(self.controller.params(self.max_current)[EK.P_CS])
-        rate = c * (1.0 / car.unsprung_mass + 1.0 / car.sprung_mass)
+        rate = self._slope() * (1.0 / car.unsprung_mass + 1.0 / car.sprung_mass)
         rate += car.tire_damping / car.unsprung_mass + car.skyhook_damping / car.sprung_mass
         omega = math.sqrt((car.suspension_stiffness + car.tire_stiffness) / car.unsprung_mass)
         return max(rate, omega)
@@ -149,6 +145,7 @@ class Simulation:
         return dt
 
     def _slope(self) -> float:
+        """Largest damper (or ideal-damper) slope dF/dv [N s/m] up to max_current."""
         if self.controller.force_source == EK.F_MODEL:
             return self.damper.max_damping_rate(self.max_current)
         return float(self.controller.params(self.max_current)[EK.P_CS])

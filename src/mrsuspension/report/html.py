@@ -155,8 +155,65 @@ def _chapter_2(
     return body, manifest
 
 
+def _figure_sections(
+    chapter: int,
+    builders: Sequence[Callable[[bool], FigureRecord]],
+    folder: Path,
+    quick: bool,
+    progress: Callable[[str], None],
+) -> tuple[list[str], list[dict[str, Any]]]:
+    """Build, save and describe each figure of a chapter (figure builders take ``quick``)."""
+    sections: list[str] = []
+    records: list[dict[str, Any]] = []
+    for build in builders:
+        doc = build.__doc__.splitlines()[0] if build.__doc__ else build.__name__
+        progress(f"chapter {chapter}: {doc}")
+        rec = build(quick)
+        rec.save(folder)
+        records.append(
+            {"number": rec.number, "title": rec.title, "files": rec.files, "data": rec.data}
+        )
+        sections.append(
+            f'<figure id="{rec.slug}"><img src="chapter{chapter}/{rec.slug}.png" '
+            f'alt="Fig. {rec.number}"><figcaption><b>Fig. {html.escape(rec.number)}: '
+            f"{html.escape(rec.title)}.</b> {html.escape(rec.caption)} "
+            f'<a href="chapter{chapter}/{rec.slug}.svg">SVG</a></figcaption></figure>'
+        )
+    return sections, records
+
+
+def _chapter_3(
+    folder: Path, quick: bool, progress: Callable[[str], None]
+) -> tuple[str, dict[str, Any]]:
+    from mrsuspension.report import ch3
+
+    sections, records = _figure_sections(3, ch3.CHAPTER_3_FIGURES, folder, quick, progress)
+    body = (
+        "<h2 id='ch3'>Chapter 3: semi-active control synthesis, reference model and "
+        "excitations</h2>" + "".join(sections)
+    )
+    return body, {"figures": records, "tables": []}
+
+
+def _chapter_4(
+    folder: Path, quick: bool, progress: Callable[[str], None]
+) -> tuple[str, dict[str, Any]]:
+    from mrsuspension.report import ch4
+
+    sections, records = _figure_sections(4, ch4.CHAPTER_4_FIGURES, folder, quick, progress)
+    body = (
+        "<h2 id='ch4'>Chapter 4: hi-lo semi-active MR suspension, simulation studies</h2>"
+        "<p>Each figure comes from a study (two-stage swept excitation, a = 2.5 cm, "
+        "f_T = 2.1 Hz); the numbers behind every curve are in manifest.json.</p>"
+        + "".join(sections)
+    )
+    return body, {"figures": records, "tables": []}
+
+
 _CHAPTERS: dict[int, Callable[[Path, bool, Callable[[str], None]], tuple[str, dict[str, Any]]]] = {
     2: _chapter_2,
+    3: _chapter_3,
+    4: _chapter_4,
 }
 
 
