@@ -160,3 +160,28 @@ def test_installed_entry_point_runs() -> None:
     )
     assert bad.returncode == 2
     assert bad.stderr.startswith("error: drive current")
+
+
+def test_study_command_runs_the_example_study(tmp_path: Path) -> None:
+    root = Path(__file__).resolve().parents[2]
+    code, out, err = run(
+        "study", str(root / "examples/studies/passive-current.toml"), "--no-cache", "--json",
+        "--out", str(tmp_path / "study.nc"),
+    )  # fmt: skip
+    assert code == 0, err
+    rows = json.loads(out)
+    assert len(rows) == 18
+    assert (tmp_path / "study.nc").exists()
+    peak = {c: max(r["T_as"] for r in rows if r["controller.current"] == c) for c in (0.0, 0.1)}
+    assert peak[0.1] < peak[0.0]  # section 4.3.2: passive current lowers the T_as peak
+
+
+def test_study_command_rejects_a_bad_study(tmp_path: Path) -> None:
+    bad = tmp_path / "bad.toml"
+    bad.write_text(
+        '[controller]\nlaw = "passive"\n[excitation]\nkind = "harmonic"\nfrequency = 1.5\n'
+        'amplitude = 0.02\n[grid]\n"vehicle.sprung_mas" = [400.0]\n'
+    )
+    code, _, err = run("study", str(bad))
+    assert code == 2
+    assert "sprung_mass" in err

@@ -60,3 +60,27 @@ def test_test_matrix_table(report: Path) -> None:
     lines = (report / "chapter2" / "table_2_1_model.csv").read_text().strip().splitlines()
     assert lines[0].startswith("frequency [Hz]")
     assert len(lines) > 10
+
+
+CHAPTERS_3_4 = {3: ["3.2", "3.4", "3.9", "3.10"], 4: ["4.5", "4.9", "4.13"]}
+
+
+def test_chapters_3_and_4_listed_with_data(report: Path) -> None:
+    index = (report / "index.html").read_text()
+    manifest = json.loads((report / "manifest.json").read_text())
+    for chapter, numbers in CHAPTERS_3_4.items():
+        figures = {f["number"]: f for f in manifest["chapters"][str(chapter)]["figures"]}
+        for number in numbers:
+            slug = "fig_" + number.replace(".", "_")
+            assert f"Fig. {number}:" in index
+            assert (report / f"chapter{chapter}" / f"{slug}.png").stat().st_size > 5000
+            assert figures[number]["data"], number
+    ch4 = {f["number"]: f["data"] for f in manifest["chapters"]["4"]["figures"]}
+    # every curve of the Chapter 4 studies is finite
+    for data in ch4.values():
+        for key, values in data.items():
+            if key.startswith(("T_as ", "T_au ", "T_dr ", "DLC ")):
+                assert all(v == v for v in values), key
+    # Fig 4.5 records each policy's body-resonance peak
+    for p, g in (("I", 3), ("II", 10), ("III", 10), ("IV", 300)):
+        assert ch4["4.5"][f"peak T_as policy {p} (k_c = {g})"] > 1.0

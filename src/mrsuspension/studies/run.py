@@ -1,0 +1,308 @@
+"""Running a study: a local process pool or a Dask cluster, cached by content hash.
+
+Every run is reduced to its measures in the worker (:func:`~mrsuspension.engine.simulate.measures_of`),
+so only a few numbers travel back. Results are a :class:`StudyResult` wrapping an
+:class:`xarray.Dataset` (dimensions = the study's grid fields, cases and ``frequency``;
+variables = measures), saved as NetCDF (``.nc``) or CSV.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import time
+from collections.abc import Callable, Iterator, Sequence
+from contextlib import contextmanager
+from dataclasses import dataclass
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from mrsuspension.engine.simulate import Simulation, measures_of, run_many
+from mrsuspension.errors import ValidationError
+from mrsuspension.studies.study import Study
+
+if TYPE_CHECKING:
+    import pandas as pd
+    import xarray as xr
+
+__all__ = ["StudyResult", "default_cache_dir", "run_study"]
+
+Progress = Callable[[int, int], None]
+
+
+def default_cache_dir() -> Path:
+    """``$MRSUSPENSION_CACHE/studies``, else ``~/.cache/mrsuspension/studies``."""
+    root = os.environ.get("MRSUSPENSION_CACHE")
+    base = Path(root) if root else Path.home() / ".cache" / "mrsuspension"
+    return base / "studies"
+
+
+@dataclass
+class StudyResult:
+    """The measures of every run of a study, as labelled arrays.
+
+    Parameters
+    ----------
+    study : Study
+        The study that produced them.
+    dataset : xarray.Dataset
+        One variable per measure over the study's dimensions.
+    content_hash : str
+        The study's :meth:`~mrsuspension.studies.Study.content_hash`.
+    from_cache : bool
+        True when read back from the cache instead of computed.
+    run_time : float
+        Wall time of the computation [s] (of the original run when cached).
+    """
+
+    study: Study
+    dataset: xr.Dataset
+    content_hash: str
+    from_cache: bool = False
+    run_time: float = 0.0
+
+    def __getitem__(self, measure: str) -> xr.DataArray:
+        return self.dataset[measure]
+
+    def to_xarray(self) -> xr.Dataset:
+        """The results as an :class:`xarray.Dataset`."""
+        return self.dataset
+
+    def to_pandas(self) -> pd.DataFrame:
+        """Long table: one row per run, a column per dimension and per measure."""
+        return self.dataset.to_dataframe().reset_index()
+
+    def save(self, path: str | Path) -> Path:
+        """Write ``.nc`` (NetCDF, with the study in the attributes) or ``.csv`` (+ ``.json``)."""
+        path = Path(path)
+        path.parent.mkdir(parents=True, exist_ok=True)
+        suffix = path.suffix.lower()
+        if suffix == ".nc":
+            self.dataset.to_netcdf(path)
+        elif suffix == ".csv":
+            self.to_pandas().to_csv(path, index=False)
+            path.with_suffix(".json").write_text(
+                json.dumps(
+                    {"study": self.study.describe(), "content_hash": self.content_hash},
+                    indent=2,
+                    default=str,
+                )
+            )
+        else:
+            raise ValidationError(
+                f"cannot save study results as {suffix!r}; use .nc (NetCDF) or .csv"
+            )
+        return path
+
+
+# -- executors ----------------------------------------------------------------------------
+def _run_point(job: tuple[Simulation, float | None, float, float]) -> dict[str, Any]:
+    """One run reduced to its measures (module level, so workers can unpickle it)."""
+    sim, duration, dt, rate = job
+    return measures_of(sim.run(duration, dt=dt, output_rate=rate))
+
+
+def _run_local(
+    jobs: Sequence[tuple[Simulation, float | None, float, float]],
+    workers: int | None,
+    progress: Progress | None,
+) -> list[dict[str, Any]]:
+    """The engine's batch runner, once per group of equal run settings."""
+    groups: dict[tuple[float | None, float, float], list[int]] = {}
+    for k, (_, duration, dt, rate) in enumerate(jobs):
+        groups.setdefault((duration, dt, rate), []).append(k)
+    out: list[dict[str, Any]] = [{} for _ in jobs]
+    done = 0
+    total = len(jobs)
+    for (duration, dt, rate), idx in groups.items():
+        offset = done
+
+        def tick(n: int, _total: int, offset: int = offset) -> None:
+            if progress:
+                progress(offset + n, total)
+
+        results = run_many(
+            [jobs[k][0] for k in idx],
+            duration=duration,
+            dt=dt,
+            output_rate=rate,
+            workers=workers,
+            progress=tick,
+            reduce=measures_of,
+        )
+        for k, r in zip(idx, results, strict=True):
+            out[k] = r
+        done += len(idx)
+    return out
+
+
+def _run_dask(
+    jobs: Sequence[tuple[Simulation, float | None, float, float]],
+    executor: Any,
+    progress: Progress | None,
+) -> list[dict[str, Any]]:
+    """The same reducer on a Dask cluster (an address or a ``distributed.Client``)."""
+    try:
+        from dask.distributed import Client, as_completed
+    except ImportError:  # pragma: no cover - depends on the environment
+        raise ValidationError(
+            "running a study on a Dask scheduler needs dask.distributed: "
+            "pip install 'mrsuspension[distributed]'"
+        ) from None
+    own = not isinstance(executor, Client)
+    client = Client(executor) if own else executor
+    try:
+        futures = client.map(_run_point, list(jobs), pure=False)
+        index = {f.key: k for k, f in enumerate(futures)}
+        out: list[dict[str, Any]] = [{} for _ in jobs]
+        for n, fut in enumerate(as_completed(futures), start=1):
+            out[index[fut.key]] = fut.result()
+            if progress:
+                progress(n, len(jobs))
+        return out
+    finally:
+        if own:
+            client.close()
+
+
+@contextmanager
+def _bar(enabled: bool | Progress, label: str) -> Iterator[Progress | None]:
+    """A rich progress bar on stderr as a ``progress(done, total)`` callback."""
+    if callable(enabled):
+        yield enabled
+        return
+    if not enabled:
+        yield None
+        return
+    from rich.console import Console
+    from rich.progress import (
+        BarColumn,
+        MofNCompleteColumn,
+        Progress,
+        TimeElapsedColumn,
+        TimeRemainingColumn,
+    )
+
+    with Progress(
+        "[progress.description]{task.description}",
+        BarColumn(),
+        MofNCompleteColumn(),
+        TimeElapsedColumn(),
+        TimeRemainingColumn(),
+        console=Console(stderr=True),
+        transient=False,
+    ) as bar:
+        task = bar.add_task(label, total=None)
+
+        def update(done: int, total: int) -> None:
+            bar.update(task, completed=done, total=total)
+
+        yield update
+
+
+# -- assembling ---------------------------------------------------------------------------
+def _dataset(study: Study, rows: Sequence[dict[str, Any]], run_time: float) -> xr.Dataset:
+    import xarray as xr
+
+    shape = study.shape
+    data_vars = {}
+    for m in study.measures:
+        values = np.array([float(r.get(m, np.nan)) for r in rows], dtype=float).reshape(shape)
+        data_vars[m] = (study.dims, values)
+    coords: dict[str, Any] = {}
+    for name, labels in study.coords.items():
+        coords[name] = (name, np.asarray(labels))
+    if study.frequencies is not None:
+        sweep = study.scenarios[0].excitation
+        coords["amplitude"] = ("frequency", np.asarray(sweep.amplitudes))  # type: ignore[union-attr]
+        coords["frequency"] = ("frequency", np.asarray(study.frequencies), {"units": "Hz"})
+    ds = xr.Dataset(data_vars, coords=coords)
+    ds.attrs["study"] = json.dumps(study.describe(), default=str)
+    ds.attrs["content_hash"] = study.content_hash()
+    ds.attrs["run_time_s"] = float(run_time)
+    from mrsuspension import __version__
+
+    ds.attrs["mrsuspension_version"] = __version__
+    return ds
+
+
+def run_study(
+    study: Study | str | Path,
+    *,
+    executor: Any = "local",
+    workers: int | None = None,
+    progress: bool | Progress = True,
+    cache_dir: str | Path | bool | None = None,
+) -> StudyResult:
+    """Run every grid point of a study; measures as labelled arrays.
+
+    Parameters
+    ----------
+    study : Study or path
+        A study, or a study TOML file to load.
+    executor : "local", str or dask.distributed.Client
+        ``"local"`` (default): the engine's process pool
+        (:func:`~mrsuspension.engine.simulate.run_many`); a scheduler address such as
+        ``"tcp://10.0.0.5:8786"`` or a ``Client``: the same reducer on a Dask cluster.
+    workers : int, optional
+        Local processes (None: one per core; 1: this process). Ignored for Dask.
+    progress : bool or callable
+        A rich progress bar on stderr (True, default), none (False), or a
+        ``progress(done, total)`` callback.
+    cache_dir : path, None or False
+        Folder of cached results, keyed by :meth:`Study.content_hash`; None: the
+        :func:`default_cache_dir`; False: no cache.
+
+    Returns
+    -------
+    StudyResult
+        ``from_cache`` tells whether it was read back rather than computed.
+
+    Examples
+    --------
+    >>> from mrsuspension.studies import Study
+    >>> study = Study.from_dict({
+    ...     "excitation": {"kind": "harmonic", "frequency": 5.0, "amplitude": 0.01},
+    ...     "simulation": {"dt": 5e-4},
+    ...     "grid": {"controller.current": [0.0, 0.2]},
+    ...     "study": {"measures": ["mean_current"]},
+    ... })
+    >>> res = run_study(study, workers=1, progress=False, cache_dir=False)
+    >>> [round(float(v), 3) for v in res["mean_current"]]
+    [0.0, 0.2]
+    """
+    if not isinstance(study, Study):
+        study = Study.load(study)
+    digest = study.content_hash()
+    cache_file: Path | None = None
+    if cache_dir is not False:
+        folder = default_cache_dir() if cache_dir is None or cache_dir is True else Path(cache_dir)
+        cache_file = folder / f"{digest}.nc"
+        if cache_file.is_file():
+            import xarray as xr
+
+            with xr.open_dataset(cache_file) as cached:
+                ds = cached.load()
+            return StudyResult(
+                study, ds, digest, from_cache=True, run_time=float(ds.attrs.get("run_time_s", 0))
+            )
+    jobs = [
+        (sim, *settings)
+        for sim, settings in zip(study.simulations(), study.run_settings(), strict=True)
+    ]
+    start = time.perf_counter()
+    with _bar(progress, f"study {study.name} ({len(jobs)} runs)") as tick:
+        if (isinstance(executor, str) and executor == "local") or executor is None:
+            rows = _run_local(jobs, workers, tick)
+        else:
+            rows = _run_dask(jobs, executor, tick)
+    elapsed = time.perf_counter() - start
+    ds = _dataset(study, rows, elapsed)
+    if cache_file is not None:
+        cache_file.parent.mkdir(parents=True, exist_ok=True)
+        tmp = cache_file.with_suffix(f".{os.getpid()}.tmp")
+        ds.to_netcdf(tmp)
+        tmp.replace(cache_file)
+    return StudyResult(study, ds, digest, from_cache=False, run_time=elapsed)

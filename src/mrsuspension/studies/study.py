@@ -1,0 +1,510 @@
+"""Declarative studies: a base scenario, a grid of fields to vary and the measures to keep.
+
+A study file is a scenario file (the same ``[vehicle]``, ``[damper]``, ``[controller]``,
+``[excitation]`` and ``[simulation]`` tables, see :mod:`mrsuspension.scenario`) plus:
+
+``[study]``
+    ``name``, ``description``, ``measures`` (list of measure names; default: all of the
+    excitation kind's) and optionally ``scenario`` (a scenario file used as the base; the
+    study's own tables override it key by key).
+``[grid]``
+    Dotted scenario fields and the values to try, e.g.
+    ``"vehicle.sprung_mass" = [422.0, 563.0, 703.0]``. Every combination is run
+    (a Cartesian product, one dimension per field, in file order).
+``[cases.NAME]``
+    A labelled dimension whose values change several fields together, e.g. a policy with
+    its own gain: ``I = {controller = {law = "skyhook-hilo", gain = 3.0}}``.
+
+A frequency list may be written as ``"log:N:f_min:f_max"`` or ``"lin:N:f_min:f_max"``
+(in ``[excitation] frequencies`` or a grid value list). A swept excitation adds a
+``frequency`` dimension (one steady-state run per frequency).
+
+Every grid point's :class:`~mrsuspension.scenario.Scenario` is built and validated when
+the study is loaded, so a bad study fails before any computation, with the message of
+the scenario check and the grid point it came from.
+
+Examples
+--------
+>>> study = Study.from_dict(
+...     {
+...         "study": {"name": "mass", "measures": ["T_as", "DLC"]},
+...         "excitation": {"kind": "swept", "amplitude": 0.025, "frequencies": "log:3:1:4"},
+...         "grid": {"vehicle.sprung_mass": [422.0, 563.0]},
+...     }
+... )
+>>> study.dims, study.shape, len(study.simulations())
+(('vehicle.sprung_mass', 'frequency'), (2, 3), 6)
+>>> Study.from_dict({"excitation": {"kind": "pulse", "amplitude": 0.02, "severity": 1},
+...                  "grid": {"vehicle.sprung_mas": [400.0]}})
+Traceback (most recent call last):
+...
+mrsuspension.errors.ValidationError: [grid] unknown field 'vehicle.sprung_mas'. Did you mean 'vehicle.sprung_mass'? ...
+"""
+
+from __future__ import annotations
+
+import copy
+import hashlib
+import itertools
+import json
+import re
+import tomllib
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from mrsuspension.errors import ValidationError, did_you_mean
+from mrsuspension.excitation import log_frequencies
+from mrsuspension.scenario import SCENARIO_KEYS, Scenario
+
+__all__ = ["MEASURES", "Axis", "Study", "expand_frequencies"]
+
+#: Measures of ``SimulationResult.measures()`` by excitation kind (spec section 9).
+MEASURES: dict[str, tuple[str, ...]] = {
+    "harmonic": (
+        "T_as",
+        "T_au",
+        "T_dr",
+        "T_ds",
+        "T_du",
+        "DLC",
+        "gamma",
+        "mean_current",
+        "mean_square_current",
+    ),
+    "pulse": ("SDR_s", "SAR_s", "SDR_u", "SAR_u", "RDR", "peak_tire_force"),
+    "road": (
+        "DLC",
+        "rms_body_acceleration",
+        "wk_rms_body_acceleration",
+        "vdv",
+        "rms_stroke",
+        "mean_current",
+    ),
+}
+MEASURES["swept"] = MEASURES["harmonic"]
+
+_STUDY_KEYS = ("name", "description", "measures", "scenario")
+_TOP_LEVEL = ("study", "grid", "cases", *SCENARIO_KEYS)
+_SPEC = re.compile(r"^\s*(log|lin)\s*:\s*(\d+)\s*:\s*([^:]+)\s*:\s*([^:]+)\s*$")
+#: every dotted field a grid may vary
+FIELDS: tuple[str, ...] = tuple(f"{s}.{k}" for s, keys in SCENARIO_KEYS.items() for k in keys)
+
+
+def expand_frequencies(value: Any, where: str = "frequencies") -> Any:
+    """Expand a ``"log:N:f_min:f_max"`` / ``"lin:N:f_min:f_max"`` spec; other values unchanged.
+
+    Examples
+    --------
+    >>> expand_frequencies("log:3:1:100")
+    [1.0, 10.0, 100.0]
+    >>> expand_frequencies("lin:3:1:2")
+    [1.0, 1.5, 2.0]
+    >>> expand_frequencies([1.0, 2.0])
+    [1.0, 2.0]
+    """
+    if not isinstance(value, str):
+        return value
+    m = _SPEC.match(value)
+    if not m:
+        raise ValidationError(
+            f"{where}: {value!r} is not a frequency spec; use 'log:N:f_min:f_max' or "
+            "'lin:N:f_min:f_max' (e.g. 'log:12:0.5:15') or a list of numbers"
+        )
+    kind, n, lo_text, hi_text = m.groups()
+    try:
+        lo, hi = float(lo_text), float(hi_text)
+    except ValueError:
+        raise ValidationError(f"{where}: bounds of {value!r} must be numbers") from None
+    if int(n) < 1:
+        raise ValidationError(f"{where}: {value!r} needs at least one point")
+    if kind == "log":
+        values = log_frequencies(int(n), lo, hi)
+    else:
+        if not 0.0 < lo <= hi:
+            raise ValidationError(f"{where}: {value!r} needs 0 < f_min <= f_max")
+        values = np.linspace(lo, hi, int(n))
+    return [round(float(v), 12) for v in values]
+
+
+@dataclass(frozen=True)
+class Axis:
+    """One dimension of a study: a field (``[grid]``) or labelled cases (``[cases]``).
+
+    Parameters
+    ----------
+    name : str
+        Dimension name (``"vehicle.sprung_mass"`` or the case table's name).
+    labels : tuple
+        Coordinate values (the field values, or the case names).
+    patches : tuple of dict
+        For each label, the dotted fields it sets.
+    """
+
+    name: str
+    labels: tuple[Any, ...]
+    patches: tuple[dict[str, Any], ...]
+
+
+def _check_field(name: object, where: str) -> str:
+    if not isinstance(name, str) or name not in FIELDS:
+        raise ValidationError(
+            f"{where} unknown field {name!r}.{did_you_mean(str(name), FIELDS)} "
+            "Fields are 'section.key' with a section of vehicle, damper, controller, "
+            "excitation, simulation and a key of that section (see docs/scenarios.md)."
+        )
+    return name
+
+
+def _flatten(table: Mapping[str, Any], prefix: str = "") -> dict[str, Any]:
+    """``{"controller": {"law": x}}`` or ``{"controller.law": x}`` -> ``{"controller.law": x}``."""
+    out: dict[str, Any] = {}
+    for key, value in table.items():
+        name = f"{prefix}{key}"
+        if isinstance(value, Mapping) and name in SCENARIO_KEYS:
+            out.update(_flatten(value, f"{name}."))
+        else:
+            out[name] = value
+    return out
+
+
+def _label(value: Any) -> str:
+    if isinstance(value, float):
+        return f"{value:g}"
+    return str(value)
+
+
+def _grid_axis(name: str, values: Any) -> Axis:
+    where = f"[grid] {name}:"
+    _check_field(name, "[grid]")
+    if name == "excitation.frequencies":
+        raise ValidationError(
+            f"{where} a swept excitation's frequencies are set in [excitation] frequencies "
+            "(they become the 'frequency' dimension), not varied in [grid]"
+        )
+    if name == "excitation.frequency":
+        values = expand_frequencies(values, f"[grid] {name}")
+    if not isinstance(values, list):
+        raise ValidationError(f"{where} must be a list of values; got {values!r}")
+    if not values:
+        raise ValidationError(f"{where} empty list: give at least one value")
+    seen: set[str] = set()
+    for v in values:
+        if isinstance(v, list | dict):
+            raise ValidationError(f"{where} values must be numbers, strings or booleans; got {v!r}")
+        key = json.dumps(v)
+        if key in seen:
+            raise ValidationError(f"{where} value {v!r} is given twice")
+        seen.add(key)
+    return Axis(name, tuple(values), tuple({name: v} for v in values))
+
+
+def _case_axis(name: str, cases: Any) -> Axis:
+    where = f"[cases.{name}]"
+    if name in FIELDS or name == "frequency":
+        raise ValidationError(f"{where}: the name {name!r} is taken; choose another case name")
+    if not isinstance(cases, Mapping):
+        raise ValidationError(f"{where} must be a table of cases; got {cases!r}")
+    if not cases:
+        raise ValidationError(f"{where} is empty: give at least one case")
+    patches = []
+    for label, patch in cases.items():
+        if not isinstance(patch, Mapping) or not patch:
+            raise ValidationError(
+                f"{where} {label}: a case is a non-empty table of fields, e.g. "
+                '{controller = {law = "skyhook-hilo", gain = 3.0}}; '
+                f"got {patch!r}"
+            )
+        flat = _flatten(patch)
+        for key in flat:
+            _check_field(key, f"{where} {label}:")
+        patches.append(flat)
+    return Axis(name, tuple(str(k) for k in cases), tuple(patches))
+
+
+def _merge(base: dict[str, dict[str, Any]], patch: Mapping[str, Any]) -> dict[str, dict[str, Any]]:
+    out = copy.deepcopy(base)
+    for dotted, value in patch.items():
+        section, key = dotted.split(".", 1)
+        out.setdefault(section, {})[key] = value
+    return out
+
+
+def _file_digest(path: Path) -> str | None:
+    try:
+        return hashlib.sha256(path.read_bytes()).hexdigest() if path.is_file() else None
+    except OSError:
+        return None
+
+
+def _check_duration(scenario: Scenario) -> None:
+    """A harmonic run's measures need the steady-state rule's time (spec section 9)."""
+    if scenario.duration is None:
+        return
+    for exc in scenario.excitations:
+        need = getattr(exc, "measure_window", None)
+        if exc.name == "harmonic" and need is not None and scenario.duration < need()[1]:
+            raise ValidationError(
+                f"[simulation] duration = {scenario.duration:g} s is too short for the "
+                f"harmonic measures at {getattr(exc, 'frequency', 0.0):g} Hz: the steady-state rule needs "
+                f"{need()[1]:.4g} s (leave duration out to use each run's own)"
+            )
+
+
+@dataclass(frozen=True)
+class Study:
+    """A validated study: a base scenario, its axes, the measures, and every grid point.
+
+    Build it with :meth:`load` (a TOML file) or :meth:`from_dict`; every grid point's
+    scenario is built (and so validated) on construction.
+
+    Parameters
+    ----------
+    name : str
+        Study name (file stem by default).
+    base : dict
+        The base scenario's tables.
+    axes : tuple of Axis
+        The dimensions, in order (``[grid]`` fields, then ``[cases]``).
+    measures : tuple of str
+        Measures kept in the results.
+    scenarios : tuple of Scenario
+        One scenario per grid point, in C order of ``axes``.
+    frequencies : tuple of float or None
+        The sweep frequencies [Hz] when the excitation is swept (a ``frequency``
+        dimension), else None.
+    description : str
+        Free text.
+    base_dir : Path
+        Folder for relative paths.
+    """
+
+    name: str
+    base: dict[str, dict[str, Any]]
+    axes: tuple[Axis, ...]
+    measures: tuple[str, ...]
+    scenarios: tuple[Scenario, ...] = field(repr=False)
+    frequencies: tuple[float, ...] | None = None
+    description: str = ""
+    base_dir: Path = field(default_factory=Path.cwd)
+
+    # -- loading ------------------------------------------------------------------------
+    @classmethod
+    def load(cls, path: str | Path) -> Study:
+        """Read and validate a study TOML file (relative paths from its folder)."""
+        path = Path(path)
+        if not path.is_file():
+            raise ValidationError(f"study file not found: {str(path)!r}")
+        try:
+            data = tomllib.loads(path.read_text(encoding="utf-8"))
+        except tomllib.TOMLDecodeError as exc:
+            raise ValidationError(f"study file {str(path)!r} is not valid TOML: {exc}") from None
+        data.setdefault("study", {}).setdefault("name", path.stem)
+        return cls.from_dict(data, base_dir=path.resolve().parent)
+
+    @classmethod
+    def from_dict(cls, data: Mapping[str, Any], base_dir: str | Path | None = None) -> Study:
+        """Validate plain tables (as read from TOML) and build every grid point.
+
+        Raises
+        ------
+        ValidationError
+            Unknown tables, fields or measures (with a did-you-mean), empty grids or
+            cases, and any grid point whose scenario fails its own checks (the message
+            names the point).
+        """
+        if not isinstance(data, Mapping):
+            raise ValidationError(f"a study must be a table of tables; got {data!r}")
+        for key in data:
+            if key not in _TOP_LEVEL:
+                raise ValidationError(
+                    f"unknown table [{key}] in study.{did_you_mean(str(key), _TOP_LEVEL)} "
+                    f"Valid: {', '.join(_TOP_LEVEL)}."
+                )
+        base_path = Path.cwd() if base_dir is None else Path(base_dir)
+        meta = data.get("study", {})
+        if not isinstance(meta, Mapping):
+            raise ValidationError(f"[study] must be a table; got {meta!r}")
+        for key in meta:
+            if key not in _STUDY_KEYS:
+                raise ValidationError(
+                    f"unknown key [study] {key}.{did_you_mean(str(key), _STUDY_KEYS)} "
+                    f"Valid: {', '.join(_STUDY_KEYS)}."
+                )
+        base: dict[str, dict[str, Any]] = {}
+        if "scenario" in meta:
+            spath = Path(str(meta["scenario"]))
+            spath = spath if spath.is_absolute() else base_path / spath
+            if not spath.is_file():
+                raise ValidationError(f"[study] scenario: file not found: {str(spath)!r}")
+            base = copy.deepcopy(Scenario.load(spath).data)
+            base = {k: v for k, v in base.items() if v}
+        for section in SCENARIO_KEYS:
+            table = data.get(section)
+            if table is None:
+                continue
+            if not isinstance(table, Mapping):
+                raise ValidationError(f"[{section}] must be a table; got {table!r}")
+            base.setdefault(section, {}).update(copy.deepcopy(dict(table)))
+        exc = base.get("excitation", {})
+        if "frequencies" in exc:
+            exc["frequencies"] = expand_frequencies(exc["frequencies"], "[excitation] frequencies")
+
+        grid = data.get("grid", {})
+        if not isinstance(grid, Mapping):
+            raise ValidationError(f"[grid] must be a table of fields; got {grid!r}")
+        cases = data.get("cases", {})
+        if not isinstance(cases, Mapping):
+            raise ValidationError(f"[cases] must hold tables [cases.NAME]; got {cases!r}")
+        axes = [_grid_axis(str(k), v) for k, v in _flatten(grid).items()]
+        axes += [_case_axis(str(k), v) for k, v in cases.items()]
+        names = [a.name for a in axes]
+        for a in axes:
+            if names.count(a.name) > 1:
+                raise ValidationError(f"dimension {a.name!r} is given twice")
+
+        # every grid point, validated before anything runs
+        scenarios = []
+        for combo in itertools.product(*(range(len(a.labels)) for a in axes)):
+            patch: dict[str, Any] = {}
+            for a, k in zip(axes, combo, strict=True):
+                patch.update(a.patches[k])
+            try:
+                scenarios.append(Scenario.from_dict(_merge(base, patch), base_dir=base_path))
+            except ValidationError as err:
+                point = ", ".join(
+                    f"{a.name}={_label(a.labels[k])}" for a, k in zip(axes, combo, strict=True)
+                )
+                at = f" at grid point {point}" if point else ""
+                raise ValidationError(f"study{at}: {err}") from None
+        for s in scenarios:
+            _check_duration(s)
+        kinds = {s.data["excitation"]["kind"] for s in scenarios}
+        sweeps = {s.excitation.frequencies for s in scenarios if s.is_sweep}  # type: ignore[union-attr]
+        if sweeps and len(kinds) > 1:
+            raise ValidationError(
+                f"a study cannot mix swept and other excitation kinds: {', '.join(sorted(kinds))}"
+            )
+        if len(sweeps) > 1:
+            raise ValidationError("every grid point of a swept study must use the same frequencies")
+        frequencies = next(iter(sweeps)) if sweeps else None
+
+        available = MEASURES["harmonic"] + MEASURES["pulse"] + MEASURES["road"]
+        valid = sorted({m for k in kinds for m in MEASURES[k]})
+        requested = meta.get("measures")
+        if requested is None:
+            measures = tuple(m for m in dict.fromkeys(available) if m in valid)
+        else:
+            if isinstance(requested, str):
+                requested = [requested]
+            if not isinstance(requested, list) or not requested:
+                raise ValidationError(
+                    f"[study] measures must be a non-empty list of names; got {requested!r}"
+                )
+            for m in requested:
+                if m not in valid:
+                    raise ValidationError(
+                        f"[study] measures: {m!r} is not a measure of "
+                        f"{'/'.join(sorted(kinds))} runs.{did_you_mean(str(m), valid)} "
+                        f"Valid: {', '.join(valid)}."
+                    )
+            measures = tuple(dict.fromkeys(requested))
+        name = str(meta.get("name", "study"))
+        return cls(
+            name=name,
+            base=base,
+            axes=tuple(axes),
+            measures=measures,
+            scenarios=tuple(scenarios),
+            frequencies=frequencies,
+            description=str(meta.get("description", "")),
+            base_dir=base_path,
+        )
+
+    # -- shape --------------------------------------------------------------------------
+    @property
+    def dims(self) -> tuple[str, ...]:
+        """Dimension names of the results (axes, then ``frequency`` for a sweep)."""
+        names = tuple(a.name for a in self.axes)
+        return names + (("frequency",) if self.frequencies is not None else ())
+
+    @property
+    def shape(self) -> tuple[int, ...]:
+        """Result shape, one length per dimension."""
+        lengths = tuple(len(a.labels) for a in self.axes)
+        return lengths + ((len(self.frequencies),) if self.frequencies is not None else ())
+
+    @property
+    def coords(self) -> dict[str, list[Any]]:
+        """Coordinate values of each dimension."""
+        out: dict[str, list[Any]] = {a.name: list(a.labels) for a in self.axes}
+        if self.frequencies is not None:
+            out["frequency"] = list(self.frequencies)
+        return out
+
+    def simulations(self) -> list[Any]:
+        """Every run, in C order of :attr:`dims` (grid points, then frequencies)."""
+        return [sim for s in self.scenarios for sim in s.simulations()]
+
+    def run_settings(self) -> list[tuple[float | None, float, float]]:
+        """``(duration, dt, output_rate)`` of every run, aligned with :meth:`simulations`."""
+        return [(s.duration, s.dt, s.output_rate) for s in self.scenarios for _ in s.excitations]
+
+    # -- identity -----------------------------------------------------------------------
+    def canonical(self) -> dict[str, Any]:
+        """Plain data that fixes the results: every expanded scenario, axes and measures.
+
+        Parameter and road files referred to by path are included by content digest.
+        """
+        points = []
+        for s in self.scenarios:
+            d = s.to_dict()
+            files = {}
+            for section, key in (("damper", "parameters"), ("excitation", "profile")):
+                text = d.get(section, {}).get(key)
+                if isinstance(text, str):
+                    digest = _file_digest(s.base_dir / text)
+                    if digest:
+                        files[f"{section}.{key}"] = digest
+            points.append({"scenario": d, "files": files})
+        return {
+            "dims": list(self.dims),
+            "coords": {k: [_label(v) for v in vs] for k, vs in self.coords.items()},
+            "measures": list(self.measures),
+            "points": points,
+        }
+
+    def content_hash(self) -> str:
+        """sha256 of the canonical JSON of :meth:`canonical` and the package version."""
+        from mrsuspension import __version__
+
+        text = json.dumps(
+            {"study": self.canonical(), "version": __version__},
+            sort_keys=True,
+            separators=(",", ":"),
+            default=str,
+        )
+        return hashlib.sha256(text.encode()).hexdigest()
+
+    def describe(self) -> dict[str, Any]:
+        """Plain data: name, description, base tables, dims, coords, measures."""
+        return {
+            "name": self.name,
+            "description": self.description,
+            "base": self.base,
+            "dims": list(self.dims),
+            "coords": self.coords,
+            "cases": {
+                a.name: dict(zip(a.labels, a.patches, strict=True))
+                for a in self.axes
+                if not (len(a.patches[0]) == 1 and a.name in a.patches[0])
+            },
+            "measures": list(self.measures),
+            "runs": len(self.run_settings()),
+        }
+
+    def __len__(self) -> int:
+        return len(self.run_settings())
