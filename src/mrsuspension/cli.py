@@ -17,6 +17,7 @@ import typer
 from mrsuspension._cli_errors import _user_errors
 from mrsuspension.cli_sim import simulate_command, sweep_command
 from mrsuspension.errors import MRSuspensionError, ValidationError
+from mrsuspension.hil.cli import hil_run_command
 from mrsuspension.identify.cli import identify_command
 
 app = typer.Typer(
@@ -32,6 +33,11 @@ app.add_typer(damper_app, name="damper")
 app.command("simulate")(simulate_command)
 app.command("sweep")(sweep_command)
 app.command("identify")(identify_command)
+hil_app = typer.Typer(
+    help="Hardware in the loop: run a scenario around a (simulated) rig.", no_args_is_help=True
+)
+app.add_typer(hil_app, name="hil")
+hil_app.command("run")(hil_run_command)
 
 _WANG = ("wang-symmetric", "wang-asymmetric")
 

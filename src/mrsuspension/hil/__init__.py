@@ -1,0 +1,38 @@
+"""Hardware-in-the-loop platform (dissertation Chapter 7, spec section 11).
+
+The quarter car minus its damper runs in real time around a rig carrying the damper: the
+measured force closes the loop through the engine's compiled step. Pieces:
+
+- :mod:`~mrsuspension.hil.rig`: the :class:`Rig` interface, :class:`SimulatedRig` and the
+  :func:`ideal_rig` preset;
+- :mod:`~mrsuspension.hil.driver`: the PI drive-current regulator;
+- :mod:`~mrsuspension.hil.safety`: limits, trips and the start-up sequence;
+- :mod:`~mrsuspension.hil.recorder`: incremental recording and :func:`load_recording`;
+- :mod:`~mrsuspension.hil.loop`: the real-time loop, :func:`run_hil`.
+"""
+
+from __future__ import annotations
+
+from mrsuspension.hil.driver import PICurrentDriver
+from mrsuspension.hil.loop import CHANNELS, HilResult, TickStats, run_hil
+from mrsuspension.hil.recorder import Recorder, Recording, load_recording
+from mrsuspension.hil.rig import Rig, RigSample, SimulatedRig, ideal_rig
+from mrsuspension.hil.safety import SafetyLimits, SafetySupervisor, StartUp
+
+__all__ = [
+    "CHANNELS",
+    "HilResult",
+    "PICurrentDriver",
+    "Recorder",
+    "Recording",
+    "Rig",
+    "RigSample",
+    "SafetyLimits",
+    "SafetySupervisor",
+    "SimulatedRig",
+    "StartUp",
+    "TickStats",
+    "ideal_rig",
+    "load_recording",
+    "run_hil",
+]

@@ -1,0 +1,636 @@
+"""The real-time HiL loop: rig <-> quarter car, tick by tick, with deadline tracking.
+
+Each tick (default 1 kHz):
+
+1. read the rig (load-cell force, actuator displacement, measured coil current) and let
+   the safety supervisor check it;
+2. advance the quarter car minus its damper with the measured force held over the tick,
+   through the engine's compiled step (:class:`~mrsuspension.engine.simulate.Stepper`,
+   ``external_force=True``: the same physics and the same compiled controller as an
+   offline :meth:`~mrsuspension.engine.simulate.Simulation.run`, in ``n_sub`` engine
+   steps of at most ``model_dt`` per tick);
+3. regulate the drive current (:class:`~mrsuspension.hil.driver.PICurrentDriver`);
+4. command the actuator to the new stroke ``x_d`` (with ``v_d`` as feed-forward);
+5. record every channel (:class:`~mrsuspension.hil.recorder.Recorder`).
+
+Timing: each tick is released at ``t0 + k T`` (sleep until shortly before, then spin on
+:func:`time.perf_counter`); its deadline is the next release. Compute time, lateness of
+the release and misses are kept per tick; garbage collection is off during the run and
+the recorder's writer runs in another thread behind a bounded queue.
+
+On a trip (or at the end of the run) the drive current goes to 0 in the same tick and
+the actuator is ramped back to mid-stroke before the loop stops.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import gc
+import json
+import math
+import multiprocessing
+import shutil
+import sys
+import tempfile
+import time
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from mrsuspension.engine.simulate import DEFAULT_DT, Simulation, SimulationDiverged
+from mrsuspension.errors import MRSuspensionError, ValidationError, check_range
+from mrsuspension.hil.driver import PICurrentDriver
+from mrsuspension.hil.recorder import Recorder, Recording, load_recording
+from mrsuspension.hil.rig import Rig, SimulatedRig
+from mrsuspension.hil.safety import SafetyLimits, SafetySupervisor, StartUp
+
+__all__ = [
+    "CHANNELS",
+    "STATE_RETURN",
+    "STATE_RUN",
+    "STATE_STARTUP",
+    "STATE_TRIPPED",
+    "HilResult",
+    "TickStats",
+    "run_hil",
+]
+
+#: loop states (the ``state`` channel)
+STATE_STARTUP, STATE_RUN, STATE_RETURN, STATE_TRIPPED = 0, 1, 2, 3
+
+#: recorded channels and their units, in column order
+CHANNELS: tuple[tuple[str, str], ...] = (
+    ("time", "s"),  # loop time of the tick (release k T)
+    ("state", "-"),  # 0 start-up, 1 running, 2 returning after the run, 3 tripped
+    ("z_r", "m"),
+    ("z_r_dot", "m/s"),
+    ("z_s", "m"),
+    ("z_u", "m"),
+    ("z_s_dot", "m/s"),
+    ("z_u_dot", "m/s"),
+    ("z_s_ddot", "m/s^2"),
+    ("z_u_ddot", "m/s^2"),
+    ("x_d", "m"),  # model stroke (compression positive)
+    ("v_d", "m/s"),
+    ("F_dm", "N"),  # measured (load-cell) force
+    ("F_d", "N"),  # force applied to the model (F_dm + start-up damping)
+    ("F_T", "N"),
+    ("i_d", "A"),  # controller's drive-current demand
+    ("i_cmd", "A"),  # regulator output (D/A) to the amplifier
+    ("i_dm", "A"),  # measured coil current
+    ("x_cmd", "m"),  # stroke command to the actuator
+    ("x_m", "m"),  # measured actuator displacement
+    ("rig_time", "s"),
+    ("compute", "s"),  # compute time of the tick
+    ("lateness", "s"),  # release lateness of the tick
+)
+_NAMES = tuple(n for n, _ in CHANNELS)
+#: settling allowance after the return ramp [s]
+_SETTLE = 1.0
+#: spin (busy-wait) for the last part of each wait [s]
+_SPIN = 3e-4
+
+
+@dataclass(frozen=True)
+class TickStats:
+    """Deadline statistics of a run (times in seconds).
+
+    Attributes
+    ----------
+    ticks : int
+        Ticks run.
+    period : float
+        Nominal period [s].
+    misses : int
+        Ticks that ended after their deadline (the next release).
+    in_deadline : float
+        Fraction of ticks that met their deadline.
+    compute_p50, compute_p99, compute_max : float
+        Per-tick compute time.
+    lateness_p50, lateness_p99, lateness_max : float
+        Release lateness (start of the tick after its scheduled release).
+    jitter : float
+        Standard deviation of the start-to-start interval.
+    realtime : bool
+        Whether the loop was paced (False: ticks back to back).
+    """
+
+    ticks: int
+    period: float
+    misses: int
+    in_deadline: float
+    compute_p50: float
+    compute_p99: float
+    compute_max: float
+    lateness_p50: float
+    lateness_p99: float
+    lateness_max: float
+    jitter: float
+    realtime: bool = True
+
+    @classmethod
+    def from_arrays(
+        cls, compute: np.ndarray, lateness: np.ndarray, period: float, realtime: bool
+    ) -> TickStats:
+        """Statistics of per-tick compute times and lateness."""
+        n = int(compute.size)
+        if n == 0:
+            nan = math.nan
+            return cls(0, period, 0, 1.0, nan, nan, nan, nan, nan, nan, nan, realtime)
+        end = lateness + compute
+        misses = int(np.count_nonzero(end > period)) if realtime else 0
+        starts = np.arange(n) * period + lateness
+        jitter = float(np.std(np.diff(starts))) if n > 2 else 0.0
+        c50, c99 = np.percentile(compute, [50, 99])
+        l50, l99 = np.percentile(lateness, [50, 99])
+        return cls(
+            ticks=n,
+            period=period,
+            misses=misses,
+            in_deadline=1.0 - misses / n,
+            compute_p50=float(c50),
+            compute_p99=float(c99),
+            compute_max=float(compute.max()),
+            lateness_p50=float(l50),
+            lateness_p99=float(l99),
+            lateness_max=float(lateness.max()),
+            jitter=jitter,
+            realtime=realtime,
+        )
+
+    def describe(self) -> dict[str, Any]:
+        """The statistics as plain data."""
+        return dataclasses.asdict(self)
+
+    def summary(self) -> str:
+        """One human-readable paragraph (microseconds)."""
+        us = 1e6
+        return (
+            f"{self.ticks} ticks at {1.0 / self.period:g} Hz: {100 * self.in_deadline:.3f} % "
+            f"in deadline ({self.misses} misses); compute p50 {self.compute_p50 * us:.1f} us, "
+            f"p99 {self.compute_p99 * us:.1f} us, max {self.compute_max * us:.1f} us; "
+            f"lateness p50 {self.lateness_p50 * us:.1f} us, p99 {self.lateness_p99 * us:.1f} us, "
+            f"max {self.lateness_max * us:.1f} us; jitter {self.jitter * us:.1f} us"
+        )
+
+
+@dataclass
+class HilResult:
+    """Outcome of :func:`run_hil`.
+
+    Attributes
+    ----------
+    recording : Recording
+        Every channel at loop rate (:data:`CHANNELS`).
+    stats : TickStats
+        Deadline statistics.
+    reason : str
+        Why the run stopped (``"completed"`` or the trip reason).
+    tripped : bool
+        True when the safety supervisor stopped the run.
+    out : Path or None
+        The recording directory (None when recorded to a temporary one).
+    """
+
+    recording: Recording
+    stats: TickStats
+    reason: str
+    tripped: bool
+    out: Path | None = None
+    meta: dict[str, Any] = field(default_factory=dict)
+
+    def running(self) -> np.ndarray:
+        """Mask of the rows recorded while the model ran (start-up and running)."""
+        return self.recording["state"] <= STATE_RUN
+
+    def rms(self, channel: str) -> float:
+        """RMS of a channel over the running part of the run."""
+        x = self.recording[channel][self.running()]
+        return float(np.sqrt(np.mean(x * x))) if x.size else math.nan
+
+    def describe(self) -> dict[str, Any]:
+        """Plain-data summary (for ``--json``)."""
+        return {
+            "reason": self.reason,
+            "tripped": self.tripped,
+            "rows": len(self.recording),
+            "out": str(self.out) if self.out else None,
+            "stats": self.stats.describe(),
+            "rms_body_acceleration": self.rms("z_s_ddot"),
+        }
+
+
+# -- helpers --------------------------------------------------------------------------------
+def _simulation_of(target: Any) -> Simulation:
+    if isinstance(target, Simulation):
+        return target
+    from mrsuspension.scenario import Scenario
+
+    if isinstance(target, str | Path):
+        target = Scenario.load(target)
+    if isinstance(target, Scenario):
+        sims = target.simulations()
+        if len(sims) != 1:
+            raise ValidationError(
+                f"HiL runs one scenario at a time; this one is a sweep of {len(sims)} runs"
+            )
+        return sims[0]
+    raise ValidationError(
+        f"run_hil needs a Simulation, a Scenario or a scenario path; got {type(target).__name__}"
+    )
+
+
+def _wait_until(deadline: float) -> float:
+    """Sleep until shortly before ``deadline``, then spin; returns the wake-up time."""
+    perf = time.perf_counter
+    now = perf()
+    rem = deadline - now
+    if rem > _SPIN:
+        time.sleep(rem - _SPIN)
+    now = perf()
+    while now < deadline:
+        now = perf()
+    return now
+
+
+def _default_rig(sim: Simulation) -> SimulatedRig:
+    return SimulatedRig(damper=sim.damper)
+
+
+# -- the loop -------------------------------------------------------------------------------
+def run_hil(
+    target: Any,
+    rig: Rig | None = None,
+    duration: float = 10.0,
+    rate: float = 1000.0,
+    out: str | Path | None = None,
+    *,
+    model_dt: float = DEFAULT_DT,
+    limits: SafetyLimits | None = None,
+    startup: StartUp | None = None,
+    driver: PICurrentDriver | None = None,
+    realtime: bool = True,
+    cap_current: bool = True,
+    process: bool = False,
+    on_stop: Callable[[HilResult], None] | None = None,
+) -> HilResult:
+    """Run a scenario in the loop with a rig.
+
+    Parameters
+    ----------
+    target : Simulation, Scenario or path
+        What to run (a scenario file is loaded; sweeps are refused).
+    rig : Rig, optional
+        The rig (default: a :class:`~mrsuspension.hil.rig.SimulatedRig` carrying the
+        scenario's damper model).
+    duration : float
+        Run time [s] (the return to mid-stroke follows).
+    rate : float
+        Loop rate [Hz] (default 1 kHz).
+    out : path, optional
+        Recording directory; default: a temporary one, read back and removed.
+    model_dt : float
+        Largest engine step [s]; each tick runs ``ceil(T / model_dt)`` engine steps with the
+        measured force held (default 1e-4, the offline default).
+    limits : SafetyLimits, optional
+        Trip limits (defaults: 0.3 A, +/-0.1 m, 1.5 m/s, 8.8 kN, 50 ms watchdog).
+    startup : StartUp, optional
+        Start-up sequence (default: 0.5 s, 500 N s/m fading out, current held at 0);
+        :meth:`StartUp.none` to compare with offline runs.
+    driver : PICurrentDriver, optional
+        Current regulator (default K_P = 1, K_I = 3000, 12-bit, limited to the current
+        limit); bypassed (clamp and D/A only) for a rig whose coil is instantaneous.
+    realtime : bool
+        Pace the ticks on the clock (default); False runs them back to back (validation).
+    cap_current : bool
+        Lower the simulation's ``max_current`` to the safety current limit (default), so
+        that the controller cannot demand an over-current.
+    process : bool
+        Run the loop in its own process (``multiprocessing``, spawn); needs ``out``.
+    on_stop : callable, optional
+        Called with the result before it is returned.
+
+    Returns
+    -------
+    HilResult
+        The recording, the tick statistics and why the run stopped.
+    """
+    if process:
+        if out is None:
+            raise ValidationError("run_hil(process=True) needs an output directory (out=...)")
+        return _run_in_process(
+            target, rig, duration, rate, Path(out), model_dt=model_dt, limits=limits,
+            startup=startup, driver=driver, realtime=realtime, cap_current=cap_current,
+        )  # fmt: skip
+    sim = _simulation_of(target)
+    limits = limits or SafetyLimits()
+    startup = startup if startup is not None else StartUp()
+    rate = float(check_range("rate", rate, 1.0, 100000.0, unit="Hz"))
+    duration = float(check_range("duration", duration, 0.0, 1e5, unit="s", low_inclusive=False))
+    if cap_current and sim.max_current > limits.current:
+        sim = dataclasses.replace(sim, max_current=limits.current)
+    rig = rig if rig is not None else _default_rig(sim)
+    driver = driver or PICurrentDriver(current_limit=limits.current)
+    period = 1.0 / rate
+    n_sub = max(1, math.ceil(period / model_dt - 1e-9))
+    dt = period / n_sub
+    stepper = sim.stepper(dt, external_force=True)
+    n_ticks = max(1, round(duration * rate))
+    t_half = np.arange(2 * n_sub * n_ticks + 1) * (0.5 * dt)
+    zr = np.asarray(sim.excitation.displacement(t_half), dtype=float)
+    zrd = np.asarray(sim.excitation.velocity(t_half), dtype=float)
+    if not (np.all(np.isfinite(zr)) and np.all(np.isfinite(zrd))):
+        raise ValidationError("the excitation produced non-finite road values")
+    road = zr.tolist()
+    road_v = zrd.tolist()
+    del zr, zrd, t_half
+    max_return = limits.stroke / limits.return_rate + 2 * _SETTLE
+    n_max = n_ticks + math.ceil(max_return * rate) + 1
+
+    # warm-up: compile (or load) every kernel before the clock starts
+    rig.reset(period)
+    rig.command(0.0, 0.0, 0.0)
+    rig.read()
+    stepper.step(road[0], road_v[0], damper_force=0.0)
+    stepper.reset(road[0], road_v[0])
+    rig.reset(period)
+    driver.reset(period)
+    supervisor = SafetySupervisor(limits)
+
+    tmp_dir: Path | None = None
+    if out is None:
+        tmp_dir = Path(tempfile.mkdtemp(prefix="mrsus-hil-"))
+        rec_dir = tmp_dir
+    else:
+        rec_dir = Path(out)
+    meta = {
+        "rate": rate,
+        "period": period,
+        "duration": duration,
+        "model_dt": dt,
+        "substeps": n_sub,
+        "realtime": realtime,
+        "scenario": sim.describe(),
+        "rig": rig.describe(),
+        "limits": limits.describe(),
+        "startup": dataclasses.asdict(startup),
+        "driver": dataclasses.asdict(driver),
+    }
+    recorder = Recorder(
+        rec_dir,
+        _NAMES,
+        units=dict(CHANNELS),
+        block_rows=max(1, round(0.1 * rate)),
+        meta=meta,
+    )
+    compute = np.zeros(n_max)
+    lateness = np.zeros(n_max)
+    reason, ticks = _loop(
+        stepper, rig, driver, supervisor, startup, recorder, road, road_v, n_ticks, n_max,
+        n_sub, period, realtime, compute, lateness,
+    )  # fmt: skip
+    stats = TickStats.from_arrays(compute[:ticks], lateness[:ticks], period, realtime)
+    stop = {
+        "reason": reason,
+        "tripped": supervisor.tripped,
+        "trip_time": supervisor.trip_time if supervisor.tripped else None,
+        "stats": stats.describe(),
+    }
+    recorder.close(stop)
+    rig.close()
+    recording = load_recording(rec_dir)
+    if tmp_dir is not None:
+        shutil.rmtree(tmp_dir, ignore_errors=True)
+    result = HilResult(
+        recording=recording,
+        stats=stats,
+        reason=reason,
+        tripped=supervisor.tripped,
+        out=None if tmp_dir is not None else rec_dir,
+        meta=meta,
+    )
+    if on_stop is not None:
+        on_stop(result)
+    return result
+
+
+def _loop(
+    stepper: Any,
+    rig: Rig,
+    driver: PICurrentDriver,
+    supervisor: SafetySupervisor,
+    startup: StartUp,
+    recorder: Recorder,
+    road: list[float],
+    road_v: list[float],
+    n_ticks: int,
+    n_max: int,
+    n_sub: int,
+    period: float,
+    realtime: bool,
+    compute: np.ndarray,
+    lateness: np.ndarray,
+) -> tuple[str, int]:
+    """The hot loop; returns (stop reason, ticks run)."""
+    perf = time.perf_counter
+    step = stepper.step
+    read = rig.read
+    command = rig.command
+    append = recorder.append
+    check_sample = supervisor.check_sample
+    check_command = supervisor.check_command
+    lim = supervisor.limits
+    direct = rig.ideal_current
+    ramp_step = lim.return_rate * period
+    settle_ticks = math.ceil(_SETTLE / period)
+    startup_ticks = math.ceil(startup.duration / period - 1e-9)
+    hold_current = startup.hold_current
+    home_tol = max(2e-3, 0.02 * lim.stroke)
+
+    state = STATE_STARTUP if startup_ticks > 0 else STATE_RUN
+    reason = "completed"
+    x_cmd = 0.0
+    v_cmd = 0.0
+    i_out = 0.0
+    i_d = 0.0
+    fd = 0.0
+    settle = 0
+    out = {"z_s": 0.0, "z_u": 0.0, "z_s_dot": 0.0, "z_u_dot": 0.0, "z_s_ddot": 0.0}
+    out.update({"z_u_ddot": 0.0, "x_d": 0.0, "v_d": 0.0, "F_T": 0.0, "i_d": 0.0})
+    v_d = 0.0
+    zr_now = road[0]
+    zrd_now = road_v[0]
+
+    old_switch = sys.getswitchinterval()
+    gc_was_enabled = gc.isenabled()
+    gc.collect()
+    gc.disable()
+    sys.setswitchinterval(5e-4)
+    k = 0
+    t0 = perf() + 2e-3
+    try:
+        while k < n_max:
+            release = t0 + k * period
+            start = _wait_until(release) if realtime else perf()
+            t = k * period
+            sample = read()
+            active = state <= STATE_RUN
+            if active and k >= n_ticks:
+                state = STATE_RETURN
+                active = False
+                i_out = driver.off()
+            if active:
+                try:
+                    tripped = check_sample(
+                        t, sample.force, sample.displacement, sample.current, sample.timestamp
+                    )
+                    if not tripped:
+                        c = startup.damping_at(t) if state == STATE_STARTUP else 0.0
+                        j = 2 * n_sub * k
+                        for _ in range(n_sub):
+                            fd = sample.force + c * v_d
+                            out = step(
+                                road[j], road_v[j],
+                                road_mid=(road[j + 1], road_v[j + 1]),
+                                road_end=(road[j + 2], road_v[j + 2]),
+                                damper_force=fd,
+                            )  # fmt: skip
+                            v_d = out["v_d"]
+                            j += 2
+                        zr_now = road[j]
+                        zrd_now = road_v[j]
+                        i_d = out["i_d"]
+                        if state == STATE_STARTUP and k + 1 >= startup_ticks:
+                            state = STATE_RUN
+                        demand = 0.0 if (state == STATE_STARTUP and hold_current) else i_d
+                        tripped = check_command(t, out["x_d"], v_d, demand)
+                        if not tripped:
+                            x_cmd = out["x_d"]
+                            v_cmd = v_d
+                            if state == STATE_STARTUP and hold_current:
+                                i_out = driver.off()
+                            elif direct:
+                                i_out = driver.direct(demand)
+                            else:
+                                i_out = driver.update(
+                                    demand, sample.current * driver.sense_resistance
+                                )
+                except SimulationDiverged as exc:
+                    supervisor.trip(f"vehicle model diverged: {exc}", t)
+                    tripped = True
+                except KeyboardInterrupt:
+                    supervisor.trip("interrupted by the user", t)
+                    tripped = True
+                if tripped:
+                    state = STATE_TRIPPED
+                    reason = supervisor.reason
+                    i_out = driver.off()  # current to 0 in the tick of the trip
+            if state >= STATE_RETURN:
+                # ramp back to mid-stroke at the return rate, coil off
+                i_out = 0.0
+                if x_cmd > ramp_step:
+                    x_cmd -= ramp_step
+                    v_cmd = -lim.return_rate
+                elif x_cmd < -ramp_step:
+                    x_cmd += ramp_step
+                    v_cmd = lim.return_rate
+                else:
+                    x_cmd = 0.0
+                    v_cmd = 0.0
+                    settle += 1
+                    if abs(sample.displacement) < home_tol or settle >= settle_ticks:
+                        k_end = k
+                        command(x_cmd, i_out, v_cmd)
+                        end = perf()
+                        append(_row(t, state, zr_now, zrd_now, out, sample, fd, i_d, i_out,
+                                    x_cmd, end - start, start - release if realtime else 0.0))  # fmt: skip
+                        compute[k] = end - start
+                        lateness[k] = start - release if realtime else 0.0
+                        return reason, k_end + 1
+            command(x_cmd, i_out, v_cmd)
+            end = perf()
+            late = start - release if realtime else 0.0
+            append(_row(t, state, zr_now, zrd_now, out, sample, fd, i_d, i_out, x_cmd,
+                        end - start, late))  # fmt: skip
+            compute[k] = end - start
+            lateness[k] = late
+            k += 1
+        if state == STATE_TRIPPED:
+            return reason, k
+        return f"{reason}; actuator did not settle at mid-stroke", k
+    finally:
+        sys.setswitchinterval(old_switch)
+        if gc_was_enabled:
+            gc.enable()
+
+
+def _row(
+    t: float,
+    state: int,
+    zr: float,
+    zrd: float,
+    out: dict[str, float],
+    sample: Any,
+    fd: float,
+    i_d: float,
+    i_out: float,
+    x_cmd: float,
+    compute: float,
+    late: float,
+) -> tuple[float, ...]:
+    return (
+        t, float(state), zr, zrd, out["z_s"], out["z_u"], out["z_s_dot"], out["z_u_dot"],
+        out["z_s_ddot"], out["z_u_ddot"], out["x_d"], out["v_d"], sample.force, fd, out["F_T"],
+        i_d, i_out, sample.current, x_cmd, sample.displacement, sample.timestamp, compute, late,
+    )  # fmt: skip
+
+
+# -- own process ----------------------------------------------------------------------------
+def _child(
+    target: Any, rig: Rig | None, duration: float, rate: float, out: str, kw: dict[str, Any]
+) -> None:
+    run_hil(target, rig, duration, rate, out, **kw)
+
+
+def start_process(
+    target: Any,
+    rig: Rig | None,
+    duration: float,
+    rate: float,
+    out: Path,
+    **kw: Any,
+) -> multiprocessing.process.BaseProcess:
+    """Start the loop in its own process (spawn) and return the process (not joined)."""
+    ctx = multiprocessing.get_context("spawn")
+    proc = ctx.Process(
+        target=_child, args=(target, rig, duration, rate, str(out), kw), name="mrsus-hil-loop"
+    )
+    proc.start()
+    return proc
+
+
+def _run_in_process(
+    target: Any, rig: Rig | None, duration: float, rate: float, out: Path, **kw: Any
+) -> HilResult:
+    proc = start_process(target, rig, duration, rate, out, **kw)
+    proc.join()
+    recording = load_recording(out)
+    stop = recording.stop
+    if proc.exitcode != 0 or not recording.complete:
+        raise MRSuspensionError(
+            f"the HiL loop process ended with exit code {proc.exitcode} before finishing; "
+            f"the recording in {out} holds {len(recording)} rows"
+        )
+    stats = TickStats(**stop["stats"])
+    meta = json.loads((out / "meta.json").read_text()) if (out / "meta.json").exists() else {}
+    return HilResult(
+        recording=recording,
+        stats=stats,
+        reason=str(stop.get("reason", "")),
+        tripped=bool(stop.get("tripped", False)),
+        out=out,
+        meta=meta,
+    )
