@@ -30,6 +30,8 @@ test: $(VENV)/.stamp-install lint
 bench: $(VENV)/.stamp-install
 	$(BIN)/python benchmarks/bench_damper.py
 	$(BIN)/python benchmarks/bench_engine.py
+	$(BIN)/python benchmarks/bench_identify.py
+	$(BIN)/python benchmarks/bench_hil.py --duration 20
 
 clean:
 	rm -rf $(VENV) .pytest_cache .mypy_cache .ruff_cache $(OUT)
