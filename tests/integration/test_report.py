@@ -84,3 +84,52 @@ def test_chapters_3_and_4_listed_with_data(report: Path) -> None:
     # Fig 4.5 records each policy's body-resonance peak
     for p, g in (("I", 3), ("II", 10), ("III", 10), ("IV", 300)):
         assert ch4["4.5"][f"peak T_as policy {p} (k_c = {g})"] > 1.0
+
+
+CHAPTERS_5_6 = {5: ["5.5", "5.6", "5.9"], 6: ["6.2", "6.5", "6.8", "6.12"]}
+
+
+def test_chapters_5_and_6_listed_with_data(report: Path) -> None:
+    index = (report / "index.html").read_text()
+    manifest = json.loads((report / "manifest.json").read_text())
+    for chapter, numbers in CHAPTERS_5_6.items():
+        figures = {f["number"]: f for f in manifest["chapters"][str(chapter)]["figures"]}
+        for number in numbers:
+            slug = "fig_" + number.replace(".", "_")
+            assert f"Fig. {number}:" in index
+            for ext in ("png", "svg"):
+                assert (report / f"chapter{chapter}" / f"{slug}.{ext}").stat().st_size > 5000
+            assert figures[number]["data"], number
+    ch5 = {f["number"]: f["data"] for f in manifest["chapters"]["5"]["figures"]}
+    ch6 = {f["number"]: f["data"] for f in manifest["chapters"]["6"]["figures"]}
+    # force-tracking errors against k_d are recorded, finite and positive
+    for data in (ch5["5.6"], ch6["6.5"]):
+        assert data["k_d"] == [1.0, 1.5, 2.0, 2.5]
+        for mode in ("SCM", "ACM"):
+            values = data[f"force-tracking error {mode} [N]"]
+            assert len(values) == 4, values
+            assert all(0.0 < v < 1e5 for v in values), values
+    # the frequency responses are finite, one curve per case
+    for data in (ch5["5.9"], ch6["6.8"], ch6["6.12"]):
+        curves = [k for k in data if k.startswith(("T_as ", "T_au ", "T_dr ", "DLC "))]
+        assert len(curves) >= 12
+        for key in curves:
+            assert all(v == v for v in data[key]), key
+
+
+def test_section_6_5_comparison_table(report: Path) -> None:
+    index = (report / "index.html").read_text()
+    assert "Section 6.5: comparison of the controllers" in index
+    manifest = json.loads((report / "manifest.json").read_text())
+    (table,) = manifest["chapters"]["6"]["tables"]
+    rows = table["rows"]
+    assert len(rows) == 12  # 3 excitations x 4 controllers
+    assert {r["controller"] for r in rows} >= {"passive 0 A", "sliding mode ACM (k_d = 2.5)"}
+    for r in rows:
+        assert r["RMS a_s [m/s^2]"] > 0.0, r
+        assert r["DLC"] > 0.0, r
+        assert r["mean current [A]"] >= 0.0
+        if r["controller"] == "passive 0 A":
+            assert r["mean current [A]"] == 0.0
+    lines = (report / "chapter6" / "table_6_5_comparison.csv").read_text().splitlines()
+    assert len(lines) == 13

@@ -210,10 +210,55 @@ def _chapter_4(
     return body, {"figures": records, "tables": []}
 
 
+def _chapter_5(
+    folder: Path, quick: bool, progress: Callable[[str], None]
+) -> tuple[str, dict[str, Any]]:
+    from mrsuspension.report import ch5
+
+    sections, records = _figure_sections(5, ch5.CHAPTER_5_FIGURES, folder, quick, progress)
+    body = (
+        "<h2 id='ch5'>Chapter 5: inverse-model hi-lo semi-active damping</h2>"
+        "<p>Time histories run the engine directly (2.5 cm at 1.5 Hz); frequency responses "
+        "come from studies. The force gain k_d is damper.force_gain.</p>" + "".join(sections)
+    )
+    return body, {"figures": records, "tables": []}
+
+
+def _chapter_6(
+    folder: Path, quick: bool, progress: Callable[[str], None]
+) -> tuple[str, dict[str, Any]]:
+    import csv
+
+    from mrsuspension.report import ch6
+
+    sections, records = _figure_sections(6, ch6.CHAPTER_6_FIGURES, folder, quick, progress)
+    progress("chapter 6: section 6.5 controller comparison")
+    rows = ch6.comparison_table(quick)
+    with (folder / "table_6_5_comparison.csv").open("w", newline="") as fh:
+        w = csv.DictWriter(fh, fieldnames=list(rows[0]))
+        w.writeheader()
+        w.writerows(rows)
+    body = (
+        "<h2 id='ch6'>Chapter 6: inverse-model sliding-mode semi-active damping</h2>"
+        + "".join(sections)
+        + "<h3 id='table_6_5'>Section 6.5: comparison of the controllers</h3>"
+        "<p>Passive 0 A, skyhook hi-lo ACM (k_c = 3, n = 2), inverse-model hi-lo ACM and "
+        "sliding mode ACM (both k_d = 2.5) under a 1.5 Hz / 2.5 cm harmonic (steady state, "
+        "t &ge; 4 s), a 3.5 cm rounded pulse (mu = 3, 50 km/h) and the 'rough' road preset "
+        "at 50 km/h (whole records). DLC = std(F_T)/static load. "
+        "<a href='chapter6/table_6_5_comparison.csv'>table_6_5_comparison.csv</a></p>"
+        + _table(rows)
+    )
+    table = {"number": "6.5", "file": "chapter6/table_6_5_comparison.csv", "rows": rows}
+    return body, {"figures": records, "tables": [table]}
+
+
 _CHAPTERS: dict[int, Callable[[Path, bool, Callable[[str], None]], tuple[str, dict[str, Any]]]] = {
     2: _chapter_2,
     3: _chapter_3,
     4: _chapter_4,
+    5: _chapter_5,
+    6: _chapter_6,
 }
 
 
