@@ -31,9 +31,14 @@ import math
 import numpy as np
 from numba import njit
 
+from mrsuspension import shaping as _shaping
+from mrsuspension._numba_cache import invalidate_if_changed
 from mrsuspension.dampers import kernels as DK
 from mrsuspension.dampers.kernels import NO_REFCOUNT
 from mrsuspension.shaping import drive_current_kernel, onoff_kernel
+
+# the cached entry points below inline the damper and shaping kernels
+invalidate_if_changed(__file__, DK.__file__, _shaping.__file__)
 
 # vehicle parameters (QuarterCar.params)
 V_MS, V_MU, V_KS, V_KT, V_CT, V_CSKY, V_G, V_DXU = range(8)
