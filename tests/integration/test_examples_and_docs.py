@@ -67,3 +67,16 @@ def test_benchmark_smoke() -> None:
     )
     assert done.returncode == 0, done.stderr
     assert '"vectorised_vs_numpy"' in done.stdout
+
+
+def test_readme_python_examples_run(tmp_path: Path) -> None:
+    readme = (ROOT / "README.md").read_text()
+    blocks = re.findall(r"```python\n(.*?)```", readme, flags=re.DOTALL)
+    assert blocks
+    script = tmp_path / "readme_examples.py"
+    script.write_text("\n".join(blocks))
+    done = subprocess.run(
+        [sys.executable, str(script)], cwd=tmp_path, capture_output=True, text=True, timeout=300
+    )
+    assert done.returncode == 0, done.stderr
+    assert "T_as" in done.stdout
