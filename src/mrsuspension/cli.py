@@ -17,7 +17,7 @@ import typer
 from mrsuspension._cli_errors import _user_errors
 from mrsuspension.cli_sim import simulate_command, sweep_command
 from mrsuspension.errors import MRSuspensionError, ValidationError
-from mrsuspension.hil.cli import hil_run_command
+from mrsuspension.hil.cli import hil_run_command, hil_validate_command, rig_emulator_command
 from mrsuspension.identify.cli import identify_command
 
 app = typer.Typer(
@@ -38,6 +38,8 @@ hil_app = typer.Typer(
 )
 app.add_typer(hil_app, name="hil")
 hil_app.command("run")(hil_run_command)
+hil_app.command("validate")(hil_validate_command)
+app.command("rig-emulator")(rig_emulator_command)
 
 _WANG = ("wang-symmetric", "wang-asymmetric")
 

@@ -125,9 +125,9 @@ def test_cli_hil_run(tmp_path: Path) -> None:
     rec = load_recording(out)
     assert rec.complete
     assert len(rec) == info["rows"]
-    bad = runner.invoke(app, ["run", str(SCENARIO), "--rig", "udp://localhost:9"])
+    bad = runner.invoke(app, ["run", str(SCENARIO), "--rig", "udp://127.0.0.1:9"])
     assert bad.exit_code == 2
-    assert "not available" in bad.stderr
+    assert "no reply" in bad.stderr
     bad = runner.invoke(app, ["run", str(SCENARIO), "--rig", "simulatd"])
     assert bad.exit_code == 2
     assert "unknown --rig" in bad.stderr

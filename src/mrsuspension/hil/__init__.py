@@ -8,13 +8,17 @@ measured force closes the loop through the engine's compiled step. Pieces:
 - :mod:`~mrsuspension.hil.driver`: the PI drive-current regulator;
 - :mod:`~mrsuspension.hil.safety`: limits, trips and the start-up sequence;
 - :mod:`~mrsuspension.hil.recorder`: incremental recording and :func:`load_recording`;
-- :mod:`~mrsuspension.hil.loop`: the real-time loop, :func:`run_hil`.
+- :mod:`~mrsuspension.hil.loop`: the real-time loop, :func:`run_hil`;
+- :mod:`~mrsuspension.hil.network`: the UDP rig protocol, :class:`UdpRig` and
+  :func:`serve_rig`;
+- :mod:`~mrsuspension.hil.validate`: HiL against offline (``validate.validate``).
 """
 
 from __future__ import annotations
 
 from mrsuspension.hil.driver import PICurrentDriver
 from mrsuspension.hil.loop import CHANNELS, HilResult, TickStats, run_hil
+from mrsuspension.hil.network import UdpRig, serve_rig
 from mrsuspension.hil.recorder import Recorder, Recording, load_recording
 from mrsuspension.hil.rig import Rig, RigSample, SimulatedRig, ideal_rig
 from mrsuspension.hil.safety import SafetyLimits, SafetySupervisor, StartUp
@@ -32,7 +36,9 @@ __all__ = [
     "SimulatedRig",
     "StartUp",
     "TickStats",
+    "UdpRig",
     "ideal_rig",
     "load_recording",
     "run_hil",
+    "serve_rig",
 ]

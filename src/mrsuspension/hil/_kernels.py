@@ -15,8 +15,12 @@ import math
 import numpy as np
 from numba import njit
 
+from mrsuspension._numba_cache import invalidate_if_changed
 from mrsuspension.dampers import kernels as DK
 from mrsuspension.dampers.kernels import NO_REFCOUNT
+
+# the cached rig tick inlines the damper kernels
+invalidate_if_changed(__file__, DK.__file__)
 
 # rig state
 ST_T, ST_X, ST_V, ST_A, ST_I, ST_F, ST_HEAD = range(7)

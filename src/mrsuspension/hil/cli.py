@@ -1,7 +1,10 @@
-"""``mrsus hil run``: run a scenario in the loop with a simulated (or ideal) rig.
+"""HiL command functions: ``mrsus hil run``, ``mrsus hil validate``, ``mrsus rig-emulator``.
 
-A plain typer command function; :mod:`mrsuspension.cli` registers it. The loop runs in
-its own process; the recording goes to ``--out`` (see docs/hil.md for the format).
+Plain typer command functions; :mod:`mrsuspension.cli` registers them. ``hil run`` runs
+the loop in its own process with a simulated, ideal or network (``udp://HOST:PORT``)
+rig; the recording goes to ``--out`` (see docs/hil.md for the format). ``hil validate``
+runs a scenario in HiL and offline and compares them. ``rig-emulator`` serves a
+simulated rig over UDP.
 """
 
 from __future__ import annotations
@@ -20,24 +23,43 @@ from mrsuspension.errors import ValidationError
 from mrsuspension.hil.loop import run_hil
 from mrsuspension.hil.rig import Rig, SimulatedRig, ideal_rig
 
-__all__ = ["RIGS", "hil_run_command", "make_rig"]
+__all__ = [
+    "RIGS",
+    "hil_run_command",
+    "hil_validate_command",
+    "make_rig",
+    "rig_emulator_command",
+]
 
-#: rig names accepted by ``--rig``
-RIGS = ("simulated", "ideal")
+#: rig names accepted by ``--rig`` (plus ``udp://HOST:PORT``)
+RIGS = ("simulated", "ideal", "udp://HOST:PORT")
 
 
 def make_rig(spec: str, damper: Any) -> Rig:
-    """A rig from its ``--rig`` spec (``simulated`` or ``ideal``) carrying ``damper``."""
-    spec = spec.strip().lower()
-    if spec == "simulated":
+    """A rig from its ``--rig`` spec carrying ``damper``.
+
+    ``simulated`` and ``ideal`` build a :class:`SimulatedRig` (or its ideal preset);
+    ``udp://HOST:PORT`` a :class:`~mrsuspension.hil.network.UdpRig` (the served rig
+    carries its own damper), checked with a heartbeat first.
+    """
+    spec = spec.strip()
+    low = spec.lower()
+    if low == "simulated":
         return SimulatedRig(damper=damper)
-    if spec == "ideal":
+    if low == "ideal":
         return ideal_rig(damper)
-    if spec.startswith("udp://"):
-        raise ValidationError(
-            f"--rig {spec}: the UDP network rig is not available in this version; "
-            f"use one of: {', '.join(RIGS)}"
-        )
+    if low.startswith("udp://"):
+        from mrsuspension.errors import MRSuspensionError
+        from mrsuspension.hil.network import UdpRig
+
+        udp = UdpRig.from_spec(spec, reset_timeout=0.5)
+        try:
+            udp.ping()
+        except MRSuspensionError as exc:
+            raise ValidationError(f"--rig {spec}: {exc}; is `mrsus rig-emulator` running?") from exc
+        finally:
+            udp.close()
+        return udp
     raise ValidationError(f"unknown --rig {spec!r}; valid: {', '.join(RIGS)}")
 
 
@@ -55,7 +77,9 @@ def hil_run_command(
     scenario: Annotated[
         Path, typer.Argument(help="scenario TOML file (see docs/scenarios.md)", show_default=False)
     ],
-    rig: Annotated[str, typer.Option(help="rig: simulated | ideal")] = "simulated",
+    rig: Annotated[
+        str, typer.Option(help="rig: simulated | ideal | udp://HOST:PORT")
+    ] = "simulated",
     duration: Annotated[float, typer.Option(help="run time [s]")] = 10.0,
     rate: Annotated[float, typer.Option(help="loop rate [Hz]")] = 1000.0,
     out: Annotated[
@@ -100,3 +124,91 @@ def hil_run_command(
             typer.echo(f"recording: {info['out']}")
     if result.tripped:
         raise typer.Exit(1)
+
+
+def hil_validate_command(
+    scenario: Annotated[
+        Path, typer.Argument(help="scenario TOML file (see docs/scenarios.md)", show_default=False)
+    ],
+    rig: Annotated[str, typer.Option(help="rig: ideal | simulated | udp://HOST:PORT")] = "ideal",
+    duration: Annotated[float, typer.Option(help="run time [s]")] = 10.0,
+    rate: Annotated[float, typer.Option(help="loop rate [Hz]")] = 1000.0,
+    out: Annotated[
+        Path | None,
+        typer.Option(help="directory for summary.json, the figures and the recording"),
+    ] = None,
+    as_json: Annotated[bool, typer.Option("--json", help="print the summary as JSON")] = False,
+) -> None:
+    """Run SCENARIO in HiL and offline and compare them (Chapter 7 validation).
+
+    Prints RMS body acceleration and other RMS measures both ways with their relative
+    difference; with --out writes summary.json, time_histories.png (z_s'' and F_d
+    overlaid), fv_loop.png (F-v loops overlaid) and the HiL recording. A safety trip
+    exits with code 1.
+    """
+    from mrsuspension.hil.loop import _simulation_of
+    from mrsuspension.hil.validate import validate
+
+    with _user_errors():
+        if not scenario.exists():
+            raise ValidationError(f"scenario file {scenario} does not exist")
+        sim = _simulation_of(scenario)
+        the_rig = make_rig(rig, sim.damper)
+        report = validate(sim, the_rig, duration=duration, rate=rate, out=out)
+    info = report.describe()
+    info["scenario"] = str(scenario)
+    info["rig"] = rig
+    if as_json:
+        typer.echo(json.dumps(_clean(info), indent=2))
+    else:
+        typer.echo(f"HiL stopped: {report.hil.reason}")
+        typer.echo(report.hil.stats.summary())
+        typer.echo(f"{'RMS':<34}{'HiL':>12}{'offline':>12}{'diff':>10}")
+        for m in report.rms.values():
+            rel = m["relative_difference"]
+            typer.echo(
+                f"{m['label'] + ' [' + m['unit'] + ']':<34}{m['hil']:>12.5g}"
+                f"{m['offline']:>12.5g}{100 * rel:>9.2f}%"
+            )
+        for p in report.figures:
+            typer.echo(f"figure: {p}")
+    if report.hil.tripped:
+        raise typer.Exit(1)
+
+
+def rig_emulator_command(
+    port: Annotated[int, typer.Option(help="UDP port (0: any free port)")] = 9870,
+    host: Annotated[str, typer.Option(help="address to bind (loopback by default)")] = "127.0.0.1",
+    rig: Annotated[str, typer.Option(help="served rig: simulated | ideal")] = "simulated",
+    damper: Annotated[str, typer.Option(help="damper model carried by the rig")] = (
+        "wang-symmetric"
+    ),
+    rate: Annotated[float, typer.Option(help="tick rate [Hz] until a client resets")] = 1000.0,
+    drop: Annotated[
+        float, typer.Option(help="probability of dropping a reply (fault injection)")
+    ] = 0.0,
+    delay: Annotated[float, typer.Option(help="extra reply delay [s] (fault injection)")] = 0.0,
+) -> None:
+    """Serve a simulated rig over UDP (the network rig protocol, docs/hil.md).
+
+    Runs until Ctrl-C. Connect a loop with `mrsus hil run SCENARIO --rig udp://HOST:PORT`.
+    """
+    from mrsuspension.dampers import make_damper
+    from mrsuspension.hil.network import serve_rig
+
+    with _user_errors():
+        spec = rig.strip().lower()
+        if spec not in ("simulated", "ideal"):
+            raise ValidationError(
+                f"unknown --rig {rig!r} for the emulator; valid: simulated, ideal"
+            )
+        model = make_damper(damper)
+        served = make_rig(spec, model)
+
+        def ready(bound: int) -> None:
+            typer.echo(f"rig emulator ({spec}, {damper}) listening on udp://{host}:{bound}")
+
+        counts = serve_rig(
+            served, host=host, port=port, rate=rate, drop=drop, delay=delay, ready=ready
+        )
+    typer.echo("stopped: " + ", ".join(f"{k} {v}" for k, v in counts.items()))

@@ -1,0 +1,492 @@
+"""The network rig: a binary UDP protocol, a client :class:`UdpRig` and a server.
+
+A rig controller on another machine (or another process) serves a rig over UDP; the
+real-time loop talks to it through :class:`UdpRig`, an ordinary :class:`~mrsuspension.hil.rig.Rig`.
+:func:`serve_rig` serves any :class:`~mrsuspension.hil.rig.Rig` (e.g. a
+:class:`~mrsuspension.hil.rig.SimulatedRig`) so the real network path is exercised on
+loopback (``mrsus rig-emulator``).
+
+Protocol (version 1)
+--------------------
+Every datagram is one little-endian ``struct`` message starting with the common header
+``<IHHI``: ``magic`` (``0x5553524D``, the bytes ``b"MRSU"``), ``version`` (1), ``type``
+and ``seq`` (uint32, wrapping). Types:
+
+=============  ====  =================  ============================================
+message        type  format             fields after the header
+=============  ====  =================  ============================================
+command        1     ``<IHHIdddd``      t_send [s], stroke [m], velocity [m/s],
+                                        current_command [A]
+sample         2     ``<IHHIddddI``     t_rig [s], force [N], displacement [m],
+                                        measured current [A], status (bits)
+heartbeat      3     ``<IHHId``         t_send [s] (sender's clock)
+reset          4     ``<IHHIdd``        t_send [s], period [s]
+=============  ====  =================  ============================================
+
+- The client sends a **command** each tick (``seq`` increasing by one); the server applies
+  it to its rig (one period) and answers with a **sample** echoing ``seq``: the state
+  reached under that command, stamped with the rig's time ``t_rig``.
+- **reset** puts the rig at mid-stroke with the coil off for the given tick period; the
+  server answers with a sample (same ``seq``) whose status has :data:`STATUS_RESET` set
+  (and :data:`STATUS_IDEAL_CURRENT` when the coil follows its command at once).
+- **heartbeat**: either side may send one; the receiver echoes it with the same ``seq``
+  and its own clock (liveness and round-trip time).
+- Status bits of a sample: :data:`STATUS_RESET` (reply to a reset),
+  :data:`STATUS_IDEAL_CURRENT`, :data:`STATUS_FAULT` (the rig raised; the sample repeats
+  the last good one).
+
+Datagrams with a wrong magic, version, type or size are ignored. Nothing is retransmitted:
+the client keeps the last good sample when a reply is late or lost, so its timestamp
+stops advancing and the safety supervisor's watchdog trips after its timeout.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import heapq
+import math
+import random
+import select
+import socket
+import struct
+import time
+from collections.abc import Callable
+from typing import Any
+
+from mrsuspension.errors import MRSuspensionError, ValidationError, check_range
+from mrsuspension.hil.rig import Rig, RigSample
+
+__all__ = [
+    "COMMAND",
+    "HEARTBEAT",
+    "MAGIC",
+    "RESET",
+    "SAMPLE",
+    "STATUS_FAULT",
+    "STATUS_IDEAL_CURRENT",
+    "STATUS_RESET",
+    "VERSION",
+    "UdpRig",
+    "parse_udp_spec",
+    "serve_rig",
+]
+
+#: protocol magic (the bytes ``b"MRSU"`` read as a little-endian uint32)
+MAGIC = 0x5553524D
+#: protocol version
+VERSION = 1
+#: message types
+COMMAND, SAMPLE, HEARTBEAT, RESET = 1, 2, 3, 4
+#: sample status bits
+STATUS_RESET, STATUS_IDEAL_CURRENT, STATUS_FAULT = 1, 2, 4
+
+_HEADER = struct.Struct("<IHHI")
+_COMMAND = struct.Struct("<IHHIdddd")
+_SAMPLE = struct.Struct("<IHHIddddI")
+_HEARTBEAT = struct.Struct("<IHHId")
+_RESET = struct.Struct("<IHHIdd")
+_SIZES = {COMMAND: _COMMAND.size, SAMPLE: _SAMPLE.size, HEARTBEAT: _HEARTBEAT.size}
+_SIZES[RESET] = _RESET.size
+_SEQ_MASK = 0xFFFFFFFF
+_BUF = 256
+
+
+def _kind(data: bytes) -> int:
+    """Message type of a datagram, or 0 when it is not a valid version-1 message."""
+    if len(data) < _HEADER.size:
+        return 0
+    magic, version, kind, _ = _HEADER.unpack_from(data)
+    if magic != MAGIC or version != VERSION or _SIZES.get(kind) != len(data):
+        return 0
+    return int(kind)
+
+
+def parse_udp_spec(spec: str) -> tuple[str, int]:
+    """``udp://HOST:PORT`` -> ``(host, port)``.
+
+    Raises
+    ------
+    ValidationError
+        When the spec is not of that form.
+    """
+    s = spec.strip()
+    if not s.lower().startswith("udp://"):
+        raise ValidationError(f"not a UDP rig address: {spec!r} (expected udp://HOST:PORT)")
+    rest = s[6:].rstrip("/")
+    host, sep, port_s = rest.rpartition(":")
+    host = host.strip("[]")
+    if not sep or not host or not port_s.isdigit() or not 0 < int(port_s) < 65536:
+        raise ValidationError(f"bad UDP rig address {spec!r}; expected udp://HOST:PORT")
+    return host, int(port_s)
+
+
+# -- client ---------------------------------------------------------------------------------
+class UdpRig(Rig):
+    """A rig served over UDP (the client side of the protocol).
+
+    Each tick, :meth:`read` drains the socket and keeps the newest sample (highest
+    ``seq``); when the reply to the last command has not arrived it waits at most
+    ``timeout`` for it, then returns the last good sample (counted as a stale read). A
+    stale sample keeps its old rig timestamp, so the safety supervisor's watchdog (no
+    fresh sample for ``SafetyLimits.watchdog``) trips when the rig stops answering.
+
+    Parameters
+    ----------
+    host, port : str, int
+        The rig server.
+    timeout : float, optional
+        Longest wait for the reply in :meth:`read` [s] (default: a quarter of the period).
+    reset_timeout : float
+        Longest wait for the reply to a reset or a heartbeat [s] (retried three times).
+
+    Attributes
+    ----------
+    sent, received, late, stale_reads : int
+        Commands sent; distinct command replies received; replies that arrived after the
+        read that wanted them; reads that returned the previous sample.
+    """
+
+    def __init__(
+        self,
+        host: str = "127.0.0.1",
+        port: int = 9870,
+        timeout: float | None = None,
+        reset_timeout: float = 1.0,
+    ) -> None:
+        self.host = str(host)
+        self.port = int(check_range("port", port, 1, 65535))
+        if timeout is not None:
+            check_range("timeout", timeout, 0.0, 1.0, unit="s")
+        self.timeout = timeout
+        self.reset_timeout = float(check_range("reset_timeout", reset_timeout, 0.0, 60.0))
+        self._sock: socket.socket | None = None
+        self._wait = 0.0
+        self._seq = 0
+        self._last_seq = 0
+        self._sample = RigSample(0.0, 0.0, 0.0, float("-inf"))
+        self._zero_counters()
+
+    @classmethod
+    def from_spec(cls, spec: str, **kw: Any) -> UdpRig:
+        """A client for ``udp://HOST:PORT``."""
+        host, port = parse_udp_spec(spec)
+        return cls(host, port, **kw)
+
+    def _zero_counters(self) -> None:
+        self.sent = 0
+        self.received = 0
+        self.late = 0
+        self.stale_reads = 0
+        self.send_errors = 0
+
+    # pickling (the loop may run in a spawned process): the socket is re-opened there
+    def __getstate__(self) -> dict[str, Any]:
+        state = self.__dict__.copy()
+        state["_sock"] = None
+        return state
+
+    def _socket(self) -> socket.socket:
+        if self._sock is None:
+            family = socket.AF_INET6 if ":" in self.host else socket.AF_INET
+            sock = socket.socket(family, socket.SOCK_DGRAM)
+            sock.connect((self.host, self.port))
+            sock.setblocking(False)
+            self._sock = sock
+        return self._sock
+
+    def _next_seq(self) -> int:
+        self._seq = (self._seq + 1) & _SEQ_MASK
+        return self._seq
+
+    def _drain(self) -> None:
+        sock = self._socket()
+        while True:
+            try:
+                sock.recv(_BUF)
+            except (BlockingIOError, ConnectionRefusedError):
+                return
+
+    def _request(self, payload: bytes, seq: int, want: int) -> bytes:
+        """Send a control message; wait for the reply of type ``want`` echoing ``seq``."""
+        sock = self._socket()
+        for _ in range(3):
+            with contextlib.suppress(ConnectionRefusedError):
+                sock.send(payload)
+            end = time.monotonic() + self.reset_timeout
+            while (rem := end - time.monotonic()) > 0:
+                ready, _, _ = select.select([sock], [], [], rem)
+                if not ready:
+                    break
+                try:
+                    data = sock.recv(_BUF)
+                except (BlockingIOError, ConnectionRefusedError):
+                    continue
+                if _kind(data) == want and _HEADER.unpack_from(data)[3] == seq:
+                    return data
+        raise MRSuspensionError(
+            f"no reply from the rig at udp://{self.host}:{self.port} "
+            f"(3 tries, {self.reset_timeout:g} s each)"
+        )
+
+    def ping(self) -> float:
+        """Send a heartbeat; return the round-trip time [s].
+
+        Raises
+        ------
+        MRSuspensionError
+            When the server does not answer.
+        """
+        seq = self._next_seq()
+        t = time.perf_counter()
+        self._request(_HEARTBEAT.pack(MAGIC, VERSION, HEARTBEAT, seq, t), seq, HEARTBEAT)
+        return time.perf_counter() - t
+
+    # -- interface ----------------------------------------------------------------------
+    def reset(self, period: float) -> None:
+        """Reset the served rig for ``period``; wait for its acknowledgement."""
+        period = float(check_range("period", period, 0.0, 0.1, unit="s", low_inclusive=False))
+        self._wait = self.timeout if self.timeout is not None else 0.25 * period
+        self._socket()
+        self._drain()
+        seq = self._next_seq()
+        data = self._request(
+            _RESET.pack(MAGIC, VERSION, RESET, seq, time.perf_counter(), period), seq, SAMPLE
+        )
+        _, _, _, _, t_rig, f, x, i, status = _SAMPLE.unpack(data)
+        self.ideal_current = bool(status & STATUS_IDEAL_CURRENT)
+        self._sample = RigSample(f, x, i, t_rig)
+        self._last_seq = seq
+        self._zero_counters()
+
+    def command(self, stroke: float, current_command: float, velocity: float = 0.0) -> None:
+        """Send a command datagram (never blocks)."""
+        seq = self._next_seq()
+        payload = _COMMAND.pack(
+            MAGIC, VERSION, COMMAND, seq, time.perf_counter(), stroke, velocity, current_command
+        )
+        self.sent += 1
+        try:
+            self._socket().send(payload)
+        except (BlockingIOError, ConnectionRefusedError):
+            self.send_errors += 1  # its reply never comes: counted as lost too
+
+    def _take(self, data: bytes) -> None:
+        if _kind(data) != SAMPLE:
+            return
+        _, _, _, seq, t_rig, f, x, i, status = _SAMPLE.unpack(data)
+        if status & STATUS_RESET:
+            return
+        self.received += 1
+        # newer than what we hold (modular comparison of the 32-bit sequence numbers)
+        if 0 < ((seq - self._last_seq) & _SEQ_MASK) < 0x80000000:
+            if seq != self._seq:
+                self.late += 1
+            self._last_seq = seq
+            if not status & STATUS_FAULT:
+                self._sample = RigSample(f, x, i, t_rig)
+        else:
+            self.late += 1
+
+    def read(self) -> RigSample:
+        """The newest sample; waits at most ``timeout`` for the reply to the last command."""
+        sock = self._socket()
+        recv = sock.recv
+        take = self._take
+        while True:
+            try:
+                take(recv(_BUF))
+            except (BlockingIOError, ConnectionRefusedError):
+                break
+        if self._last_seq != self._seq and self.sent:
+            end = time.perf_counter() + self._wait
+            while self._last_seq != self._seq:
+                rem = end - time.perf_counter()
+                if rem <= 0:
+                    break
+                ready, _, _ = select.select([sock], [], [], rem)
+                if not ready:
+                    break
+                try:
+                    take(recv(_BUF))
+                except (BlockingIOError, ConnectionRefusedError):
+                    continue
+            if self._last_seq != self._seq:
+                self.stale_reads += 1
+        return self._sample
+
+    def close(self) -> None:
+        """Close the socket."""
+        if self._sock is not None:
+            self._sock.close()
+            self._sock = None
+
+    @property
+    def lost(self) -> int:
+        """Commands whose reply has not been received (so far)."""
+        return max(0, self.sent - self.received)
+
+    def counters(self) -> dict[str, int]:
+        """Packet accounting: sent, received, lost, late, stale reads."""
+        return {
+            "sent": self.sent,
+            "received": self.received,
+            "lost": self.lost,
+            "late": self.late,
+            "stale_reads": self.stale_reads,
+        }
+
+    def describe(self) -> dict[str, Any]:
+        """Plain-data description (address, protocol version, timeout)."""
+        return {
+            "rig": "udp",
+            "address": f"udp://{self.host}:{self.port}",
+            "protocol_version": VERSION,
+            "timeout": self.timeout,
+        }
+
+
+def _pack_sample(seq: int, s: RigSample, status: int) -> bytes:
+    return _SAMPLE.pack(
+        MAGIC, VERSION, SAMPLE, seq, s.timestamp, s.force, s.displacement, s.current, status
+    )
+
+
+# -- server ---------------------------------------------------------------------------------
+def serve_rig(
+    rig: Rig,
+    host: str = "127.0.0.1",
+    port: int = 9870,
+    *,
+    rate: float = 1000.0,
+    drop: float = 0.0,
+    delay: float = 0.0,
+    delay_probability: float = 1.0,
+    drop_after: int = 0,
+    seed: int = 0,
+    duration: float | None = None,
+    ready: Callable[[int], None] | None = None,
+    should_stop: Callable[[], bool] | None = None,
+) -> dict[str, int]:
+    """Serve ``rig`` over UDP until stopped (Ctrl-C, ``duration`` or ``should_stop``).
+
+    Parameters
+    ----------
+    rig : Rig
+        The rig served (e.g. a :class:`~mrsuspension.hil.rig.SimulatedRig`).
+    host : str
+        Address to bind (default loopback only).
+    port : int
+        UDP port (0: an ephemeral port, passed to ``ready``).
+    rate : float
+        Tick rate [Hz] assumed until a client resets the rig with its own period.
+    drop : float
+        Probability of dropping the reply to a command (fault injection for tests).
+    delay : float
+        Extra delay of a reply [s] (fault injection; the rig keeps processing commands).
+    delay_probability : float
+        Probability that a reply is delayed by ``delay`` (default: every reply).
+    drop_after : int
+        Commands answered normally before ``drop`` applies (0: from the start).
+    seed : int
+        Seed of the fault injection.
+    duration : float, optional
+        Stop after this many seconds.
+    ready : callable, optional
+        Called with the bound port once the socket listens.
+    should_stop : callable, optional
+        Polled about every 50 ms; the server returns when it is true.
+
+    Returns
+    -------
+    dict
+        Counters: commands, replies, dropped, delayed, resets, heartbeats, invalid.
+
+    Notes
+    -----
+    Resets and heartbeats are always answered at once (the faults apply to command
+    replies only).
+    """
+    check_range("drop", drop, 0.0, 1.0)
+    check_range("delay", delay, 0.0, 10.0, unit="s")
+    check_range("delay_probability", delay_probability, 0.0, 1.0)
+    rate = float(check_range("rate", rate, 1.0, 100000.0, unit="Hz"))
+    rng = random.Random(seed)
+    sock = socket.socket(socket.AF_INET6 if ":" in host else socket.AF_INET, socket.SOCK_DGRAM)
+    counts = dict.fromkeys(
+        ("commands", "replies", "dropped", "delayed", "resets", "heartbeats", "invalid"), 0
+    )
+    pending: list[tuple[float, int, bytes, Any]] = []
+    try:
+        sock.bind((host, port))
+        # warm up (compile or load the rig's kernels) before announcing the port
+        rig.reset(1.0 / rate)
+        rig.command(0.0, 0.0, 0.0)
+        rig.read()
+        rig.reset(1.0 / rate)
+        last = rig.read()
+        if ready is not None:
+            ready(int(sock.getsockname()[1]))
+        end = math.inf if duration is None else time.monotonic() + duration
+        next_poll = 0.0
+        while True:
+            now = time.monotonic()
+            if now >= end:
+                break
+            if should_stop is not None and now >= next_poll:
+                if should_stop():
+                    break
+                next_poll = now + 0.05
+            wait = min(0.05, end - now)
+            if pending:
+                wait = min(wait, max(0.0, pending[0][0] - time.perf_counter()))
+            ready_r, _, _ = select.select([sock], [], [], wait)
+            if ready_r:
+                data, addr = sock.recvfrom(_BUF)
+                kind = _kind(data)
+                if kind == COMMAND:
+                    _, _, _, seq, _, stroke, velocity, i_cmd = _COMMAND.unpack(data)
+                    counts["commands"] += 1
+                    status = 0
+                    try:
+                        rig.command(stroke, i_cmd, velocity)
+                        last = rig.read()
+                    except Exception:  # a faulty rig: report it, keep serving
+                        status = STATUS_FAULT
+                    reply = _pack_sample(seq, last, status)
+                    if drop > 0.0 and counts["commands"] > drop_after and rng.random() < drop:
+                        counts["dropped"] += 1
+                    elif delay > 0.0 and rng.random() < delay_probability:
+                        counts["delayed"] += 1
+                        due = time.perf_counter() + delay
+                        heapq.heappush(pending, (due, seq, reply, addr))
+                    else:
+                        sock.sendto(reply, addr)
+                        counts["replies"] += 1
+                elif kind == RESET:
+                    _, _, _, seq, _, period = _RESET.unpack(data)
+                    counts["resets"] += 1
+                    pending.clear()
+                    rig.reset(period)
+                    last = rig.read()
+                    ideal = STATUS_IDEAL_CURRENT if rig.ideal_current else 0
+                    status = STATUS_RESET | ideal
+                    sock.sendto(_pack_sample(seq, last, status), addr)
+                elif kind == HEARTBEAT:
+                    _, _, _, seq, _ = _HEARTBEAT.unpack(data)
+                    counts["heartbeats"] += 1
+                    sock.sendto(
+                        _HEARTBEAT.pack(MAGIC, VERSION, HEARTBEAT, seq, time.perf_counter()), addr
+                    )
+                else:
+                    counts["invalid"] += 1
+            t = time.perf_counter()
+            while pending and pending[0][0] <= t:
+                _, _, reply, addr = heapq.heappop(pending)
+                sock.sendto(reply, addr)
+                counts["replies"] += 1
+    except KeyboardInterrupt:
+        pass
+    finally:
+        sock.close()
+        rig.close()
+    return counts
