@@ -159,6 +159,16 @@ class _Shaped(Controller):
     p_c: float = 0.0
     xi_c: float = 10.0
 
+    def _set_shaping(
+        self, mode: str | None, p: float | None, xi: float, p_c: float, xi_c: float
+    ) -> None:
+        """Validate and set the ADFG (mode or p, xi) and CM (p_c, xi_c) factors."""
+        object.__setattr__(self, "p", _mode_p(mode, p, 1.0))
+        object.__setattr__(self, "xi", xi)
+        object.__setattr__(self, "p_c", p_c)
+        object.__setattr__(self, "xi_c", xi_c)
+        self._check_shaping()
+
     def _check_shaping(self) -> None:
         object.__setattr__(self, "p", _check("p", self.p, 0.0, 1.0))
         object.__setattr__(self, "xi", _check("xi", self.xi, 0.0, 1e6, lo_open=True))
@@ -217,11 +227,7 @@ class HiLo(_Shaped):
         g = POLICY_GAINS[policy] if gain is None else gain
         object.__setattr__(self, "gain", _check("gain k_c", g, 0.0, 1e9))
         object.__setattr__(self, "order", _check("order n", order, 0.0, 10.0, lo_open=True))
-        object.__setattr__(self, "p", _mode_p(mode, p, 1.0))
-        object.__setattr__(self, "xi", xi)
-        object.__setattr__(self, "p_c", p_c)
-        object.__setattr__(self, "xi_c", xi_c)
-        self._check_shaping()
+        self._set_shaping(mode, p, xi, p_c, xi_c)
 
     @property
     def law(self) -> str:  # type: ignore[override]
@@ -262,11 +268,7 @@ class InverseHiLo(_Shaped):
         p_c: float = 0.0,
         xi_c: float = 50.0,
     ) -> None:
-        object.__setattr__(self, "p", _mode_p(mode, p, 1.0))
-        object.__setattr__(self, "xi", xi)
-        object.__setattr__(self, "p_c", p_c)
-        object.__setattr__(self, "xi_c", xi_c)
-        self._check_shaping()
+        self._set_shaping(mode, p, xi, p_c, xi_c)
 
     def _fill(self, p: npt.NDArray[np.float64]) -> None:
         self._fill_shaping(p)
@@ -330,11 +332,7 @@ class SlidingMode(_Shaped):
         object.__setattr__(
             self, "passive_damping", _check("passive_damping", passive_damping, 0.0, 1e7)
         )
-        object.__setattr__(self, "p", _mode_p(mode, p, 1.0))
-        object.__setattr__(self, "xi", xi)
-        object.__setattr__(self, "p_c", p_c)
-        object.__setattr__(self, "xi_c", xi_c)
-        self._check_shaping()
+        self._set_shaping(mode, p, xi, p_c, xi_c)
 
     def _fill(self, p: npt.NDArray[np.float64]) -> None:
         self._fill_shaping(p)
