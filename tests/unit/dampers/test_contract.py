@@ -12,6 +12,7 @@ import math
 import numpy as np
 import pytest
 
+from _helpers import raises_validation as _raises
 from mrsuspension import parameters
 from mrsuspension.dampers import (
     DAMPERS,
@@ -24,22 +25,12 @@ from mrsuspension.dampers import (
     make_damper,
 )
 from mrsuspension.dampers import kernels as K
-from mrsuspension.errors import ValidationError
 from mrsuspension.parameters import ParameterSet
 
 
 @pytest.fixture(scope="module", params=sorted(DAMPERS))
 def model(request):
     return make_damper(request.param)
-
-
-def _raises(call, *fragments: str) -> str:
-    with pytest.raises(ValidationError) as info:
-        call()
-    message = str(info.value)
-    for fragment in fragments:
-        assert fragment in message, (fragment, message)
-    return message
 
 
 class TestDamperContract:

@@ -10,7 +10,7 @@ import math
 import numpy as np
 import pytest
 
-from mrsuspension.errors import ValidationError
+from _helpers import raises_validation as _raises
 from mrsuspension.excitation import (
     HIL_FREQUENCIES,
     Excitation,
@@ -20,15 +20,6 @@ from mrsuspension.excitation import (
     log_frequencies,
     two_stage_amplitude,
 )
-
-
-def _raises(call, *fragments: str) -> str:
-    with pytest.raises(ValidationError) as info:
-        call()
-    message = str(info.value)
-    for fragment in fragments:
-        assert fragment in message, (fragment, message)
-    return message
 
 
 def _central_difference(fun, t: np.ndarray, h: float) -> np.ndarray:

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from mrsuspension.errors import ValidationError
+from _helpers import raises_validation as _raises
 from mrsuspension.excitation import (
     EXCITATION_OPTIONS,
     EXCITATIONS,
@@ -17,15 +17,6 @@ from mrsuspension.excitation import (
     make_excitation,
     preset_road,
 )
-
-
-def _raises(call, *fragments: str) -> str:
-    with pytest.raises(ValidationError) as info:
-        call()
-    message = str(info.value)
-    for fragment in fragments:
-        assert fragment in message, (fragment, message)
-    return message
 
 
 def test_registry_kinds():

@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 from scipy.signal import welch
 
-from mrsuspension.errors import ValidationError
+from _helpers import raises_validation as _raises
 from mrsuspension.excitation import (
     ISO8608_CLASSES,
     PRESET_ROADS,
@@ -20,15 +20,6 @@ from mrsuspension.excitation import (
     iso8608_psd,
     preset_road,
 )
-
-
-def _raises(call, *fragments: str) -> str:
-    with pytest.raises(ValidationError) as info:
-        call()
-    message = str(info.value)
-    for fragment in fragments:
-        assert fragment in message, (fragment, message)
-    return message
 
 
 def _write(tmp_path: Path, text: str, name: str = "road.csv") -> Path:

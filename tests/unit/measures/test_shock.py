@@ -5,18 +5,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from mrsuspension.errors import ValidationError
+from _helpers import raises_validation as _raises
 from mrsuspension.excitation import RoundedPulse
 from mrsuspension.measures import dtr, peak, shock_ratios
-
-
-def _raises(call, *fragments: str) -> str:
-    with pytest.raises(ValidationError) as info:
-        call()
-    message = str(info.value)
-    for fragment in fragments:
-        assert fragment in message, (fragment, message)
-    return message
 
 
 def test_ratios_use_peaks_of_absolute_values():

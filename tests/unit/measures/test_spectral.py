@@ -7,17 +7,8 @@ import warnings
 import numpy as np
 import pytest
 
-from mrsuspension.errors import ValidationError
+from _helpers import raises_validation as _raises
 from mrsuspension.measures import PowerSpectrum, ShortRecordWarning, psd
-
-
-def _raises(call, *fragments: str) -> str:
-    with pytest.raises(ValidationError) as info:
-        call()
-    message = str(info.value)
-    for fragment in fragments:
-        assert fragment in message, (fragment, message)
-    return message
 
 
 @pytest.mark.parametrize("fs_in", [512.0, 1000.0, 10000.0])

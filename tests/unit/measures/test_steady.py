@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from mrsuspension.errors import ValidationError
+from _helpers import raises_validation as _raises
 from mrsuspension.excitation import Harmonic
 from mrsuspension.measures import (
     T_as,
@@ -24,16 +24,6 @@ from mrsuspension.measures import (
     steady_window,
     transmissibility,
 )
-
-
-def _raises(call, *fragments: str) -> str:
-    with pytest.raises(ValidationError) as info:
-        call()
-    message = str(info.value)
-    for fragment in fragments:
-        assert fragment in message, (fragment, message)
-    return message
-
 
 DT = 1e-3
 
