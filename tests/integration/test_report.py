@@ -62,7 +62,10 @@ def test_test_matrix_table(report: Path) -> None:
     assert len(lines) > 10
 
 
-CHAPTERS_3_4 = {3: ["3.2", "3.4", "3.9", "3.10"], 4: ["4.5", "4.9", "4.13"]}
+CHAPTERS_3_4 = {
+    3: ["3.2", "3.4", "3.9", "3.10"],
+    4: ["4.3", "4.5", "4.6", "4.9", "4.10", "4.13", "4.17", "4.26"],
+}
 
 
 def test_chapters_3_and_4_listed_with_data(report: Path) -> None:
@@ -133,3 +136,44 @@ def test_section_6_5_comparison_table(report: Path) -> None:
             assert r["mean current [A]"] == 0.0
     lines = (report / "chapter6" / "table_6_5_comparison.csv").read_text().splitlines()
     assert len(lines) == 13
+
+
+def test_chapter_4_time_histories_and_road(report: Path) -> None:
+    manifest = json.loads((report / "manifest.json").read_text())
+    ch4 = {f["number"]: f["data"] for f in manifest["chapters"]["4"]["figures"]}
+    # Fig 4.3: hysteresis adds switching peaks to the unsprung-mass acceleration (on-off)
+    d = ch4["4.3"]
+    assert d["peak |a_u| hysteretic model"] > d["peak |a_u| mean model"]
+    # Fig 4.6: ACM is asymmetric (gamma > 1) and draws less current than SCM
+    d = ch4["4.6"]
+    assert d["gamma (rebound/compression peak force) ACM"] > 1.5
+    assert d["mean current ACM [A]"] < d["mean current SCM [A]"]
+    # Fig 4.26: higher order, smoother current
+    d = ch4["4.26"]
+    jumps = [d[f"max |di_d| per ms n = {n} [A]"] for n in (1, 2, 3)]
+    assert jumps == sorted(jumps, reverse=True)
+    # Fig 4.17: DLC per road case, the dissertation's value or "not given"
+    d = ch4["4.17"]
+    assert d["road DLC dissertation skyhook ACM, rough, 50 km/h"] == 0.138
+    assert d["road DLC dissertation skyhook ACM, medium-rough, 50 km/h"] == "not given"
+    assert all(v > 0 for k, v in d.items() if k.startswith("road DLC model skyhook"))
+
+
+def test_chapter_4_shock_tables(report: Path) -> None:
+    index = (report / "index.html").read_text()
+    manifest = json.loads((report / "manifest.json").read_text())
+    tables = {t["number"]: t for t in manifest["chapters"]["4"]["tables"]}
+    assert set(tables) == {"4.1", "4.2", "4.3", "4.4", "4.5"}
+    for number, table in tables.items():
+        assert f"Table {number}:" in index
+        rows = table["rows"]
+        assert len(rows) in (2, 3)
+        lines = (report / table["file"]).read_text().strip().splitlines()
+        assert len(lines) == len(rows) + 1
+        for r in rows:
+            for k in ("SDR_s", "SAR_s", "SDR_u", "SAR_u", "RDR", "DTR"):
+                assert r[f"{k} model"] >= 0.0, (number, r)
+                assert isinstance(r[f"{k} dissertation"], float), (number, r)
+    # the nominal row is the DTR reference
+    nominal = [r for r in tables["4.1"]["rows"] if r["m_s (kg)"] == 563.0]
+    assert nominal[0]["DTR model"] == 0.0

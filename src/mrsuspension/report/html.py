@@ -198,16 +198,44 @@ def _chapter_3(
 def _chapter_4(
     folder: Path, quick: bool, progress: Callable[[str], None]
 ) -> tuple[str, dict[str, Any]]:
+    import csv
+
     from mrsuspension.report import ch4
 
-    sections, records = _figure_sections(4, ch4.CHAPTER_4_FIGURES, folder, quick, progress)
+    builders = ch4.CHAPTER_4_FIGURES + (() if quick else ch4.CHAPTER_4_FULL_FIGURES)
+    sections, records = _figure_sections(4, builders, folder, quick, progress)
+    progress("chapter 4: Tables 4.1-4.5 shock response measures")
+    tables = []
+    table_sections = []
+    for tab in ch4.shock_tables(quick):
+        slug = "table_" + tab["number"].replace(".", "_")
+        with (folder / f"{slug}.csv").open("w", newline="") as fh:
+            w = csv.DictWriter(fh, fieldnames=list(tab["rows"][0]))
+            w.writeheader()
+            w.writerows(tab["rows"])
+        tables.append({**tab, "file": f"chapter4/{slug}.csv"})
+        table_sections.append(
+            f"<h3 id='{slug}'>Table {html.escape(tab['number'])}: {html.escape(tab['title'])}"
+            f"</h3><p>{html.escape(tab['caption'])} <a href='chapter4/{slug}.csv'>{slug}.csv"
+            "</a></p>" + _table(tab["rows"], "{:.3g}")
+        )
+    skipped = (
+        ""
+        if not quick
+        else "<p>Quick mode: the frequency-response figures 4.3b (hysteresis) and 4.7 "
+        "(SCM vs ACM) are built only in the full report.</p>"
+    )
     body = (
         "<h2 id='ch4'>Chapter 4: hi-lo semi-active MR suspension, simulation studies</h2>"
-        "<p>Each figure comes from a study (two-stage swept excitation, a = 2.5 cm, "
-        "f_T = 2.1 Hz); the numbers behind every curve are in manifest.json.</p>"
+        "<p>Frequency responses come from studies (two-stage swept excitation, a = 2.5 cm, "
+        "f_T = 2.1 Hz); time histories, rounded-pulse and random-road responses run the "
+        "engine directly. The numbers behind every curve are in manifest.json; each table "
+        "sets our model's values beside the dissertation's.</p>"
+        + skipped
         + "".join(sections)
+        + "".join(table_sections)
     )
-    return body, {"figures": records, "tables": []}
+    return body, {"figures": records, "tables": tables}
 
 
 def _chapter_5(
