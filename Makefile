@@ -5,7 +5,7 @@ VENV := .venv
 BIN := $(VENV)/bin
 OUT ?= results
 
-.PHONY: report test lint bench clean
+.PHONY: report test lint bench clean system-deps
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -24,7 +24,14 @@ lint: $(VENV)/.stamp-install
 	$(BIN)/ruff format --check src tests benchmarks examples tools
 	$(BIN)/mypy
 
-test: $(VENV)/.stamp-install lint
+# Debian's chromium for the browser tests (Playwright drives it; no browser download)
+system-deps:
+	@if ! command -v chromium >/dev/null 2>&1; then \
+	  if [ "$$(id -u)" = 0 ]; then SUDO=; else SUDO=sudo; fi; \
+	  $$SUDO apt-get update -qq && $$SUDO apt-get install -y -qq chromium; \
+	fi
+
+test: $(VENV)/.stamp-install lint system-deps
 	$(BIN)/python -m pytest
 
 bench: $(VENV)/.stamp-install

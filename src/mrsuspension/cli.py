@@ -19,6 +19,7 @@ from mrsuspension.cli_sim import simulate_command, sweep_command
 from mrsuspension.errors import MRSuspensionError, ValidationError
 from mrsuspension.hil.cli import hil_run_command, hil_validate_command, rig_emulator_command
 from mrsuspension.identify.cli import identify_command
+from mrsuspension.monitor.cli import monitor_command
 
 app = typer.Typer(
     help="mrsuspension: MR-damper models, semi-active suspension studies and reports.",
@@ -40,6 +41,7 @@ app.add_typer(hil_app, name="hil")
 hil_app.command("run")(hil_run_command)
 hil_app.command("validate")(hil_validate_command)
 app.command("rig-emulator")(rig_emulator_command)
+app.command("monitor")(monitor_command)
 
 _WANG = ("wang-symmetric", "wang-asymmetric")
 

@@ -40,7 +40,7 @@ def test_ci_runs_the_readme_test_command() -> None:
     readme = (ROOT / "README.md").read_text()
     block = re.search(r"## Two commands.*?```sh\n(.*?)```", readme, flags=re.DOTALL)
     assert block, "README lost its two-command block"
-    commands = [ln.split("#")[0].strip() for ln in block.group(1).splitlines() if ln.strip()]
+    commands = [c for c in (ln.split("#")[0].strip() for ln in block.group(1).splitlines()) if c]
     assert len(commands) == 2
     ci = [
         ln.strip()
