@@ -15,6 +15,7 @@ from typing import Annotated, Any
 import typer
 
 from mrsuspension._cli_errors import _user_errors
+from mrsuspension.cli_optimize import optimize_command
 from mrsuspension.cli_sim import simulate_command, sweep_command
 from mrsuspension.errors import MRSuspensionError, ValidationError
 from mrsuspension.hil.cli import hil_run_command, hil_validate_command, rig_emulator_command
@@ -33,6 +34,7 @@ damper_app = typer.Typer(
 app.add_typer(damper_app, name="damper")
 app.command("simulate")(simulate_command)
 app.command("sweep")(sweep_command)
+app.command("optimize")(optimize_command)
 app.command("identify")(identify_command)
 hil_app = typer.Typer(
     help="Hardware in the loop: run a scenario around a (simulated) rig.", no_args_is_help=True
