@@ -116,10 +116,34 @@ def _model(
     return make_damper(model, parameters, **options)
 
 
+def _chapters(text: str) -> list[int | str]:
+    """``--chapters``: chapter numbers and the ``beyond`` section, comma-separated."""
+    out: list[int | str] = []
+    for item in (c.strip() for c in text.split(",")):
+        if not item:
+            continue
+        if item.lower() == "beyond":
+            out.append("beyond")
+            continue
+        try:
+            out.append(int(item))
+        except ValueError:
+            raise ValidationError(
+                f"--chapters: unknown chapter {item!r}; give chapter numbers (2-6) and/or "
+                "'beyond', comma-separated"
+            ) from None
+    if not out:
+        raise ValidationError("--chapters needs at least one chapter number or 'beyond'")
+    return out
+
+
 @app.command()
 def reproduce(
     out: Annotated[Path, typer.Option("--out", "-o", help="output folder")] = Path("results"),
-    chapters: Annotated[str | None, typer.Option(help="comma-separated chapters, e.g. 2")] = None,
+    chapters: Annotated[
+        str | None,
+        typer.Option(help="comma-separated chapters and sections, e.g. 2,4,beyond"),
+    ] = None,
     quick: Annotated[bool, typer.Option("--quick", help="coarse grids, for a fast check")] = False,
 ) -> None:
     """Regenerate the dissertation's analyses into OUT/index.html (the main job)."""
@@ -129,7 +153,7 @@ def reproduce(
 
     console = Console(stderr=True)
     with _user_errors():
-        chosen = None if chapters is None else [int(c) for c in _floats("chapters", chapters)]
+        chosen = None if chapters is None else _chapters(chapters)
         with console.status("starting") as status:
             index = build_report(
                 out, chapters=chosen, quick=quick, progress=lambda m: status.update(m)
