@@ -253,7 +253,7 @@ class TradeoffResult:
         all3 = self.pareto()
         families = list(dict.fromkeys(p.family for p in self.points))
         markers = dict(zip(families, "osD^vXPh", strict=False))
-        fig, axes = plt.subplots(1, 2, figsize=(11, 4.6), layout="constrained")
+        fig, axes = plt.subplots(1, 2, figsize=(11, 5.2), layout="constrained")
         scale = (1.0, 1.0, 1e3)  # stroke in mm
         for ax, j in zip(axes, (1, 2), strict=True):
             x = data[:, 0]
@@ -291,7 +291,8 @@ class TradeoffResult:
             ax.grid(True, alpha=0.3)
         axes[0].set_title("comfort vs road holding (down-left is better)", fontsize=9)
         axes[1].set_title("comfort vs rattle space (down-left is better)", fontsize=9)
-        axes[1].legend(fontsize=7, loc="best")
+        handles, labels = axes[1].get_legend_handles_labels()
+        fig.legend(handles, labels, loc="outside lower center", ncol=4, fontsize=7)
         return fig
 
     def _limit(self, ax: Any, y: npt.NDArray[np.float64], extra_y: Sequence[float]) -> None:
