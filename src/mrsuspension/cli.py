@@ -15,6 +15,7 @@ from typing import Annotated, Any
 import typer
 
 from mrsuspension._cli_errors import _user_errors
+from mrsuspension.cli_optimize import optimize_command
 from mrsuspension.cli_sim import simulate_command, sweep_command
 from mrsuspension.errors import MRSuspensionError, ValidationError
 from mrsuspension.hil.cli import hil_run_command, hil_validate_command, rig_emulator_command
@@ -33,6 +34,7 @@ damper_app = typer.Typer(
 app.add_typer(damper_app, name="damper")
 app.command("simulate")(simulate_command)
 app.command("sweep")(sweep_command)
+app.command("optimize")(optimize_command)
 app.command("identify")(identify_command)
 hil_app = typer.Typer(
     help="Hardware in the loop: run a scenario around a (simulated) rig.", no_args_is_help=True
@@ -114,10 +116,34 @@ def _model(
     return make_damper(model, parameters, **options)
 
 
+def _chapters(text: str) -> list[int | str]:
+    """``--chapters``: chapter numbers and the ``beyond`` section, comma-separated."""
+    out: list[int | str] = []
+    for item in (c.strip() for c in text.split(",")):
+        if not item:
+            continue
+        if item.lower() == "beyond":
+            out.append("beyond")
+            continue
+        try:
+            out.append(int(item))
+        except ValueError:
+            raise ValidationError(
+                f"--chapters: unknown chapter {item!r}; give chapter numbers (2-6) and/or "
+                "'beyond', comma-separated"
+            ) from None
+    if not out:
+        raise ValidationError("--chapters needs at least one chapter number or 'beyond'")
+    return out
+
+
 @app.command()
 def reproduce(
     out: Annotated[Path, typer.Option("--out", "-o", help="output folder")] = Path("results"),
-    chapters: Annotated[str | None, typer.Option(help="comma-separated chapters, e.g. 2")] = None,
+    chapters: Annotated[
+        str | None,
+        typer.Option(help="comma-separated chapters and sections, e.g. 2,4,beyond"),
+    ] = None,
     quick: Annotated[bool, typer.Option("--quick", help="coarse grids, for a fast check")] = False,
 ) -> None:
     """Regenerate the dissertation's analyses into OUT/index.html (the main job)."""
@@ -127,7 +153,7 @@ def reproduce(
 
     console = Console(stderr=True)
     with _user_errors():
-        chosen = None if chapters is None else [int(c) for c in _floats("chapters", chapters)]
+        chosen = None if chapters is None else _chapters(chapters)
         with console.status("starting") as status:
             index = build_report(
                 out, chapters=chosen, quick=quick, progress=lambda m: status.update(m)

@@ -293,7 +293,7 @@ _CHAPTERS: dict[int, Callable[[Path, bool, Callable[[str], None]], tuple[str, di
 def build_report(
     out: str | Path = "results",
     *,
-    chapters: Iterable[int] | None = None,
+    chapters: Iterable[int | str] | None = None,
     quick: bool = False,
     progress: Callable[[str], None] | None = None,
 ) -> Path:
@@ -303,8 +303,9 @@ def build_report(
     ----------
     out : path
         Output folder (created). Figures go to ``out/chapterN/``.
-    chapters : iterable of int, optional
-        Chapters to build (default: every available one; now: 2).
+    chapters : iterable of int or "beyond", optional
+        Chapters to build (default: every available one and the "beyond the
+        dissertation" section, :mod:`mrsuspension.report.beyond`).
     quick : bool
         Coarser grids for a fast check.
     progress : callable, optional
@@ -317,13 +318,18 @@ def build_report(
     """
     from mrsuspension import __version__
 
-    chosen = sorted(_CHAPTERS) if chapters is None else sorted(set(chapters))
+    requested = None if chapters is None else set(chapters)
+    beyond = requested is None or "beyond" in requested
+    chosen: list[int] = (
+        sorted(_CHAPTERS) if requested is None else sorted(int(c) for c in requested - {"beyond"})
+    )
     for c in chosen:
         if c not in _CHAPTERS:
             raise ValidationError(
-                f"chapter {c} is not available; available: {', '.join(map(str, sorted(_CHAPTERS)))}"
+                f"chapter {c} is not available; available: "
+                f"{', '.join(map(str, sorted(_CHAPTERS)))}, beyond"
             )
-    if not chosen:
+    if not chosen and not beyond:
         raise ValidationError("no chapters selected")
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
@@ -335,10 +341,17 @@ def build_report(
         body, info = _CHAPTERS[c](out / f"chapter{c}", quick, say)
         bodies.append(body)
         manifest["chapters"][str(c)] = info
+    if beyond:
+        from mrsuspension.report import beyond as beyond_section
+
+        body, info = beyond_section.build(out / "beyond", quick, say)
+        bodies.append(body)
+        manifest["beyond"] = info
     elapsed = time.perf_counter() - start
     manifest["run_time_s"] = round(elapsed, 2)
     (out / "manifest.json").write_text(json.dumps(manifest, indent=2, default=float) + "\n")
     toc = "".join(f"<li><a href='#ch{c}'>Chapter {c}</a></li>" for c in chosen)
+    toc += "<li><a href='#beyond'>Beyond the dissertation</a></li>" if beyond else ""
     page = (
         "<!doctype html><html><head><meta charset='utf-8'>"
         "<title>mrsuspension report</title>"

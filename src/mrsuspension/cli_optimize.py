@@ -1,0 +1,71 @@
+"""``mrsus optimize``: tune a controller for a problem file (see :mod:`mrsuspension.optimize`).
+
+:mod:`mrsuspension.cli` registers :func:`optimize_command`. Input errors are reported in
+one line on stderr with exit code 2.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+from typing import Annotated
+
+import typer
+
+from mrsuspension._cli_errors import _user_errors
+
+__all__ = ["optimize_command"]
+
+
+def optimize_command(
+    problem: Annotated[
+        Path,
+        typer.Argument(
+            help="optimisation problem (TOML, see docs/optimisation.md)", show_default=False
+        ),
+    ],
+    out: Annotated[
+        Path | None,
+        typer.Option("--out", "-o", help="folder for optimization.json and convergence.png"),
+    ] = None,
+    max_evaluations: Annotated[
+        int | None,
+        typer.Option("--max-evaluations", help="candidate budget (default: the problem's)"),
+    ] = None,
+    workers: Annotated[
+        int | None, typer.Option(help="processes (default: the problem's, else all cores)")
+    ] = None,
+    as_json: Annotated[
+        bool, typer.Option("--json", help="print the result as one JSON object")
+    ] = False,
+) -> None:
+    """Tune scenario fields (e.g. a controller's gains) for a weighted objective over roads."""
+    from mrsuspension.optimize import OptimizationProblem, optimize
+
+    with _user_errors():
+        prob = OptimizationProblem.load(problem)
+        result = optimize(
+            prob, max_evaluations=max_evaluations, workers=workers, progress=not as_json
+        )
+        files = [str(p) for p in result.save(out)] if out is not None else []
+    if as_json:
+        data = result.to_dict()
+        data["files"] = files
+        typer.echo(json.dumps(data))
+        return
+    typer.echo(
+        f"{prob.name}: best objective J = {result.objective:.4g} (reference = 1) after "
+        f"{result.evaluations} evaluations in {result.generations} generations "
+        f"({result.run_time:.1f} s; {result.message})"
+    )
+    for name, value in result.best.items():
+        typer.echo(f"  {name} = {value:.6g}")
+    measures = list(prob.weights)
+    typer.echo(f"{'road':34} {'measure':26} {'best':>11} {'reference':>11} {'ratio':>7}")
+    for road in result.measures:
+        for m in measures:
+            best, ref = result.measures[road][m], result.reference[road][m]
+            ratio = best / ref if ref else float("nan")
+            typer.echo(f"{road[:34]:34} {m:26} {best:11.4g} {ref:11.4g} {ratio:7.3f}")
+    for f in files:
+        typer.echo(f"wrote {f}")
