@@ -462,11 +462,11 @@ def _subplots(rows: int, cols: int) -> tuple[Any, Any]:
     width, height = 3.3 * cols, 2.5 * rows + 0.35
     fig, axes = plt.subplots(rows, cols, figsize=(width, height), squeeze=False)
     fig.subplots_adjust(
-        left=0.75 / width,
+        left=0.95 / width,
         right=1 - 0.15 / width,
         bottom=0.5 / height,
         top=1 - 0.45 / height,
-        wspace=0.42,
+        wspace=0.5,
         hspace=0.42,
     )
     return fig, axes
@@ -556,7 +556,8 @@ def _render_psd(
         data.setdefault("PSD frequency [Hz]", _finite(f[keep][::4]))
         for ax, name in zip(flat, PSD_SIGNALS, strict=False):
             ax.loglog(f, p[f"PSD {name}"], _style(label), lw=1, label=label)
-            ax.set_ylabel(f"PSD {SIGNALS[name][1].split(' [')[0]}")
+            symbol, unit = SIGNALS[name][1].rstrip("]").split(" [")
+            ax.set_ylabel(f"PSD {symbol} [({unit})$^2$/Hz]")
             data[f"PSD {name} {label}"] = _finite(p[f"PSD {name}"][keep][::4])
         flat[5].plot(p["time"], p["i_d"], lw=0.6, label=label)
         data[f"road DLC model {label}"] = p["DLC"]
@@ -734,6 +735,10 @@ def shock_table(
         row["peak F_T model [N]"] = round(float(p["peak_tire_force"]), 1)
         row["differs (>25 %)"] = " ".join(differs) or "-"
         rows.append(row)
+    ratios = []
+    for k in SHOCK:
+        r = [row[f"{k} model"] / row[f"{k} dissertation"] for row in rows]
+        ratios.append(f"{k} {min(r):.2f}-{max(r):.2f}")
     step = _step(table.base, quick) * 1e3
     return {
         "number": table.number,
@@ -743,7 +748,7 @@ def shock_table(
             f"varying {table.column}; ratios of peaks over a {PULSE_DURATION:g} s record, step "
             f"{step:g} ms. Scenario: {json.dumps(_normalise(table.base), sort_keys=True)}. DTR "
             f"against the nominal row, normalised by (m_s0 + m_u) g = {total * 9.81:.0f} N. "
-            + table.why
+            f"Model/dissertation ratio over the rows: {', '.join(ratios)}. " + table.why
         ),
         "rows": rows,
     }
