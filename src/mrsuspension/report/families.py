@@ -386,7 +386,7 @@ def run_unit(unit: Unit) -> dict[str, Any]:
         the ``i_d`` history (psd), frequency-response curves (freq), plus measures and
         ``run time [s]``.
     """
-    start = time.perf_counter()
+    start, cpu = time.perf_counter(), time.process_time()
     out: dict[str, Any]
     if unit.kind == "time":
         from mrsuspension.measures import asymmetry_ratio, force_tracking_error
@@ -447,6 +447,7 @@ def run_unit(unit: Unit) -> dict[str, Any]:
             f"unit kind {unit.kind!r} is not valid; valid: time, freq, pulse, psd"
         )
     out["run time [s]"] = time.perf_counter() - start
+    out["run cpu time [s]"] = time.process_time() - cpu
     return out
 
 
@@ -649,8 +650,11 @@ def _build_special(
     }
 
 
-def _call(func: Callable[..., Any], args: tuple[Any, ...]) -> Any:
-    return func(*args)
+def _call(func: Callable[..., Any], args: tuple[Any, ...]) -> tuple[Any, float]:
+    """``func(*args)`` and the CPU time it took [s]."""
+    cpu = time.process_time()
+    value = func(*args)
+    return value, time.process_time() - cpu
 
 
 # -- shock tables --------------------------------------------------------------------------
@@ -764,6 +768,7 @@ class Built:
     calls: dict[str, Any] = field(default_factory=dict)
     payloads: dict[Unit, dict[str, Any]] = field(default_factory=dict)
     wall_time: float = 0.0
+    timing: dict[str, Any] = field(default_factory=dict)
 
 
 def build_all(
@@ -834,6 +839,7 @@ def build_all(
     units.sort(key=lambda u: order[u.kind])
     n_workers = 1 if in_worker() else (workers or os.cpu_count() or 1)
     total = len(units) + len(todo) + len(special_jobs) + len(calls or {})
+    call_cpu: dict[str, float] = {}
     done = 0
 
     def tick(what: str) -> None:
@@ -858,7 +864,7 @@ def build_all(
             built.figures[f"{sub}/{rec['number']}"] = rec
             tick(f"Fig. {rec['number']}")
         for name, (func, args) in (calls or {}).items():
-            built.calls[name] = func(*args)
+            built.calls[name], call_cpu[name] = _call(func, args)
             tick(name)
     else:
         with ProcessPoolExecutor(max_workers=n_workers) as pool:
@@ -895,7 +901,7 @@ def build_all(
                         built.figures[f"{ref}/{value['number']}"] = value
                         tick(f"Fig. {value['number']}")
                     else:
-                        built.calls[ref] = value
+                        built.calls[ref], call_cpu[ref] = value
                         tick(ref)
     for t in tables:
         rows_in: dict[float, dict[str, Any]] = {
@@ -903,6 +909,17 @@ def build_all(
         }
         built.tables[t.number] = shock_table(t, rows_in, quick)
     built.wall_time = time.perf_counter() - start
+    built.timing = {
+        "workers": n_workers,
+        "distinct runs": len(units),
+        "figures": len(built.figures),
+        "run cpu time [s]": round(sum(p["run cpu time [s]"] for p in built.payloads.values()), 2),
+        "figure cpu time [s]": round(
+            sum(r.get("render cpu time [s]", 0.0) for r in built.figures.values()), 2
+        ),
+        "other cpu time [s]": {k: round(v, 2) for k, v in call_cpu.items()},
+        "wall time [s]": round(built.wall_time, 2),
+    }
     return built
 
 

@@ -439,7 +439,7 @@ def build_report(
     bodies: list[str] = []
     manifest: dict[str, Any] = {"version": __version__, "chapters": {}}
     built = _build(chosen, out, quick, say)
-    manifest["pool wall time [s]"] = round(built.wall_time, 2)
+    manifest["pool"] = built.timing
     for c in chosen:
         body, info = _CHAPTERS[c](out / f"chapter{c}", quick, say)
         bodies.append(body)
