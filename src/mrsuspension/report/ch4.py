@@ -353,6 +353,7 @@ _GAINS = vary("controller", "gain", (0.5, 1.5, 3.0), "k_c = {:g}".format, 3.0)
 _ORDERS = vary("controller", "order", (1, 2, 3), "n = {}".format, 2)
 _TRACK = ("F_d", "i_d", "a_s", "a_u", "x_r", "F_T")
 _FOUR = ("F_d", "i_d", "a_s", "a_u")
+_FV = ("F_d", "v_r", "a_s", "a_u")  # Figs 4.1, 4.2: passive damper, no current to show
 _H = "2.5 cm harmonic excitation at 1.5 Hz (steady state 6-7.4 s shown)"
 _SW = (
     "two-stage swept excitation a = 2.5 cm, f_T = 2.1 Hz, 0.5-15 Hz. Near 2.3 Hz our "
@@ -384,12 +385,12 @@ FIGURES: tuple[FigureSpec, ...] = (
         "4.1", "time", "Passive damper at 0.2 A: mean and hysteretic damper models",
         f"Passive MR damper at i_d = 0.2 A, damper.hysteresis = false (mean model) and true; {_H}.",
         {"mean model": {"damper": {"hysteresis": False}}, "hysteretic model": {}},
-        base={"controller": {"law": "passive", "current": 0.2}},
+        base={"controller": {"law": "passive", "current": 0.2}}, signals=_FV,
     ),
     _spec(
         "4.2", "time", "Influence of the drive current (0, 0.2 A), hysteretic damper",
         f"Passive hysteretic MR damper at i_d = 0 and 0.2 A; {_H}.",
-        passive(0.0, 0.2), base={},
+        passive(0.0, 0.2), base={}, signals=_FV,
     ),
     _spec(
         "4.3", "time", "On-off ADFG control with the mean and the hysteretic damper model",

@@ -111,6 +111,7 @@ SIGNALS: dict[str, tuple[str, str]] = {
     "x_s": ("z_s", "$x_s$ [m]"),
     "x_u": ("z_u", "$x_u$ [m]"),
     "x_r": ("x_d", "$x_r$ [m]"),
+    "v_r": ("v_d", "$v_r$ [m/s]"),
     "F_T": ("F_T", "$F_T$ [N]"),
 }
 #: Default panels of the time and pulse figures (Figs 4.8, 4.10 show these responses)
