@@ -538,10 +538,16 @@ def _render_freq(
         k = int(np.argmax(np.where(body, p["T_as"], -np.inf)))
         data[f"peak T_as {label}"] = float(p["T_as"][k])
         data[f"peak T_as frequency {label} [Hz]"] = float(f[k])
+    from matplotlib.ticker import FixedLocator, FormatStrFormatter, NullLocator
+
     for ax in axes.ravel():
         ax.set_xscale("log")
+        # labelled ticks at 0.5-10 Hz, no minor ticks (cheaper to draw, easier to read)
+        ax.xaxis.set_major_locator(FixedLocator([0.5, 1, 2, 5, 10]))
+        ax.xaxis.set_major_formatter(FormatStrFormatter("%g"))
+        ax.xaxis.set_minor_locator(NullLocator())
         ax.set_xlabel("frequency [Hz]")
-        ax.grid(True, which="both", alpha=0.3)
+        ax.grid(True, alpha=0.3)
     axes[0, 0].legend(fontsize=7, loc="upper right")
     return fig, data
 
