@@ -75,38 +75,41 @@ def _table(rows: Sequence[dict[str, Any]], fmt: str = "{:.4g}") -> str:
     return f"<table><tr>{head}</tr>{''.join(body)}</table>"
 
 
+def table_2_1_rows(quick: bool) -> list[dict[str, Any]]:
+    """Table 2.1's test matrix on the symmetric model (both frequency bands), sorted."""
+    from mrsuspension.characterisation import characterise, table_2_1
+    from mrsuspension.report import ch2
+
+    conds = table_2_1() if not quick else table_2_1(frequencies=[0.5, 1.5, 5.0, 15.0])
+    result = characterise(ch2.band_model(0.5), [c for c in conds if c.frequency <= 5.0])
+    result_hi = characterise(ch2.band_model(7.5), [c for c in conds if c.frequency > 5.0])
+    rows: list[dict[str, Any]] = result.summary_rows() + result_hi.summary_rows()
+    rows.sort(key=lambda r: (r["amplitude [m]"], r["frequency [Hz]"], r["current [A]"]))
+    return rows
+
+
+def _jobs_2(quick: bool) -> dict[str, Any]:
+    from mrsuspension.report import ch2
+
+    return {
+        "specials": [("chapter2", b, None) for b in ch2.CHAPTER_2_FIGURES],
+        "calls": {"table 2.1": (table_2_1_rows, (quick,))},
+    }
+
+
 def _chapter_2(
     folder: Path, quick: bool, progress: Callable[[str], None]
 ) -> tuple[str, dict[str, Any]]:
     from mrsuspension import parameters
-    from mrsuspension.characterisation import characterise, table_2_1
     from mrsuspension.errata import ERRATA
-    from mrsuspension.report import ch2
 
-    sections: list[str] = []
-    manifest: dict[str, Any] = {"figures": [], "tables": []}
-    for build in ch2.CHAPTER_2_FIGURES:
-        progress(f"chapter 2: {build.__doc__.splitlines()[0] if build.__doc__ else build.__name__}")
-        rec = build()
-        rec.save(folder)
-        manifest["figures"].append(
-            {"number": rec.number, "title": rec.title, "files": rec.files, "data": rec.data}
-        )
-        sections.append(
-            f'<figure id="{rec.slug}"><img src="chapter2/{rec.slug}.png" alt="Fig. {rec.number}">'
-            f"<figcaption><b>Fig. {html.escape(rec.number)}: {html.escape(rec.title)}.</b> "
-            f"{html.escape(rec.caption)} "
-            f'<a href="chapter2/{rec.slug}.svg">SVG</a></figcaption></figure>'
-        )
-    # Table 2.1 on the default model
-    progress("chapter 2: Table 2.1 test matrix on the symmetric model")
-    conds = table_2_1() if not quick else table_2_1(frequencies=[0.5, 1.5, 5.0, 15.0])
-    result = characterise(ch2.band_model(0.5), [c for c in conds if c.frequency <= 5.0])
-    result_hi = characterise(ch2.band_model(7.5), [c for c in conds if c.frequency > 5.0])
-    rows = result.summary_rows() + result_hi.summary_rows()
-    rows.sort(key=lambda r: (r["amplitude [m]"], r["frequency [Hz]"], r["current [A]"]))
+    built = _prebuilt(2, folder.parent, quick, progress)
+    sections, records = _figure_sections(2, built, folder)
+    manifest: dict[str, Any] = {"figures": records, "tables": []}
+    rows = built.calls["table 2.1"]
     import csv
 
+    folder.mkdir(parents=True, exist_ok=True)
     with (folder / "table_2_1_model.csv").open("w", newline="") as fh:
         w = csv.DictWriter(fh, fieldnames=list(rows[0]))
         w.writeheader()
@@ -155,39 +158,74 @@ def _chapter_2(
     return body, manifest
 
 
+def _number_key(number: str) -> tuple[int, int, str]:
+    """Sort key of a figure number: ``"4.3b"`` -> (4, 3, "b"); non-numeric parts last."""
+    chapter, _, rest = number.partition(".")
+    digits = "".join(c for c in rest if c.isdigit())
+    tail = rest[len(digits) :]
+    return (int(chapter) if chapter.isdigit() else 99, int(digits) if digits else 999, tail)
+
+
 def _figure_sections(
-    chapter: int,
-    builders: Sequence[Callable[[bool], FigureRecord]],
-    folder: Path,
-    quick: bool,
-    progress: Callable[[str], None],
+    chapter: int, built: Any, folder: Path
 ) -> tuple[list[str], list[dict[str, Any]]]:
-    """Build, save and describe each figure of a chapter (figure builders take ``quick``)."""
-    sections: list[str] = []
-    records: list[dict[str, Any]] = []
-    for build in builders:
-        doc = build.__doc__.splitlines()[0] if build.__doc__ else build.__name__
-        progress(f"chapter {chapter}: {doc}")
-        rec = build(quick)
-        rec.save(folder)
-        records.append(
-            {"number": rec.number, "title": rec.title, "files": rec.files, "data": rec.data}
+    """HTML and manifest records of a chapter's built figures, in figure-number order."""
+    prefix = f"{folder.name}/"
+    records = sorted(
+        (rec for key, rec in built.figures.items() if key.startswith(prefix)),
+        key=lambda r: _number_key(r["number"]),
+    )
+    sections = []
+    for rec in records:
+        slug = "fig_" + rec["number"].replace(".", "_")
+        svg = (
+            f' <a href="chapter{chapter}/{slug}.svg">SVG</a>'
+            if f"{slug}.svg" in rec["files"]
+            else ""
         )
         sections.append(
-            f'<figure id="{rec.slug}"><img src="chapter{chapter}/{rec.slug}.png" '
-            f'alt="Fig. {rec.number}"><figcaption><b>Fig. {html.escape(rec.number)}: '
-            f"{html.escape(rec.title)}.</b> {html.escape(rec.caption)} "
-            f'<a href="chapter{chapter}/{rec.slug}.svg">SVG</a></figcaption></figure>'
+            f'<figure id="{slug}"><img src="chapter{chapter}/{slug}.png" '
+            f'alt="Fig. {html.escape(rec["number"])}"><figcaption><b>Fig. '
+            f"{html.escape(rec['number'])}: {html.escape(rec['title'])}.</b> "
+            f"{html.escape(rec['caption'])}{svg}</figcaption></figure>"
         )
     return sections, records
+
+
+def _table_sections(
+    chapter: int, tables: Sequence[dict[str, Any]], folder: Path
+) -> tuple[str, list[dict[str, Any]]]:
+    """Write each table as CSV; the HTML of all of them and their manifest entries."""
+    import csv
+
+    out = []
+    parts = []
+    for tab in tables:
+        slug = "table_" + tab["number"].replace(".", "_")
+        with (folder / f"{slug}.csv").open("w", newline="") as fh:
+            w = csv.DictWriter(fh, fieldnames=list(tab["rows"][0]))
+            w.writeheader()
+            w.writerows(tab["rows"])
+        out.append({**tab, "file": f"chapter{chapter}/{slug}.csv"})
+        parts.append(
+            f"<h3 id='{slug}'>Table {html.escape(tab['number'])}: {html.escape(tab['title'])}"
+            f"</h3><p>{html.escape(tab['caption'])} <a href='chapter{chapter}/{slug}.csv'>"
+            f"{slug}.csv</a></p>" + _table(tab["rows"], "{:.3g}")
+        )
+    return "".join(parts), out
+
+
+def _jobs_3(quick: bool) -> dict[str, Any]:
+    from mrsuspension.report import ch3
+
+    return {"specials": [("chapter3", b, quick) for b in ch3.CHAPTER_3_FIGURES]}
 
 
 def _chapter_3(
     folder: Path, quick: bool, progress: Callable[[str], None]
 ) -> tuple[str, dict[str, Any]]:
-    from mrsuspension.report import ch3
-
-    sections, records = _figure_sections(3, ch3.CHAPTER_3_FIGURES, folder, quick, progress)
+    built = _prebuilt(3, folder.parent, quick, progress)
+    sections, records = _figure_sections(3, built, folder)
     body = (
         "<h2 id='ch3'>Chapter 3: semi-active control synthesis, reference model and "
         "excitations</h2>" + "".join(sections)
@@ -195,47 +233,54 @@ def _chapter_3(
     return body, {"figures": records, "tables": []}
 
 
+def _jobs_4(quick: bool) -> dict[str, Any]:
+    from mrsuspension.report import ch4
+
+    return {"figures": {"chapter4": ch4.FIGURES}, "tables": ch4.TABLES}
+
+
+_FAMILY_NOTE = (
+    "<p>Every figure below is a figure family (mrsuspension.report.families): a base "
+    "scenario and its variants, run once each and shared between figures and tables. Time "
+    "histories: 2.5 cm harmonic at 1.5 Hz (steady state 6-7.4 s); frequency responses: "
+    "two-stage swept excitation a = 2.5 cm, f_T = 2.1 Hz, 0.5-15 Hz; transients: rounded "
+    "pulse mu = 3, a_m = 3.5 cm, 50 km/h; random responses: the 'rough' preset road at "
+    "50 km/h, a stand-in for the dissertation's Canadian roads (which are not available). "
+    "Each record in manifest.json holds the scenario of every curve and the numbers behind "
+    "it; each table sets our values beside the dissertation's.{quick}</p>"
+)
+
+
+def _note(quick: bool) -> str:
+    return _FAMILY_NOTE.format(
+        quick=" Quick mode: 10 frequencies and a 0.5 ms step (0.25 ms for the inverse-model "
+        "laws); PNG only."
+        if quick
+        else ""
+    )
+
+
 def _chapter_4(
     folder: Path, quick: bool, progress: Callable[[str], None]
 ) -> tuple[str, dict[str, Any]]:
-    import csv
-
+    built = _prebuilt(4, folder.parent, quick, progress)
+    sections, records = _figure_sections(4, built, folder)
     from mrsuspension.report import ch4
 
-    builders = ch4.CHAPTER_4_FIGURES + (() if quick else ch4.CHAPTER_4_FULL_FIGURES)
-    sections, records = _figure_sections(4, builders, folder, quick, progress)
-    progress("chapter 4: Tables 4.1-4.5 shock response measures")
-    tables = []
-    table_sections = []
-    for tab in ch4.shock_tables(quick):
-        slug = "table_" + tab["number"].replace(".", "_")
-        with (folder / f"{slug}.csv").open("w", newline="") as fh:
-            w = csv.DictWriter(fh, fieldnames=list(tab["rows"][0]))
-            w.writeheader()
-            w.writerows(tab["rows"])
-        tables.append({**tab, "file": f"chapter4/{slug}.csv"})
-        table_sections.append(
-            f"<h3 id='{slug}'>Table {html.escape(tab['number'])}: {html.escape(tab['title'])}"
-            f"</h3><p>{html.escape(tab['caption'])} <a href='chapter4/{slug}.csv'>{slug}.csv"
-            "</a></p>" + _table(tab["rows"], "{:.3g}")
-        )
-    skipped = (
-        ""
-        if not quick
-        else "<p>Quick mode: the frequency-response figures 4.3b (hysteresis) and 4.7 "
-        "(SCM vs ACM) are built only in the full report.</p>"
-    )
+    tables_html, tables = _table_sections(4, [built.tables[t.number] for t in ch4.TABLES], folder)
     body = (
         "<h2 id='ch4'>Chapter 4: hi-lo semi-active MR suspension, simulation studies</h2>"
-        "<p>Frequency responses come from studies (two-stage swept excitation, a = 2.5 cm, "
-        "f_T = 2.1 Hz); time histories, rounded-pulse and random-road responses run the "
-        "engine directly. The numbers behind every curve are in manifest.json; each table "
-        "sets our model's values beside the dissertation's.</p>"
-        + skipped
+        + _note(quick)
         + "".join(sections)
-        + "".join(table_sections)
+        + tables_html
     )
     return body, {"figures": records, "tables": tables}
+
+
+def _jobs_5(quick: bool) -> dict[str, Any]:
+    from mrsuspension.report import ch5
+
+    return {"figures": {"chapter5": ch5.FIGURES}, "tables": ch5.TABLES}
 
 
 def _chapter_5(
@@ -243,13 +288,27 @@ def _chapter_5(
 ) -> tuple[str, dict[str, Any]]:
     from mrsuspension.report import ch5
 
-    sections, records = _figure_sections(5, ch5.CHAPTER_5_FIGURES, folder, quick, progress)
+    built = _prebuilt(5, folder.parent, quick, progress)
+    sections, records = _figure_sections(5, built, folder)
+    tables_html, tables = _table_sections(5, [built.tables[t.number] for t in ch5.TABLES], folder)
     body = (
         "<h2 id='ch5'>Chapter 5: inverse-model hi-lo semi-active damping</h2>"
-        "<p>Time histories run the engine directly (2.5 cm at 1.5 Hz); frequency responses "
-        "come from studies. The force gain k_d is damper.force_gain.</p>" + "".join(sections)
+        + _note(quick)
+        + "<p>The force gain k_d is damper.force_gain.</p>"
+        + "".join(sections)
+        + tables_html
     )
-    return body, {"figures": records, "tables": []}
+    return body, {"figures": records, "tables": tables}
+
+
+def _jobs_6(quick: bool) -> dict[str, Any]:
+    from mrsuspension.report import ch6
+
+    return {
+        "figures": {"chapter6": ch6.FIGURES},
+        "tables": ch6.TABLES,
+        "calls": {"comparison 6.5": (ch6.comparison_table, (quick,))},
+    }
 
 
 def _chapter_6(
@@ -259,16 +318,19 @@ def _chapter_6(
 
     from mrsuspension.report import ch6
 
-    sections, records = _figure_sections(6, ch6.CHAPTER_6_FIGURES, folder, quick, progress)
-    progress("chapter 6: section 6.5 controller comparison")
-    rows = ch6.comparison_table(quick)
+    built = _prebuilt(6, folder.parent, quick, progress)
+    sections, records = _figure_sections(6, built, folder)
+    tables_html, tables = _table_sections(6, [built.tables[t.number] for t in ch6.TABLES], folder)
+    rows = built.calls["comparison 6.5"]
     with (folder / "table_6_5_comparison.csv").open("w", newline="") as fh:
         w = csv.DictWriter(fh, fieldnames=list(rows[0]))
         w.writeheader()
         w.writerows(rows)
     body = (
         "<h2 id='ch6'>Chapter 6: inverse-model sliding-mode semi-active damping</h2>"
+        + _note(quick)
         + "".join(sections)
+        + tables_html
         + "<h3 id='table_6_5'>Section 6.5: comparison of the controllers</h3>"
         "<p>Passive 0 A, skyhook hi-lo ACM (k_c = 3, n = 2), inverse-model hi-lo ACM and "
         "sliding mode ACM (both k_d = 2.5) under a 1.5 Hz / 2.5 cm harmonic (steady state, "
@@ -277,8 +339,53 @@ def _chapter_6(
         "<a href='chapter6/table_6_5_comparison.csv'>table_6_5_comparison.csv</a></p>"
         + _table(rows)
     )
-    table = {"number": "6.5", "file": "chapter6/table_6_5_comparison.csv", "rows": rows}
-    return body, {"figures": records, "tables": [table]}
+    tables.append({"number": "6.5", "file": "chapter6/table_6_5_comparison.csv", "rows": rows})
+    return body, {"figures": records, "tables": tables}
+
+
+#: Per chapter: what it needs built (``build_all`` keyword arguments), so that
+#: :func:`build_report` can run every chapter's simulations and figures in one pool
+_JOBS: dict[int, Callable[[bool], dict[str, Any]]] = {
+    2: _jobs_2,
+    3: _jobs_3,
+    4: _jobs_4,
+    5: _jobs_5,
+    6: _jobs_6,
+}
+#: What the last pool run built: (output folder, quick, chapters) -> Built
+_BUILT: dict[tuple[str, bool], tuple[frozenset[int], Any]] = {}
+
+
+def _build(chapters: Iterable[int], out: Path, quick: bool, progress: Callable[[str], None]) -> Any:
+    """Run the jobs of ``chapters`` in one process pool (see families.build_all)."""
+    from mrsuspension.report.families import build_all
+
+    figures: dict[str, Any] = {}
+    tables: list[Any] = []
+    specials: list[Any] = []
+    calls: dict[str, Any] = {}
+    chosen = [c for c in chapters if c in _JOBS]
+    for c in chosen:
+        job = _JOBS[c](quick)
+        figures.update(job.get("figures", {}))
+        tables.extend(job.get("tables", ()))
+        specials.extend(job.get("specials", ()))
+        calls.update(job.get("calls", {}))
+    for sub in {*figures, *(s[0] for s in specials)}:
+        (out / sub).mkdir(parents=True, exist_ok=True)
+    built = build_all(
+        figures, tables, quick, out, specials=specials, calls=calls, progress=progress
+    )
+    _BUILT[(str(out), quick)] = (frozenset(chosen), built)
+    return built
+
+
+def _prebuilt(chapter: int, out: Path, quick: bool, progress: Callable[[str], None]) -> Any:
+    """The pool results holding ``chapter`` (built now, for it alone, if missing)."""
+    done = _BUILT.get((str(out), quick))
+    if done is not None and chapter in done[0]:
+        return done[1]
+    return _build([chapter], out, quick, progress)
 
 
 _CHAPTERS: dict[int, Callable[[Path, bool, Callable[[str], None]], tuple[str, dict[str, Any]]]] = {
@@ -304,10 +411,10 @@ def build_report(
     out : path
         Output folder (created). Figures go to ``out/chapterN/``.
     chapters : iterable of int or "beyond", optional
-        Chapters to build (default: every available one and the "beyond the
+        Chapters to build (default: chapters 2-6 and the "beyond the
         dissertation" section, :mod:`mrsuspension.report.beyond`).
     quick : bool
-        Coarser grids for a fast check.
+        Coarser grids for a fast check, PNG only (else PNG and SVG).
     progress : callable, optional
         Called with a message before each step.
 
@@ -337,6 +444,8 @@ def build_report(
     start = time.perf_counter()
     bodies: list[str] = []
     manifest: dict[str, Any] = {"version": __version__, "chapters": {}}
+    built = _build(chosen, out, quick, say)
+    manifest["pool"] = built.timing
     for c in chosen:
         body, info = _CHAPTERS[c](out / f"chapter{c}", quick, say)
         bodies.append(body)
@@ -349,6 +458,7 @@ def build_report(
         manifest["beyond"] = info
     elapsed = time.perf_counter() - start
     manifest["run_time_s"] = round(elapsed, 2)
+    _BUILT.pop((str(out), quick), None)
     (out / "manifest.json").write_text(json.dumps(manifest, indent=2, default=float) + "\n")
     toc = "".join(f"<li><a href='#ch{c}'>Chapter {c}</a></li>" for c in chosen)
     toc += "<li><a href='#beyond'>Beyond the dissertation</a></li>" if beyond else ""

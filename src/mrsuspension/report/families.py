@@ -1,0 +1,1036 @@
+"""Declarative figure families for Chapters 4-6, and a process pool that builds them.
+
+The three simulation chapters repeat the same analyses per controller (harmonic time
+histories, frequency responses, rounded-pulse transients, random-road PSDs), each over a
+set of variants. A :class:`FigureSpec` states one figure as data: its number, its
+**kind**, the base scenario tables, the variants (label -> table overrides) and the
+caption. Each variant of a spec becomes a :class:`Unit` (one scenario under one kind of
+analysis); equal units are run once and shared by every figure and table that needs them
+(the nominal controller appears in most figures of a chapter).
+
+Kinds and their default excitation:
+
+========  ===================================================================  ==========
+kind      analysis                                                             panels
+========  ===================================================================  ==========
+time      harmonic 2.5 cm at 1.5 Hz, 8 s, steady window 6-7.4 s shown          signals
+freq      two-stage swept excitation a = 2.5 cm, f_T = 2.1 Hz, 0.5-15 Hz       T_as, T_au,
+                                                                               T_dr, DLC
+pulse     rounded pulse mu = 3, a_m = 3.5 cm, 50 km/h (omega_0 = 10.4 rad/s)   signals
+psd       'rough' preset road at 50 km/h                                       PSDs + i_d
+special   a function ``builder(quick) -> FigureRecord``                        its own
+========  ===================================================================  ==========
+
+A variant's tables update the base section by section (``{"vehicle": {"sprung_mass":
+422.0}}`` keeps the base controller); a variant ``controller`` table that names a ``law``
+replaces the base controller table instead, so ``{"controller": {"law": "passive",
+"current": 0.1}}`` does not inherit the base's ``mode`` or ``gain``.
+
+Step sizes: quick mode uses 0.5 ms, or 0.25 ms for the inverse-model laws and any damper
+force gain above 1 (a steeper pre-yield slope; RK4 limit about 0.27 ms at k_d = 2.5); the
+full report uses the spec's 0.1 ms throughout.
+
+Examples
+--------
+>>> spec = FigureSpec(
+...     number="4.12",
+...     kind="time",
+...     title="Sprung-mass variation",
+...     caption="Skyhook hi-lo ACM.",
+...     base={"controller": {"law": "skyhook-hilo", "mode": "ACM", "gain": 3.0}},
+...     variants={"m_s = 422 kg": {"vehicle": {"sprung_mass": 422.0}}, "m_s = 563 kg": {}},
+... )
+>>> [u.kind for u in spec.units(quick=True).values()]
+['time', 'time']
+>>> spec.scenario("m_s = 422 kg")["vehicle"]
+{'sprung_mass': 422.0}
+>>> FigureSpec(number="4.99", kind="movie", title="t", caption="c", variants={"a": {}})
+Traceback (most recent call last):
+...
+mrsuspension.errors.ValidationError: figure 4.99: kind 'movie' is not valid; valid kinds: time, freq, pulse, psd, special
+"""
+
+from __future__ import annotations
+
+import copy
+import json
+import math
+import multiprocessing
+import os
+import time
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, NamedTuple
+
+import numpy as np
+
+from mrsuspension.errors import ValidationError
+
+__all__ = [
+    "KINDS",
+    "FigureSpec",
+    "ShockTable",
+    "Unit",
+    "build_all",
+    "check_finite",
+    "in_worker",
+    "make_unit",
+    "markdown_index",
+    "passive",
+    "render",
+    "run_unit",
+    "shock_table",
+    "vary",
+]
+
+#: The kinds of figure family
+KINDS: tuple[str, ...] = ("time", "freq", "pulse", "psd", "special")
+
+#: Default excitation of each simulated kind
+HARMONIC: dict[str, Any] = {"kind": "harmonic", "frequency": 1.5, "amplitude": 0.025}
+PULSE: dict[str, Any] = {"kind": "pulse", "amplitude": 0.035, "severity": 3.0, "speed": 50.0}
+ROAD: dict[str, Any] = {"kind": "road", "profile": "rough", "speed": 50.0}
+SWEPT: dict[str, Any] = {"kind": "swept", "amplitude": 0.025, "transition_frequency": 2.1}
+#: Run lengths [s]: harmonic, pulse (the road runs its own length)
+HARMONIC_DURATION = 8.0
+PULSE_DURATION = 4.0
+#: Window shown for harmonic runs and the start of their steady state [s]
+SHOWN = (6.0, 7.4)
+STEADY_FROM = 4.0
+#: The laws that use the inverse damper model (smaller step in quick mode)
+INVERSE_LAWS = ("inverse-hilo", "sliding-mode")
+
+#: Time-history signals: name -> (result key, axis label)
+SIGNALS: dict[str, tuple[str, str]] = {
+    "F_d": ("F_d", "$F_d$ [N]"),
+    "F*": ("F_target", "target force $F^*$ / $F_c$ [N]"),
+    "i_d": ("i_d", "$i_d$ [A]"),
+    "a_s": ("z_s_ddot", "$a_s$ [m/s$^2$]"),
+    "a_u": ("z_u_ddot", "$a_u$ [m/s$^2$]"),
+    "x_s": ("z_s", "$x_s$ [m]"),
+    "x_u": ("z_u", "$x_u$ [m]"),
+    "x_r": ("x_d", "$x_r$ [m]"),
+    "v_r": ("v_d", "$v_r$ [m/s]"),
+    "F_T": ("F_T", "$F_T$ [N]"),
+}
+#: Default panels of the time and pulse figures (Figs 4.8, 4.10 show these responses)
+DEFAULT_SIGNALS: tuple[str, ...] = ("F_d", "i_d", "a_s", "a_u", "x_s", "x_u", "x_r", "F_T")
+#: PSD panels (the dissertation's random-response figures), then the i_d history
+PSD_SIGNALS: tuple[str, ...] = ("F_d", "a_s", "a_u", "x_r", "F_T")
+#: Frequency-response panels
+FREQ_PANELS: tuple[tuple[str, str], ...] = (
+    ("T_as", "$T_{as}$"),
+    ("T_au", "$T_{au}$"),
+    ("T_dr", "$T_{dr}$"),
+    ("DLC", "DLC"),
+)
+#: Shock-response measures of the tables
+SHOCK: tuple[str, ...] = ("SDR_s", "SAR_s", "SDR_u", "SAR_u", "RDR")
+
+
+def in_worker() -> bool:
+    """True in a child process (a pool worker): nested pools are then avoided.
+
+    Examples
+    --------
+    >>> in_worker()
+    False
+    """
+    return multiprocessing.parent_process() is not None
+
+
+def _merge(base: Mapping[str, Any], variant: Mapping[str, Any]) -> dict[str, Any]:
+    """Base tables updated section by section; a variant controller with a law replaces."""
+    out = copy.deepcopy(dict(base))
+    for section, table in variant.items():
+        if not isinstance(table, Mapping):
+            raise ValidationError(
+                f"variant section [{section}] must be a table of keys, got {table!r}"
+            )
+        if section == "controller" and "law" in table:
+            out[section] = dict(table)
+        else:
+            out[section] = {**out.get(section, {}), **table}
+    return out
+
+
+class Unit(NamedTuple):
+    """One scenario under one kind of analysis: what is run once and shared.
+
+    ``tables`` is the canonical JSON of the scenario tables (``excitation`` included).
+    """
+
+    kind: str
+    tables: str
+    dt: float
+
+    @property
+    def scenario(self) -> dict[str, Any]:
+        """The scenario tables as a dict."""
+        data: dict[str, Any] = json.loads(self.tables)
+        return data
+
+
+def _step(tables: Mapping[str, Any], quick: bool) -> float:
+    if not quick:
+        return 1e-4
+    law = tables.get("controller", {}).get("law")
+    gain = float(tables.get("damper", {}).get("force_gain", 1.0))
+    return 2.5e-4 if law in INVERSE_LAWS or gain > 1.0 else 5e-4
+
+
+_DEFAULT_EXCITATION = {"time": HARMONIC, "pulse": PULSE, "psd": ROAD, "freq": SWEPT}
+
+
+def make_unit(kind: str, tables: Mapping[str, Any], quick: bool) -> Unit:
+    """The :class:`Unit` of ``tables`` under ``kind`` (default excitation filled in).
+
+    Parameters
+    ----------
+    kind : str
+        ``"time"``, ``"freq"``, ``"pulse"`` or ``"psd"``.
+    tables : mapping
+        Scenario tables; an ``excitation`` table updates the kind's default excitation.
+    quick : bool
+        Quick-mode step sizes.
+
+    Returns
+    -------
+    Unit
+
+    Examples
+    --------
+    >>> make_unit("pulse", {"excitation": {"speed": 100.0}}, quick=True).scenario["excitation"]
+    {'amplitude': 0.035, 'kind': 'pulse', 'severity': 3.0, 'speed': 100.0}
+    """
+    if kind not in _DEFAULT_EXCITATION:
+        raise ValidationError(
+            f"kind {kind!r} has no simulation unit; valid: {', '.join(_DEFAULT_EXCITATION)}"
+        )
+    full = copy.deepcopy(dict(tables))
+    damper = full.get("damper", {})
+    if float(damper.get("force_gain", 2.0)) == 1.0:  # the default: drop, so runs are shared
+        damper = {k: v for k, v in damper.items() if k != "force_gain"}
+        full["damper"] = damper
+    if not full.get("damper", True):
+        del full["damper"]
+    full["excitation"] = {**_DEFAULT_EXCITATION[kind], **full.get("excitation", {})}
+    canon = json.dumps(_normalise(full), sort_keys=True)
+    return Unit(kind, canon, _step(full, quick))
+
+
+def _normalise(value: Any, kind: str = "") -> Any:
+    """Numbers as the scenario's key kinds (``number`` keys become floats, ``integer`` keys
+    ints), so equal scenarios written as ``563`` and ``563.0`` share one key."""
+    if isinstance(value, Mapping):
+        from mrsuspension.scenario import SCENARIO_KEYS
+
+        out = {}
+        for k, v in value.items():
+            keys = SCENARIO_KEYS.get(str(k))
+            if keys is not None and isinstance(v, Mapping):
+                out[str(k)] = {
+                    str(kk): _normalise(vv, keys.get(str(kk), "")) for kk, vv in v.items()
+                }
+            else:
+                out[str(k)] = _normalise(v)
+        return out
+    if isinstance(value, list | tuple):
+        return [_normalise(v) for v in value]
+    if isinstance(value, bool | str) or value is None:
+        return value
+    if kind == "integer" or (isinstance(value, int) and kind != "number"):
+        return int(value)
+    return float(value)
+
+
+@dataclass(frozen=True)
+class FigureSpec:
+    """One figure as data: number, kind, base scenario, variants and caption.
+
+    Parameters
+    ----------
+    number : str
+        Figure number, e.g. ``"4.12"``.
+    kind : str
+        One of :data:`KINDS`.
+    title : str
+        Short title.
+    caption : str
+        The caption: what was run (controller, excitation, variants) and what to read.
+    base : mapping
+        Scenario tables common to every variant (``vehicle``, ``damper``, ``controller``,
+        ``excitation``).
+    variants : mapping
+        Curve label -> table overrides (see the module docstring); at least one.
+    signals : tuple of str
+        Panels of time and pulse figures (keys of :data:`SIGNALS`); default
+        :data:`DEFAULT_SIGNALS`.
+    given : mapping
+        The dissertation's numbers per variant label (psd: the DLC), shown beside ours.
+    builder : callable, optional
+        ``builder(quick) -> FigureRecord`` for ``kind="special"``.
+    full_only : bool
+        Built only in the full report.
+    """
+
+    number: str
+    kind: str
+    title: str
+    caption: str
+    base: Mapping[str, Any] = field(default_factory=dict)
+    variants: Mapping[str, Mapping[str, Any]] = field(default_factory=dict)
+    signals: tuple[str, ...] = DEFAULT_SIGNALS
+    given: Mapping[str, float] = field(default_factory=dict)
+    builder: Callable[[bool], Any] | None = None
+    full_only: bool = False
+
+    def __post_init__(self) -> None:
+        where = f"figure {self.number}"
+        if self.kind not in KINDS:
+            raise ValidationError(
+                f"{where}: kind {self.kind!r} is not valid; valid kinds: {', '.join(KINDS)}"
+            )
+        if self.kind == "special":
+            if self.builder is None:
+                raise ValidationError(f"{where}: kind 'special' needs a builder function")
+            return
+        if not self.variants:
+            raise ValidationError(
+                f"{where}: the variant list is empty; give at least one label -> overrides"
+            )
+        unknown = [s for s in self.signals if s not in SIGNALS]
+        if unknown:
+            raise ValidationError(
+                f"{where}: unknown signal(s) {', '.join(unknown)}; valid: {', '.join(SIGNALS)}"
+            )
+        for label in self.given:
+            if label not in self.variants:
+                raise ValidationError(
+                    f"{where}: 'given' names variant {label!r}, not one of "
+                    f"{', '.join(self.variants)}"
+                )
+        for label in self.variants:
+            self.scenario(label)  # validates the override tables
+
+    @property
+    def slug(self) -> str:
+        """File stem, e.g. ``fig_4_12``."""
+        return "fig_" + self.number.replace(".", "_")
+
+    def scenario(self, label: str) -> dict[str, Any]:
+        """The scenario tables of one variant (base updated by its overrides)."""
+        return _merge(self.base, self.variants[label])
+
+    def units(self, quick: bool) -> dict[str, Unit]:
+        """Variant label -> the :class:`Unit` it needs (none for ``special``)."""
+        if self.kind == "special":
+            return {}
+        return {label: make_unit(self.kind, self.scenario(label), quick) for label in self.variants}
+
+    def describe(self) -> str:
+        """One line per variant: its label and scenario tables (for docs and records)."""
+        if self.kind == "special":
+            doc = (self.builder.__doc__ or "").strip().splitlines() if self.builder else []
+            return doc[0] if doc else "special"
+        lines = []
+        for label in self.variants:
+            unit = make_unit(self.kind, self.scenario(label), quick=False)
+            lines.append(f"{label}: {unit.tables}")
+        return "\n".join(lines)
+
+
+# -- running units -------------------------------------------------------------------------
+def _simulate(unit: Unit, duration: float | None) -> Any:
+    from mrsuspension.engine.simulate import run_many
+    from mrsuspension.scenario import Scenario
+
+    data = {**unit.scenario, "simulation": {"dt": unit.dt}}
+    scenario = Scenario.from_dict(data)
+    length = duration if duration is not None else float(scenario.excitations[0].duration)
+    (result,) = run_many(
+        scenario.simulations(), duration=length, dt=unit.dt, output_rate=1000.0, workers=1
+    )
+    return result
+
+
+def _finite(values: Any) -> list[float]:
+    return [float(v) for v in np.asarray(values, dtype=float)]
+
+
+def _history_payload(r: Any, window: tuple[float, float], every: int) -> dict[str, Any]:
+    t = np.asarray(r.time)
+    w = (t >= window[0]) & (t <= window[1])
+    out: dict[str, Any] = {"time": t[w][::every]}
+    for name, (key, _) in SIGNALS.items():
+        y = np.asarray(r[key], dtype=float)
+        if np.any(np.isnan(y[w])):
+            continue
+        out[name] = y[w][::every]
+        out[f"peak {name}"] = float(np.nanmax(np.abs(y[w])))
+    return out
+
+
+def run_unit(unit: Unit) -> dict[str, Any]:
+    """Run one unit and reduce it to what the figures and tables need.
+
+    Parameters
+    ----------
+    unit : Unit
+        From :func:`make_unit`.
+
+    Returns
+    -------
+    dict
+        Arrays and numbers: ``time`` and the :data:`SIGNALS` traces (time, pulse), PSDs and
+        the ``i_d`` history (psd), frequency-response curves (freq), plus measures and
+        ``run time [s]``.
+    """
+    start, cpu = time.perf_counter(), time.process_time()
+    out: dict[str, Any]
+    if unit.kind == "time":
+        from mrsuspension.measures import asymmetry_ratio, force_tracking_error
+
+        r = _simulate(unit, HARMONIC_DURATION)
+        out = _history_payload(r, SHOWN, 1)
+        steady = np.asarray(r.time >= STEADY_FROM)
+        out["mean current [A]"] = float(np.mean(r.i_d[steady]))
+        out["gamma"] = float(asymmetry_ratio(r.F_d[steady]))
+        out["max |di_d| per ms [A]"] = float(np.max(np.abs(np.diff(r.i_d[steady]))))
+        target = np.asarray(r.F_target[steady])
+        if not np.any(np.isnan(target)):
+            out["force-tracking error [N]"] = float(
+                force_tracking_error(r.F_d[steady], target, r.z_c[steady])
+            )
+    elif unit.kind == "pulse":
+        r = _simulate(unit, PULSE_DURATION)
+        out = _history_payload(r, (0.0, PULSE_DURATION), 2)
+        m = r.measures()
+        out.update({k: float(m[k]) for k in (*SHOCK, "peak_tire_force")})
+    elif unit.kind == "psd":
+        from mrsuspension.measures import psd
+
+        r = _simulate(unit, None)
+        fs = 1.0 / float(r.time[1] - r.time[0])
+        out = {}
+        for name in PSD_SIGNALS:
+            f, p = psd(np.asarray(r[SIGNALS[name][0]]), fs, warn=False)
+            band = (f > 0) & (f <= 25.0)
+            out["frequency"] = np.asarray(f)[band]
+            out[f"PSD {name}"] = np.asarray(p)[band]
+        out["time"] = np.asarray(r.time)[::20]
+        out["i_d"] = np.asarray(r.i_d)[::20]
+        m = r.measures()
+        out["DLC"] = float(m["DLC"])
+        out["rms a_s [m/s^2]"] = float(m["rms_body_acceleration"])
+        out["mean current [A]"] = float(m["mean_current"])
+    elif unit.kind == "freq":
+        from mrsuspension.studies import Study, run_study
+
+        data = {
+            "study": {"name": "report", "measures": [k for k, _ in FREQ_PANELS]},
+            **unit.scenario,
+            "simulation": {"dt": unit.dt},
+        }
+        exc = dict(data["excitation"])
+        exc.setdefault("frequencies", "log:10:0.5:15" if unit.dt > 1e-4 else "log:30:0.5:15")
+        data["excitation"] = exc
+        result = run_study(Study.from_dict(data), workers=1, progress=False, cache_dir=False)
+        ds = result.to_xarray()
+        dims = [d for d in ds["T_as"].dims if d != "frequency"]
+        ds = ds.isel({d: 0 for d in dims})
+        out = {"frequency": np.asarray(ds["frequency"].values, dtype=float)}
+        for key, _ in FREQ_PANELS:
+            out[key] = np.asarray(ds[key].values, dtype=float)
+    else:
+        raise ValidationError(
+            f"unit kind {unit.kind!r} is not valid; valid: time, freq, pulse, psd"
+        )
+    out["run time [s]"] = time.perf_counter() - start
+    out["run cpu time [s]"] = time.process_time() - cpu
+    return out
+
+
+# -- rendering ----------------------------------------------------------------------------
+def _subplots(rows: int, cols: int) -> tuple[Any, Any]:
+    """A grid of panels with fixed margins (constrained layout costs about 60 % of a
+    figure's rendering time, and the family figures all share a few shapes)."""
+    import matplotlib
+
+    matplotlib.use("Agg", force=False)
+    import matplotlib.pyplot as plt
+
+    width, height = 3.3 * cols, 2.5 * rows + 0.35
+    fig, axes = plt.subplots(rows, cols, figsize=(width, height), squeeze=False)
+    fig.subplots_adjust(
+        left=0.95 / width,
+        right=1 - 0.15 / width,
+        bottom=0.5 / height,
+        top=1 - 0.45 / height,
+        wspace=0.5,
+        hspace=0.42,
+    )
+    return fig, axes
+
+
+def _grid(n: int) -> tuple[int, int]:
+    if n <= 3:
+        return 1, n
+    if n == 4:
+        return 2, 2
+    return 2, (n + 1) // 2
+
+
+def _style(label: str) -> str:
+    return "--" if label.startswith("passive") else "-"
+
+
+def _render_histories(
+    spec: FigureSpec, payloads: Mapping[str, dict[str, Any]]
+) -> tuple[Any, dict[str, Any]]:
+    rows, cols = _grid(len(spec.signals))
+    fig, axes = _subplots(rows, cols)
+    flat = axes.ravel()
+    data: dict[str, Any] = {}
+    every = 10
+    for label, p in payloads.items():
+        t = p["time"]
+        data[f"time {label} [s]"] = [round(float(v), 4) for v in t[::every]]
+        for ax, name in zip(flat, spec.signals, strict=False):
+            ax.set_ylabel(SIGNALS[name][1])
+            if name not in p:
+                continue
+            ax.plot(t, p[name], _style(label), lw=1, label=label)
+            data[f"peak |{name}| {label}"] = p[f"peak {name}"]
+            data[f"{name} {label}"] = _finite(p[name][::every])
+        if spec.kind == "time":
+            data[f"mean current {label} [A]"] = p["mean current [A]"]
+            data[f"gamma (rebound/compression peak force) {label}"] = p["gamma"]
+            data[f"max |di_d| per ms {label} [A]"] = p["max |di_d| per ms [A]"]
+            if "force-tracking error [N]" in p:
+                data[f"force-tracking error {label} [N]"] = p["force-tracking error [N]"]
+        else:
+            for k in (*SHOCK, "peak_tire_force"):
+                data[f"{k} {label}"] = p[k]
+    for ax in flat[len(spec.signals) :]:
+        ax.set_visible(False)
+    for ax in flat[: len(spec.signals)]:
+        ax.set_xlabel("time [s]")
+        ax.grid(True, alpha=0.3)
+    flat[0].legend(fontsize=7, loc="upper right")
+    return fig, data
+
+
+def _render_freq(
+    spec: FigureSpec, payloads: Mapping[str, dict[str, Any]]
+) -> tuple[Any, dict[str, Any]]:
+    fig, axes = _subplots(2, 2)
+    data: dict[str, Any] = {}
+    for label, p in payloads.items():
+        f = p["frequency"]
+        data.setdefault("frequency [Hz]", _finite(f))
+        for ax, (key, ylabel) in zip(axes.ravel(), FREQ_PANELS, strict=True):
+            ax.plot(f, p[key], _style(label), marker="o", ms=3, label=label)
+            ax.set_ylabel(ylabel)
+            data[f"{key} {label}"] = _finite(p[key])
+        body = (f >= 0.5) & (f <= 4.0)
+        k = int(np.argmax(np.where(body, p["T_as"], -np.inf)))
+        data[f"peak T_as {label}"] = float(p["T_as"][k])
+        data[f"peak T_as frequency {label} [Hz]"] = float(f[k])
+    from matplotlib.ticker import FixedLocator, FormatStrFormatter, NullLocator
+
+    for ax in axes.ravel():
+        ax.set_xscale("log")
+        # labelled ticks at 0.5-10 Hz, no minor ticks (cheaper to draw, easier to read)
+        ax.xaxis.set_major_locator(FixedLocator([0.5, 1, 2, 5, 10]))
+        ax.xaxis.set_major_formatter(FormatStrFormatter("%g"))
+        ax.xaxis.set_minor_locator(NullLocator())
+        ax.set_xlabel("frequency [Hz]")
+        ax.grid(True, alpha=0.3)
+    axes[0, 0].legend(fontsize=7, loc="upper right")
+    return fig, data
+
+
+def _render_psd(
+    spec: FigureSpec, payloads: Mapping[str, dict[str, Any]]
+) -> tuple[Any, dict[str, Any]]:
+    fig, axes = _subplots(2, 3)
+    flat = axes.ravel()
+    data: dict[str, Any] = {}
+    for label, p in payloads.items():
+        f = p["frequency"]
+        keep = f <= 20.0
+        data.setdefault("PSD frequency [Hz]", _finite(f[keep][::4]))
+        for ax, name in zip(flat, PSD_SIGNALS, strict=False):
+            ax.loglog(f, p[f"PSD {name}"], _style(label), lw=1, label=label)
+            symbol, unit = SIGNALS[name][1].rstrip("]").split(" [")
+            ax.set_ylabel(f"PSD {symbol} [({unit})$^2$/Hz]")
+            data[f"PSD {name} {label}"] = _finite(p[f"PSD {name}"][keep][::4])
+        flat[5].plot(p["time"], p["i_d"], lw=0.6, label=label)
+        data[f"road DLC model {label}"] = p["DLC"]
+        data[f"road DLC dissertation {label}"] = spec.given.get(label, "not given")
+        data[f"rms a_s {label} [m/s^2]"] = p["rms a_s [m/s^2]"]
+        data[f"mean current {label} [A]"] = p["mean current [A]"]
+        ride = (f >= 2.0) & (f <= 8.0)
+        data[f"mean PSD a_s 2-8 Hz {label} [(m/s^2)^2/Hz]"] = float(np.mean(p["PSD a_s"][ride]))
+    from matplotlib.ticker import LogLocator, NullLocator
+
+    for ax in flat[:5]:
+        ax.set_xlabel("frequency [Hz]")
+        # PSDs span many decades: hundreds of minor ticks would cost seconds to draw
+        ax.yaxis.set_major_locator(LogLocator(numticks=5))
+        ax.yaxis.set_minor_locator(NullLocator())
+        ax.xaxis.set_minor_locator(NullLocator())
+        ax.grid(True, alpha=0.3)
+    flat[5].set_xlabel("time [s]")
+    flat[5].set_ylabel("$i_d$ [A]")
+    flat[0].legend(fontsize=7, loc="upper right")
+    return fig, data
+
+
+_RENDERERS = {"time": _render_histories, "pulse": _render_histories, "freq": _render_freq}
+
+
+def render(
+    spec: FigureSpec,
+    payloads: Mapping[str, dict[str, Any]],
+    folder: Path,
+    formats: Sequence[str],
+) -> dict[str, Any]:
+    """Draw ``spec`` from its units' payloads, save it and return its manifest record.
+
+    Parameters
+    ----------
+    spec : FigureSpec
+        A non-special figure.
+    payloads : mapping
+        Variant label -> :func:`run_unit` output.
+    folder : Path
+        Where the files go.
+    formats : sequence of str
+        ``("png",)`` or ``("png", "svg")``.
+
+    Returns
+    -------
+    dict
+        ``number``, ``title``, ``caption``, ``files``, ``data`` (with the scenario of each
+        variant under ``scenario <label>``) and ``render time [s]``.
+    """
+    from mrsuspension.report.html import FigureRecord
+
+    start, cpu = time.perf_counter(), time.process_time()
+    draw = _RENDERERS.get(spec.kind, _render_psd)
+    fig, data = draw(spec, payloads)
+    for label in spec.variants:
+        data[f"scenario {label}"] = json.dumps(spec.scenario(label), sort_keys=True)
+    rec = FigureRecord(spec.number, spec.title, spec.caption, fig, data)
+    rec.save(folder, formats)
+    return {
+        "number": rec.number,
+        "title": rec.title,
+        "caption": rec.caption,
+        "files": rec.files,
+        "data": rec.data,
+        "render time [s]": round(time.perf_counter() - start, 3),
+        "render cpu time [s]": round(time.process_time() - cpu, 3),
+        "simulation time [s]": round(sum(p["run time [s]"] for p in payloads.values()), 3),
+    }
+
+
+def _build_special(
+    builder: Callable[..., Any], quick: bool | None, folder: Path, formats: Sequence[str]
+) -> dict[str, Any]:
+    """Run a figure function (``builder(quick)``, or ``builder()`` if quick is None) and save."""
+    start, cpu = time.perf_counter(), time.process_time()
+    rec = builder() if quick is None else builder(quick)
+    rec.save(folder, formats)
+    return {
+        "number": rec.number,
+        "title": rec.title,
+        "caption": rec.caption,
+        "files": rec.files,
+        "data": rec.data,
+        "render time [s]": round(time.perf_counter() - start, 3),
+        "render cpu time [s]": round(time.process_time() - cpu, 3),
+        "simulation time [s]": 0.0,
+    }
+
+
+def _call(func: Callable[..., Any], args: tuple[Any, ...]) -> tuple[Any, float]:
+    """``func(*args)`` and the CPU time it took [s]."""
+    cpu = time.process_time()
+    value = func(*args)
+    return value, time.process_time() - cpu
+
+
+# -- shock tables --------------------------------------------------------------------------
+@dataclass(frozen=True)
+class ShockTable:
+    """A table of shock-response measures over one varied parameter, with the
+    dissertation's values.
+
+    Parameters
+    ----------
+    number, title : str
+        Table number and title.
+    column : str
+        Header of the varied parameter (e.g. ``"m_s (kg)"``).
+    base : mapping
+        Scenario tables of the nominal case (pulse defaults: 3.5 cm, 50 km/h).
+    variants : mapping
+        Shown parameter value -> table overrides (the nominal row has ``{}``).
+    given : mapping
+        Shown parameter value -> the dissertation's SDR_s, SAR_s, SDR_u, SAR_u, RDR, DTR.
+    why : str
+        Known causes of differences (appended to the caption).
+    """
+
+    number: str
+    title: str
+    column: str
+    base: Mapping[str, Any]
+    variants: Mapping[float, Mapping[str, Any]]
+    given: Mapping[float, tuple[float, ...]]
+    why: str = ""
+
+    def __post_init__(self) -> None:
+        if not self.variants:
+            raise ValidationError(f"table {self.number}: the variant list is empty")
+        if set(self.given) != set(self.variants):
+            raise ValidationError(
+                f"table {self.number}: dissertation values given for {sorted(self.given)}, "
+                f"variants are {sorted(self.variants)}"
+            )
+        if {} not in [dict(v) for v in self.variants.values()]:
+            raise ValidationError(
+                f"table {self.number}: one variant must be the nominal case ({{}}), the DTR "
+                "reference"
+            )
+
+    def units(self, quick: bool) -> dict[float, Unit]:
+        """Parameter value -> pulse unit."""
+        return {
+            v: make_unit("pulse", _merge(self.base, o), quick) for v, o in self.variants.items()
+        }
+
+
+def shock_table(
+    table: ShockTable, payloads: Mapping[float, dict[str, Any]], quick: bool
+) -> dict[str, Any]:
+    """Rows of our shock measures beside the dissertation's, with DTR against the nominal.
+
+    DTR = |F_T,peak(nominal) - F_T,peak| / ((m_s0 + m_u) g), (3.44), nominal = the row
+    without overrides. A row's ``differs (>25 %)`` column lists the measures whose model
+    value differs from the dissertation's by more than 25 % (DTR: by more than 0.05).
+    """
+    from mrsuspension.measures import dtr
+    from mrsuspension.vehicle import QuarterCar
+
+    car = QuarterCar()
+    total = car.sprung_mass + car.unsprung_mass
+    nominal = next(v for v, o in table.variants.items() if not o)
+    reference = payloads[nominal]["peak_tire_force"]
+    rows = []
+    for value in table.variants:
+        p = payloads[value]
+        row: dict[str, Any] = {table.column: value}
+        model = [*(p[k] for k in SHOCK), dtr(reference, p["peak_tire_force"], total)]
+        differs = []
+        for k, ours, theirs in zip((*SHOCK, "DTR"), model, table.given[value], strict=True):
+            row[f"{k} model"] = round(float(ours), 3)
+            row[f"{k} dissertation"] = float(theirs)
+            off = abs(ours - theirs) > 0.05 if k == "DTR" else abs(ours / theirs - 1.0) > 0.25
+            if off:
+                differs.append(k)
+        row["peak F_T model [N]"] = round(float(p["peak_tire_force"]), 1)
+        row["differs (>25 %)"] = " ".join(differs) or "-"
+        rows.append(row)
+    ratios = []
+    for k in SHOCK:
+        r = [row[f"{k} model"] / row[f"{k} dissertation"] for row in rows]
+        ratios.append(f"{k} {min(r):.2f}-{max(r):.2f}")
+    step = _step(table.base, quick) * 1e3
+    return {
+        "number": table.number,
+        "title": table.title,
+        "caption": (
+            f"Rounded pulse (mu = 3, a_m = 3.5 cm, 50 km/h, omega_0 = 10.4 rad/s unless varied), "
+            f"varying {table.column}; ratios of peaks over a {PULSE_DURATION:g} s record, step "
+            f"{step:g} ms. Scenario: {json.dumps(_normalise(table.base), sort_keys=True)}. DTR "
+            f"against the nominal row, normalised by (m_s0 + m_u) g = {total * 9.81:.0f} N. "
+            f"Model/dissertation ratio over the rows: {', '.join(ratios)}. " + table.why
+        ),
+        "rows": rows,
+    }
+
+
+# -- the pool ----------------------------------------------------------------------------
+@dataclass
+class Built:
+    """What :func:`build_all` made: figure records by number, tables, call results."""
+
+    figures: dict[str, dict[str, Any]] = field(default_factory=dict)
+    tables: dict[str, dict[str, Any]] = field(default_factory=dict)
+    calls: dict[str, Any] = field(default_factory=dict)
+    payloads: dict[Unit, dict[str, Any]] = field(default_factory=dict)
+    wall_time: float = 0.0
+    timing: dict[str, Any] = field(default_factory=dict)
+
+
+def build_all(
+    figures: Mapping[str, Sequence[FigureSpec]],
+    tables: Sequence[ShockTable],
+    quick: bool,
+    out: Path,
+    *,
+    specials: Sequence[tuple[str, Callable[..., Any], bool | None]] = (),
+    calls: Mapping[str, tuple[Callable[..., Any], tuple[Any, ...]]] | None = None,
+    workers: int | None = None,
+    progress: Callable[[str], None] | None = None,
+) -> Built:
+    """Run every distinct unit once and draw every figure, across a process pool.
+
+    Parameters
+    ----------
+    figures : mapping
+        Sub-folder (e.g. ``"chapter4"``) -> figure specs to draw there.
+    tables : sequence of ShockTable
+        Shock tables (their pulse units are shared with the figures').
+    quick : bool
+        Coarse grids and steps; PNG only (else PNG and SVG).
+    out : Path
+        Report folder.
+    specials : sequence
+        ``(sub-folder, builder, quick or None)``: figure functions that simulate and draw
+        themselves (``builder()`` when the third item is None).
+    calls : mapping, optional
+        Name -> ``(function, args)`` run in the pool too (their results under ``calls``).
+    workers : int, optional
+        Pool size (default: the CPU count); 1 runs everything in this process.
+    progress : callable, optional
+        Called with a message as jobs finish.
+
+    Returns
+    -------
+    Built
+    """
+    from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
+
+    say = progress or (lambda _m: None)
+    formats = ("png",) if quick else ("png", "svg")
+    start = time.perf_counter()
+    built = Built()
+    todo: list[tuple[str, FigureSpec]] = [
+        (sub, s)
+        for sub, specs in figures.items()
+        for s in specs
+        if not (s.full_only and quick) and s.kind != "special"
+    ]
+    special_jobs = list(specials) + [
+        (sub, s.builder, quick)
+        for sub, specs in figures.items()
+        for s in specs
+        if s.kind == "special" and s.builder is not None and not (s.full_only and quick)
+    ]
+    need: dict[str, dict[str, Unit]] = {f"{sub}/{s.number}": s.units(quick) for sub, s in todo}
+    table_units = {t.number: t.units(quick) for t in tables}
+    units: list[Unit] = []
+    for u in [u for g in need.values() for u in g.values()] + [
+        u for g in table_units.values() for u in g.values()
+    ]:
+        if u not in units:
+            units.append(u)
+    # the longest first: frequency sweeps, then roads
+    order = {"freq": 0, "psd": 1, "time": 2, "pulse": 3}
+    units.sort(key=lambda u: order[u.kind])
+    n_workers = 1 if in_worker() else (workers or os.cpu_count() or 1)
+    total = len(units) + len(todo) + len(special_jobs) + len(calls or {})
+    call_cpu: dict[str, float] = {}
+    done = 0
+
+    def tick(what: str) -> None:
+        nonlocal done
+        done += 1
+        say(f"report: {done}/{total} {what}")
+
+    pending_figs = dict(
+        todo_item for todo_item in ((f"{sub}/{s.number}", (sub, s)) for sub, s in todo)
+    )
+
+    if n_workers <= 1:
+        for u in units:
+            built.payloads[u] = run_unit(u)
+            tick(f"{u.kind} run")
+        for key, (sub, s) in pending_figs.items():
+            pl = {label: built.payloads[u] for label, u in need[key].items()}
+            built.figures[key] = render(s, pl, out / sub, formats)
+            tick(f"Fig. {s.number}")
+        for sub, builder, q in special_jobs:
+            rec = _build_special(builder, q, out / sub, formats)
+            built.figures[f"{sub}/{rec['number']}"] = rec
+            tick(f"Fig. {rec['number']}")
+        for name, (func, args) in (calls or {}).items():
+            built.calls[name], call_cpu[name] = _call(func, args)
+            tick(name)
+    else:
+        with ProcessPoolExecutor(max_workers=n_workers) as pool:
+            futures: dict[Future[Any], tuple[str, Any]] = {}
+            for u in units:
+                futures[pool.submit(run_unit, u)] = ("unit", u)
+            for sub, builder, q in special_jobs:
+                futures[pool.submit(_build_special, builder, q, out / sub, formats)] = (
+                    "special",
+                    sub,
+                )
+            for name, (func, args) in (calls or {}).items():
+                futures[pool.submit(_call, func, args)] = ("call", name)
+            while futures:
+                finished, _ = wait(list(futures), return_when=FIRST_COMPLETED)
+                for fut in finished:
+                    what, ref = futures.pop(fut)
+                    value = fut.result()
+                    if what == "unit":
+                        built.payloads[ref] = value
+                        tick(f"{ref.kind} run")
+                        for key in [k for k, us in need.items() if k in pending_figs]:
+                            if all(u in built.payloads for u in need[key].values()):
+                                sub, s = pending_figs.pop(key)
+                                pl = {label: built.payloads[u] for label, u in need[key].items()}
+                                futures[pool.submit(render, s, pl, out / sub, formats)] = (
+                                    "figure",
+                                    key,
+                                )
+                    elif what == "figure":
+                        built.figures[ref] = value
+                        tick(f"Fig. {value['number']}")
+                    elif what == "special":
+                        built.figures[f"{ref}/{value['number']}"] = value
+                        tick(f"Fig. {value['number']}")
+                    else:
+                        built.calls[ref], call_cpu[ref] = value
+                        tick(ref)
+    for t in tables:
+        rows_in: dict[float, dict[str, Any]] = {
+            v: built.payloads[u] for v, u in table_units[t.number].items()
+        }
+        built.tables[t.number] = shock_table(t, rows_in, quick)
+    built.wall_time = time.perf_counter() - start
+    built.timing = {
+        "workers": n_workers,
+        "distinct runs": len(units),
+        "figures": len(built.figures),
+        "run cpu time [s]": round(sum(p["run cpu time [s]"] for p in built.payloads.values()), 2),
+        "figure cpu time [s]": round(
+            sum(r.get("render cpu time [s]", 0.0) for r in built.figures.values()), 2
+        ),
+        "other cpu time [s]": {k: round(v, 2) for k, v in call_cpu.items()},
+        "wall time [s]": round(built.wall_time, 2),
+    }
+    return built
+
+
+def vary(
+    section: str,
+    key: str,
+    values: Sequence[Any],
+    label: Callable[[Any], str],
+    nominal: Any = None,
+) -> dict[str, dict[str, Any]]:
+    """Variants setting ``[section] key`` to each value (the nominal value: no override).
+
+    Examples
+    --------
+    >>> vary("vehicle", "sprung_mass", (422.0, 563.0), "m_s = {:g} kg".format, 563.0)
+    {'m_s = 422 kg': {'vehicle': {'sprung_mass': 422.0}}, 'm_s = 563 kg': {}}
+    """
+    return {label(v): ({} if v == nominal else {section: {key: v}}) for v in values}
+
+
+def passive(*currents: float) -> dict[str, dict[str, Any]]:
+    """Passive-damper variants at the given currents (nominal damper, k_d = 1).
+
+    Examples
+    --------
+    >>> passive(0.0)
+    {'passive 0 A': {'controller': {'law': 'passive', 'current': 0.0}, 'damper': {'force_gain': 1.0}}}
+    """
+    return {
+        f"passive {i:g} A": {
+            "controller": {"law": "passive", "current": float(i)},
+            "damper": {"force_gain": 1.0},
+        }
+        for i in currents
+    }
+
+
+def check_finite(data: Mapping[str, Any]) -> list[str]:
+    """Keys of ``data`` holding a non-finite number (used by tests and the report).
+
+    Examples
+    --------
+    >>> check_finite({"a": [1.0, float("nan")], "b": 2.0, "c": "text"})
+    ['a']
+    """
+    bad = []
+    for key, value in data.items():
+        values = value if isinstance(value, list) else [value]
+        if any(isinstance(v, float) and not math.isfinite(v) for v in values):
+            bad.append(key)
+    return bad
+
+
+def markdown_index(
+    chapters: Mapping[int, tuple[Sequence[FigureSpec], Sequence[ShockTable]]],
+) -> str:
+    """A Markdown list of every figure family and table with its scenario (docs/report.md).
+
+    Parameters
+    ----------
+    chapters : mapping
+        Chapter number -> (figure specs, shock tables).
+
+    Returns
+    -------
+    str
+        Markdown text: per chapter, a table of figures (number, kind, title, variants) and
+        each figure's scenario per variant, then the tables.
+
+    Examples
+    --------
+    >>> spec = FigureSpec(number="9.1", kind="pulse", title="T", caption="C", variants={"a": {}})
+    >>> print(markdown_index({9: ((spec,), ())}).splitlines()[4])
+    | 9.1 | pulse | T | a |
+    """
+    out: list[str] = []
+    for chapter, (specs, tables) in chapters.items():
+        out += [
+            f"## Chapter {chapter}",
+            "",
+            "| Figure | Kind | Title | Variants |",
+            "|---|---|---|---|",
+        ]
+        for s in specs:
+            variants = ", ".join(s.variants) if s.kind != "special" else "(own figure function)"
+            extra = " (full report only)" if s.full_only else ""
+            out.append(f"| {s.number} | {s.kind} | {s.title}{extra} | {variants} |")
+        out.append("")
+        for s in specs:
+            if s.kind == "special":
+                continue
+            out.append(f"**Fig. {s.number}** ({s.kind}). {s.caption}")
+            out.append("")
+            for label in s.variants:
+                unit = make_unit(s.kind, s.scenario(label), quick=False)
+                out.append(f"- {label}: `{unit.tables}`")
+            out.append("")
+        for t in tables:
+            values = ", ".join(f"{v:g}" for v in t.variants)
+            out.append(
+                f"**Table {t.number}**: {t.title}. Varies {t.column} over {values}; base "
+                f"`{json.dumps(_normalise(t.base), sort_keys=True)}` under the rounded pulse "
+                "(mu = 3, a_m = 3.5 cm, 50 km/h unless varied). Our SDR_s, SAR_s, SDR_u, "
+                "SAR_u, RDR, DTR beside the dissertation's."
+            )
+            out.append("")
+    return "\n".join(out)
