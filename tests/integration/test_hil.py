@@ -131,3 +131,14 @@ def test_cli_hil_run(tmp_path: Path) -> None:
     bad = runner.invoke(app, ["run", str(SCENARIO), "--rig", "simulatd"])
     assert bad.exit_code == 2
     assert "unknown --rig" in bad.stderr
+
+
+def test_cli_hil_run_realtime_option() -> None:
+    app = typer.Typer(pretty_exceptions_enable=False)
+    app.command("run")(hil_run_command)
+    app.command("other")(lambda: None)
+    runner = CliRunner()
+    for bad, fragment in (("sometimes", "'sometimes'"), ("unpaced", "runs in real time")):
+        res = runner.invoke(app, ["run", str(SCENARIO), "--realtime", bad])
+        assert res.exit_code == 2, res.output
+        assert fragment in res.stderr

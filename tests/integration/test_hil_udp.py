@@ -75,7 +75,7 @@ def _sim():  # type: ignore[no-untyped-def]
 
 def test_udp_run_at_1khz() -> None:
     linux = Path("/proc/stat").exists()
-    with emulator() as emu:
+    with emulator(realtime="auto") as emu:
         rig = UdpRig("127.0.0.1", emu.port)
         if linux:
             cpu0 = (_cpu_seconds(), time.process_time(), _cpu_seconds(emu.proc.pid))
@@ -95,15 +95,24 @@ def test_udp_run_at_1khz() -> None:
     assert counts["received"] + counts["lost"] == counts["sent"]
     assert counts["lost"] <= 0.01 * counts["sent"]
     assert result.meta["rig"]["rig"] == "udp"
+    # heartbeats both ways every 20 ms, all acknowledged while the loop ran
+    link = rig.link()
+    beats = result.stats.ticks * 1e-3 / 0.02
+    assert link["heartbeats_sent"] >= 0.9 * beats
+    assert link["heartbeat_acks"] >= link["heartbeats_sent"] - 2
+    assert link["heartbeats_received"] >= 0.8 * beats
+    assert not link["rig_safe"]
+    # issue 6: >= 99 % at 1 kHz with SCHED_FIFO (loop and emulator); 90 % without
+    target = 0.99 if "SCHED_FIFO" in result.stats.scheduling else 0.90
     if linux:
         print(f"other processes used {others:.2f} cores during the run")
-        if result.stats.in_deadline < 0.90 and others > 0.25:
+        if result.stats.in_deadline < target and others > 0.25:
             # the loop and the emulator need about 1.3 of the 2 cores of the CI machine
             pytest.skip(
                 f"machine busy ({others:.2f} cores used by other processes): "
                 f"{result.stats.in_deadline:.1%} in deadline, not asserted"
             )
-    assert result.stats.in_deadline >= 0.90
+    assert result.stats.in_deadline >= target
 
 
 def test_watchdog_trips_when_the_rig_stops_replying() -> None:

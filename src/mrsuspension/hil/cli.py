@@ -21,6 +21,7 @@ import typer
 from mrsuspension._cli_errors import _user_errors
 from mrsuspension.errors import ValidationError
 from mrsuspension.hil.loop import run_hil
+from mrsuspension.hil.realtime import normalise_mode
 from mrsuspension.hil.rig import Rig, SimulatedRig, ideal_rig
 
 __all__ = [
@@ -88,6 +89,9 @@ def hil_run_command(
     as_json: Annotated[
         bool, typer.Option("--json", help="print the outcome and tick statistics as JSON")
     ] = False,
+    realtime: Annotated[
+        str, typer.Option(help="scheduling: auto | fifo | off (docs/hil.md)")
+    ] = "auto",
 ) -> None:
     """Run SCENARIO hardware-in-the-loop for DURATION seconds at RATE Hz.
 
@@ -99,6 +103,10 @@ def hil_run_command(
     with _user_errors():
         if not scenario.exists():
             raise ValidationError(f"scenario file {scenario} does not exist")
+        if normalise_mode(realtime) == "unpaced":
+            raise ValidationError(
+                f"--realtime {realtime!r}: `hil run` runs in real time; valid: auto, fifo, off"
+            )
         sim = _simulation_of(scenario)
         the_rig = make_rig(rig, sim.damper)
         tmp = None
@@ -107,7 +115,10 @@ def hil_run_command(
             tmp = Path(tempfile.mkdtemp(prefix="mrsus-hil-"))
             target = tmp / "recording"
         try:
-            result = run_hil(sim, the_rig, duration=duration, rate=rate, out=target, process=True)
+            result = run_hil(
+                sim, the_rig, duration=duration, rate=rate, out=target, process=True,
+                realtime=realtime,
+            )  # fmt: skip
         finally:
             if tmp is not None:
                 shutil.rmtree(tmp, ignore_errors=True)
@@ -188,6 +199,16 @@ def rig_emulator_command(
         float, typer.Option(help="probability of dropping a reply (fault injection)")
     ] = 0.0,
     delay: Annotated[float, typer.Option(help="extra reply delay [s] (fault injection)")] = 0.0,
+    heartbeat: Annotated[
+        float, typer.Option(help="period of the server's heartbeats [s] (0: none)")
+    ] = 0.02,
+    watchdog: Annotated[
+        float,
+        typer.Option(help="client silence [s] after which the rig goes safe (0: never)"),
+    ] = 0.25,
+    realtime: Annotated[
+        str, typer.Option(help="scheduling: auto | fifo | off (docs/hil.md)")
+    ] = "auto",
 ) -> None:
     """Serve a simulated rig over UDP (the network rig protocol, docs/hil.md).
 
@@ -209,6 +230,7 @@ def rig_emulator_command(
             typer.echo(f"rig emulator ({spec}, {damper}) listening on udp://{host}:{bound}")
 
         counts = serve_rig(
-            served, host=host, port=port, rate=rate, drop=drop, delay=delay, ready=ready
-        )
+            served, host=host, port=port, rate=rate, drop=drop, delay=delay, ready=ready,
+            heartbeat=heartbeat, watchdog=watchdog, realtime=realtime,
+        )  # fmt: skip
     typer.echo("stopped: " + ", ".join(f"{k} {v}" for k, v in counts.items()))
