@@ -209,7 +209,17 @@ def test_hil_validate_with_the_ideal_rig(tmp_path: Path) -> None:
     out = tmp_path / "validate"
     res = CliRunner().invoke(
         app,
-        ["validate", str(SCENARIO), "--duration", "2.0", "--out", str(out), "--json"],
+        [
+            "validate",
+            str(SCENARIO),
+            "--what",
+            "time",
+            "--duration",
+            "2.0",
+            "--out",
+            str(out),
+            "--json",
+        ],
     )
     assert res.exit_code == 0, res.output
     info = json.loads(res.stdout)
@@ -224,6 +234,8 @@ def test_hil_validate_with_the_ideal_rig(tmp_path: Path) -> None:
     summary = json.loads((out / "summary.json").read_text())
     assert set(summary["rms"]) >= {"body_acceleration", "damper_force", "suspension_travel"}
     assert load_recording(out / "recording").complete
-    text = CliRunner().invoke(app, ["validate", str(SCENARIO), "--duration", "0.5"])
+    text = CliRunner().invoke(
+        app, ["validate", str(SCENARIO), "--what", "time", "--duration", "0.5"]
+    )
     assert text.exit_code == 0, text.output
     assert "body acceleration" in text.stdout
