@@ -70,6 +70,8 @@ def test_deadlines_at_1khz_in_process() -> None:
     assert 0.0 <= stats.in_deadline <= 1.0
     assert stats.misses == round((1.0 - stats.in_deadline) * stats.ticks)
     assert stats.compute_p50 < 1e-3  # typical 0.1 ms: ten times the margin
+    assert stats.scheduling.startswith("auto")  # what the scheduling step did (or not)
+    assert result.meta["scheduling"]["paced"]
 
 
 def _rows(out: Path, width: int) -> int:
