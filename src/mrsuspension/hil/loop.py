@@ -404,7 +404,7 @@ def run_hil(
     stepper.reset(road[0], road_v[0])
     rig.reset(period)
     driver.reset(period)
-    supervisor = SafetySupervisor(limits)
+    supervisor = SafetySupervisor(limits, link_status=rig.link_status)
 
     tmp_dir: Path | None = None
     if out is None:

@@ -283,7 +283,10 @@ class UdpRig(Rig):
             self.heartbeats_sent += 1
 
     def heartbeat_age(self) -> float:
-        """Time [s] since the newest heartbeat (or ack) from the server (inf: none yet)."""
+        """Time [s] since the newest heartbeat (or ack) from the server (inf: none yet).
+
+        Counted from when :meth:`read` took it off the socket (every tick in the loop).
+        """
         return time.perf_counter() - self.last_heartbeat
 
     # -- interface ----------------------------------------------------------------------
@@ -361,8 +364,10 @@ class UdpRig(Rig):
         while True:
             try:
                 take(recv(_BUF))
-            except (BlockingIOError, ConnectionRefusedError):
+            except BlockingIOError:
                 break
+            except ConnectionRefusedError:
+                continue  # a pending ICMP error, reported once: the rest is still queued
         if self._last_seq != self._seq and self.sent:
             end = time.perf_counter() + self._wait
             while self._last_seq != self._seq:
@@ -400,6 +405,27 @@ class UdpRig(Rig):
             "late": self.late,
             "stale_reads": self.stale_reads,
         }
+
+    def link_status(self) -> str:
+        """The link as the heartbeats see it (added to a watchdog trip's reason).
+
+        ``"rig in the safe state (server watchdog)"``, ``"link alive (heartbeat ...)"``
+        when the server's heartbeats still arrive within three periods (so the rig, not
+        the link, stopped answering, or only the replies are lost), ``"link down (...)"``
+        when they do not, or ``"heartbeats off"``.
+        """
+        if self.rig_safe:
+            return "rig in the safe state (server watchdog)"
+        if self.heartbeat <= 0.0:
+            return "heartbeats off"
+        age = self.heartbeat_age()
+        if age <= 3.0 * self.heartbeat + 0.01:
+            return (
+                f"link alive (last heartbeat {1e3 * age:.0f} ms ago, rtt {1e3 * self.rtt:.2f} ms)"
+            )
+        if math.isinf(age):
+            return "link down (no heartbeat from the rig since the reset)"
+        return f"link down (no heartbeat from the rig for {age:.3f} s)"
 
     def link(self) -> dict[str, float | int | bool]:
         """Heartbeat accounting: beats sent, received and acknowledged, round-trip times."""

@@ -11,7 +11,7 @@ from collections.abc import Iterator
 import pytest
 
 from mrsuspension.errors import MRSuspensionError, ValidationError
-from mrsuspension.hil import ideal_rig
+from mrsuspension.hil import SafetyLimits, SafetySupervisor, ideal_rig
 from mrsuspension.hil import network as N
 from mrsuspension.hil.network import UdpRig, parse_udp_spec, serve_rig
 
@@ -210,3 +210,28 @@ def test_server_options_are_checked() -> None:
             serve_rig(ideal_rig(), port=0, duration=0.01, **kw)  # type: ignore[arg-type]
     with pytest.raises(ValidationError, match="heartbeat"):
         UdpRig("127.0.0.1", 9, heartbeat=20.0)
+
+
+def test_watchdog_reason_tells_link_alive_from_link_down() -> None:
+    port, counts, stop = _serve_in_thread(ideal_rig(), heartbeat=0.005)
+    rig = UdpRig("127.0.0.1", port, heartbeat=0.005, timeout=0.002)
+    assert rig.link_status() == "link down (no heartbeat from the rig since the reset)"
+    rig.reset(1e-3)
+    for _ in range(30):
+        rig.command(0.0, 0.0, 0.0)
+        rig.read()
+        time.sleep(1e-3)
+    assert rig.link_status().startswith("link alive"), rig.link_status()
+    _stopped(counts, stop)  # the server is gone: no replies, no heartbeats
+    rig.read()  # take what was still queued (the loop reads every tick)
+    time.sleep(0.05)
+    rig.command(0.0, 0.0, 0.0)
+    rig.read()
+    assert rig.link_status().startswith("link down (no heartbeat from the rig for 0.0")
+    supervisor = SafetySupervisor(SafetyLimits(watchdog=0.01), link_status=rig.link_status)
+    assert not supervisor.check_sample(0.0, 0.0, 0.0, 0.0, 1.0)
+    assert supervisor.check_sample(0.02, 0.0, 0.0, 0.0, 1.0)
+    assert supervisor.reason.startswith("rig watchdog: no fresh sample")
+    assert "; link down" in supervisor.reason
+    rig.close()
+    assert UdpRig("127.0.0.1", port, heartbeat=0.0).link_status() == "heartbeats off"
