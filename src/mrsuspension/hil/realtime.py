@@ -22,14 +22,14 @@ notes go into the tick statistics (``TickStats.scheduling``) and the recording.
 
 Modes (``realtime=``):
 
-==========  =====================================================================
-``"auto"``  paced; every step above, each falling back with a note (default;
-            ``True`` means the same)
-``"fifo"``  paced; as ``"auto"`` but SCHED_FIFO is required (an error otherwise)
-``"off"``   paced on the clock; the scheduling is left as it is
+=============  ==================================================================
+``"auto"``     paced; every step above, each falling back with a note (default;
+               ``True`` means the same)
+``"fifo"``     paced; as ``"auto"`` but SCHED_FIFO is required (an error otherwise)
+``"off"``      paced on the clock; the scheduling is left as it is
 ``"unpaced"``  ticks back to back, as fast as possible (``False`` means the same);
-            only for rigs that are simulated in the same process
-==========  =====================================================================
+               only for rigs that are simulated in the same process
+=============  ==================================================================
 """
 
 from __future__ import annotations
