@@ -27,7 +27,7 @@ import time
 from collections.abc import Iterator
 from pathlib import Path
 
-from mrsuspension.hil import Rig, SimulatedRig, UdpRig, run_hil
+from mrsuspension.hil import Rig, SafetyLimits, SimulatedRig, UdpRig, run_hil
 from mrsuspension.hil.loop import TickStats
 from mrsuspension.scenario import Scenario
 
@@ -73,6 +73,7 @@ def main() -> None:
     ap.add_argument("--rates", default="1000,2000,5000", help="loop rates [Hz]")
     ap.add_argument("--realtime", default="auto", help="auto | fifo | off (docs/hil.md)")
     ap.add_argument("--rig", default="simulated", choices=("simulated", "udp"))
+    ap.add_argument("--watchdog", type=float, default=None, help="rig watchdog [s] (0.05)")
     args = ap.parse_args()
     with contextlib.ExitStack() as stack:
         port = stack.enter_context(_emulator(args.realtime)) if args.rig == "udp" else 0
@@ -95,7 +96,10 @@ def _bench(args: argparse.Namespace, port: int) -> None:
         cpu0 = time.process_time()
         wall = time.perf_counter()
         rig: Rig = UdpRig("127.0.0.1", port) if port else SimulatedRig(sim.damper)
-        result = run_hil(sim, rig, duration=args.duration, rate=rate, realtime=args.realtime)
+        limits = SafetyLimits() if args.watchdog is None else SafetyLimits(watchdog=args.watchdog)
+        result = run_hil(
+            sim, rig, duration=args.duration, rate=rate, realtime=args.realtime, limits=limits
+        )
         wall = time.perf_counter() - wall
         busy1, steal1 = _cpu_times()
         others = max(0.0, (busy1 - busy0) - (time.process_time() - cpu0)) / wall
@@ -107,6 +111,8 @@ def _bench(args: argparse.Namespace, port: int) -> None:
             f"{s.lateness_p99 * us:8.1f} {s.lateness_max * us:7.0f} {s.jitter * us:7.1f} "
             f"{s.jitter_max * us:7.0f} {steal1 - steal0:6.2f} {others:6.2f}"
         )
+        if result.reason != "completed":
+            print(f"       stopped early: {result.reason}")
     print(f"rig: {args.rig}; scheduling: {rows[-1][1].scheduling}" if rows else "no rates")
     ok = [rate for rate, s in rows if s.in_deadline >= TARGET]
     best = f"{max(ok):g} Hz" if ok else "none of the rates tried"
