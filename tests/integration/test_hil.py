@@ -70,6 +70,8 @@ def test_deadlines_at_1khz_in_process() -> None:
     assert 0.0 <= stats.in_deadline <= 1.0
     assert stats.misses == round((1.0 - stats.in_deadline) * stats.ticks)
     assert stats.compute_p50 < 1e-3  # typical 0.1 ms: ten times the margin
+    assert stats.scheduling.startswith("auto")  # what the scheduling step did (or not)
+    assert result.meta["scheduling"]["paced"]
 
 
 def _rows(out: Path, width: int) -> int:
@@ -131,3 +133,14 @@ def test_cli_hil_run(tmp_path: Path) -> None:
     bad = runner.invoke(app, ["run", str(SCENARIO), "--rig", "simulatd"])
     assert bad.exit_code == 2
     assert "unknown --rig" in bad.stderr
+
+
+def test_cli_hil_run_realtime_option() -> None:
+    app = typer.Typer(pretty_exceptions_enable=False)
+    app.command("run")(hil_run_command)
+    app.command("other")(lambda: None)
+    runner = CliRunner()
+    for bad, fragment in (("sometimes", "'sometimes'"), ("unpaced", "runs in real time")):
+        res = runner.invoke(app, ["run", str(SCENARIO), "--realtime", bad])
+        assert res.exit_code == 2, res.output
+        assert fragment in res.stderr

@@ -75,7 +75,7 @@ def _sim():  # type: ignore[no-untyped-def]
 
 def test_udp_run_at_1khz() -> None:
     linux = Path("/proc/stat").exists()
-    with emulator() as emu:
+    with emulator(realtime="auto") as emu:
         rig = UdpRig("127.0.0.1", emu.port)
         if linux:
             cpu0 = (_cpu_seconds(), time.process_time(), _cpu_seconds(emu.proc.pid))
@@ -95,15 +95,24 @@ def test_udp_run_at_1khz() -> None:
     assert counts["received"] + counts["lost"] == counts["sent"]
     assert counts["lost"] <= 0.01 * counts["sent"]
     assert result.meta["rig"]["rig"] == "udp"
+    # heartbeats both ways every 20 ms, all acknowledged while the loop ran
+    link = rig.link()
+    beats = result.stats.ticks * 1e-3 / 0.02
+    assert link["heartbeats_sent"] >= 0.9 * beats
+    assert link["heartbeat_acks"] >= link["heartbeats_sent"] - 2
+    assert link["heartbeats_received"] >= 0.8 * beats
+    assert not link["rig_safe"]
+    # issue 6: >= 99 % at 1 kHz with SCHED_FIFO (loop and emulator); 90 % without
+    target = 0.99 if "SCHED_FIFO" in result.stats.scheduling else 0.90
     if linux:
         print(f"other processes used {others:.2f} cores during the run")
-        if result.stats.in_deadline < 0.90 and others > 0.25:
+        if result.stats.in_deadline < target and others > 0.25:
             # the loop and the emulator need about 1.3 of the 2 cores of the CI machine
             pytest.skip(
                 f"machine busy ({others:.2f} cores used by other processes): "
                 f"{result.stats.in_deadline:.1%} in deadline, not asserted"
             )
-    assert result.stats.in_deadline >= 0.90
+    assert result.stats.in_deadline >= target
 
 
 def test_watchdog_trips_when_the_rig_stops_replying() -> None:
@@ -115,6 +124,8 @@ def test_watchdog_trips_when_the_rig_stops_replying() -> None:
     print(f"trip: {result.reason}; packets {rig.counters()}")
     assert result.tripped
     assert "watchdog" in result.reason
+    # the server's heartbeats still came: the replies were lost, not the link
+    assert "link alive" in result.reason
     t = rec["time"]
     tripped = rec["state"] == STATE_TRIPPED
     k = int(np.argmax(tripped))
@@ -200,7 +211,17 @@ def test_hil_validate_with_the_ideal_rig(tmp_path: Path) -> None:
     out = tmp_path / "validate"
     res = CliRunner().invoke(
         app,
-        ["validate", str(SCENARIO), "--duration", "2.0", "--out", str(out), "--json"],
+        [
+            "validate",
+            str(SCENARIO),
+            "--what",
+            "time",
+            "--duration",
+            "2.0",
+            "--out",
+            str(out),
+            "--json",
+        ],
     )
     assert res.exit_code == 0, res.output
     info = json.loads(res.stdout)
@@ -215,6 +236,8 @@ def test_hil_validate_with_the_ideal_rig(tmp_path: Path) -> None:
     summary = json.loads((out / "summary.json").read_text())
     assert set(summary["rms"]) >= {"body_acceleration", "damper_force", "suspension_travel"}
     assert load_recording(out / "recording").complete
-    text = CliRunner().invoke(app, ["validate", str(SCENARIO), "--duration", "0.5"])
+    text = CliRunner().invoke(
+        app, ["validate", str(SCENARIO), "--what", "time", "--duration", "0.5"]
+    )
     assert text.exit_code == 0, text.output
     assert "body acceleration" in text.stdout

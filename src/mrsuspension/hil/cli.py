@@ -21,6 +21,7 @@ import typer
 from mrsuspension._cli_errors import _user_errors
 from mrsuspension.errors import ValidationError
 from mrsuspension.hil.loop import run_hil
+from mrsuspension.hil.realtime import normalise_mode
 from mrsuspension.hil.rig import Rig, SimulatedRig, ideal_rig
 
 __all__ = [
@@ -88,6 +89,9 @@ def hil_run_command(
     as_json: Annotated[
         bool, typer.Option("--json", help="print the outcome and tick statistics as JSON")
     ] = False,
+    realtime: Annotated[
+        str, typer.Option(help="scheduling: auto | fifo | off (docs/hil.md)")
+    ] = "auto",
 ) -> None:
     """Run SCENARIO hardware-in-the-loop for DURATION seconds at RATE Hz.
 
@@ -99,6 +103,10 @@ def hil_run_command(
     with _user_errors():
         if not scenario.exists():
             raise ValidationError(f"scenario file {scenario} does not exist")
+        if normalise_mode(realtime) == "unpaced":
+            raise ValidationError(
+                f"--realtime {realtime!r}: `hil run` runs in real time; valid: auto, fifo, off"
+            )
         sim = _simulation_of(scenario)
         the_rig = make_rig(rig, sim.damper)
         tmp = None
@@ -107,7 +115,10 @@ def hil_run_command(
             tmp = Path(tempfile.mkdtemp(prefix="mrsus-hil-"))
             target = tmp / "recording"
         try:
-            result = run_hil(sim, the_rig, duration=duration, rate=rate, out=target, process=True)
+            result = run_hil(
+                sim, the_rig, duration=duration, rate=rate, out=target, process=True,
+                realtime=realtime,
+            )  # fmt: skip
         finally:
             if tmp is not None:
                 shutil.rmtree(tmp, ignore_errors=True)
@@ -131,49 +142,130 @@ def hil_validate_command(
         Path, typer.Argument(help="scenario TOML file (see docs/scenarios.md)", show_default=False)
     ],
     rig: Annotated[str, typer.Option(help="rig: ideal | simulated | udp://HOST:PORT")] = "ideal",
-    duration: Annotated[float, typer.Option(help="run time [s]")] = 10.0,
+    duration: Annotated[float, typer.Option(help="run time of the 'time' comparison [s]")] = 10.0,
     rate: Annotated[float, typer.Option(help="loop rate [Hz]")] = 1000.0,
     out: Annotated[
         Path | None,
-        typer.Option(help="directory for summary.json, the figures and the recording"),
+        typer.Option(help="folder for the figures, validation.json, index.html, recording"),
     ] = None,
-    as_json: Annotated[bool, typer.Option("--json", help="print the summary as JSON")] = False,
+    as_json: Annotated[bool, typer.Option("--json", help="print the numbers as JSON")] = False,
+    what: Annotated[
+        str, typer.Option(help="comparisons: all or a list of time,frequency,pulse,road")
+    ] = "all",
+    frequencies: Annotated[
+        str | None,
+        typer.Option(help="frequency list [Hz], e.g. 1,1.5,4 (default: the 14 of the HiL rig)"),
+    ] = None,
+    cases: Annotated[
+        str,
+        typer.Option(
+            help="controller cases: scenario, passive-0, passive-0.1, skyhook-scm, "
+            "skyhook-acm (comma-separated) or all"
+        ),
+    ] = "scenario",
+    amplitude: Annotated[float, typer.Option(help="sweep amplitude up to 2 Hz [m]")] = 0.015,
+    road_duration: Annotated[
+        float | None, typer.Option(help="length of the random road [s] (default: all 36 s)")
+    ] = None,
+    realtime: Annotated[
+        str | None,
+        typer.Option(
+            help="auto | fifo | off | unpaced (default: unpaced for simulated and ideal "
+            "rigs, auto for a UDP rig, which always runs paced)"
+        ),
+    ] = None,
 ) -> None:
     """Run SCENARIO in HiL and offline and compare them (Chapter 7 validation).
 
-    Prints RMS body acceleration and other RMS measures both ways with their relative
-    difference; with --out writes summary.json, time_histories.png (z_s'' and F_d
-    overlaid), fv_loop.png (F-v loops overlaid) and the HiL recording. A safety trip
-    exits with code 1.
+    Comparisons (--what): time histories and F-v loops under the scenario's excitation
+    (time), frequency responses T_as, T_au, T_dr and DLC over a frequency list
+    (frequency), transient responses under the rounded pulse (pulse) and PSDs under the
+    random road (road), for each controller case (--cases). Prints the differences; with
+    --out writes the figures, validation.json (every number), index.html, and for
+    'time' summary.json and the HiL recording. A simulated or ideal rig runs unpaced by
+    default (as fast as possible; the outputs say so). A safety trip exits with code 1.
     """
+    from mrsuspension.hil.chapter7 import (
+        parse_cases,
+        parse_frequencies,
+        parse_what,
+        validate_chapter7,
+    )
     from mrsuspension.hil.loop import _simulation_of
-    from mrsuspension.hil.validate import validate
 
     with _user_errors():
+        chosen = parse_what(what)
+        case_list = parse_cases(cases)
+        freq_list = parse_frequencies(frequencies)
+        if realtime is not None:
+            normalise_mode(realtime)
         if not scenario.exists():
             raise ValidationError(f"scenario file {scenario} does not exist")
+        if road_duration is not None and not (math.isfinite(road_duration) and road_duration > 0):
+            raise ValidationError(f"--road-duration must be > 0 s; got {road_duration:g}")
         sim = _simulation_of(scenario)
         the_rig = make_rig(rig, sim.damper)
-        report = validate(sim, the_rig, duration=duration, rate=rate, out=out)
-    info = report.describe()
+        data = validate_chapter7(
+            sim, the_rig, out, what=chosen, cases=case_list, frequencies=freq_list,
+            amplitude=amplitude, duration=duration, road_duration=road_duration, rate=rate,
+            realtime=realtime,
+        )  # fmt: skip
+    tripped = _tripped(data)
+    info: dict[str, Any] = dict(data.get("time", {}))
+    info.update({k: v for k, v in data.items() if k != "time"})
     info["scenario"] = str(scenario)
     info["rig"] = rig
     if as_json:
         typer.echo(json.dumps(_clean(info), indent=2))
     else:
-        typer.echo(f"HiL stopped: {report.hil.reason}")
-        typer.echo(report.hil.stats.summary())
+        _print_validation(data, out)
+    if tripped:
+        raise typer.Exit(1)
+
+
+def _tripped(data: dict[str, Any]) -> bool:
+    if data.get("time", {}).get("tripped"):
+        return True
+    reasons = [r for fr in data.get("frequency", {}).values() for r in fr["reasons"]]
+    reasons += [r["reason"] for key in ("pulse", "road") for r in data.get(key, {}).values()]
+    return any(r != "completed" for r in reasons)
+
+
+def _pct(v: Any) -> str:
+    return "-" if v is None or not math.isfinite(v) else f"{100 * v:+.2f}%"
+
+
+def _print_validation(data: dict[str, Any], out: Path | None) -> None:
+    typer.echo(data["pacing"])
+    if "time" in data:
+        t = data["time"]
+        typer.echo(f"time histories: HiL stopped: {t['reason']}")
         typer.echo(f"{'RMS':<34}{'HiL':>12}{'offline':>12}{'diff':>10}")
-        for m in report.rms.values():
-            rel = m["relative_difference"]
+        for m in t["rms"].values():
             typer.echo(
                 f"{m['label'] + ' [' + m['unit'] + ']':<34}{m['hil']:>12.5g}"
-                f"{m['offline']:>12.5g}{100 * rel:>9.2f}%"
+                f"{m['offline']:>12.5g}{_pct(m['relative_difference']):>10}"
             )
-        for p in report.figures:
-            typer.echo(f"figure: {p}")
-    if report.hil.tripped:
-        raise typer.Exit(1)
+    for case, fr in data.get("frequency", {}).items():
+        typer.echo(f"frequency responses, {case} (HiL vs offline):")
+        typer.echo(f"{'f [Hz]':>7}" + "".join(f"{k + ' diff':>11}" for k in fr["hil"]))
+        for i, f in enumerate(fr["frequency"]):
+            diffs = "".join(f"{_pct(fr['relative_difference'][k][i]):>11}" for k in fr["hil"])
+            typer.echo(f"{f:>7g}{diffs}")
+    for case, res in data.get("pulse", {}).items():
+        diffs = ", ".join(f"{k} {_pct(v)}" for k, v in res["relative_difference"].items())
+        typer.echo(f"rounded pulse, {case}: {diffs}")
+    for case, res in data.get("road", {}).items():
+        lo, hi = res["band"]
+        diffs = ", ".join(
+            f"{label} {_pct(b['relative_difference'])}" for label, b in res["band_rms"].items()
+        )
+        typer.echo(f"random road, {case}: RMS {lo:g}-{hi:g} Hz {diffs}")
+    if out is not None:
+        for group in data.get("figures", {}).values():
+            for name in group:
+                typer.echo(f"figure: {out / name}")
+        typer.echo(f"index: {out / 'index.html'}")
 
 
 def rig_emulator_command(
@@ -188,6 +280,16 @@ def rig_emulator_command(
         float, typer.Option(help="probability of dropping a reply (fault injection)")
     ] = 0.0,
     delay: Annotated[float, typer.Option(help="extra reply delay [s] (fault injection)")] = 0.0,
+    heartbeat: Annotated[
+        float, typer.Option(help="period of the server's heartbeats [s] (0: none)")
+    ] = 0.02,
+    watchdog: Annotated[
+        float,
+        typer.Option(help="client silence [s] after which the rig goes safe (0: never)"),
+    ] = 0.25,
+    realtime: Annotated[
+        str, typer.Option(help="scheduling: auto | fifo | off (docs/hil.md)")
+    ] = "auto",
 ) -> None:
     """Serve a simulated rig over UDP (the network rig protocol, docs/hil.md).
 
@@ -209,6 +311,7 @@ def rig_emulator_command(
             typer.echo(f"rig emulator ({spec}, {damper}) listening on udp://{host}:{bound}")
 
         counts = serve_rig(
-            served, host=host, port=port, rate=rate, drop=drop, delay=delay, ready=ready
-        )
+            served, host=host, port=port, rate=rate, drop=drop, delay=delay, ready=ready,
+            heartbeat=heartbeat, watchdog=watchdog, realtime=realtime,
+        )  # fmt: skip
     typer.echo("stopped: " + ", ".join(f"{k} {v}" for k, v in counts.items()))

@@ -43,6 +43,7 @@ import numpy as np
 from mrsuspension.engine.simulate import DEFAULT_DT, Simulation, SimulationDiverged
 from mrsuspension.errors import MRSuspensionError, ValidationError, check_range
 from mrsuspension.hil.driver import PICurrentDriver
+from mrsuspension.hil.realtime import normalise_mode, realtime_session
 from mrsuspension.hil.recorder import Recorder, Recording, load_recording
 from mrsuspension.hil.rig import Rig, SimulatedRig
 from mrsuspension.hil.safety import SafetyLimits, SafetySupervisor, StartUp
@@ -115,7 +116,12 @@ class TickStats:
     jitter : float
         Standard deviation of the start-to-start interval.
     realtime : bool
-        Whether the loop was paced (False: ticks back to back).
+        Whether the loop was paced (False: ticks back to back, as fast as possible).
+    jitter_max : float
+        Largest deviation of a start-to-start interval from the period.
+    scheduling : str
+        How the loop was scheduled (:meth:`~mrsuspension.hil.realtime.RealtimeSession.label`:
+        mode, policy, core, and any step the system refused).
     """
 
     ticks: int
@@ -130,20 +136,38 @@ class TickStats:
     lateness_max: float
     jitter: float
     realtime: bool = True
+    jitter_max: float = 0.0
+    scheduling: str = ""
 
     @classmethod
     def from_arrays(
-        cls, compute: np.ndarray, lateness: np.ndarray, period: float, realtime: bool
+        cls,
+        compute: np.ndarray,
+        lateness: np.ndarray,
+        period: float,
+        realtime: bool,
+        scheduling: str = "",
     ) -> TickStats:
-        """Statistics of per-tick compute times and lateness."""
+        """Statistics of per-tick compute times and lateness.
+
+        Examples
+        --------
+        >>> s = TickStats.from_arrays(np.full(4, 1e-4), np.array([0, 0, 2e-3, 0.0]), 1e-3, True)
+        >>> s.misses, round(s.jitter_max, 6)
+        (1, 0.002)
+        """
         n = int(compute.size)
         if n == 0:
             nan = math.nan
-            return cls(0, period, 0, 1.0, nan, nan, nan, nan, nan, nan, nan, realtime)
+            return cls(
+                0, period, 0, 1.0, nan, nan, nan, nan, nan, nan, nan, realtime, nan, scheduling
+            )
         end = lateness + compute
         misses = int(np.count_nonzero(end > period)) if realtime else 0
         starts = np.arange(n) * period + lateness
-        jitter = float(np.std(np.diff(starts))) if n > 2 else 0.0
+        intervals = np.diff(starts)
+        jitter = float(np.std(intervals)) if n > 2 else 0.0
+        jitter_max = float(np.max(np.abs(intervals - period))) if n > 1 and realtime else 0.0
         c50, c99 = np.percentile(compute, [50, 99])
         l50, l99 = np.percentile(lateness, [50, 99])
         return cls(
@@ -159,6 +183,8 @@ class TickStats:
             lateness_max=float(lateness.max()),
             jitter=jitter,
             realtime=realtime,
+            jitter_max=jitter_max,
+            scheduling=scheduling,
         )
 
     def describe(self) -> dict[str, Any]:
@@ -168,12 +194,20 @@ class TickStats:
     def summary(self) -> str:
         """One human-readable paragraph (microseconds)."""
         us = 1e6
+        if not self.realtime:
+            return (
+                f"{self.ticks} ticks at {1.0 / self.period:g} Hz UNPACED (as fast as possible, "
+                f"not real time); compute p50 {self.compute_p50 * us:.1f} us, "
+                f"p99 {self.compute_p99 * us:.1f} us, max {self.compute_max * us:.1f} us"
+            )
+        sched = f"; scheduling {self.scheduling}" if self.scheduling else ""
         return (
             f"{self.ticks} ticks at {1.0 / self.period:g} Hz: {100 * self.in_deadline:.3f} % "
             f"in deadline ({self.misses} misses); compute p50 {self.compute_p50 * us:.1f} us, "
             f"p99 {self.compute_p99 * us:.1f} us, max {self.compute_max * us:.1f} us; "
             f"lateness p50 {self.lateness_p50 * us:.1f} us, p99 {self.lateness_p99 * us:.1f} us, "
-            f"max {self.lateness_max * us:.1f} us; jitter {self.jitter * us:.1f} us"
+            f"max {self.lateness_max * us:.1f} us; jitter {self.jitter * us:.1f} us "
+            f"(max {self.jitter_max * us:.1f} us){sched}"
         )
 
 
@@ -243,13 +277,13 @@ def _simulation_of(target: Any) -> Simulation:
     )
 
 
-def _wait_until(deadline: float) -> float:
-    """Sleep until shortly before ``deadline``, then spin; returns the wake-up time."""
+def _wait_until(deadline: float, spin: float = _SPIN) -> float:
+    """Sleep until ``spin`` before ``deadline``, then spin; returns the wake-up time."""
     perf = time.perf_counter
     now = perf()
     rem = deadline - now
-    if rem > _SPIN:
-        time.sleep(rem - _SPIN)
+    if rem > spin:
+        time.sleep(rem - spin)
     now = perf()
     while now < deadline:
         now = perf()
@@ -272,7 +306,7 @@ def run_hil(
     limits: SafetyLimits | None = None,
     startup: StartUp | None = None,
     driver: PICurrentDriver | None = None,
-    realtime: bool = True,
+    realtime: bool | str = True,
     cap_current: bool = True,
     process: bool = False,
     on_stop: Callable[[HilResult], None] | None = None,
@@ -303,8 +337,13 @@ def run_hil(
     driver : PICurrentDriver, optional
         Current regulator (default K_P = 1, K_I = 3000, 12-bit, limited to the current
         limit); bypassed (clamp and D/A only) for a rig whose coil is instantaneous.
-    realtime : bool
-        Pace the ticks on the clock (default); False runs them back to back (validation).
+    realtime : bool or str
+        Pacing and scheduling (:mod:`~mrsuspension.hil.realtime`): ``"auto"`` (or True,
+        the default) paces the ticks on the clock with SCHED_FIFO, a pinned core and
+        locked memory where permitted (noted in the statistics where not); ``"fifo"``
+        requires SCHED_FIFO; ``"off"`` paces without touching the scheduling;
+        ``"unpaced"`` (or False) runs the ticks back to back, as fast as possible (only
+        for a :class:`~mrsuspension.hil.rig.SimulatedRig`: validation and tests).
     cap_current : bool
         Lower the simulation's ``max_current`` to the safety current limit (default), so
         that the controller cannot demand an over-current.
@@ -325,6 +364,8 @@ def run_hil(
             target, rig, duration, rate, Path(out), model_dt=model_dt, limits=limits,
             startup=startup, driver=driver, realtime=realtime, cap_current=cap_current,
         )  # fmt: skip
+    mode = normalise_mode(realtime)
+    realtime = mode != "unpaced"
     sim = _simulation_of(target)
     limits = limits or SafetyLimits()
     startup = startup if startup is not None else StartUp()
@@ -333,6 +374,11 @@ def run_hil(
     if cap_current and sim.max_current > limits.current:
         sim = dataclasses.replace(sim, max_current=limits.current)
     rig = rig if rig is not None else _default_rig(sim)
+    if not realtime and not isinstance(rig, SimulatedRig):
+        raise ValidationError(
+            f"realtime='unpaced' needs a rig simulated in this process (simulated or ideal); "
+            f"a {type(rig).__name__} runs in real time: use realtime='auto', 'fifo' or 'off'"
+        )
     driver = driver or PICurrentDriver(current_limit=limits.current)
     period = 1.0 / rate
     n_sub = max(1, math.ceil(period / model_dt - 1e-9))
@@ -358,7 +404,7 @@ def run_hil(
     stepper.reset(road[0], road_v[0])
     rig.reset(period)
     driver.reset(period)
-    supervisor = SafetySupervisor(limits)
+    supervisor = SafetySupervisor(limits, link_status=rig.link_status)
 
     tmp_dir: Path | None = None
     if out is None:
@@ -372,7 +418,8 @@ def run_hil(
         "duration": duration,
         "model_dt": dt,
         "substeps": n_sub,
-        "realtime": realtime,
+        "realtime": mode,
+        "paced": realtime,
         "scenario": sim.describe(),
         "rig": rig.describe(),
         "limits": limits.describe(),
@@ -388,16 +435,21 @@ def run_hil(
     )
     compute = np.zeros(n_max)
     lateness = np.zeros(n_max)
-    reason, ticks = _loop(
-        stepper, rig, driver, supervisor, startup, recorder, road, road_v, n_ticks, n_max,
-        n_sub, period, realtime, compute, lateness,
-    )  # fmt: skip
-    stats = TickStats.from_arrays(compute[:ticks], lateness[:ticks], period, realtime)
+    with realtime_session(mode, compute, lateness) as rt:  # scheduling hook (hil/realtime.py)
+        reason, ticks = _loop(
+            stepper, rig, driver, supervisor, startup, recorder, road, road_v, n_ticks, n_max,
+            n_sub, period, realtime, compute, lateness,
+        )  # fmt: skip
+    stats = TickStats.from_arrays(
+        compute[:ticks], lateness[:ticks], period, realtime, scheduling=rt.label()
+    )
+    meta["scheduling"] = rt.describe()
     stop = {
         "reason": reason,
         "tripped": supervisor.tripped,
         "trip_time": supervisor.trip_time if supervisor.tripped else None,
         "stats": stats.describe(),
+        "scheduling": rt.describe(),
     }
     recorder.close(stop)
     rig.close()
@@ -449,6 +501,8 @@ def _loop(
     startup_ticks = math.ceil(startup.duration / period - 1e-9)
     hold_current = startup.hold_current
     home_tol = max(2e-3, 0.02 * lim.stroke)
+    # spin at most a quarter period: a SCHED_FIFO loop that never sleeps is throttled
+    spin = min(_SPIN, 0.25 * period)
 
     state = STATE_STARTUP if startup_ticks > 0 else STATE_RUN
     reason = "completed"
@@ -474,7 +528,7 @@ def _loop(
     try:
         while k < n_max:
             release = t0 + k * period
-            start = _wait_until(release) if realtime else perf()
+            start = _wait_until(release, spin) if realtime else perf()
             t = k * period
             sample = read()
             active = state <= STATE_RUN

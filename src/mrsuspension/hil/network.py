@@ -6,10 +6,10 @@ real-time loop talks to it through :class:`UdpRig`, an ordinary :class:`~mrsuspe
 :class:`~mrsuspension.hil.rig.SimulatedRig`) so the real network path is exercised on
 loopback (``mrsus rig-emulator``).
 
-Protocol (version 1)
+Protocol (version 2)
 --------------------
 Every datagram is one little-endian ``struct`` message starting with the common header
-``<IHHI``: ``magic`` (``0x5553524D``, the bytes ``b"MRSU"``), ``version`` (1), ``type``
+``<IHHI``: ``magic`` (``0x5553524D``, the bytes ``b"MRSU"``), ``version`` (2), ``type``
 and ``seq`` (uint32, wrapping). Types:
 
 =============  ====  =================  ============================================
@@ -21,6 +21,7 @@ sample         2     ``<IHHIddddI``     t_rig [s], force [N], displacement [m],
                                         measured current [A], status (bits)
 heartbeat      3     ``<IHHId``         t_send [s] (sender's clock)
 reset          4     ``<IHHIdd``        t_send [s], period [s]
+heartbeat ack  5     ``<IHHIdd``        t_echo [s] (the heartbeat's t_send), t_send [s]
 =============  ====  =================  ============================================
 
 - The client sends a **command** each tick (``seq`` increasing by one); the server applies
@@ -29,11 +30,22 @@ reset          4     ``<IHHIdd``        t_send [s], period [s]
 - **reset** puts the rig at mid-stroke with the coil off for the given tick period; the
   server answers with a sample (same ``seq``) whose status has :data:`STATUS_RESET` set
   (and :data:`STATUS_IDEAL_CURRENT` when the coil follows its command at once).
-- **heartbeat**: either side may send one; the receiver echoes it with the same ``seq``
-  and its own clock (liveness and round-trip time).
+- **heartbeat**: both sides send one every heartbeat period (their own ``seq`` counter,
+  apart from the commands'; the server to the client of the last reset); the receiver
+  answers with a **heartbeat ack** echoing ``seq`` and ``t_send`` (liveness and
+  round-trip time on both sides).
+- **server watchdog**: armed by the first command after a reset; when nothing (command
+  or heartbeat) has come from the client for the server's watchdog timeout, the server
+  puts its rig in the safe state
+  by itself: coil off, actuator ramped back to mid-stroke. Until the next reset it
+  ignores commands and answers them with samples carrying :data:`STATUS_SAFE`, which
+  the client does not take as fresh (so the loop's own watchdog trips).
 - Status bits of a sample: :data:`STATUS_RESET` (reply to a reset),
   :data:`STATUS_IDEAL_CURRENT`, :data:`STATUS_FAULT` (the rig raised; the sample repeats
-  the last good one).
+  the last good one), :data:`STATUS_SAFE` (the server's watchdog tripped).
+
+Version 2 differs from version 1 by the heartbeat ack (version 1 echoed type 3), the
+periodic heartbeats and the server watchdog.
 
 Datagrams with a wrong magic, version, type or size are ignored. Nothing is retransmitted:
 the client keeps the last good sample when a reply is late or lost, so its timestamp
@@ -59,12 +71,14 @@ from mrsuspension.hil.rig import Rig, RigSample
 __all__ = [
     "COMMAND",
     "HEARTBEAT",
+    "HEARTBEAT_ACK",
     "MAGIC",
     "RESET",
     "SAMPLE",
     "STATUS_FAULT",
     "STATUS_IDEAL_CURRENT",
     "STATUS_RESET",
+    "STATUS_SAFE",
     "VERSION",
     "UdpRig",
     "parse_udp_spec",
@@ -74,19 +88,23 @@ __all__ = [
 #: protocol magic (the bytes ``b"MRSU"`` read as a little-endian uint32)
 MAGIC = 0x5553524D
 #: protocol version
-VERSION = 1
+VERSION = 2
 #: message types
-COMMAND, SAMPLE, HEARTBEAT, RESET = 1, 2, 3, 4
+COMMAND, SAMPLE, HEARTBEAT, RESET, HEARTBEAT_ACK = 1, 2, 3, 4, 5
 #: sample status bits
-STATUS_RESET, STATUS_IDEAL_CURRENT, STATUS_FAULT = 1, 2, 4
+STATUS_RESET, STATUS_IDEAL_CURRENT, STATUS_FAULT, STATUS_SAFE = 1, 2, 4, 8
+#: default heartbeat period [s] (both sides)
+DEFAULT_HEARTBEAT = 0.02
 
 _HEADER = struct.Struct("<IHHI")
 _COMMAND = struct.Struct("<IHHIdddd")
 _SAMPLE = struct.Struct("<IHHIddddI")
 _HEARTBEAT = struct.Struct("<IHHId")
 _RESET = struct.Struct("<IHHIdd")
+_HEARTBEAT_ACK = struct.Struct("<IHHIdd")
 _SIZES = {COMMAND: _COMMAND.size, SAMPLE: _SAMPLE.size, HEARTBEAT: _HEARTBEAT.size}
 _SIZES[RESET] = _RESET.size
+_SIZES[HEARTBEAT_ACK] = _HEARTBEAT_ACK.size
 _SEQ_MASK = 0xFFFFFFFF
 _BUF = 256
 
@@ -138,12 +156,16 @@ class UdpRig(Rig):
         Longest wait for the reply in :meth:`read` [s] (default: a quarter of the period).
     reset_timeout : float
         Longest wait for the reply to a reset or a heartbeat [s] (retried three times).
+    heartbeat : float
+        Period of the client's heartbeats [s] (sent with the commands; 0: none).
 
     Attributes
     ----------
     sent, received, late, stale_reads : int
         Commands sent; distinct command replies received; replies that arrived after the
         read that wanted them; reads that returned the previous sample.
+    rig_safe : bool
+        The server's watchdog has put the rig in the safe state (until the next reset).
     """
 
     def __init__(
@@ -152,6 +174,7 @@ class UdpRig(Rig):
         port: int = 9870,
         timeout: float | None = None,
         reset_timeout: float = 1.0,
+        heartbeat: float = DEFAULT_HEARTBEAT,
     ) -> None:
         self.host = str(host)
         self.port = int(check_range("port", port, 1, 65535))
@@ -159,6 +182,9 @@ class UdpRig(Rig):
             check_range("timeout", timeout, 0.0, 1.0, unit="s")
         self.timeout = timeout
         self.reset_timeout = float(check_range("reset_timeout", reset_timeout, 0.0, 60.0))
+        self.heartbeat = float(check_range("heartbeat", heartbeat, 0.0, 10.0, unit="s"))
+        self._hb_seq = 0
+        self._next_hb = 0.0
         self._sock: socket.socket | None = None
         self._wait = 0.0
         self._seq = 0
@@ -178,6 +204,13 @@ class UdpRig(Rig):
         self.late = 0
         self.stale_reads = 0
         self.send_errors = 0
+        self.heartbeats_sent = 0
+        self.heartbeats_received = 0
+        self.heartbeat_acks = 0
+        self.last_heartbeat = -math.inf
+        self.rtt = math.nan
+        self.rtt_max = 0.0
+        self.rig_safe = False
 
     # pickling (the loop may run in a spawned process): the socket is re-opened there
     def __getstate__(self) -> dict[str, Any]:
@@ -236,10 +269,25 @@ class UdpRig(Rig):
         MRSuspensionError
             When the server does not answer.
         """
-        seq = self._next_seq()
+        self._hb_seq = seq = (self._hb_seq + 1) & _SEQ_MASK
         t = time.perf_counter()
-        self._request(_HEARTBEAT.pack(MAGIC, VERSION, HEARTBEAT, seq, t), seq, HEARTBEAT)
+        self._request(_HEARTBEAT.pack(MAGIC, VERSION, HEARTBEAT, seq, t), seq, HEARTBEAT_ACK)
         return time.perf_counter() - t
+
+    def _beat(self, now: float) -> None:
+        """Send a heartbeat (never blocks)."""
+        self._hb_seq = seq = (self._hb_seq + 1) & _SEQ_MASK
+        self._next_hb = now + self.heartbeat
+        with contextlib.suppress(BlockingIOError, ConnectionRefusedError):
+            self._socket().send(_HEARTBEAT.pack(MAGIC, VERSION, HEARTBEAT, seq, now))
+            self.heartbeats_sent += 1
+
+    def heartbeat_age(self) -> float:
+        """Time [s] since the newest heartbeat (or ack) from the server (inf: none yet).
+
+        Counted from when :meth:`read` took it off the socket (every tick in the loop).
+        """
+        return time.perf_counter() - self.last_heartbeat
 
     # -- interface ----------------------------------------------------------------------
     def reset(self, period: float) -> None:
@@ -257,21 +305,41 @@ class UdpRig(Rig):
         self._sample = RigSample(f, x, i, t_rig)
         self._last_seq = seq
         self._zero_counters()
+        self._next_hb = 0.0
 
     def command(self, stroke: float, current_command: float, velocity: float = 0.0) -> None:
         """Send a command datagram (never blocks)."""
         seq = self._next_seq()
+        now = time.perf_counter()
         payload = _COMMAND.pack(
-            MAGIC, VERSION, COMMAND, seq, time.perf_counter(), stroke, velocity, current_command
+            MAGIC, VERSION, COMMAND, seq, now, stroke, velocity, current_command
         )
         self.sent += 1
         try:
             self._socket().send(payload)
         except (BlockingIOError, ConnectionRefusedError):
             self.send_errors += 1  # its reply never comes: counted as lost too
+        if self.heartbeat > 0.0 and now >= self._next_hb:
+            self._beat(now)
 
     def _take(self, data: bytes) -> None:
-        if _kind(data) != SAMPLE:
+        kind = _kind(data)
+        if kind != SAMPLE:
+            if kind == HEARTBEAT:  # the server's beat: acknowledge it
+                _, _, _, hseq, t_send = _HEARTBEAT.unpack(data)
+                now = time.perf_counter()
+                self.heartbeats_received += 1
+                self.last_heartbeat = now
+                ack = _HEARTBEAT_ACK.pack(MAGIC, VERSION, HEARTBEAT_ACK, hseq, t_send, now)
+                with contextlib.suppress(BlockingIOError, ConnectionRefusedError):
+                    self._socket().send(ack)
+            elif kind == HEARTBEAT_ACK:  # our beat came back: round-trip time
+                _, _, _, _, t_echo, _ = _HEARTBEAT_ACK.unpack(data)
+                now = time.perf_counter()
+                self.heartbeat_acks += 1
+                self.last_heartbeat = now
+                self.rtt = now - t_echo
+                self.rtt_max = max(self.rtt_max, self.rtt)
             return
         _, _, _, seq, t_rig, f, x, i, status = _SAMPLE.unpack(data)
         if status & STATUS_RESET:
@@ -282,7 +350,8 @@ class UdpRig(Rig):
             if seq != self._seq:
                 self.late += 1
             self._last_seq = seq
-            if not status & STATUS_FAULT:
+            self.rig_safe = bool(status & STATUS_SAFE)
+            if not status & (STATUS_FAULT | STATUS_SAFE):
                 self._sample = RigSample(f, x, i, t_rig)
         else:
             self.late += 1
@@ -295,8 +364,10 @@ class UdpRig(Rig):
         while True:
             try:
                 take(recv(_BUF))
-            except (BlockingIOError, ConnectionRefusedError):
+            except BlockingIOError:
                 break
+            except ConnectionRefusedError:
+                continue  # a pending ICMP error, reported once: the rest is still queued
         if self._last_seq != self._seq and self.sent:
             end = time.perf_counter() + self._wait
             while self._last_seq != self._seq:
@@ -335,13 +406,47 @@ class UdpRig(Rig):
             "stale_reads": self.stale_reads,
         }
 
+    def link_status(self) -> str:
+        """The link as the heartbeats see it (added to a watchdog trip's reason).
+
+        ``"rig in the safe state (server watchdog)"``, ``"link alive (heartbeat ...)"``
+        when the server's heartbeats still arrive within three periods (so the rig, not
+        the link, stopped answering, or only the replies are lost), ``"link down (...)"``
+        when they do not, or ``"heartbeats off"``.
+        """
+        if self.rig_safe:
+            return "rig in the safe state (server watchdog)"
+        if self.heartbeat <= 0.0:
+            return "heartbeats off"
+        age = self.heartbeat_age()
+        if age <= 3.0 * self.heartbeat + 0.01:
+            return (
+                f"link alive (last heartbeat {1e3 * age:.0f} ms ago, rtt {1e3 * self.rtt:.2f} ms)"
+            )
+        if math.isinf(age):
+            return "link down (no heartbeat from the rig since the reset)"
+        return f"link down (no heartbeat from the rig for {age:.3f} s)"
+
+    def link(self) -> dict[str, float | int | bool]:
+        """Heartbeat accounting: beats sent, received and acknowledged, round-trip times."""
+        return {
+            "heartbeat": self.heartbeat,
+            "heartbeats_sent": self.heartbeats_sent,
+            "heartbeats_received": self.heartbeats_received,
+            "heartbeat_acks": self.heartbeat_acks,
+            "rtt": self.rtt,
+            "rtt_max": self.rtt_max,
+            "rig_safe": self.rig_safe,
+        }
+
     def describe(self) -> dict[str, Any]:
-        """Plain-data description (address, protocol version, timeout)."""
+        """Plain-data description (address, protocol version, timeout, heartbeat)."""
         return {
             "rig": "udp",
             "address": f"udp://{self.host}:{self.port}",
             "protocol_version": VERSION,
             "timeout": self.timeout,
+            "heartbeat": self.heartbeat,
         }
 
 
@@ -366,6 +471,10 @@ def serve_rig(
     duration: float | None = None,
     ready: Callable[[int], None] | None = None,
     should_stop: Callable[[], bool] | None = None,
+    heartbeat: float = DEFAULT_HEARTBEAT,
+    watchdog: float = 0.25,
+    return_rate: float = 0.05,
+    realtime: bool | str = "off",
 ) -> dict[str, int]:
     """Serve ``rig`` over UDP until stopped (Ctrl-C, ``duration`` or ``should_stop``).
 
@@ -395,11 +504,24 @@ def serve_rig(
         Called with the bound port once the socket listens.
     should_stop : callable, optional
         Polled about every 50 ms; the server returns when it is true.
+    heartbeat : float
+        Period [s] of the server's heartbeats to the client of the last reset (0: none).
+    watchdog : float
+        Server watchdog [s]: with nothing (command or heartbeat) from the client for this
+        long, once it has sent a command after its reset, the rig goes to the safe state (coil off, actuator ramped to
+        mid-stroke at ``return_rate``) until the next reset; 0 disables it.
+    return_rate : float
+        Stroke rate [m/s] of the safe-state return.
+    realtime : bool or str
+        Scheduling of the server (``"auto"``, ``"fifo"`` or ``"off"``, as for
+        :func:`~mrsuspension.hil.loop.run_hil`; the server pins itself to a core other
+        than the loop's).
 
     Returns
     -------
     dict
-        Counters: commands, replies, dropped, delayed, resets, heartbeats, invalid.
+        Counters: commands, replies, dropped, delayed, resets, heartbeats (received),
+        invalid, heartbeats_sent, heartbeat_acks (received), watchdog_trips.
 
     Notes
     -----
@@ -410,19 +532,68 @@ def serve_rig(
     check_range("delay", delay, 0.0, 10.0, unit="s")
     check_range("delay_probability", delay_probability, 0.0, 1.0)
     rate = float(check_range("rate", rate, 1.0, 100000.0, unit="Hz"))
+    heartbeat = float(check_range("heartbeat", heartbeat, 0.0, 10.0, unit="s"))
+    watchdog = float(check_range("watchdog", watchdog, 0.0, 60.0, unit="s"))
+    return_rate = float(
+        check_range("return_rate", return_rate, 0.0, 10.0, unit="m/s", low_inclusive=False)
+    )
+    from mrsuspension.hil.realtime import normalise_mode, pick_cpu, realtime_session
+
+    mode = normalise_mode(realtime)
+    if mode == "unpaced":
+        raise ValidationError(
+            "the rig server runs in real time: realtime must be 'auto', 'fifo' or 'off'; "
+            f"got {realtime!r}"
+        )
+    with realtime_session(mode, cpu=pick_cpu("emulator")):
+        return _serve(
+            rig, host, port, rate, drop, delay, delay_probability, drop_after, seed, duration,
+            ready, should_stop, heartbeat, watchdog, return_rate,
+        )  # fmt: skip
+
+
+def _serve(
+    rig: Rig,
+    host: str,
+    port: int,
+    rate: float,
+    drop: float,
+    delay: float,
+    delay_probability: float,
+    drop_after: int,
+    seed: int,
+    duration: float | None,
+    ready: Callable[[int], None] | None,
+    should_stop: Callable[[], bool] | None,
+    heartbeat: float,
+    watchdog: float,
+    return_rate: float,
+) -> dict[str, int]:
     rng = random.Random(seed)
+    perf = time.perf_counter
     sock = socket.socket(socket.AF_INET6 if ":" in host else socket.AF_INET, socket.SOCK_DGRAM)
     counts = dict.fromkeys(
         ("commands", "replies", "dropped", "delayed", "resets", "heartbeats", "invalid"), 0
     )
+    counts.update(dict.fromkeys(("heartbeats_sent", "heartbeat_acks", "watchdog_trips"), 0))
     pending: list[tuple[float, int, bytes, Any]] = []
+    period = 1.0 / rate
+    client: Any = None  # address of the client of the last reset
+    last_rx = 0.0  # when the client was last heard [perf s]
+    next_hb = math.inf
+    hb_seq = 0
+    safe = False  # the server watchdog tripped
+    armed = False  # the watchdog runs from the first command after a reset
+    next_safe = math.inf  # next tick of the safe-state return
+    x_last = 0.0  # last stroke commanded to the rig
+    home_at = math.inf  # when the safe-state return reached mid-stroke
     try:
         sock.bind((host, port))
         # warm up (compile or load the rig's kernels) before announcing the port
-        rig.reset(1.0 / rate)
+        rig.reset(period)
         rig.command(0.0, 0.0, 0.0)
         rig.read()
-        rig.reset(1.0 / rate)
+        rig.reset(period)
         last = rig.read()
         if ready is not None:
             ready(int(sock.getsockname()[1]))
@@ -437,28 +608,39 @@ def serve_rig(
                     break
                 next_poll = now + 0.05
             wait = min(0.05, end - now)
-            if pending:
-                wait = min(wait, max(0.0, pending[0][0] - time.perf_counter()))
+            t = perf()
+            due = min(next_hb, next_safe, pending[0][0] if pending else math.inf)
+            if armed and not safe:
+                due = min(due, last_rx + watchdog)
+            wait = min(wait, max(0.0, due - t))
             ready_r, _, _ = select.select([sock], [], [], wait)
             if ready_r:
                 data, addr = sock.recvfrom(_BUF)
                 kind = _kind(data)
+                if kind and addr == client:
+                    last_rx = perf()
                 if kind == COMMAND:
                     _, _, _, seq, _, stroke, velocity, i_cmd = _COMMAND.unpack(data)
                     counts["commands"] += 1
+                    if client is None:
+                        client, last_rx = addr, perf()
+                    armed = watchdog > 0.0 and addr == client
                     status = 0
-                    try:
-                        rig.command(stroke, i_cmd, velocity)
-                        last = rig.read()
-                    except Exception:  # a faulty rig: report it, keep serving
-                        status = STATUS_FAULT
+                    if safe:
+                        status = STATUS_SAFE  # ignored until the next reset
+                    else:
+                        try:
+                            rig.command(stroke, i_cmd, velocity)
+                            x_last = stroke
+                            last = rig.read()
+                        except Exception:  # a faulty rig: report it, keep serving
+                            status = STATUS_FAULT
                     reply = _pack_sample(seq, last, status)
                     if drop > 0.0 and counts["commands"] > drop_after and rng.random() < drop:
                         counts["dropped"] += 1
                     elif delay > 0.0 and rng.random() < delay_probability:
                         counts["delayed"] += 1
-                        due = time.perf_counter() + delay
-                        heapq.heappush(pending, (due, seq, reply, addr))
+                        heapq.heappush(pending, (perf() + delay, seq, reply, addr))
                     else:
                         sock.sendto(reply, addr)
                         counts["replies"] += 1
@@ -467,23 +649,54 @@ def serve_rig(
                     counts["resets"] += 1
                     pending.clear()
                     rig.reset(period)
+                    x_last = 0.0
+                    safe, next_safe, armed = False, math.inf, False
+                    client, last_rx = addr, perf()
+                    next_hb = last_rx + heartbeat if heartbeat > 0.0 else math.inf
                     last = rig.read()
                     ideal = STATUS_IDEAL_CURRENT if rig.ideal_current else 0
                     status = STATUS_RESET | ideal
                     sock.sendto(_pack_sample(seq, last, status), addr)
                 elif kind == HEARTBEAT:
-                    _, _, _, seq, _ = _HEARTBEAT.unpack(data)
+                    _, _, _, seq, t_send = _HEARTBEAT.unpack(data)
                     counts["heartbeats"] += 1
-                    sock.sendto(
-                        _HEARTBEAT.pack(MAGIC, VERSION, HEARTBEAT, seq, time.perf_counter()), addr
-                    )
+                    ack = _HEARTBEAT_ACK.pack(MAGIC, VERSION, HEARTBEAT_ACK, seq, t_send, perf())
+                    sock.sendto(ack, addr)
+                elif kind == HEARTBEAT_ACK:
+                    counts["heartbeat_acks"] += 1
                 else:
                     counts["invalid"] += 1
-            t = time.perf_counter()
+            t = perf()
             while pending and pending[0][0] <= t:
                 _, _, reply, addr = heapq.heappop(pending)
                 sock.sendto(reply, addr)
                 counts["replies"] += 1
+            if client is not None and t >= next_hb:
+                hb_seq = (hb_seq + 1) & _SEQ_MASK
+                sock.sendto(_HEARTBEAT.pack(MAGIC, VERSION, HEARTBEAT, hb_seq, t), client)
+                counts["heartbeats_sent"] += 1
+                next_hb = max(next_hb + heartbeat, t)
+            if armed and not safe and t - last_rx > watchdog:
+                safe = True  # the client went silent: coil off, back to mid-stroke
+                counts["watchdog_trips"] += 1
+                pending.clear()
+                next_safe, home_at = t, math.inf
+            if safe and t >= next_safe:
+                step = return_rate * period
+                if abs(x_last) <= step:
+                    x_last = 0.0
+                else:
+                    x_last -= math.copysign(step, x_last)
+                v = 0.0 if x_last == 0.0 else -math.copysign(return_rate, x_last)
+                with contextlib.suppress(Exception):
+                    rig.command(x_last, 0.0, v)
+                    last = rig.read()
+                if x_last != 0.0:
+                    home_at = math.inf
+                elif home_at == math.inf:
+                    home_at = t
+                # tick until home and 0.5 s more (settling); then the rig holds
+                next_safe = math.inf if t - home_at > 0.5 else next_safe + period
     except KeyboardInterrupt:
         pass
     finally:

@@ -89,6 +89,10 @@ class Rig(ABC):
     def close(self) -> None:  # noqa: B027 (optional hook)
         """Release resources (sockets, files); the default does nothing."""
 
+    def link_status(self) -> str | None:
+        """State of the link to the rig, for a watchdog trip's reason (None: no link)."""
+        return None
+
     def describe(self) -> dict[str, Any]:
         """Plain-data description for the recording's metadata."""
         return {"rig": type(self).__name__}

@@ -7,6 +7,7 @@ stops and the reason is recorded.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import asdict, dataclass
 from typing import Any
 
@@ -102,10 +103,18 @@ class SafetySupervisor:
     ----------
     limits : SafetyLimits
         The trip limits.
+    link_status : callable, optional
+        Called when the watchdog trips; its text (e.g. the network rig's heartbeat state,
+        :meth:`~mrsuspension.hil.rig.Rig.link_status`) is added to the reason.
     """
 
-    def __init__(self, limits: SafetyLimits | None = None) -> None:
+    def __init__(
+        self,
+        limits: SafetyLimits | None = None,
+        link_status: Callable[[], str | None] | None = None,
+    ) -> None:
         self.limits = limits or SafetyLimits()
+        self.link_status = link_status
         self.reset()
 
     def reset(self) -> None:
@@ -132,9 +141,10 @@ class SafetySupervisor:
             self._last_stamp = stamp
             self._last_fresh = t
         elif t - self._last_fresh > lim.watchdog:
+            link = self.link_status() if self.link_status is not None else None
             self.trip(
                 f"rig watchdog: no fresh sample for {t - self._last_fresh:.4f} s "
-                f"(limit {lim.watchdog:g} s)",
+                f"(limit {lim.watchdog:g} s)" + (f"; {link}" if link else ""),
                 t,
             )
             return True

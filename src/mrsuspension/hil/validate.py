@@ -91,7 +91,7 @@ def validate(
     *,
     model_dt: float = DEFAULT_DT,
     limits: SafetyLimits | None = None,
-    realtime: bool = True,
+    realtime: bool | str = True,
 ) -> ValidationReport:
     """Run ``sim`` in HiL with ``rig`` and offline; compare them.
 
@@ -112,8 +112,9 @@ def validate(
         Engine step [s] (both runs).
     limits : SafetyLimits, optional
         HiL trip limits; the offline run uses the same current cap.
-    realtime : bool
-        Pace the HiL loop on the clock (default).
+    realtime : bool or str
+        Pacing and scheduling of the HiL loop (see :func:`~mrsuspension.hil.loop.run_hil`;
+        ``"unpaced"`` runs a simulated rig as fast as possible).
 
     Returns
     -------

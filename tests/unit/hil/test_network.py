@@ -5,12 +5,13 @@ from __future__ import annotations
 import socket
 import struct
 import threading
+import time
 from collections.abc import Iterator
 
 import pytest
 
 from mrsuspension.errors import MRSuspensionError, ValidationError
-from mrsuspension.hil import ideal_rig
+from mrsuspension.hil import SafetyLimits, SafetySupervisor, ideal_rig
 from mrsuspension.hil import network as N
 from mrsuspension.hil.network import UdpRig, parse_udp_spec, serve_rig
 
@@ -102,3 +103,135 @@ def test_stale_sample_is_held(server: tuple[int, dict[str, int]]) -> None:
     assert rig.read() == first
     assert rig.stale_reads == 1
     rig.close()
+
+
+def _serve_in_thread(rig: object, **kw: object) -> tuple[int, dict[str, int], threading.Event]:
+    port: list[int] = []
+    started = threading.Event()
+    stop = threading.Event()
+    counts: dict[str, int] = {}
+
+    def run() -> None:
+        counts.update(
+            serve_rig(
+                rig,  # type: ignore[arg-type]
+                port=0,
+                ready=lambda p: (port.append(p), started.set()),  # type: ignore[func-returns-value]
+                should_stop=stop.is_set,
+                **kw,  # type: ignore[arg-type]
+            )
+        )
+        counts["done"] = 1
+
+    threading.Thread(target=run, daemon=True).start()
+    assert started.wait(30)
+    return port[0], counts, stop
+
+
+def _stopped(counts: dict[str, int], stop: threading.Event) -> dict[str, int]:
+    stop.set()
+    deadline = time.monotonic() + 5
+    while "done" not in counts and time.monotonic() < deadline:
+        time.sleep(0.01)
+    assert "done" in counts
+    return counts
+
+
+def test_heartbeats_both_directions() -> None:
+    port, counts, stop = _serve_in_thread(ideal_rig(), heartbeat=0.005)
+    rig = UdpRig("127.0.0.1", port, heartbeat=0.005)
+    rig.reset(1e-3)
+    t_end = time.perf_counter() + 0.2
+    ticks = 0
+    while time.perf_counter() < t_end:
+        rig.command(0.001, 0.0, 0.0)
+        rig.read()
+        ticks += 1
+        time.sleep(1e-3)
+    time.sleep(0.02)
+    rig.read()  # drain the last beats and acks
+    link = rig.link()
+    rig.close()
+    counts = _stopped(counts, stop)
+    print(f"{ticks} ticks; client {link}; server {counts}")
+    # the client beats every 5 ms with its commands; the server every 5 ms on its own
+    assert 20 <= link["heartbeats_sent"] <= 45
+    assert counts["heartbeats"] == link["heartbeats_sent"]  # every beat arrived
+    assert link["heartbeat_acks"] == link["heartbeats_sent"]  # and was acknowledged
+    assert 0.0 < link["rtt"] <= link["rtt_max"] < 0.1
+    # the server kept beating after the client's last read: it sent at least as many
+    assert 20 <= link["heartbeats_received"] <= counts["heartbeats_sent"] <= 60
+    assert counts["heartbeat_acks"] == link["heartbeats_received"]
+    assert counts["watchdog_trips"] == 0
+    assert not link["rig_safe"]
+    assert rig.counters()["lost"] == 0  # beats do not disturb the command sequence
+
+
+def test_server_watchdog_makes_the_rig_safe() -> None:
+    served = ideal_rig()
+    port, counts, stop = _serve_in_thread(served, watchdog=0.05, return_rate=0.1)
+    rig = UdpRig("127.0.0.1", port, timeout=0.05)
+    rig.reset(1e-3)
+    for _ in range(20):
+        rig.command(0.02, 0.2, 0.0)
+        rig.read()
+    assert served.true_state["displacement"] == pytest.approx(0.02)
+    assert served.true_state["current"] == pytest.approx(0.2)
+    # the client goes silent: after 50 ms the server turns the coil off and ramps the
+    # actuator home at 0.1 m/s (0.2 s for 2 cm)
+    time.sleep(0.03)
+    assert counts.get("watchdog_trips", 0) == 0
+    assert served.true_state["current"] > 0.1
+    time.sleep(0.5)
+    assert served.true_state["current"] == 0.0
+    assert served.true_state["displacement"] == pytest.approx(0.0, abs=1e-9)
+    held = rig.read()
+    rig.command(0.03, 0.2, 0.0)  # ignored until the next reset
+    assert rig.read() == held  # the SAFE sample is not taken as fresh
+    assert rig.rig_safe
+    assert served.true_state["displacement"] == pytest.approx(0.0, abs=1e-9)
+    rig.reset(1e-3)  # a reset re-arms
+    rig.command(0.01, 0.1, 0.0)
+    assert rig.read().displacement == pytest.approx(0.01)
+    assert not rig.rig_safe
+    rig.close()
+    counts = _stopped(counts, stop)
+    assert counts["watchdog_trips"] >= 1
+
+
+def test_server_options_are_checked() -> None:
+    for kw, fragment in (
+        ({"heartbeat": -1.0}, "heartbeat"),
+        ({"watchdog": float("nan")}, "watchdog"),
+        ({"realtime": "unpaced"}, "realtime must be"),
+        ({"realtime": "sometimes"}, "'sometimes'"),
+    ):
+        with pytest.raises(ValidationError, match=fragment):
+            serve_rig(ideal_rig(), port=0, duration=0.01, **kw)  # type: ignore[arg-type]
+    with pytest.raises(ValidationError, match="heartbeat"):
+        UdpRig("127.0.0.1", 9, heartbeat=20.0)
+
+
+def test_watchdog_reason_tells_link_alive_from_link_down() -> None:
+    port, counts, stop = _serve_in_thread(ideal_rig(), heartbeat=0.005)
+    rig = UdpRig("127.0.0.1", port, heartbeat=0.005, timeout=0.002)
+    assert rig.link_status() == "link down (no heartbeat from the rig since the reset)"
+    rig.reset(1e-3)
+    for _ in range(30):
+        rig.command(0.0, 0.0, 0.0)
+        rig.read()
+        time.sleep(1e-3)
+    assert rig.link_status().startswith("link alive"), rig.link_status()
+    _stopped(counts, stop)  # the server is gone: no replies, no heartbeats
+    rig.read()  # take what was still queued (the loop reads every tick)
+    time.sleep(0.05)
+    rig.command(0.0, 0.0, 0.0)
+    rig.read()
+    assert rig.link_status().startswith("link down (no heartbeat from the rig for 0.0")
+    supervisor = SafetySupervisor(SafetyLimits(watchdog=0.01), link_status=rig.link_status)
+    assert not supervisor.check_sample(0.0, 0.0, 0.0, 0.0, 1.0)
+    assert supervisor.check_sample(0.02, 0.0, 0.0, 0.0, 1.0)
+    assert supervisor.reason.startswith("rig watchdog: no fresh sample")
+    assert "; link down" in supervisor.reason
+    rig.close()
+    assert UdpRig("127.0.0.1", port, heartbeat=0.0).link_status() == "heartbeats off"

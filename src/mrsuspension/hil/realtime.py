@@ -1,0 +1,352 @@
+"""Real-time scheduling of the HiL loop: the ``realtime=`` option of :func:`run_hil`.
+
+The loop's misses on a busy machine are preemptions: the operating system gives the
+core to another process while the loop sleeps or computes. :func:`realtime_session`
+prepares the calling thread (the loop) before the clock starts and undoes it after:
+
+- ``SCHED_FIFO`` at a fixed priority (:func:`os.sched_setscheduler`; needs root or
+  ``CAP_SYS_NICE`` / an ``RLIMIT_RTPRIO``): the loop preempts every ordinary process
+  and is not preempted by them; the kernel's RT throttling (95 % per second by default)
+  still keeps the machine alive. The process's other Python threads (the recorder's
+  writer) get SCHED_FIFO one priority lower: one of them preempted while holding the
+  GIL would otherwise stall the loop (priority inversion);
+- pinned to one core (:func:`os.sched_setaffinity`, the last allowed one); the
+  recorder's writer thread, started before, keeps every core, and
+  :func:`pick_cpu` gives other processes (the rig emulator) a different one;
+- ``gc.collect()`` + ``gc.freeze()`` (the loop disables the collector itself);
+- the process memory locked (``mlockall`` through :mod:`ctypes`) and the given buffers
+  touched, so that the hot path takes no page faults.
+
+Each step that the system refuses is skipped and noted (``RealtimeSession.notes``); the
+notes go into the tick statistics (``TickStats.scheduling``) and the recording.
+
+Modes (``realtime=``):
+
+=============  ==================================================================
+``"auto"``     paced; every step above, each falling back with a note (default;
+               ``True`` means the same)
+``"fifo"``     paced; as ``"auto"`` but SCHED_FIFO is required (an error otherwise)
+``"off"``      paced on the clock; the scheduling is left as it is
+``"unpaced"``  ticks back to back, as fast as possible (``False`` means the same);
+               only for rigs that are simulated in the same process
+=============  ==================================================================
+"""
+
+from __future__ import annotations
+
+import contextlib
+import ctypes
+import ctypes.util
+import gc
+import os
+import resource
+import sys
+import threading
+from collections.abc import Iterator
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from mrsuspension.errors import MRSuspensionError, ValidationError, did_you_mean
+
+__all__ = [
+    "DEFAULT_PRIORITY",
+    "REALTIME_MODES",
+    "RealtimeSession",
+    "is_paced",
+    "normalise_mode",
+    "pick_cpu",
+    "realtime_session",
+]
+
+#: accepted values of ``realtime=`` (besides True = "auto" and False = "unpaced")
+REALTIME_MODES = ("auto", "fifo", "off", "unpaced")
+#: SCHED_FIFO priority of the loop (1..99; the kernel's own threads run at 50 and 99)
+DEFAULT_PRIORITY = 40
+_MCL_CURRENT, _MCL_FUTURE = 1, 2
+
+
+def normalise_mode(realtime: bool | str) -> str:
+    """The mode name of a ``realtime=`` value.
+
+    Raises
+    ------
+    ValidationError
+        When the value is not a bool or one of :data:`REALTIME_MODES`.
+
+    Examples
+    --------
+    >>> normalise_mode(True), normalise_mode(False), normalise_mode("FIFO")
+    ('auto', 'unpaced', 'fifo')
+    """
+    if realtime is True:
+        return "auto"
+    if realtime is False:
+        return "unpaced"
+    if isinstance(realtime, str):
+        mode = realtime.strip().lower()
+        if mode in REALTIME_MODES:
+            return mode
+        hint = did_you_mean(mode, REALTIME_MODES)
+        raise ValidationError(
+            f"realtime must be one of {', '.join(REALTIME_MODES)} (or True/False); "
+            f"got {realtime!r}.{hint}"
+        )
+    raise ValidationError(
+        f"realtime must be one of {', '.join(REALTIME_MODES)} (or True/False); "
+        f"got {type(realtime).__name__} {realtime!r}"
+    )
+
+
+def is_paced(realtime: bool | str) -> bool:
+    """True when the ticks are released on the clock (every mode but ``"unpaced"``).
+
+    Examples
+    --------
+    >>> is_paced("off"), is_paced(False)
+    (True, False)
+    """
+    return normalise_mode(realtime) != "unpaced"
+
+
+def pick_cpu(role: str = "loop") -> int | None:
+    """The core for a role: the loop takes the last allowed core, others the first.
+
+    None when the process may run on one core only (nothing to choose) or the platform
+    has no affinity control.
+
+    Examples
+    --------
+    >>> cpu = pick_cpu("emulator")
+    >>> cpu is None or cpu >= 0
+    True
+    """
+    getaff = getattr(os, "sched_getaffinity", None)
+    if getaff is None:
+        return None
+    cpus = sorted(getaff(0))
+    if len(cpus) < 2:
+        return None
+    return cpus[-1] if role == "loop" else cpus[0]
+
+
+@dataclass
+class RealtimeSession:
+    """What :func:`realtime_session` did to the calling thread (and how to undo it).
+
+    Attributes
+    ----------
+    mode : str
+        The requested mode (:data:`REALTIME_MODES`).
+    policy : str
+        ``"SCHED_FIFO:<priority>"`` or ``"unchanged"``.
+    cpu : int or None
+        The core the thread was pinned to.
+    memory_locked : bool
+        Whether ``mlockall`` succeeded.
+    gc_frozen : bool
+        Whether ``gc.freeze()`` was applied.
+    notes : list of str
+        Steps refused by the system (and why).
+    """
+
+    mode: str
+    policy: str = "unchanged"
+    cpu: int | None = None
+    memory_locked: bool = False
+    gc_frozen: bool = False
+    notes: list[str] = field(default_factory=list)
+    _undo: list[Any] = field(default_factory=list, repr=False)
+
+    @property
+    def paced(self) -> bool:
+        """Whether the ticks are released on the clock."""
+        return self.mode != "unpaced"
+
+    def label(self) -> str:
+        """One line for the statistics: mode, policy, core, memory lock and notes.
+
+        Examples
+        --------
+        >>> RealtimeSession("off").label()
+        'off (paced; scheduling unchanged)'
+        """
+        if self.mode == "unpaced":
+            return "unpaced (as fast as possible, not real time)"
+        if self.mode == "off":
+            return "off (paced; scheduling unchanged)"
+        parts = [self.policy]
+        if self.cpu is not None:
+            parts.append(f"cpu {self.cpu}")
+        if self.memory_locked:
+            parts.append("mlockall")
+        if self.gc_frozen:
+            parts.append("gc frozen")
+        text = f"{self.mode} ({', '.join(parts)})"
+        if self.notes:
+            text += "; " + "; ".join(self.notes)
+        return text
+
+    def describe(self) -> dict[str, Any]:
+        """Plain data (for the recording's metadata)."""
+        return {
+            "mode": self.mode,
+            "paced": self.paced,
+            "policy": self.policy,
+            "cpu": self.cpu,
+            "memory_locked": self.memory_locked,
+            "gc_frozen": self.gc_frozen,
+            "notes": list(self.notes),
+        }
+
+    def restore(self) -> None:
+        """Undo every step, most recent first (idempotent)."""
+        while self._undo:
+            undo = self._undo.pop()
+            with contextlib.suppress(OSError):
+                undo()
+
+
+def _set_fifo(session: RealtimeSession, priority: int, required: bool) -> None:
+    setsched = getattr(os, "sched_setscheduler", None)
+    if setsched is None:
+        msg = "SCHED_FIFO not available on this platform"
+        if required:
+            raise MRSuspensionError(f"realtime='fifo': {msg}; use realtime='auto' or 'off'")
+        session.notes.append(msg)
+        return
+    old_policy = os.sched_getscheduler(0)
+    old_param = os.sched_getparam(0)
+    lo, hi = os.sched_get_priority_min(os.SCHED_FIFO), os.sched_get_priority_max(os.SCHED_FIFO)
+    prio = min(max(int(priority), lo), hi)
+    try:
+        setsched(0, os.SCHED_FIFO, os.sched_param(prio))
+    except OSError as exc:
+        msg = f"SCHED_FIFO refused ({exc.strerror or exc}; needs root or CAP_SYS_NICE)"
+        if required:
+            raise MRSuspensionError(
+                f"realtime='fifo': {msg}; use realtime='auto' or 'off'"
+            ) from exc
+        session.notes.append(msg)
+        return
+    session.policy = f"SCHED_FIFO:{prio}"
+    session._undo.append(lambda: setsched(0, old_policy, old_param))
+    # the process's other Python threads (the recorder's writer...) one step below: a
+    # thread preempted by an ordinary process while it holds the GIL would block the loop
+    me = threading.get_native_id()
+    helpers = 0
+    for thread in threading.enumerate():
+        tid = thread.native_id
+        if tid is None or tid == me or not thread.is_alive():
+            continue
+        try:
+            t_policy, t_param = os.sched_getscheduler(tid), os.sched_getparam(tid)
+            setsched(tid, os.SCHED_FIFO, os.sched_param(max(lo, prio - 1)))
+        except OSError:
+            continue
+        helpers += 1
+        session._undo.append(lambda t=tid, p=t_policy, q=t_param: setsched(t, p, q))
+    if helpers:
+        session.policy += f" (+{helpers} thread{'s' if helpers > 1 else ''} at {max(lo, prio - 1)})"
+
+
+def _pin(session: RealtimeSession, cpu: int | None) -> None:
+    setaff = getattr(os, "sched_setaffinity", None)
+    if setaff is None:
+        session.notes.append("no CPU affinity control on this platform")
+        return
+    old = os.sched_getaffinity(0)
+    target = pick_cpu("loop") if cpu is None else int(cpu)
+    if target is None:
+        return  # one core allowed: nothing to pin
+    if target not in old:
+        session.notes.append(f"cpu {target} not allowed (allowed: {sorted(old)})")
+        return
+    try:
+        setaff(0, {target})
+    except OSError as exc:
+        session.notes.append(f"affinity refused ({exc.strerror or exc})")
+        return
+    session.cpu = target
+    session._undo.append(lambda: setaff(0, old))
+
+
+def _lock_memory(session: RealtimeSession) -> None:
+    if not sys.platform.startswith("linux"):
+        session.notes.append("mlockall not available on this platform")
+        return
+    name = ctypes.util.find_library("c")
+    try:
+        libc = ctypes.CDLL(name, use_errno=True)
+    except OSError:
+        session.notes.append("mlockall: C library not found")
+        return
+    soft, _ = resource.getrlimit(resource.RLIMIT_MEMLOCK)
+    # future mappings too only when locking is unlimited (root or an infinite rlimit);
+    # otherwise later allocations of a locked process could fail
+    unlimited = os.geteuid() == 0 or soft == resource.RLIM_INFINITY
+    flags = _MCL_CURRENT | _MCL_FUTURE if unlimited else _MCL_CURRENT
+    if libc.mlockall(flags) != 0:
+        err = ctypes.get_errno()
+        session.notes.append(f"mlockall refused ({os.strerror(err)})")
+        return
+    session.memory_locked = True
+    session._undo.append(libc.munlockall)
+
+
+@contextlib.contextmanager
+def realtime_session(
+    realtime: bool | str = "auto",
+    *buffers: np.ndarray,
+    priority: int = DEFAULT_PRIORITY,
+    cpu: int | None = None,
+) -> Iterator[RealtimeSession]:
+    """Prepare the calling thread for the real-time loop; undo it on exit.
+
+    Parameters
+    ----------
+    realtime : bool or str
+        The mode (:data:`REALTIME_MODES`; True = ``"auto"``, False = ``"unpaced"``).
+    *buffers : numpy.ndarray
+        Arrays the loop will write: touched (every page written once) before the clock
+        starts.
+    priority : int
+        SCHED_FIFO priority (clamped to the system's range).
+    cpu : int, optional
+        Core to pin the thread to (default: :func:`pick_cpu`).
+
+    Yields
+    ------
+    RealtimeSession
+        What was done (``label()`` for the statistics).
+
+    Raises
+    ------
+    ValidationError
+        For an unknown mode.
+    MRSuspensionError
+        With ``"fifo"`` when SCHED_FIFO is not permitted.
+
+    Examples
+    --------
+    >>> with realtime_session("off") as rt:
+    ...     rt.paced, rt.policy
+    (True, 'unchanged')
+    """
+    mode = normalise_mode(realtime)
+    session = RealtimeSession(mode)
+    for buf in buffers:
+        buf.fill(0.0)  # write every page before the clock starts
+    try:
+        if mode in ("auto", "fifo"):
+            gc.collect()
+            gc.freeze()
+            session.gc_frozen = True
+            session._undo.append(gc.unfreeze)
+            _lock_memory(session)
+            _pin(session, cpu)
+            _set_fifo(session, priority, required=mode == "fifo")
+        yield session
+    finally:
+        session.restore()
