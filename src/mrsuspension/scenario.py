@@ -107,7 +107,7 @@ _CONTROLLER_ALIASES: dict[str, dict[str, str]] = {
     "ideal-skyhook": {"c_s": "skyhook_damping", "damping": "skyhook_damping"},
     "ideal-onoff": {"c_s": "damping"},
 }
-_CONTROLLER_TEXT = {"law": "string", "mode": "string"}
+_CONTROLLER_TEXT = {"law": "string", "mode": "string", "inverse": "string"}
 
 
 def _law_keywords(law: str) -> list[str]:

@@ -90,6 +90,7 @@ class Controller(ABC):
         p[EK.P_EPS] = 1.0
         p[EK.P_MS0] = 1.0
         p[EK.P_BETA] = 1.0
+        p[EK.P_INV_HYST] = 1.0
         p[EK.P_IMAX] = max_current
         self._fill(p)
         return p
@@ -100,6 +101,16 @@ class Controller(ABC):
     def describe(self) -> dict[str, Any]:
         """Plain data: the law and every parameter."""
         return {"law": self.law, **dataclasses.asdict(self)}
+
+
+#: inverse model of the inverse-model controllers -> kernel flag (1: hysteretic, 0: mean)
+_INVERSE_KINDS = {"hysteretic": 1.0, "mean": 0.0}
+
+
+def _inverse_kind(kind: str) -> str:
+    if kind not in _INVERSE_KINDS:
+        raise unknown_name("inverse model", str(kind), _INVERSE_KINDS)
+    return kind
 
 
 def _mode_p(mode: str | None, p: float | None, default: float) -> float:
@@ -252,9 +263,17 @@ class InverseHiLo(_Shaped):
 
     ``i_z`` = inverse(F*), ``z_c = F_h k_s x_d``. Chapter 5 defaults: p_c = 0, xi_c = 50,
     xi = 10 (and the damper's force gain k_d = 2.5). Needs the dissertation's symmetric
-    damper model (its inverse, spec section 2.3).
+    damper model (its inverse, spec section 2.3). ``inverse="mean"`` inverts the mean
+    model (``v_h = 0``) whatever the damper, as in Figs 5.2 and 5.5 (hysteretic damper,
+    mean inverse); the default ``"hysteretic"`` inverts the damper's own model.
+
+    Examples
+    --------
+    >>> InverseHiLo(mode="ACM", inverse="mean").inverse
+    'mean'
     """
 
+    inverse: str = "hysteretic"
     code: ClassVar[int] = EK.C_INVERSE_HILO
     law: ClassVar[str] = "inverse-hilo"
     needs_inverse: ClassVar[bool] = True
@@ -267,11 +286,14 @@ class InverseHiLo(_Shaped):
         xi: float = 10.0,
         p_c: float = 0.0,
         xi_c: float = 50.0,
+        inverse: str = "hysteretic",
     ) -> None:
         self._set_shaping(mode, p, xi, p_c, xi_c)
+        object.__setattr__(self, "inverse", _inverse_kind(inverse))
 
     def _fill(self, p: npt.NDArray[np.float64]) -> None:
         self._fill_shaping(p)
+        p[EK.P_INV_HYST] = _INVERSE_KINDS[self.inverse]
 
 
 @dataclass(frozen=True, init=False)
@@ -287,7 +309,8 @@ class SlidingMode(_Shaped):
 
     then ``i_z`` = inverse(F_c) and ``z_c = -F_h F_c``. Defaults (Chapter 6): lambda 0.5,
     eps 0.05, phi 1.6, beta 1.25 (the studied +-25 % load range; not given in the seed),
-    c_s 6750, c_0 2500, m_s0 563 kg, p_c 0, xi_c 150, xi 30.
+    c_s 6750, c_0 2500, m_s0 563 kg, p_c 0, xi_c 150, xi 30. ``inverse="mean"`` inverts
+    the mean model whatever the damper (Fig. 6.1); see :class:`InverseHiLo`.
     """
 
     slope: float = 0.5
@@ -297,6 +320,7 @@ class SlidingMode(_Shaped):
     nominal_mass: float = 563.0
     skyhook_damping: float = 6750.0
     passive_damping: float = 2500.0
+    inverse: str = "hysteretic"
     code: ClassVar[int] = EK.C_SLIDING
     law: ClassVar[str] = "sliding-mode"
     needs_inverse: ClassVar[bool] = True
@@ -316,7 +340,9 @@ class SlidingMode(_Shaped):
         xi: float = 30.0,
         p_c: float = 0.0,
         xi_c: float = 150.0,
+        inverse: str = "hysteretic",
     ) -> None:
+        object.__setattr__(self, "inverse", _inverse_kind(inverse))
         object.__setattr__(self, "slope", _check("slope (lambda)", slope, 0.0, 1e4, lo_open=True))
         object.__setattr__(
             self,
@@ -343,6 +369,7 @@ class SlidingMode(_Shaped):
         p[EK.P_MS0] = self.nominal_mass
         p[EK.P_CS] = self.skyhook_damping
         p[EK.P_C0] = self.passive_damping
+        p[EK.P_INV_HYST] = _INVERSE_KINDS[self.inverse]
 
 
 @dataclass(frozen=True)

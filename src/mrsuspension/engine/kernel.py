@@ -70,8 +70,9 @@ C_IDEAL_ONOFF = 6
     P_MS0,  # nominal sprung mass [kg]
     P_CS,  # skyhook damping c_s [N s/m]
     P_C0,  # passive damping c_0 [N s/m]
-) = range(16)
-CP_SIZE = 16
+    P_INV_HYST,  # inverse controllers: 1 = hysteretic inverse model, 0 = mean (v_h = 0)
+) = range(17)
+CP_SIZE = 17
 
 # force source in the rates
 F_MODEL = 0  # the damper model at the held current
@@ -224,8 +225,9 @@ def control(
             iz = cp[P_GAIN] * mag**n
     elif ck == C_INVERSE_HILO:
         target = vp[V_KS] * xd  # F* = F_k, (3.17)
-        fh = DK.passive_hysteron(dp, vd, sgn_a, vm)
-        iz = DK.wang_inverse(dp, target, vd, sgn_a, vm, imax)
+        sa = sgn_a * cp[P_INV_HYST]  # 0: the mean inverse model (v_h = 0)
+        fh = DK.passive_hysteron(dp, vd, sa, vm)
+        iz = DK.wang_inverse(dp, target, vd, sa, vm, imax)
         zc = fh * target
     else:  # C_SLIDING, (3.19)-(3.35) in the up-positive frame (erratum 4)
         z0, v0 = y[4], y[5]
@@ -246,8 +248,9 @@ def control(
         elif sat < -1.0:
             sat = -1.0
         target = fd0 - gain * sat  # (3.34), erratum 5
-        fh = DK.passive_hysteron(dp, vd, sgn_a, vm)
-        iz = DK.wang_inverse(dp, target, vd, sgn_a, vm, imax)
+        sa = sgn_a * cp[P_INV_HYST]
+        fh = DK.passive_hysteron(dp, vd, sa, vm)
+        iz = DK.wang_inverse(dp, target, vd, sa, vm, imax)
         zc = -fh * target  # (3.35)
     # drive current (3.9)/(3.16)
     mem[M_ID] = drive_current_kernel(iz, vd, vm, zc, cp[P_P], cp[P_XI], cp[P_PC], cp[P_XIC], imax)
