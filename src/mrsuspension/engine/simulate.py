@@ -330,6 +330,50 @@ class Stepper:
             a["des"], a["ck"], a["cp"], a["mem"], self._scratch,
         )  # fmt: skip
 
+    def update(self, simulation: Simulation) -> None:
+        """Swap in another simulation's vehicle, controller and damper between two steps.
+
+        The vehicle state, the held drive current and the other step memory are kept (a
+        live change, e.g. from the HiL monitor); the damper's and the controller
+        estimator's internal states are kept when their model is unchanged. The
+        excitation is not part of the stepper (the caller gives the road).
+
+        Parameters
+        ----------
+        simulation : Simulation
+            The new configuration (checked for stability at this stepper's ``dt``).
+
+        Raises
+        ------
+        ValidationError
+            When ``dt`` is too large for the new configuration.
+
+        Examples
+        --------
+        >>> from mrsuspension.excitation import Harmonic
+        >>> from mrsuspension.vehicle import QuarterCar
+        >>> stepper = Simulation(Harmonic(1.0, 0.01)).stepper(1e-4)
+        >>> _ = stepper.step(0.0, 0.0628)
+        >>> heavier = Simulation(Harmonic(1.0, 0.01), vehicle=QuarterCar(sprung_mass=700.0))
+        >>> stepper.update(heavier)
+        >>> stepper.simulation.vehicle.sprung_mass
+        700.0
+        """
+        dt = simulation.check_dt(self.dt)
+        new = simulation._arrays(dt)
+        a = self._a
+        old = self.simulation
+        if new["ces"].shape != a["ces"].shape or new["cek"] != a["cek"]:
+            a["ces"] = new["ces"]
+        for key in ("vp", "ck", "cp", "cek", "cep"):
+            a[key] = new[key]
+        if not self.external_force:
+            a["fk"] = new["fk"]
+        if simulation.damper.describe() != old.damper.describe():
+            for key in ("dk", "dp", "ds", "dek", "dep", "des"):
+                a[key] = new[key]
+        self.simulation = simulation
+
     def step(
         self,
         road: float,

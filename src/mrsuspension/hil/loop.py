@@ -20,6 +20,13 @@ the recorder's writer runs in another thread behind a bounded queue.
 
 On a trip (or at the end of the run) the drive current goes to 0 in the same tick and
 the actuator is ramped back to mid-stroke before the loop stops.
+
+Optional live hooks (:class:`LoopHooks`, used by the browser monitor; None keeps the loop
+as it is): a **tap** (decimated rows and status into a bounded queue, dropped when full),
+an external **stop** event (the safety path: current 0 in the tick it is seen, actuator
+back to mid-stroke, reason recorded) and a **settings** queue of new
+:class:`~mrsuspension.engine.simulate.Simulation` configurations applied between ticks (a
+controller change ramps the drive current, an excitation change cross-fades the road).
 """
 
 from __future__ import annotations
@@ -54,6 +61,7 @@ __all__ = [
     "STATE_STARTUP",
     "STATE_TRIPPED",
     "HilResult",
+    "LoopHooks",
     "TickStats",
     "run_hil",
 ]
@@ -223,6 +231,105 @@ class HilResult:
         }
 
 
+@dataclass
+class LoopHooks:
+    """Live hooks of :func:`run_hil` (the monitor's tap, STOP and settings channel).
+
+    All of them are optional and none may block the loop: queues are used with
+    ``put_nowait`` / ``get_nowait`` only and a full tap queue drops the message (counted).
+
+    Parameters
+    ----------
+    tap : queue, optional
+        Receives ``("data", rows)`` (a list of :data:`CHANNELS` tuples, every
+        ``tap_every``-th tick, one list every ``tap_batch`` ticks), ``("status", dict)``
+        every ``status_every`` ticks, ``("applied", dict)`` / ``("rejected", dict)`` for
+        each settings change and a last ``("status", dict)`` when the loop ends.
+    tap_every, tap_batch, status_every : int
+        Decimation, batch length and status period, in ticks.
+    stop : event, optional
+        Anything with ``is_set()``; checked every tick. When set, the run stops through
+        the safety path (reason ``"STOP pressed"``).
+    settings : queue, optional
+        New :class:`~mrsuspension.engine.simulate.Simulation` configurations (already
+        validated), polled every ``poll_every`` ticks and applied between two ticks.
+    poll_every : int
+        Ticks between two polls of ``settings``.
+    ramp_time : float
+        After a controller change the drive-current demand moves by at most
+        ``current limit * period / ramp_time`` per tick for ``ramp_time`` seconds; an
+        excitation change cross-fades the old road into the new one over the same time.
+    """
+
+    tap: Any = None
+    tap_every: int = 5
+    tap_batch: int = 50
+    status_every: int = 200
+    stop: Any = None
+    settings: Any = None
+    poll_every: int = 10
+    ramp_time: float = 0.2
+    dropped: int = 0
+    applied: int = 0
+    misses: int = 0
+
+    def __post_init__(self) -> None:
+        for name in ("tap_every", "tap_batch", "status_every", "poll_every"):
+            value = getattr(self, name)
+            if not isinstance(value, int) or value < 1:
+                raise ValidationError(f"LoopHooks.{name} must be an integer >= 1; got {value!r}")
+        check_range("ramp_time", self.ramp_time, 0.0, 10.0, unit="s", low_inclusive=False)
+
+    def send(self, kind: str, payload: Any) -> None:
+        """Put a message on the tap without waiting (a full queue drops it)."""
+        if self.tap is None:
+            return
+        try:
+            self.tap.put_nowait((kind, payload))
+        except Exception:  # queue.Full (or a closed queue): never stall the loop
+            self.dropped += 1
+
+
+class _Road:
+    """Road values at the half steps of a block of ticks (optionally cross-fading)."""
+
+    def __init__(self, excitation: Any, n_sub: int, dt: float, chunk: int) -> None:
+        self.excitation = excitation
+        self.old: Any = None
+        self.fade_start = 0.0
+        self.fade = 0.0
+        self.n_sub = n_sub
+        self.dt = dt
+        self.chunk = chunk
+
+    def switch(self, excitation: Any, t: float, fade: float) -> None:
+        """Cross-fade from the current excitation to ``excitation`` from time ``t``."""
+        self.old = self.excitation
+        self.excitation = excitation
+        self.fade_start = t
+        self.fade = fade
+
+    def block(self, k0: int) -> tuple[list[float], list[float]]:
+        """Road and road velocity for ticks ``k0 .. k0 + chunk`` (half-step samples)."""
+        t = (k0 * self.n_sub + np.arange(2 * self.n_sub * self.chunk + 1) * 0.5) * self.dt
+        zr = np.asarray(self.excitation.displacement(t), dtype=float)
+        zrd = np.asarray(self.excitation.velocity(t), dtype=float)
+        if self.old is not None:
+            if t[0] >= self.fade_start + self.fade:
+                self.old = None
+            else:
+                s = np.clip((t - self.fade_start) / self.fade, 0.0, 1.0)
+                w = s * s * (3.0 - 2.0 * s)  # smoothstep: no jump in z_r nor in z_r'
+                dw = np.where((s > 0.0) & (s < 1.0), 6.0 * s * (1.0 - s) / self.fade, 0.0)
+                zr_old = np.asarray(self.old.displacement(t), dtype=float)
+                zrd_old = np.asarray(self.old.velocity(t), dtype=float)
+                zrd = (1.0 - w) * zrd_old + w * zrd + dw * (zr - zr_old)
+                zr = (1.0 - w) * zr_old + w * zr
+        if not (np.all(np.isfinite(zr)) and np.all(np.isfinite(zrd))):
+            raise ValidationError("the excitation produced non-finite road values")
+        return zr.tolist(), zrd.tolist()
+
+
 # -- helpers --------------------------------------------------------------------------------
 def _simulation_of(target: Any) -> Simulation:
     if isinstance(target, Simulation):
@@ -276,6 +383,7 @@ def run_hil(
     cap_current: bool = True,
     process: bool = False,
     on_stop: Callable[[HilResult], None] | None = None,
+    hooks: LoopHooks | None = None,
 ) -> HilResult:
     """Run a scenario in the loop with a rig.
 
@@ -312,6 +420,8 @@ def run_hil(
         Run the loop in its own process (``multiprocessing``, spawn); needs ``out``.
     on_stop : callable, optional
         Called with the result before it is returned.
+    hooks : LoopHooks, optional
+        Live tap, external stop and settings channel (the monitor's); None: none.
 
     Returns
     -------
@@ -324,6 +434,7 @@ def run_hil(
         return _run_in_process(
             target, rig, duration, rate, Path(out), model_dt=model_dt, limits=limits,
             startup=startup, driver=driver, realtime=realtime, cap_current=cap_current,
+            hooks=hooks,
         )  # fmt: skip
     sim = _simulation_of(target)
     limits = limits or SafetyLimits()
@@ -339,14 +450,12 @@ def run_hil(
     dt = period / n_sub
     stepper = sim.stepper(dt, external_force=True)
     n_ticks = max(1, round(duration * rate))
-    t_half = np.arange(2 * n_sub * n_ticks + 1) * (0.5 * dt)
-    zr = np.asarray(sim.excitation.displacement(t_half), dtype=float)
-    zrd = np.asarray(sim.excitation.velocity(t_half), dtype=float)
-    if not (np.all(np.isfinite(zr)) and np.all(np.isfinite(zrd))):
-        raise ValidationError("the excitation produced non-finite road values")
-    road = zr.tolist()
-    road_v = zrd.tolist()
-    del zr, zrd, t_half
+    # the whole run's road at once; with live hooks, blocks of 50 ms (the excitation can
+    # change between ticks)
+    road_src = _Road(
+        sim.excitation, n_sub, dt, n_ticks if hooks is None else max(1, round(0.05 * rate))
+    )
+    road, road_v = road_src.block(0)
     max_return = limits.stroke / limits.return_rate + 2 * _SETTLE
     n_max = n_ticks + math.ceil(max_return * rate) + 1
 
@@ -390,7 +499,7 @@ def run_hil(
     lateness = np.zeros(n_max)
     reason, ticks = _loop(
         stepper, rig, driver, supervisor, startup, recorder, road, road_v, n_ticks, n_max,
-        n_sub, period, realtime, compute, lateness,
+        n_sub, period, realtime, compute, lateness, hooks, road_src,
     )  # fmt: skip
     stats = TickStats.from_arrays(compute[:ticks], lateness[:ticks], period, realtime)
     stop = {
@@ -401,6 +510,8 @@ def run_hil(
     }
     recorder.close(stop)
     rig.close()
+    if hooks is not None:
+        hooks.send("status", _status(supervisor, "ended", reason, ticks, stats, hooks))
     recording = load_recording(rec_dir)
     if tmp_dir is not None:
         shutil.rmtree(tmp_dir, ignore_errors=True)
@@ -433,6 +544,8 @@ def _loop(
     realtime: bool,
     compute: np.ndarray,
     lateness: np.ndarray,
+    hooks: LoopHooks | None,
+    road_src: _Road,
 ) -> tuple[str, int]:
     """The hot loop; returns (stop reason, ticks run)."""
     perf = time.perf_counter
@@ -463,6 +576,17 @@ def _loop(
     v_d = 0.0
     zr_now = road[0]
     zrd_now = road_v[0]
+    # live hooks (None: none of this runs)
+    hooked = hooks is not None
+    hk = hooks if hooks is not None else LoopHooks()
+    stop_set = hk.stop.is_set if hk.stop is not None else None
+    k_road = 0
+    chunk = road_src.chunk
+    ramp_left = 0
+    ramp_step_i = 0.0
+    last_demand = 0.0
+    demand = 0.0
+    pending: list[tuple[float, ...]] = []
 
     old_switch = sys.getswitchinterval()
     gc_was_enabled = gc.isenabled()
@@ -476,6 +600,12 @@ def _loop(
             release = t0 + k * period
             start = _wait_until(release) if realtime else perf()
             t = k * period
+            if hooked and state <= STATE_RUN and k % hk.poll_every == 0:
+                ramp = _apply_settings(hk, stepper, road_src, supervisor, t, period)
+                if ramp:
+                    ramp_left = ramp
+                    ramp_step_i = lim.current * period / hk.ramp_time
+                    k_road = -chunk  # the new road from this tick on
             sample = read()
             active = state <= STATE_RUN
             if active and k >= n_ticks:
@@ -484,12 +614,19 @@ def _loop(
                 i_out = driver.off()
             if active:
                 try:
-                    tripped = check_sample(
-                        t, sample.force, sample.displacement, sample.current, sample.timestamp
-                    )
+                    if stop_set is not None and stop_set():
+                        supervisor.trip("STOP pressed", t)
+                        tripped = True
+                    else:
+                        tripped = check_sample(
+                            t, sample.force, sample.displacement, sample.current, sample.timestamp
+                        )
+                    if not tripped and k - k_road >= chunk:
+                        k_road = k
+                        road, road_v = road_src.block(k)
                     if not tripped:
                         c = startup.damping_at(t) if state == STATE_STARTUP else 0.0
-                        j = 2 * n_sub * k
+                        j = 2 * n_sub * (k - k_road)
                         for _ in range(n_sub):
                             fd = sample.force + c * v_d
                             out = step(
@@ -506,6 +643,13 @@ def _loop(
                         if state == STATE_STARTUP and k + 1 >= startup_ticks:
                             state = STATE_RUN
                         demand = 0.0 if (state == STATE_STARTUP and hold_current) else i_d
+                        if ramp_left:  # after a controller change: slew-limited demand
+                            ramp_left -= 1
+                            if demand > last_demand + ramp_step_i:
+                                demand = last_demand + ramp_step_i
+                            elif demand < last_demand - ramp_step_i:
+                                demand = last_demand - ramp_step_i
+                        last_demand = demand
                         tripped = check_command(t, out["x_d"], v_d, demand)
                         if not tripped:
                             x_cmd = out["x_d"]
@@ -521,6 +665,9 @@ def _loop(
                 except SimulationDiverged as exc:
                     supervisor.trip(f"vehicle model diverged: {exc}", t)
                     tripped = True
+                except ValidationError as exc:  # a live excitation gave non-finite values
+                    supervisor.trip(str(exc), t)
+                    tripped = True
                 except KeyboardInterrupt:
                     supervisor.trip("interrupted by the user", t)
                     tripped = True
@@ -528,6 +675,7 @@ def _loop(
                     state = STATE_TRIPPED
                     reason = supervisor.reason
                     i_out = driver.off()  # current to 0 in the tick of the trip
+                    last_demand = 0.0
             if state >= STATE_RETURN:
                 # ramp back to mid-stroke at the return rate, coil off
                 i_out = 0.0
@@ -545,19 +693,33 @@ def _loop(
                         k_end = k
                         command(x_cmd, i_out, v_cmd)
                         end = perf()
-                        append(_row(t, state, zr_now, zrd_now, out, sample, fd, i_d, i_out,
-                                    x_cmd, end - start, start - release if realtime else 0.0))  # fmt: skip
+                        row = _row(t, state, zr_now, zrd_now, out, sample, fd, i_d, i_out,
+                                   x_cmd, end - start, start - release if realtime else 0.0)  # fmt: skip
+                        append(row)
                         compute[k] = end - start
                         lateness[k] = start - release if realtime else 0.0
+                        if hooked:
+                            pending.append(row)
+                            hk.send("data", pending)
                         return reason, k_end + 1
             command(x_cmd, i_out, v_cmd)
             end = perf()
             late = start - release if realtime else 0.0
-            append(_row(t, state, zr_now, zrd_now, out, sample, fd, i_d, i_out, x_cmd,
-                        end - start, late))  # fmt: skip
+            row = _row(t, state, zr_now, zrd_now, out, sample, fd, i_d, i_out, x_cmd,
+                       end - start, late)  # fmt: skip
+            append(row)
             compute[k] = end - start
             lateness[k] = late
             k += 1
+            if hooked:  # the tap: after the tick's work, never waiting
+                if k % hk.tap_every == 0:
+                    pending.append(row)
+                if k % hk.tap_batch == 0 and pending:
+                    hk.send("data", pending)
+                    pending = []
+                if k % hk.status_every == 0:
+                    hk.send("status", _live_status(hk, supervisor, state, k, compute, lateness,
+                                                   period, i_out))  # fmt: skip
         if state == STATE_TRIPPED:
             return reason, k
         return f"{reason}; actuator did not settle at mid-stroke", k
@@ -565,6 +727,112 @@ def _loop(
         sys.setswitchinterval(old_switch)
         if gc_was_enabled:
             gc.enable()
+
+
+def _apply_settings(
+    hooks: LoopHooks,
+    stepper: Any,
+    road_src: _Road,
+    supervisor: SafetySupervisor,
+    t: float,
+    period: float,
+) -> int:
+    """Apply the newest queued configuration between two ticks; ramp length in ticks."""
+    q = hooks.settings
+    if q is None:
+        return 0
+    new: Any = None
+    try:
+        while True:  # only the newest one matters
+            new = q.get_nowait()
+    except Exception:  # queue.Empty
+        pass
+    if new is None:
+        return 0
+    try:
+        if not isinstance(new, Simulation):
+            raise ValidationError(f"a live change must be a Simulation; got {type(new).__name__}")
+        if new.max_current > supervisor.limits.current:
+            new = dataclasses.replace(new, max_current=supervisor.limits.current)
+        old = stepper.simulation
+        law_changed = new.controller.describe() != old.controller.describe()
+        road_changed = new.excitation.describe() != old.excitation.describe()
+        stepper.update(new)
+    except Exception as exc:  # refused; the loop carries on as it was
+        hooks.send("rejected", {"time": t, "error": f"{type(exc).__name__}: {exc}"})
+        return 0
+    ramp = 0
+    if road_changed:
+        road_src.switch(new.excitation, t, hooks.ramp_time)
+    if law_changed or road_changed:
+        ramp = max(1, math.ceil(hooks.ramp_time / period))
+    hooks.applied += 1
+    hooks.send(
+        "applied",
+        {
+            "time": t,
+            "count": hooks.applied,
+            "controller": law_changed,
+            "excitation": road_changed,
+            "ramp_ticks": ramp,
+        },
+    )
+    return ramp if law_changed or road_changed else 0
+
+
+def _live_status(
+    hooks: LoopHooks,
+    supervisor: SafetySupervisor,
+    state: int,
+    k: int,
+    compute: np.ndarray,
+    lateness: np.ndarray,
+    period: float,
+    i_out: float,
+) -> dict[str, Any]:
+    w = slice(max(0, k - hooks.status_every), k)
+    c = compute[w]
+    hooks.misses += int(np.count_nonzero(c + lateness[w] > period))
+    return {
+        "state": ("startup", "running", "returning", "tripped")[state],
+        "time": k * period,
+        "ticks": k,
+        "misses": hooks.misses,
+        "compute_last": float(c[-1]),
+        "compute_mean": float(c.mean()),
+        "compute_max": float(c.max()),
+        "lateness_max": float(lateness[w].max()),
+        "tripped": supervisor.tripped,
+        "reason": supervisor.reason,
+        "current": i_out,
+        "dropped": hooks.dropped,
+        "applied": hooks.applied,
+        "rate": 1.0 / period,
+    }
+
+
+def _status(
+    supervisor: SafetySupervisor,
+    state: str,
+    reason: str,
+    ticks: int,
+    stats: TickStats,
+    hooks: LoopHooks,
+) -> dict[str, Any]:
+    return {
+        "state": state,
+        "reason": reason,
+        "ticks": ticks,
+        "misses": stats.misses,
+        "in_deadline": stats.in_deadline,
+        "compute_mean": stats.compute_p50,
+        "compute_max": stats.compute_max,
+        "tripped": supervisor.tripped,
+        "current": 0.0,
+        "safe": True,
+        "dropped": hooks.dropped,
+        "applied": hooks.applied,
+    }
 
 
 def _row(
