@@ -153,7 +153,7 @@
   }
   $("start").addEventListener("click", () => send("api/start", "run started"));
   $("apply").addEventListener("click", () => send("api/apply", "change sent: applied between ticks"));
-  for (const id of ["controller", "mode", "excitation"]) {
+  for (const id of ["controller", "mode"]) {  // switches apply at once; the rest on Apply
     $(id).addEventListener("change", () => {
       if (["running", "startup"].includes(monitor.status.state)) send("api/apply", "change sent: applied between ticks");
     });
@@ -264,7 +264,17 @@
     if (f.recording) { dl.href = "api/recording" + q; dl.className = ""; }
     else { dl.href = "#"; dl.className = "disabled"; }
     showAcq();
-    draw();
+    scheduleDraw();
+  }
+
+  // redraw at most every 100 ms, in an animation frame: the page (and STOP) stays responsive
+  let drawPending = false;
+  let lastDraw = 0;
+  function scheduleDraw() {
+    if (drawPending) return;
+    drawPending = true;
+    const wait = Math.max(0, 100 - (performance.now() - lastDraw));
+    setTimeout(() => requestAnimationFrame(() => { drawPending = false; lastDraw = performance.now(); draw(); }), wait);
   }
 
   function draw() {
@@ -290,7 +300,8 @@
         g.strokeStyle = COLORS[j % COLORS.length]; g.lineWidth = 2;
         g.beginPath();
         let pen = false;
-        for (let i = 0; i < v.length; i++) {
+        const stride = Math.max(1, Math.floor(v.length / 400));  // about 400 points a trace
+        for (let i = 0; i < v.length; i += stride) {
           if (!isFinite(v[i])) { pen = false; continue; }
           if (!pen) { g.moveTo(X(t[i]), Y(v[i])); pen = true; } else g.lineTo(X(t[i]), Y(v[i]));
         }
