@@ -161,6 +161,14 @@ class Simulation:
             "estimator": repr(self.controller_estimator),
         }
 
+    def kernel_arrays(self, dt: float) -> dict[str, Any]:
+        """The compiled step's parameter and state arrays at step ``dt`` (checked).
+
+        For :meth:`Stepper.update`; raises :class:`ValidationError` when ``dt`` is too
+        large for this model.
+        """
+        return self._arrays(self.check_dt(dt))
+
     def _arrays(self, dt: float) -> dict[str, Any]:
         kern = self.damper.kernel(dt)
         est = self.controller_estimator
@@ -330,7 +338,7 @@ class Stepper:
             a["des"], a["ck"], a["cp"], a["mem"], self._scratch,
         )  # fmt: skip
 
-    def update(self, simulation: Simulation) -> None:
+    def update(self, simulation: Simulation, arrays: dict[str, Any] | None = None) -> None:
         """Swap in another simulation's vehicle, controller and damper between two steps.
 
         The vehicle state, the held drive current and the other step memory are kept (a
@@ -342,6 +350,9 @@ class Stepper:
         ----------
         simulation : Simulation
             The new configuration (checked for stability at this stepper's ``dt``).
+        arrays : dict, optional
+            ``simulation.kernel_arrays(dt)`` computed beforehand (e.g. by another process,
+            so that the tick that applies the change stays short).
 
         Raises
         ------
@@ -359,8 +370,7 @@ class Stepper:
         >>> stepper.simulation.vehicle.sprung_mass
         700.0
         """
-        dt = simulation.check_dt(self.dt)
-        new = simulation._arrays(dt)
+        new = arrays if arrays is not None else simulation.kernel_arrays(self.dt)
         a = self._a
         old = self.simulation
         if new["ces"].shape != a["ces"].shape or new["cek"] != a["cek"]:

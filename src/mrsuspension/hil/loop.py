@@ -61,6 +61,7 @@ __all__ = [
     "STATE_STARTUP",
     "STATE_TRIPPED",
     "HilResult",
+    "LiveChange",
     "LoopHooks",
     "TickStats",
     "run_hil",
@@ -290,6 +291,65 @@ class LoopHooks:
             self.dropped += 1
 
 
+def tick_step(rate: float, model_dt: float = DEFAULT_DT) -> float:
+    """Engine step [s] of a loop at ``rate`` Hz: the tick split into ``ceil(T / model_dt)``.
+
+    Examples
+    --------
+    >>> tick_step(1000.0)
+    0.0001
+    """
+    period = 1.0 / rate
+    return period / max(1, math.ceil(period / model_dt - 1e-9))
+
+
+@dataclass(frozen=True)
+class LiveChange:
+    """A new configuration for a running loop, prepared outside the loop.
+
+    :meth:`prepare` does the work (what changed, the kernel arrays) so that the tick that
+    applies it only swaps arrays.
+
+    Attributes
+    ----------
+    simulation : Simulation
+        The new configuration.
+    controller, excitation : bool
+        Whether the control law (then the current ramps) or the road (then it
+        cross-fades) changed.
+    dt : float
+        Engine step the arrays were prepared for.
+    arrays : dict, optional
+        :meth:`Simulation.kernel_arrays <mrsuspension.engine.simulate.Simulation.kernel_arrays>`.
+    """
+
+    simulation: Simulation
+    controller: bool = True
+    excitation: bool = True
+    dt: float = 0.0
+    arrays: dict[str, Any] | None = None
+
+    @classmethod
+    def prepare(
+        cls, new: Simulation, old: Simulation, rate: float, model_dt: float = DEFAULT_DT
+    ) -> LiveChange:
+        """Compare ``new`` with the running ``old`` and build the arrays (validated).
+
+        Raises
+        ------
+        ValidationError
+            When the loop's engine step is too large for ``new``.
+        """
+        dt = tick_step(rate, model_dt)
+        return cls(
+            simulation=new,
+            controller=new.controller.describe() != old.controller.describe(),
+            excitation=new.excitation.describe() != old.excitation.describe(),
+            dt=dt,
+            arrays=new.kernel_arrays(dt),
+        )
+
+
 class _Road:
     """Road values at the half steps of a block of ticks (optionally cross-fading)."""
 
@@ -446,8 +506,8 @@ def run_hil(
     rig = rig if rig is not None else _default_rig(sim)
     driver = driver or PICurrentDriver(current_limit=limits.current)
     period = 1.0 / rate
-    n_sub = max(1, math.ceil(period / model_dt - 1e-9))
-    dt = period / n_sub
+    dt = tick_step(rate, model_dt)
+    n_sub = round(period / dt)
     stepper = sim.stepper(dt, external_force=True)
     n_ticks = max(1, round(duration * rate))
     # the whole run's road at once; with live hooks, blocks of 50 ms (the excitation can
@@ -750,20 +810,32 @@ def _apply_settings(
     if new is None:
         return 0
     try:
-        if not isinstance(new, Simulation):
-            raise ValidationError(f"a live change must be a Simulation; got {type(new).__name__}")
-        if new.max_current > supervisor.limits.current:
-            new = dataclasses.replace(new, max_current=supervisor.limits.current)
-        old = stepper.simulation
-        law_changed = new.controller.describe() != old.controller.describe()
-        road_changed = new.excitation.describe() != old.excitation.describe()
-        stepper.update(new)
+        if isinstance(new, Simulation):  # not prepared: compare here
+            new = LiveChange(new, arrays=None)
+            old = stepper.simulation
+            new = dataclasses.replace(
+                new,
+                controller=new.simulation.controller.describe() != old.controller.describe(),
+                excitation=new.simulation.excitation.describe() != old.excitation.describe(),
+            )
+        if not isinstance(new, LiveChange):
+            raise ValidationError(
+                f"a live change must be a Simulation or a LiveChange; got {type(new).__name__}"
+            )
+        sim = new.simulation
+        arrays = new.arrays if new.dt == stepper.dt else None
+        if sim.max_current > supervisor.limits.current:
+            sim = dataclasses.replace(sim, max_current=supervisor.limits.current)
+            arrays = None
+        law_changed = new.controller
+        road_changed = new.excitation
+        stepper.update(sim, arrays)
     except Exception as exc:  # refused; the loop carries on as it was
         hooks.send("rejected", {"time": t, "error": f"{type(exc).__name__}: {exc}"})
         return 0
     ramp = 0
     if road_changed:
-        road_src.switch(new.excitation, t, hooks.ramp_time)
+        road_src.switch(sim.excitation, t, hooks.ramp_time)
     if law_changed or road_changed:
         ramp = max(1, math.ceil(hooks.ramp_time / period))
     hooks.applied += 1

@@ -36,7 +36,7 @@ from starlette.websockets import WebSocket, WebSocketDisconnect
 
 from mrsuspension.engine.simulate import Simulation
 from mrsuspension.errors import ValidationError
-from mrsuspension.hil.loop import CHANNELS
+from mrsuspension.hil.loop import CHANNELS, LiveChange
 from mrsuspension.hil.recorder import META_FILE, load_recording
 from mrsuspension.measures.steady import T_as, T_au, T_dr, T_ds, T_du, dlc
 from mrsuspension.monitor.acquisition import Acquisition, acquisition_from_settings
@@ -229,7 +229,9 @@ class MonitorState:
             or self.status.get("state") not in ("starting", "startup", "running")
         ):
             raise ValidationError("no run is going: press Start first")
-        if not h.apply(sim):
+        old = self.simulation if self.simulation is not None else sim
+        change = LiveChange.prepare(sim, old, h.rate)  # the loop only swaps arrays
+        if not h.apply(change):
             raise ValidationError("the loop has not taken the previous change yet; try again")
         self.simulation = sim
         self.static_load = sim.vehicle.static_load

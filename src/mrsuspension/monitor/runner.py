@@ -11,9 +11,10 @@ or ``udp://HOST:PORT``) in a separate process (``spawn``) with the loop's live h
 - **STOP**: a :class:`multiprocessing.Event` checked every tick; the loop takes its
   safety path (drive current 0 in that tick, actuator back to mid-stroke, reason
   ``"STOP pressed"`` recorded);
-- **settings**: validated :class:`~mrsuspension.engine.simulate.Simulation` objects
+- **settings**: validated configurations prepared by the server
+  (:class:`~mrsuspension.hil.loop.LiveChange`: what changed and the kernel arrays)
   through a bounded queue (4), applied by the loop between two ticks (a controller
-  change ramps the current).
+  change ramps the current, a road change cross-fades).
 
 Every tick is recorded by the HiL :class:`~mrsuspension.hil.recorder.Recorder` (its writer
 thread) into the run's recording directory.
@@ -158,10 +159,10 @@ class LoopHandle:
         """STOP: the loop zeroes the current in the next tick and returns to mid-stroke."""
         self.stop_event.set()
 
-    def apply(self, sim: Any) -> bool:
-        """Queue a validated configuration for the loop; False when the queue is full."""
+    def apply(self, change: Any) -> bool:
+        """Queue a validated change for the loop; False when the queue is full."""
         try:
-            self.settings.put_nowait(sim)
+            self.settings.put_nowait(change)
         except queue_mod.Full:
             return False
         return True

@@ -15,7 +15,7 @@ from mrsuspension.engine.simulate import Simulation
 from mrsuspension.excitation import Harmonic
 from mrsuspension.hil import StartUp, ideal_rig, run_hil
 from mrsuspension.hil.driver import PICurrentDriver
-from mrsuspension.hil.loop import CHANNELS, LoopHooks
+from mrsuspension.hil.loop import CHANNELS, LiveChange, LoopHooks, tick_step
 from mrsuspension.vehicle import QuarterCar
 
 RATE = 1000.0
@@ -202,5 +202,30 @@ def test_stepper_update_keeps_the_state() -> None:
     assert after["z_s"] != out["z_s"]
     raises_validation(
         lambda: stepper.update(dataclasses.replace(sim, vehicle=QuarterCar(unsprung_mass=0.5))),
+        "dt",
+    )
+
+
+def test_prepared_change_matches_a_raw_one() -> None:
+    sim = _sim()
+    new = dataclasses.replace(
+        sim, controller=HiLo(1, mode="SCM"), vehicle=QuarterCar(sprung_mass=650.0)
+    )
+    change = LiveChange.prepare(new, sim, RATE)
+    assert change.controller
+    assert not change.excitation
+    assert change.arrays is not None
+    assert change.dt == tick_step(RATE)
+    raw = _run(sim, LoopHooks(settings=LateQueue(new, after=21), poll_every=10))
+    prepared = _run(sim, LoopHooks(settings=LateQueue(change, after=21), poll_every=10))
+    np.testing.assert_array_equal(prepared.recording["z_s"], raw.recording["z_s"])
+    np.testing.assert_array_equal(prepared.recording["i_cmd"], raw.recording["i_cmd"])
+    plain = _run(sim, None)
+    n = 1000  # the running part (the return to mid-stroke differs in length)
+    assert np.max(np.abs(raw.recording["z_s"][:n] - plain.recording["z_s"][:n])) > 1e-5
+    raises_validation(
+        lambda: LiveChange.prepare(
+            dataclasses.replace(sim, vehicle=QuarterCar(unsprung_mass=0.5)), sim, RATE
+        ),
         "dt",
     )
