@@ -248,6 +248,11 @@ class LoopHooks:
         each settings change and a last ``("status", dict)`` when the loop ends.
     tap_every, tap_batch, status_every : int
         Decimation, batch length and status period, in ticks.
+    ring : TapRing, optional
+        Shared-memory ring (:class:`~mrsuspension.hil.tap.TapRing`) that takes the rows
+        and the numeric status instead of ``tap`` (no pickling, no helper thread in the
+        loop's process); ``tap`` then only carries the rare messages (changes applied or
+        refused, the trip, the end).
     stop : event, optional
         Anything with ``is_set()``; checked every tick. When set, the run stops through
         the safety path (reason ``"STOP pressed"``).
@@ -263,6 +268,7 @@ class LoopHooks:
     """
 
     tap: Any = None
+    ring: Any = None
     tap_every: int = 5
     tap_batch: int = 50
     status_every: int = 200
@@ -273,6 +279,7 @@ class LoopHooks:
     dropped: int = 0
     applied: int = 0
     misses: int = 0
+    _trip_sent: bool = field(default=False, init=False, repr=False)
 
     def __post_init__(self) -> None:
         for name in ("tap_every", "tap_batch", "status_every", "poll_every"):
@@ -280,6 +287,25 @@ class LoopHooks:
             if not isinstance(value, int) or value < 1:
                 raise ValidationError(f"LoopHooks.{name} must be an integer >= 1; got {value!r}")
         check_range("ramp_time", self.ramp_time, 0.0, 10.0, unit="s", low_inclusive=False)
+
+    def row(self, row: tuple[float, ...], pending: list[tuple[float, ...]]) -> None:
+        """A tapped row: into the ring, else into the pending batch."""
+        if self.ring is not None:
+            self.ring.put(row)
+        else:
+            pending.append(row)
+
+    def status(self, status: dict[str, Any]) -> None:
+        """The loop status: into the ring's status block (the trip also as a message)."""
+        first_trip = bool(status.get("tripped")) and not self._trip_sent
+        if first_trip:
+            self._trip_sent = True
+        if self.ring is None:
+            self.send("status", status)
+            return
+        self.ring.put_status(status)
+        if first_trip:
+            self.send("status", status)
 
     def send(self, kind: str, payload: Any) -> None:
         """Put a message on the tap without waiting (a full queue drops it)."""
@@ -759,8 +785,9 @@ def _loop(
                         compute[k] = end - start
                         lateness[k] = start - release if realtime else 0.0
                         if hooked:
-                            pending.append(row)
-                            hk.send("data", pending)
+                            hk.row(row, pending)
+                            if pending:
+                                hk.send("data", pending)
                         return reason, k_end + 1
             command(x_cmd, i_out, v_cmd)
             end = perf()
@@ -773,13 +800,13 @@ def _loop(
             k += 1
             if hooked:  # the tap: after the tick's work, never waiting
                 if k % hk.tap_every == 0:
-                    pending.append(row)
+                    hk.row(row, pending)
                 if k % hk.tap_batch == 0 and pending:
                     hk.send("data", pending)
                     pending = []
-                if k % hk.status_every == 0:
-                    hk.send("status", _live_status(hk, supervisor, state, k, compute, lateness,
-                                                   period, i_out))  # fmt: skip
+                if k % hk.status_every == 0 or (state == STATE_TRIPPED and not hk._trip_sent):
+                    hk.status(_live_status(hk, supervisor, state, k, compute, lateness, period,
+                                           i_out))  # fmt: skip
         if state == STATE_TRIPPED:
             return reason, k
         return f"{reason}; actuator did not settle at mid-stroke", k
@@ -867,6 +894,7 @@ def _live_status(
     hooks.misses += int(np.count_nonzero(c + lateness[w] > period))
     return {
         "state": ("startup", "running", "returning", "tripped")[state],
+        "state_code": state,
         "time": k * period,
         "ticks": k,
         "misses": hooks.misses,

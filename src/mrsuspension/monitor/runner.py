@@ -4,10 +4,12 @@ The monitor runs the real HiL loop (rig in the loop: ``simulated`` by default, `
 or ``udp://HOST:PORT``) in a separate process (``spawn``) with the loop's live hooks
 (:class:`~mrsuspension.hil.loop.LoopHooks`):
 
-- the **tap**: decimated rows (200 Hz) every 50 ms and the loop status every 0.2 s go
-  to the server through a bounded :class:`multiprocessing.Queue`; the loop uses
-  ``put_nowait`` only and a full queue drops the message, so the server (or a slow page)
-  can never block the loop;
+- the **tap**: decimated rows (200 Hz) and the loop status (every 0.2 s) go to the
+  server through a lock-free shared-memory ring (:class:`~mrsuspension.hil.tap.TapRing`,
+  4096 rows = 20 s): no pickling and no helper thread in the loop's process, and a
+  reader that falls behind loses the oldest rows (counted) rather than holding the loop;
+  the rare messages (a change applied or refused, the trip, the end) go through a bounded
+  :class:`multiprocessing.Queue` with ``put_nowait`` (full: dropped);
 - **STOP**: a :class:`multiprocessing.Event` checked every tick; the loop takes its
   safety path (drive current 0 in that tick, actuator back to mid-stroke, reason
   ``"STOP pressed"`` recorded);
@@ -27,6 +29,9 @@ import multiprocessing
 import queue as queue_mod
 from pathlib import Path
 from typing import Any
+
+from mrsuspension.hil.loop import CHANNELS
+from mrsuspension.hil.tap import TapRing
 
 __all__ = ["TAP_RATE", "LoopHandle", "loop_main"]
 
@@ -48,6 +53,7 @@ def loop_main(
     tap: Any,
     stop: Any,
     settings: Any,
+    ring: Any = None,
 ) -> None:
     """Body of the loop process: build the rig and run :func:`run_hil` with the hooks.
 
@@ -65,6 +71,8 @@ def loop_main(
         Current ramp after a live controller change [s].
     tap, stop, settings
         The bounded queue to the server, the STOP event and the settings queue.
+    ring : TapRing, optional
+        Shared-memory ring for the rows and the status (else they go through ``tap``).
     """
     from mrsuspension.hil.cli import make_rig
     from mrsuspension.hil.loop import LoopHooks, run_hil
@@ -78,6 +86,7 @@ def loop_main(
         every = max(1, round(rate / TAP_RATE))
         hooks = LoopHooks(
             tap=tap,
+            ring=ring,
             tap_every=every,
             tap_batch=every * max(1, round(SEND_PERIOD * TAP_RATE)),
             status_every=max(1, round(STATUS_PERIOD * rate)),
@@ -144,11 +153,14 @@ class LoopHandle:
         self.queue: Any = ctx.Queue(maxsize=queue_size)
         self.settings: Any = ctx.Queue(maxsize=4)
         self.stop_event: Any = ctx.Event()
+        self.ring = TapRing(len(CHANNELS), capacity=4096, context=ctx)
+        self.lost = 0
+        self._seq = 0.0
         self.process = ctx.Process(
             target=loop_main,
             args=(
                 sim, rig, float(rate), float(duration), str(self.out), float(ramp_time),
-                self.queue, self.stop_event, self.settings,
+                self.queue, self.stop_event, self.settings, self.ring,
             ),
             name="mrsus-monitor-loop",
             daemon=True,
@@ -168,8 +180,22 @@ class LoopHandle:
         return True
 
     def drain(self, limit: int = 1000) -> list[tuple[str, Any]]:
-        """Messages waiting in the queue (never blocks)."""
+        """New rows and status from the ring, then the queued messages (never blocks)."""
         items: list[tuple[str, Any]] = []
+        rows, lost = self.ring.read()
+        self.lost += lost
+        if len(rows):
+            items.append(("data", rows))
+        status: dict[str, Any] = dict(self.ring.status())
+        if status["seq"] != self._seq:
+            self._seq = status["seq"]
+            code = int(status.pop("state_code"))
+            status["state"] = ("startup", "running", "returning", "tripped")[code]
+            status["tripped"] = bool(status["tripped"])
+            status["lost"] = self.lost
+            for key in ("ticks", "misses", "dropped", "applied"):
+                status[key] = int(status[key])
+            items.append(("status", status))
         for _ in range(limit):
             try:
                 items.append(self.queue.get_nowait())

@@ -16,6 +16,7 @@ from mrsuspension.excitation import Harmonic
 from mrsuspension.hil import StartUp, ideal_rig, run_hil
 from mrsuspension.hil.driver import PICurrentDriver
 from mrsuspension.hil.loop import CHANNELS, LiveChange, LoopHooks, tick_step
+from mrsuspension.hil.tap import TapRing
 from mrsuspension.vehicle import QuarterCar
 
 RATE = 1000.0
@@ -229,3 +230,23 @@ def test_prepared_change_matches_a_raw_one() -> None:
         ),
         "dt",
     )
+
+
+def test_ring_tap_takes_rows_and_status() -> None:
+    ring = TapRing(len(CHANNELS), capacity=4096)
+    tap: queue.Queue[Any] = queue.Queue()
+    hooks = LoopHooks(tap=tap, ring=ring, tap_every=5, status_every=100, stop=LateEvent(after=700))
+    result = _run(_sim(), hooks)
+    rows, lost = ring.read()
+    assert lost == 0
+    assert abs(len(rows) - result.stats.ticks / 5) <= 2
+    np.testing.assert_allclose(np.diff(rows[:50, 0]), 5 / RATE)
+    st = ring.status()
+    assert st["seq"] >= 6
+    assert st["tripped"] == 1.0
+    assert st["state_code"] == 3.0
+    # the queue only carried the trip (once) and the end
+    msgs = _drain(tap)
+    assert [kind for kind, _ in msgs] == ["status", "status"]
+    assert msgs[0][1]["reason"] == "STOP pressed"
+    assert msgs[1][1]["state"] == "ended"
