@@ -18,6 +18,7 @@ import contextlib
 import hmac
 import math
 import tempfile
+import time
 from collections import deque
 from collections.abc import AsyncIterator
 from dataclasses import dataclass
@@ -51,6 +52,8 @@ DISPLAY_CHANNELS: tuple[str, ...] = (
     "x_d", "x_m", "F_dm", "F_dmod", "F_T", "i_d", "i_cmd", "i_dm",
 )  # fmt: skip
 _COL = {name: j for j, (name, _) in enumerate(CHANNELS)}
+#: live measures are recomputed this often [s]
+_MEASURE_PERIOD = 0.2
 #: rows kept for the model force and z_r'' (contiguous tail of the tap stream)
 _DERIVE_KEEP = 400
 
@@ -164,6 +167,8 @@ class MonitorState:
         self.static_load = 0.0
         self.loop_time = 0.0
         self.events: deque[str] = deque(maxlen=20)
+        self._measures: dict[str, float | None] = {}
+        self._measured_at = 0.0
 
     # -- runs ------------------------------------------------------------------------------
     def validate(self, raw: dict[str, Any]) -> tuple[MonitorSettings, Simulation]:
@@ -202,6 +207,8 @@ class MonitorState:
         self.fresh = []
         self.seen = 0
         self.loop_time = 0.0
+        self._measures = {}
+        self._measured_at = 0.0
         self.acquisition = Acquisition(
             period=self.acquisition.period,
             trigger=self.acquisition.trigger,
@@ -366,17 +373,25 @@ class MonitorState:
             if (h.out / META_FILE).exists():
                 self.recording = h.out
 
+    def measures(self) -> dict[str, float | None]:
+        """Live measures, recomputed at most every 0.2 s (they span seconds)."""
+        now = time.monotonic()
+        if now - self._measured_at >= _MEASURE_PERIOD or not self._measures:
+            names = ("time", "z_r", "z_r_dot", "z_s", "z_u", "z_s_ddot", "z_u_ddot", "x_d", "F_T")
+            data = {k: np.fromiter(self.buffers[k], dtype=float) for k in names}
+            self._measures = live_measures(data, self.static_load) if self.static_load else {}
+            self._measured_at = now
+        return self._measures
+
     def frame(self) -> dict[str, Any]:
         """One WebSocket frame: new samples, status and live measures."""
-        names = ("time", "z_r", "z_r_dot", "z_s", "z_u", "z_s_ddot", "z_u_ddot", "x_d", "F_T")
-        data = {k: np.fromiter(self.buffers[k], dtype=float) for k in names}
         fresh, self.fresh = self.fresh, []
         return {
             "run": self.run_id,
             "channels": list(DISPLAY_CHANNELS),
             "rows": fresh,
             "status": self.status,
-            "measures": live_measures(data, self.static_load) if self.static_load else {},
+            "measures": self.measures(),
             "recording": self.recording is not None or self.handle is not None,
             "acquisition": self.acquisition.describe(),
             "events": list(self.events),
