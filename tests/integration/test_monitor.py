@@ -110,3 +110,39 @@ def test_cli_refuses_bad_options(args: list[str], fragment: str) -> None:
     res = subprocess.run([*MRSUS, *args], capture_output=True, text=True, timeout=60)
     assert res.returncode == 2, res.stderr
     assert fragment in res.stderr
+
+
+def _udp_port() -> int:
+    with socket.socket(socket.AF_INET, socket.SOCK_DGRAM) as s:
+        s.bind(("127.0.0.1", 0))
+        return int(s.getsockname()[1])
+
+
+def test_monitor_with_a_udp_rig(tmp_path: Path) -> None:
+    """The monitor's loop drives a network rig (``mrsus rig-emulator``)."""
+    from mrsuspension.monitor.app import MonitorState
+
+    port = _udp_port()
+    emu = subprocess.Popen(
+        [*MRSUS, "rig-emulator", "--port", str(port)],
+        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+    )  # fmt: skip
+    try:
+        assert emu.stdout is not None
+        assert "listening" in emu.stdout.readline()
+        st = MonitorState(tmp_path, rig=f"udp://127.0.0.1:{port}")
+        st.start({"controller": "skyhook-hilo", "excitation": "harmonic", "duration": 2})
+        deadline = time.time() + 60
+        while time.time() < deadline and st.status.get("state") not in ("ended", "error"):
+            st.poll()
+            time.sleep(0.05)
+        assert st.status["state"] == "ended", st.status
+        assert st.status["reason"] == "completed"
+        assert st.status["ticks"] >= 2000
+        f_dm = list(st.buffers["F_dm"])
+        assert max(abs(f) for f in f_dm) > 100.0  # forces measured by the served rig
+        assert st.handle is not None
+        st.handle.join()
+    finally:
+        emu.terminate()
+        emu.wait(10)

@@ -280,6 +280,8 @@ class LoopHooks:
     applied: int = 0
     misses: int = 0
     _trip_sent: bool = field(default=False, init=False, repr=False)
+    #: ramp time of the change being applied [s]
+    ramp_now: float = field(default=0.2, init=False, repr=False)
 
     def __post_init__(self) -> None:
         for name in ("tap_every", "tap_batch", "status_every", "poll_every"):
@@ -347,6 +349,8 @@ class LiveChange:
         Engine step the arrays were prepared for.
     arrays : dict, optional
         :meth:`Simulation.kernel_arrays <mrsuspension.engine.simulate.Simulation.kernel_arrays>`.
+    ramp_time : float, optional
+        Ramp (and cross-fade) time of this change [s]; default: the hooks' ``ramp_time``.
     """
 
     simulation: Simulation
@@ -354,10 +358,20 @@ class LiveChange:
     excitation: bool = True
     dt: float = 0.0
     arrays: dict[str, Any] | None = None
+    ramp_time: float | None = None
+
+    def __post_init__(self) -> None:
+        if self.ramp_time is not None:
+            check_range("ramp_time", self.ramp_time, 0.0, 10.0, unit="s", low_inclusive=False)
 
     @classmethod
     def prepare(
-        cls, new: Simulation, old: Simulation, rate: float, model_dt: float = DEFAULT_DT
+        cls,
+        new: Simulation,
+        old: Simulation,
+        rate: float,
+        model_dt: float = DEFAULT_DT,
+        ramp_time: float | None = None,
     ) -> LiveChange:
         """Compare ``new`` with the running ``old`` and build the arrays (validated).
 
@@ -373,6 +387,7 @@ class LiveChange:
             excitation=new.excitation.describe() != old.excitation.describe(),
             dt=dt,
             arrays=new.kernel_arrays(dt),
+            ramp_time=ramp_time,
         )
 
 
@@ -690,7 +705,7 @@ def _loop(
                 ramp = _apply_settings(hk, stepper, road_src, supervisor, t, period)
                 if ramp:
                     ramp_left = ramp
-                    ramp_step_i = lim.current * period / hk.ramp_time
+                    ramp_step_i = lim.current * period / hk.ramp_now
                     k_road = -chunk  # the new road from this tick on
             sample = read()
             active = state <= STATE_RUN
@@ -861,10 +876,12 @@ def _apply_settings(
         hooks.send("rejected", {"time": t, "error": f"{type(exc).__name__}: {exc}"})
         return 0
     ramp = 0
+    ramp_time = new.ramp_time or hooks.ramp_time
+    hooks.ramp_now = ramp_time
     if road_changed:
-        road_src.switch(sim.excitation, t, hooks.ramp_time)
+        road_src.switch(sim.excitation, t, ramp_time)
     if law_changed or road_changed:
-        ramp = max(1, math.ceil(hooks.ramp_time / period))
+        ramp = max(1, math.ceil(ramp_time / period))
     hooks.applied += 1
     hooks.send(
         "applied",

@@ -228,7 +228,7 @@ class MonitorState:
 
     def apply(self, raw: dict[str, Any]) -> dict[str, Any]:
         """Validate ``raw`` settings and send them to the running loop (between ticks)."""
-        _, sim = self.validate(raw)  # invalid settings never reach the loop
+        settings, sim = self.validate(raw)  # invalid settings never reach the loop
         h = self.handle
         if (
             h is None
@@ -237,7 +237,8 @@ class MonitorState:
         ):
             raise ValidationError("no run is going: press Start first")
         old = self.simulation if self.simulation is not None else sim
-        change = LiveChange.prepare(sim, old, h.rate)  # the loop only swaps arrays
+        # prepared here: the loop only swaps arrays
+        change = LiveChange.prepare(sim, old, h.rate, ramp_time=settings.ramp_time)
         if not h.apply(change):
             raise ValidationError("the loop has not taken the previous change yet; try again")
         self.simulation = sim

@@ -155,6 +155,19 @@ def test_controller_change_ramps_the_current(ramp_time: float) -> None:
     assert i[k + round(ramp_time * RATE) + 5] == pytest.approx(0.3, abs=lsb)
 
 
+def test_change_carries_its_own_ramp_time() -> None:
+    sim = _sim(Passive(0.0))
+    switched = LiveChange.prepare(
+        dataclasses.replace(sim, controller=Passive(0.3)), sim, RATE, ramp_time=0.5
+    )
+    hooks = LoopHooks(settings=LateQueue(switched, after=21), poll_every=10, ramp_time=0.1)
+    i = _run(sim, hooks).recording["i_cmd"]
+    lsb = PICurrentDriver().da_full_scale / (1 << PICurrentDriver().bits)
+    assert np.max(np.diff(i[199:800])) <= 0.3 / 0.5 / RATE + lsb
+    assert i[450] < 0.2  # half-way up a 0.5 s ramp, not yet at 0.3 A
+    raises_validation(lambda: LiveChange(sim, ramp_time=0.0), "ramp_time")
+
+
 def test_without_ramp_the_switch_jumps() -> None:  # the ramp test above can fail
     sim = _sim(Passive(0.0))
     switched = dataclasses.replace(sim, controller=Passive(0.3))
