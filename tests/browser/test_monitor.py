@@ -180,6 +180,13 @@ def test_acceptance_simulated_rig(
     assert page.text_content("#error") == ""
 
     # m_s changed live (applied between ticks by the running loop)
+    mean_ft = (
+        "() => { const d = window.monitorState.data; const t = d.time, f = d.F_T;"
+        " const t1 = t[t.length - 1]; let s = 0, n = 0;"
+        " for (let i = 0; i < t.length; i++) if (t[i] > t1 - 1.0) { s += f[i]; n++; }"
+        " return s / n; }"
+    )
+    ft_before = page.evaluate(mean_ft)
     page.fill("#sprung_mass", "700")
     page.click("#apply")
     _wait(page, "() => window.monitorState.status.applied >= 2", 10000)
@@ -187,6 +194,11 @@ def test_acceptance_simulated_rig(
     assert status["fields"]["sprung_mass"] == 700.0
     assert status["state"] == "running"
     assert status["ticks"] > ticks0
+    time.sleep(3.0)  # the body settles on the new static load
+    ft_after = page.evaluate(mean_ft)
+    dw = (700.0 - 563.0) * 9.81  # the tire carries the heavier body: +1344 N
+    print(f"mean tire force over 1 s: {ft_before:.0f} N -> {ft_after:.0f} N (expected +{dw:.0f})")
+    assert ft_after - ft_before == pytest.approx(dw, rel=0.25)
 
     # record a window of about a second
     page.click("#record")
@@ -200,6 +212,8 @@ def test_acceptance_simulated_rig(
     other = browser.new_page()
     other.goto(server)
     other.wait_for_function("() => window.monitorState.frames > 5", timeout=10000)
+    # a page that connects mid-run gets the last seconds at once, then the stream
+    assert other.evaluate("() => window.monitorState.points") > 300
     other.close()  # the socket drops without a goodbye
     before = _status(server)
     time.sleep(1.0)

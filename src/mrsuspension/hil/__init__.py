@@ -8,7 +8,9 @@ measured force closes the loop through the engine's compiled step. Pieces:
 - :mod:`~mrsuspension.hil.driver`: the PI drive-current regulator;
 - :mod:`~mrsuspension.hil.safety`: limits, trips and the start-up sequence;
 - :mod:`~mrsuspension.hil.recorder`: incremental recording and :func:`load_recording`;
-- :mod:`~mrsuspension.hil.loop`: the real-time loop, :func:`run_hil`;
+- :mod:`~mrsuspension.hil.loop`: the real-time loop, :func:`run_hil`, and its live
+  hooks (:class:`LoopHooks`, :class:`LiveChange`; the monitor's);
+- :mod:`~mrsuspension.hil.tap`: :class:`TapRing`, the shared-memory ring of the tap;
 - :mod:`~mrsuspension.hil.network`: the UDP rig protocol, :class:`UdpRig` and
   :func:`serve_rig`;
 - :mod:`~mrsuspension.hil.validate`: HiL against offline (``validate.validate``).
@@ -17,15 +19,18 @@ measured force closes the loop through the engine's compiled step. Pieces:
 from __future__ import annotations
 
 from mrsuspension.hil.driver import PICurrentDriver
-from mrsuspension.hil.loop import CHANNELS, HilResult, TickStats, run_hil
+from mrsuspension.hil.loop import CHANNELS, HilResult, LiveChange, LoopHooks, TickStats, run_hil
 from mrsuspension.hil.network import UdpRig, serve_rig
 from mrsuspension.hil.recorder import Recorder, Recording, load_recording
 from mrsuspension.hil.rig import Rig, RigSample, SimulatedRig, ideal_rig
 from mrsuspension.hil.safety import SafetyLimits, SafetySupervisor, StartUp
+from mrsuspension.hil.tap import TapRing
 
 __all__ = [
     "CHANNELS",
     "HilResult",
+    "LiveChange",
+    "LoopHooks",
     "PICurrentDriver",
     "Recorder",
     "Recording",
@@ -35,6 +40,7 @@ __all__ = [
     "SafetySupervisor",
     "SimulatedRig",
     "StartUp",
+    "TapRing",
     "TickStats",
     "UdpRig",
     "ideal_rig",

@@ -384,9 +384,20 @@ class MonitorState:
             self._measured_at = now
         return self._measures
 
-    def frame(self) -> dict[str, Any]:
-        """One WebSocket frame: new samples, status and live measures."""
-        fresh, self.fresh = self.fresh, []
+    def history(self) -> dict[str, Any]:
+        """A frame with the buffered rows (last 10 s at the display rate), for a new page."""
+        step = max(1, round(TAP_RATE / self.acquisition.display_rate))
+        cols = [list(self.buffers[name])[::step] for name in DISPLAY_CHANNELS]
+        rows = [
+            [float(x) if math.isfinite(x) else None for x in r] for r in zip(*cols, strict=True)
+        ]
+        return {**self.frame(consume=False), "rows": rows, "history": True}
+
+    def frame(self, consume: bool = True) -> dict[str, Any]:
+        """One WebSocket frame: new samples (taken unless ``consume`` is False), status..."""
+        fresh: list[list[float | None]] = []
+        if consume:
+            fresh, self.fresh = self.fresh, []
         return {
             "run": self.run_id,
             "channels": list(DISPLAY_CHANNELS),
@@ -503,6 +514,10 @@ def create_app(
 
     async def ws(websocket: WebSocket) -> None:
         await websocket.accept()
+        try:  # what happened so far, then the stream
+            await websocket.send_json(state.history())
+        except Exception:
+            return
         clients.add(websocket)
         try:
             while True:

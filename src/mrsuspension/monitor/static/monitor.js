@@ -24,6 +24,7 @@
   let run = -1;
   let startedHere = -1;
   const monitor = { points: 0, measures: {}, status: {}, frames: 0, last: {}, range: {}, posts: [] };
+  monitor.data = data;
   window.monitorState = monitor;
 
   const $ = (id) => document.getElementById(id);
@@ -206,7 +207,7 @@
 
   function onFrame(f) {
     monitor.frames += 1;
-    if (f.run !== run) {
+    if (f.run !== run || f.history) {
       run = f.run;
       for (const c of f.channels) data[c] = [];
       if (run !== startedHere && f.status && f.status.fields) fillFields(f.status.fields);
