@@ -11,6 +11,7 @@ import time
 import urllib.request
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from mrsuspension.monitor.loadtest import measure
@@ -146,3 +147,63 @@ def test_monitor_with_a_udp_rig(tmp_path: Path) -> None:
     finally:
         emu.terminate()
         emu.wait(10)
+
+
+def test_api_acquisition_and_live_changes(tmp_path: Path) -> None:
+    from starlette.testclient import TestClient
+
+    from mrsuspension.monitor.app import create_app
+
+    app = create_app(workdir=tmp_path, rig="ideal")
+    state = app.state.monitor
+    with TestClient(app) as client:
+        # nothing running: a change is refused, no recording
+        r = client.post("/api/apply", json={"sprung_mass": 600})
+        assert r.status_code == 400
+        assert "Start" in r.json()["error"]
+        assert client.get("/api/recording").status_code == 404
+        r = client.post("/api/acquisition", json={"acq_period": 0})
+        assert r.status_code == 400
+        assert "period" in r.json()["error"]
+        r = client.post("/api/record", json={"action": "pause"})
+        assert r.status_code == 400
+        r = client.post(
+            "/api/acquisition",
+            json={"acq_period": 2, "trigger": "z_r", "trigger_level": 0.0, "pre_trigger": 0.1},
+        )
+        assert r.json()["period"] == 2
+        r = client.post(
+            "/api/start",
+            json={"controller": "passive-zero", "excitation": "harmonic", "frequency": 2.0,
+                  "amplitude": 0.01, "duration": 3, "ramp_time": 0.1},
+        )  # fmt: skip
+        assert r.status_code == 200, r.text
+        deadline = time.time() + 60
+        while time.time() < deadline and state.status.get("state") != "running":
+            time.sleep(0.1)
+        time.sleep(0.6)
+        r = client.post("/api/apply", json={"controller": "fixed-current", "current": 0.3,
+                                            "excitation": "harmonic", "frequency": 2.0,
+                                            "amplitude": 0.01, "ramp_time": 0.1})  # fmt: skip
+        assert r.status_code == 200, r.text
+        r = client.post("/api/apply", json={"controller": "fixed-current", "current": 0.9})
+        assert r.status_code == 400  # above the 0.3 A HiL limit: refused by the server
+        while time.time() < deadline and state.status.get("state") != "ended":
+            time.sleep(0.2)
+        assert state.status["state"] == "ended"
+        assert state.status["applied"] == 1
+        r = client.get("/api/recording")
+        assert r.status_code == 200
+        lines = r.text.splitlines()
+        header = lines[0].split(",")
+        data = np.array([[float(x) for x in line.split(",")] for line in lines[1:]])
+    t, zr, i_cmd = data[:, 0], data[:, header.index("z_r")], data[:, header.index("i_cmd")]
+    np.testing.assert_allclose(np.diff(t), 2e-3, atol=1e-9)  # every 2nd tick
+    # the trigger: z_r (a sine from 0 at t = 0) first rises through 0 near t = 0.5 s; the
+    # acquired rows start 0.1 s (the pre-trigger) before that crossing
+    k = int(np.flatnonzero((zr[:-1] < 0.0) & (zr[1:] >= 0.0))[0]) + 1
+    assert t[k] == pytest.approx(0.5, abs=2.5e-3)
+    assert t[0] == pytest.approx(t[k] - 0.1, abs=2.5e-3)
+    # the switch to 0.3 A ramped over 0.1 s: steps of at most 0.3 A x 2 ms / 0.1 s (+ 1 LSB)
+    assert i_cmd.max() == pytest.approx(0.3, abs=1e-3)
+    assert np.max(np.diff(i_cmd)) <= 0.3 * 2e-3 / 0.1 + 0.5 / 4096 + 1e-9

@@ -54,7 +54,7 @@
   }
   const measureCells = rows("measures", MEASURES);
   const healthCells = rows("health", ["state", "safety", "reason", "time [s]", "ticks", "misses",
-    "in deadline", "dropped", "tick [us]", "tick max [us]", "late max [us]", "current [A]", "changes applied"]);
+    "in deadline", "dropped", "lost rows", "tick [us]", "tick max [us]", "late max [us]", "current [A]", "changes applied"]);
 
   function showFields() {
     for (const sel of ["controller", "excitation"]) {
@@ -253,6 +253,7 @@
     h.misses.textContent = s.misses === undefined ? "-" : s.misses;
     h["in deadline"].textContent = s.ticks ? fmt(100 * (1 - s.misses / s.ticks), 2) + " %" : "-";
     h.dropped.textContent = s.dropped === undefined ? "-" : s.dropped;
+    h["lost rows"].textContent = s.lost === undefined ? "-" : s.lost;
     h["tick [us]"].textContent = s.compute_mean ? fmt(s.compute_mean * 1e6, 0) : "-";
     h["tick max [us]"].textContent = s.compute_max ? fmt(s.compute_max * 1e6, 0) : "-";
     h["late max [us]"].textContent = s.lateness_max ? fmt(s.lateness_max * 1e6, 0) : "-";
