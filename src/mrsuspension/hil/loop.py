@@ -264,7 +264,9 @@ class LoopHooks:
     ramp_time : float
         After a controller change the drive-current demand moves by at most
         ``current limit * period / ramp_time`` per tick for ``ramp_time`` seconds; an
-        excitation change cross-fades the old road into the new one over the same time.
+        excitation change cross-fades the old road into the new one over the same time
+        (the new excitation runs on its own clock from the change: a pulse comes its
+        ``delay`` after it).
     """
 
     tap: Any = None
@@ -392,11 +394,17 @@ class LiveChange:
 
 
 class _Road:
-    """Road values at the half steps of a block of ticks (optionally cross-fading)."""
+    """Road values at the half steps of a block of ticks (optionally cross-fading).
+
+    An excitation switched in at time ``t`` runs on its own clock from ``t`` (a pulse
+    comes its ``delay`` after the change, a road profile starts at its beginning).
+    """
 
     def __init__(self, excitation: Any, n_sub: int, dt: float, chunk: int) -> None:
         self.excitation = excitation
+        self.offset = 0.0
         self.old: Any = None
+        self.old_offset = 0.0
         self.fade_start = 0.0
         self.fade = 0.0
         self.n_sub = n_sub
@@ -405,16 +413,16 @@ class _Road:
 
     def switch(self, excitation: Any, t: float, fade: float) -> None:
         """Cross-fade from the current excitation to ``excitation`` from time ``t``."""
-        self.old = self.excitation
-        self.excitation = excitation
+        self.old, self.old_offset = self.excitation, self.offset
+        self.excitation, self.offset = excitation, t
         self.fade_start = t
         self.fade = fade
 
     def block(self, k0: int) -> tuple[list[float], list[float]]:
         """Road and road velocity for ticks ``k0 .. k0 + chunk`` (half-step samples)."""
         t = (k0 * self.n_sub + np.arange(2 * self.n_sub * self.chunk + 1) * 0.5) * self.dt
-        zr = np.asarray(self.excitation.displacement(t), dtype=float)
-        zrd = np.asarray(self.excitation.velocity(t), dtype=float)
+        zr = np.asarray(self.excitation.displacement(t - self.offset), dtype=float)
+        zrd = np.asarray(self.excitation.velocity(t - self.offset), dtype=float)
         if self.old is not None:
             if t[0] >= self.fade_start + self.fade:
                 self.old = None
@@ -422,8 +430,8 @@ class _Road:
                 s = np.clip((t - self.fade_start) / self.fade, 0.0, 1.0)
                 w = s * s * (3.0 - 2.0 * s)  # smoothstep: no jump in z_r nor in z_r'
                 dw = np.where((s > 0.0) & (s < 1.0), 6.0 * s * (1.0 - s) / self.fade, 0.0)
-                zr_old = np.asarray(self.old.displacement(t), dtype=float)
-                zrd_old = np.asarray(self.old.velocity(t), dtype=float)
+                zr_old = np.asarray(self.old.displacement(t - self.old_offset), dtype=float)
+                zrd_old = np.asarray(self.old.velocity(t - self.old_offset), dtype=float)
                 zrd = (1.0 - w) * zrd_old + w * zrd + dw * (zr - zr_old)
                 zr = (1.0 - w) * zr_old + w * zr
         if not (np.all(np.isfinite(zr)) and np.all(np.isfinite(zrd))):

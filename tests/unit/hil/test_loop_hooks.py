@@ -12,7 +12,7 @@ import pytest
 from _helpers import raises_validation
 from mrsuspension.control import HiLo, Passive
 from mrsuspension.engine.simulate import Simulation
-from mrsuspension.excitation import Harmonic
+from mrsuspension.excitation import Harmonic, RoundedPulse
 from mrsuspension.hil import StartUp, ideal_rig, run_hil
 from mrsuspension.hil.driver import PICurrentDriver
 from mrsuspension.hil.loop import CHANNELS, LiveChange, LoopHooks, tick_step
@@ -184,8 +184,21 @@ def test_excitation_change_cross_fades_the_road() -> None:
     zr = rec["z_r"]
     # no jump: the largest tick-to-tick change stays that of the faster harmonic
     assert np.max(np.abs(np.diff(zr[:1500]))) < 2 * np.pi * 4.0 * 0.01 / RATE * 1.5
+    # after the fade, the new harmonic on its own clock from the change (t = 0.3 s)
     t = rec["time"][700:1500]
-    np.testing.assert_allclose(zr[700:1500], Harmonic(4.0, 0.01).displacement(t + 1e-3), atol=1e-9)
+    new = Harmonic(4.0, 0.01).displacement(t + 1e-3 - 0.3)
+    np.testing.assert_allclose(zr[700:1500], new, atol=1e-9)
+
+
+def test_a_live_pulse_comes_after_the_change() -> None:
+    sim = _sim()
+    pulse = dataclasses.replace(sim, excitation=RoundedPulse(0.05, 1.0, 50.0, delay=0.2))
+    hooks = LoopHooks(settings=LateQueue(pulse, after=101), poll_every=10, ramp_time=0.1)
+    rec = _run(sim, hooks, duration=2.5).recording
+    zr, t = rec["z_r"], rec["time"]
+    peak = t[int(np.argmax(zr))]
+    assert 1.2 < peak < 1.2 + pulse.excitation.pulse_duration  # change at 1.0 s + delay
+    assert zr.max() == pytest.approx(0.05, rel=0.05)
 
 
 def test_bad_change_is_rejected_and_the_run_goes_on() -> None:
