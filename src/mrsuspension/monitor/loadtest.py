@@ -13,6 +13,7 @@ Run it from the command line (``python -m mrsuspension.monitor.loadtest --help``
 from __future__ import annotations
 
 import argparse
+import contextlib
 import json
 import socket
 import statistics
@@ -23,7 +24,7 @@ import urllib.request
 from pathlib import Path
 from typing import Any
 
-__all__ = ["measure", "monitored_run", "unmonitored_run"]
+__all__ = ["browser_run", "measure", "monitored_run", "unmonitored_run"]
 
 _SETTINGS = {
     "controller": "skyhook-hilo",
@@ -110,10 +111,59 @@ def monitored_run(
     }
 
 
+def browser_run(
+    page: Any, base: str, duration: float, rate: float, timeout: float = 120.0
+) -> dict[str, Any]:
+    """The scenario started through the monitor with the real page open in ``page``.
+
+    ``page`` is a Playwright page showing the monitor (it draws every frame as a user's
+    browser does); the frame rate is counted by the page.
+    """
+    body = json.dumps({**_SETTINGS, "rate": rate, "duration": duration}).encode()
+    req = urllib.request.Request(
+        base + "api/start", data=body, headers={"Content-Type": "application/json"}
+    )
+    cpu0, wall0 = time.process_time(), time.perf_counter()
+    with urllib.request.urlopen(req) as r:
+        r.read()
+    deadline = time.time() + timeout
+    status: dict[str, Any] = {}
+    first: tuple[float, int] | None = None
+    last: tuple[float, int] = (0.0, 0)
+    while time.time() < deadline:
+        time.sleep(0.25)
+        with urllib.request.urlopen(base + "api/status") as r:
+            status = json.loads(r.read())
+        frames = int(page.evaluate("() => window.monitorState.frames"))
+        if status.get("state") in ("startup", "running"):
+            last = (time.perf_counter(), frames)
+            if first is None:
+                first = last
+        if status.get("state") in ("ended", "error") and "in_deadline" in status:
+            break
+    server_cpu = (time.process_time() - cpu0) / (time.perf_counter() - wall0)
+    span = last[0] - first[0] if first else 0.0
+    return {
+        "ticks": status.get("ticks", 0),
+        "misses": status.get("misses", 0),
+        "in_deadline": status.get("in_deadline", float("nan")),
+        "frame_rate": (last[1] - first[1]) / span if first and span > 0 else 0.0,
+        "reason": status.get("reason", ""),
+        "server_cpu": server_cpu,
+    }
+
+
 def measure(
-    duration: float = 5.0, rate: float = 1000.0, rig: str = "simulated", pairs: int = 1
+    duration: float = 5.0,
+    rate: float = 1000.0,
+    rig: str = "simulated",
+    pairs: int = 1,
+    browser: str | None = None,
 ) -> dict[str, Any]:
     """Alternate ``pairs`` unmonitored and monitored runs; their figures and ratios.
+
+    ``browser``: path of a chromium to attach the real page with (Playwright, headless)
+    instead of a bare WebSocket client.
 
     Returns
     -------
@@ -145,17 +195,29 @@ def measure(
     load0 = os.getloadavg()
     plain: list[dict[str, Any]] = []
     monitored: list[dict[str, Any]] = []
-    try:
+    with contextlib.ExitStack() as stack:
+        stack.callback(thread.join, 10)
+        stack.callback(setattr, server, "should_exit", True)
+        page = None
+        if browser:
+            from playwright.sync_api import sync_playwright
+
+            pw = stack.enter_context(sync_playwright())
+            chromium = pw.chromium.launch(
+                executable_path=browser, args=["--no-sandbox", "--disable-gpu"]
+            )
+            stack.callback(chromium.close)
+            page = chromium.new_page(viewport={"width": 1500, "height": 1100})
+            page.goto(base)
         for k in range(pairs):
             order = ("plain", "monitored") if k % 2 == 0 else ("monitored", "plain")
             for kind in order:
                 if kind == "plain":
                     plain.append(unmonitored_run(duration, rate, rig, work))
+                elif page is not None:
+                    monitored.append(browser_run(page, base, duration, rate))
                 else:
                     monitored.append(monitored_run(base, duration, rate))
-    finally:
-        server.should_exit = True
-        thread.join(10)
 
     def miss(r: dict[str, Any]) -> float:
         return 1.0 - float(r["in_deadline"])
@@ -169,6 +231,7 @@ def measure(
         "miss_plain": statistics.median(miss(r) for r in plain),
         "miss_monitored": statistics.median(miss(r) for r in monitored),
         "frame_rate_min": min(r["frame_rate"] for r in monitored),
+        "client": "browser" if browser else "websocket",
         "loadavg": [load0[0], os.getloadavg()[0]],
     }
 
@@ -180,8 +243,14 @@ def main(argv: list[str] | None = None) -> None:
     parser.add_argument("--rate", type=float, default=1000.0, help="loop rate [Hz]")
     parser.add_argument("--rig", default="simulated", help="simulated | ideal | udp://HOST:PORT")
     parser.add_argument("--pairs", type=int, default=3, help="unmonitored/monitored pairs")
+    parser.add_argument(
+        "--browser",
+        default=None,
+        help="chromium executable: attach the real page (Playwright) instead of a WebSocket client",
+    )
     args = parser.parse_args(argv)
-    print(json.dumps(measure(args.duration, args.rate, args.rig, args.pairs), indent=2))
+    result = measure(args.duration, args.rate, args.rig, args.pairs, args.browser)
+    print(json.dumps(result, indent=2))
 
 
 if __name__ == "__main__":
