@@ -282,6 +282,7 @@ class LoopHooks:
     applied: int = 0
     misses: int = 0
     _trip_sent: bool = field(default=False, init=False, repr=False)
+    _counted: int = field(default=0, init=False, repr=False)
     #: ramp time of the change being applied [s]
     ramp_now: float = field(default=0.2, init=False, repr=False)
 
@@ -916,7 +917,9 @@ def _live_status(
 ) -> dict[str, Any]:
     w = slice(max(0, k - hooks.status_every), k)
     c = compute[w]
-    hooks.misses += int(np.count_nonzero(c + lateness[w] > period))
+    m = slice(hooks._counted, k)  # misses since the last status (each tick counted once)
+    hooks.misses += int(np.count_nonzero(compute[m] + lateness[m] > period))
+    hooks._counted = k
     return {
         "state": ("startup", "running", "returning", "tripped")[state],
         "state_code": state,

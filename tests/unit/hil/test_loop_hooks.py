@@ -276,3 +276,17 @@ def test_ring_tap_takes_rows_and_status() -> None:
     assert [kind for kind, _ in msgs] == ["status", "status"]
     assert msgs[0][1]["reason"] == "STOP pressed"
     assert msgs[1][1]["state"] == "ended"
+
+
+def test_live_status_counts_each_miss_once() -> None:
+    from mrsuspension.hil.loop import _live_status
+    from mrsuspension.hil.safety import SafetySupervisor
+
+    hooks = LoopHooks(status_every=100)
+    compute = np.full(1000, 1e-4)
+    lateness = np.zeros(1000)
+    compute[[50, 150, 160, 990]] = 2e-3  # four misses at 1 kHz
+    sup = SafetySupervisor()
+    for k in (100, 130, 200, 300, 1000):  # 130: an extra status (e.g. at a trip)
+        st = _live_status(hooks, sup, 1, k, compute, lateness, 1e-3, 0.0)
+    assert st["misses"] == 4
