@@ -166,6 +166,12 @@ class Simulation:
 
         For :meth:`Stepper.update`; raises :class:`ValidationError` when ``dt`` is too
         large for this model.
+
+        Examples
+        --------
+        >>> from mrsuspension.excitation import Harmonic
+        >>> sorted(Simulation(Harmonic(1.0, 0.01)).kernel_arrays(1e-4))[:3]
+        ['cek', 'cep', 'ces']
         """
         return self._arrays(self.check_dt(dt))
 

@@ -267,6 +267,19 @@ class LoopHooks:
         excitation change cross-fades the old road into the new one over the same time
         (the new excitation runs on its own clock from the change: a pulse comes its
         ``delay`` after it).
+
+    Examples
+    --------
+    >>> import queue
+    >>> from mrsuspension.excitation import Harmonic
+    >>> from mrsuspension.hil import ideal_rig
+    >>> sim = Simulation(Harmonic(1.5, 0.02), max_current=0.3)
+    >>> tap = queue.Queue(maxsize=100)
+    >>> hooks = LoopHooks(tap=tap, tap_every=10, tap_batch=100)
+    >>> result = run_hil(sim, ideal_rig(sim.damper), duration=0.5, realtime=False, hooks=hooks)
+    >>> kind, rows = tap.get_nowait()
+    >>> kind, len(rows), len(rows[0]) == len(CHANNELS)
+    ('data', 10, True)
     """
 
     tap: Any = None
@@ -354,6 +367,18 @@ class LiveChange:
         :meth:`Simulation.kernel_arrays <mrsuspension.engine.simulate.Simulation.kernel_arrays>`.
     ramp_time : float, optional
         Ramp (and cross-fade) time of this change [s]; default: the hooks' ``ramp_time``.
+
+    Examples
+    --------
+    >>> import dataclasses
+    >>> from mrsuspension.control import Passive
+    >>> from mrsuspension.excitation import Harmonic
+    >>> sim = Simulation(Harmonic(1.5, 0.02), max_current=0.3)
+    >>> change = LiveChange.prepare(
+    ...     dataclasses.replace(sim, controller=Passive(0.2)), sim, rate=1000.0
+    ... )
+    >>> change.controller, change.excitation, change.dt
+    (True, False, 0.0001)
     """
 
     simulation: Simulation
