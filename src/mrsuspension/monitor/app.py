@@ -52,6 +52,8 @@ DISPLAY_CHANNELS: tuple[str, ...] = (
     "x_d", "x_m", "F_dm", "F_dmod", "F_T", "i_d", "i_cmd", "i_dm",
 )  # fmt: skip
 _COL = {name: j for j, (name, _) in enumerate(CHANNELS)}
+#: longest wait for a stopped loop to bring the actuator back to mid-stroke and end [s]
+_RETURN_WAIT = 15.0
 #: live measures are recomputed this often [s]
 _MEASURE_PERIOD = 0.2
 #: rows kept for the model force and z_r'' (contiguous tail of the tap stream)
@@ -196,7 +198,7 @@ class MonitorState:
     ) -> dict[str, Any]:
         self.stop()
         if self.handle is not None:
-            self.handle.join(5.0)
+            self.handle.join(_RETURN_WAIT)
         self.run_id += 1
         self.settings = settings
         self.simulation = sim
@@ -558,7 +560,7 @@ def create_app(
             task.cancel()
             state.stop()
             if state.handle is not None:
-                await asyncio.to_thread(state.handle.join, 5.0)
+                await asyncio.to_thread(state.handle.join, _RETURN_WAIT)
 
     def record(raw: dict[str, Any]) -> dict[str, Any]:
         return state.record(str(raw.get("action", "")))
