@@ -176,7 +176,8 @@ def scenario_from_settings(
     ----------
     settings : mapping
         Form fields: ``controller`` (one of :data:`CONTROLLERS`), ``current``, ``gain``
-        (k_c), ``order``, ``lambda``, ``eps``, ``mode`` (``SCM``/``ACM``), ``excitation``
+        (k_c), ``order``, ``lambda``, ``eps``, ``mode`` (``SCM``/``ACM``), optional
+        shaping factors ``p`` (overrides ``mode``), ``xi``, ``p_c``, ``xi_c``, ``excitation``
         (one of :data:`EXCITATIONS`), ``frequency``, ``amplitude``, ``height``,
         ``severity``, ``speed``, ``profile`` (a preset, or ``file`` with ``road_file``),
         ``road_speed``, ``scale``, the vehicle parameters of :data:`VEHICLE_FIELDS`,
@@ -197,6 +198,14 @@ def scenario_from_settings(
     """
     law = _choice(settings, "controller", CONTROLLERS, "skyhook-hilo")
     mode = _choice(settings, "mode", ("SCM", "ACM"), "ACM")
+    # shaping of the hi-lo and inverse-model laws: p (blank: from SCM/ACM), xi, p_c, xi_c
+    shaping: dict[str, Any] = {"mode": mode}
+    for key, label in (("p", "p"), ("xi", "xi"), ("p_c", "p_c"), ("xi_c", "xi_c")):
+        raw = settings.get(key)
+        if raw is not None and str(raw).strip() != "":
+            shaping[key] = _number(settings, key, 0.0, label)
+    if "p" in shaping:
+        del shaping["mode"]  # an explicit asymmetry factor overrides SCM/ACM
     controller: dict[str, Any]
     if law == "passive-zero":
         controller = {"law": "passive", "current": 0.0}
@@ -205,16 +214,16 @@ def scenario_from_settings(
     elif law == "skyhook-hilo":
         controller = {
             "law": "skyhook-hilo",
-            "mode": mode,
+            **shaping,
             "gain": _number(settings, "gain", 3.0, "k_c"),
             "order": _number(settings, "order", 2.0, "order n"),
         }
     elif law == "inverse-hilo":
-        controller = {"law": "inverse-hilo", "mode": mode}
+        controller = {"law": "inverse-hilo", **shaping}
     else:
         controller = {
             "law": "sliding-mode",
-            "mode": mode,
+            **shaping,
             "lambda": _number(settings, "lambda", 0.5, "lambda"),
             "eps": _number(settings, "eps", 0.05, "eps"),
         }
@@ -307,7 +316,7 @@ def page_fields(sim: Simulation) -> dict[str, Any]:
     """
     out: dict[str, Any] = {key: getattr(sim.vehicle, key) for key in VEHICLE_FIELDS}
     desc = sim.controller.describe()
-    for key in ("gain", "order", "mode"):
+    for key in ("gain", "order", "p", "xi", "p_c", "xi_c"):
         if key in desc:
             out[key] = desc[key]
     return out

@@ -113,3 +113,16 @@ def test_acquisition_validation() -> None:
         {"acq_period": "10", "trigger": "x_d", "trigger_level": "0.01", "display_rate": "50"}, acq
     )
     assert (new.period, new.trigger, new.level, new.display_rate) == (10, "x_d", 0.01, 50.0)
+
+
+def test_shaping_factors_override_the_mode() -> None:
+    acm = scenario_from_settings({"controller": "skyhook-hilo", "mode": "ACM"}).simulation()
+    assert acm.controller.p == 0.0
+    half = scenario_from_settings(
+        {"controller": "inverse-hilo", "mode": "ACM", "p": "0.5", "xi": "8", "xi_c": ""}
+    ).simulation()
+    assert (half.controller.p, half.controller.xi) == (0.5, 8.0)
+    assert page_fields(half)["p"] == 0.5
+    raises_validation(
+        lambda: scenario_from_settings({"controller": "sliding-mode", "p": 2}).simulation(), "p"
+    )

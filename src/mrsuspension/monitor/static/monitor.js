@@ -61,7 +61,9 @@
       const value = $(sel).value;
       document.querySelectorAll("fieldset label[data-for]").forEach((l) => {
         const owner = l.closest("fieldset").querySelector("select").id;
-        if (owner === sel) l.style.display = l.dataset.for === value ? "" : "none";
+        const shaped = ["skyhook-hilo", "inverse-hilo", "sliding-mode"].includes(value);
+        const show = l.dataset.for === value || (l.dataset.for === "shaped" && shaped);
+        if (owner === sel) l.style.display = show ? "" : "none";
       });
     }
   }
@@ -107,6 +109,11 @@
     if (law === "sliding-mode") {
       checks.push(["lambda", "lambda", pos, "> 0"]);
       checks.push(["eps", "eps", pos, "> 0"]);
+    }
+    if (["skyhook-hilo", "inverse-hilo", "sliding-mode"].includes(law)) {
+      const optional = [["p", "p", (v) => v >= 0 && v <= 1, "in [0, 1]"], ["xi", "xi", pos, "> 0"],
+        ["p_c", "p_c", (v) => v >= 0 && v < 1, "in [0, 1)"], ["xi_c", "xi_c", pos, "> 0"]];
+      for (const c of optional) if (String(s[c[0]] || "").trim() !== "") checks.push(c);
     }
     const exc = s.excitation;
     if (exc === "harmonic") {
