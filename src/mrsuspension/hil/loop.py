@@ -446,7 +446,9 @@ class _Road:
 
     def block(self, k0: int) -> tuple[list[float], list[float]]:
         """Road and road velocity for ticks ``k0 .. k0 + chunk`` (half-step samples)."""
-        t = (k0 * self.n_sub + np.arange(2 * self.n_sub * self.chunk + 1) * 0.5) * self.dt
+        # (for k0 = 0 the same times as the whole-run road of a loop without hooks)
+        half = np.arange(2 * self.n_sub * self.chunk + 1) * (0.5 * self.dt)
+        t = k0 * self.n_sub * self.dt + half
         zr = np.asarray(self.excitation.displacement(t - self.offset), dtype=float)
         zrd = np.asarray(self.excitation.velocity(t - self.offset), dtype=float)
         if self.old is not None:
