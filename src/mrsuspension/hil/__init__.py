@@ -8,8 +8,9 @@ measured force closes the loop through the engine's compiled step. Pieces:
 - :mod:`~mrsuspension.hil.driver`: the PI drive-current regulator;
 - :mod:`~mrsuspension.hil.safety`: limits, trips and the start-up sequence;
 - :mod:`~mrsuspension.hil.recorder`: incremental recording and :func:`load_recording`;
-- :mod:`~mrsuspension.hil.loop`: the real-time loop, :func:`run_hil`, and its live
-  hooks (:class:`LoopHooks`, :class:`LiveChange`; the monitor's);
+- :mod:`~mrsuspension.hil.loop`: the real-time loop, :func:`run_hil`;
+- :mod:`~mrsuspension.hil.live`: its live hooks (:class:`LoopHooks`,
+  :class:`LiveChange`; the monitor's);
 - :mod:`~mrsuspension.hil.tap`: :class:`TapRing`, the shared-memory ring of the tap;
 - :mod:`~mrsuspension.hil.network`: the UDP rig protocol, :class:`UdpRig` and
   :func:`serve_rig`;
