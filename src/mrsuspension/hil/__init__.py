@@ -11,7 +11,8 @@ measured force closes the loop through the engine's compiled step. Pieces:
 - :mod:`~mrsuspension.hil.loop`: the real-time loop, :func:`run_hil`;
 - :mod:`~mrsuspension.hil.live`: its live hooks (:class:`LoopHooks`,
   :class:`LiveChange`; the monitor's);
-- :mod:`~mrsuspension.hil.tap`: :class:`TapRing`, the shared-memory ring of the tap;
+- :mod:`~mrsuspension.hil.tap`: :class:`TapRing` and :class:`StopFlag`, the shared-memory
+  (lock-free) tap ring and STOP flag;
 - :mod:`~mrsuspension.hil.network`: the UDP rig protocol, :class:`UdpRig` and
   :func:`serve_rig`;
 - :mod:`~mrsuspension.hil.validate`: HiL against offline (``validate.validate``).
@@ -25,7 +26,7 @@ from mrsuspension.hil.network import UdpRig, serve_rig
 from mrsuspension.hil.recorder import Recorder, Recording, load_recording
 from mrsuspension.hil.rig import Rig, RigSample, SimulatedRig, ideal_rig
 from mrsuspension.hil.safety import SafetyLimits, SafetySupervisor, StartUp
-from mrsuspension.hil.tap import TapRing
+from mrsuspension.hil.tap import StopFlag, TapRing
 
 __all__ = [
     "CHANNELS",
@@ -41,6 +42,7 @@ __all__ = [
     "SafetySupervisor",
     "SimulatedRig",
     "StartUp",
+    "StopFlag",
     "TapRing",
     "TickStats",
     "UdpRig",

@@ -31,10 +31,11 @@ class LoopHooks:
     Parameters
     ----------
     tap : queue, optional
-        Receives ``("data", rows)`` (a list of :data:`CHANNELS` tuples, every
-        ``tap_every``-th tick, one list every ``tap_batch`` ticks), ``("status", dict)``
-        every ``status_every`` ticks, ``("applied", dict)`` / ``("rejected", dict)`` for
-        each settings change and a last ``("status", dict)`` when the loop ends.
+        Receives ``("started", dict)`` before the clock starts, ``("data", rows)`` (a
+        list of :data:`~mrsuspension.hil.loop.CHANNELS` tuples, every ``tap_every``-th
+        tick, one list every ``tap_batch`` ticks), ``("status", dict)`` every
+        ``status_every`` ticks, ``("applied", dict)`` / ``("rejected", dict)`` for each
+        settings change and a last ``("status", dict)`` when the loop ends.
     tap_every, tap_batch, status_every : int
         Decimation, batch length and status period, in ticks.
     ring : TapRing, optional
@@ -66,6 +67,8 @@ class LoopHooks:
     >>> tap = queue.Queue(maxsize=100)
     >>> hooks = LoopHooks(tap=tap, tap_every=10, tap_batch=100)
     >>> result = run_hil(sim, ideal_rig(sim.damper), duration=0.5, realtime=False, hooks=hooks)
+    >>> tap.get_nowait()[0]  # sent before the clock starts
+    'started'
     >>> kind, rows = tap.get_nowait()
     >>> kind, len(rows), len(rows[0]) == len(CHANNELS)
     ('data', 10, True)

@@ -407,6 +407,8 @@ def run_hil(
     )
     compute = np.zeros(n_max)
     lateness = np.zeros(n_max)
+    if hooks is not None:  # a first message before the clock starts (a queue's feeder thread)
+        hooks.send("started", {"rate": rate, "ticks": n_ticks})
     reason, ticks = _loop(
         stepper, rig, driver, supervisor, startup, recorder, road, road_v, n_ticks, n_max,
         n_sub, period, realtime, compute, lateness, hooks, road_src,

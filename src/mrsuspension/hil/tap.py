@@ -17,7 +17,7 @@ import numpy as np
 
 from mrsuspension.errors import ValidationError
 
-__all__ = ["STATUS_FIELDS", "TapRing"]
+__all__ = ["STATUS_FIELDS", "StopFlag", "TapRing"]
 
 #: numeric status fields of the ring, in slot order
 STATUS_FIELDS: tuple[str, ...] = (
@@ -113,3 +113,42 @@ class TapRing:
     def status(self) -> dict[str, float]:
         """The last status block written (``seq`` 0: none yet)."""
         return {name: float(v) for name, v in zip(STATUS_FIELDS, self._head[1:], strict=True)}
+
+
+class StopFlag:
+    """A lock-free STOP flag in shared memory (``set()`` in one process, ``is_set()`` in another).
+
+    A :class:`multiprocessing.Event` takes a lock shared with the process that sets it;
+    if that process is preempted while holding it, the loop would wait. This flag is one
+    shared byte: reading it never waits.
+
+    Parameters
+    ----------
+    context : multiprocessing context, optional
+        Where the shared memory comes from (default: ``spawn``).
+
+    Examples
+    --------
+    >>> flag = StopFlag()
+    >>> flag.is_set()
+    False
+    >>> flag.set()
+    >>> flag.is_set()
+    True
+    """
+
+    def __init__(self, context: Any = None) -> None:
+        ctx = context or multiprocessing.get_context("spawn")
+        self._value = ctx.RawValue("b", 0)
+
+    def set(self) -> None:
+        """Raise the flag."""
+        self._value.value = 1
+
+    def clear(self) -> None:
+        """Lower the flag."""
+        self._value.value = 0
+
+    def is_set(self) -> bool:
+        """Whether the flag is raised (never waits)."""
+        return bool(self._value.value)

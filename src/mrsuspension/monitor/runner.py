@@ -10,8 +10,8 @@ or ``udp://HOST:PORT``) in a separate process (``spawn``) with the loop's live h
   reader that falls behind loses the oldest rows (counted) rather than holding the loop;
   the rare messages (a change applied or refused, the trip, the end) go through a bounded
   :class:`multiprocessing.Queue` with ``put_nowait`` (full: dropped);
-- **STOP**: a :class:`multiprocessing.Event` checked every tick; the loop takes its
-  safety path (drive current 0 in that tick, actuator back to mid-stroke, reason
+- **STOP**: a lock-free shared flag (:class:`~mrsuspension.hil.tap.StopFlag`) checked
+  every tick; the loop takes its safety path (drive current 0 in that tick, actuator back to mid-stroke, reason
   ``"STOP pressed"`` recorded);
 - **settings**: validated configurations prepared by the server
   (:class:`~mrsuspension.hil.loop.LiveChange`: what changed and the kernel arrays)
@@ -31,7 +31,7 @@ from pathlib import Path
 from typing import Any
 
 from mrsuspension.hil.loop import CHANNELS
-from mrsuspension.hil.tap import TapRing
+from mrsuspension.hil.tap import StopFlag, TapRing
 
 __all__ = ["TAP_RATE", "LoopHandle", "loop_main"]
 
@@ -152,7 +152,7 @@ class LoopHandle:
         self.rate = float(rate)
         self.queue: Any = ctx.Queue(maxsize=queue_size)
         self.settings: Any = ctx.Queue(maxsize=4)
-        self.stop_event: Any = ctx.Event()
+        self.stop_event = StopFlag(ctx)  # lock-free: the loop never waits on it
         self.ring = TapRing(len(CHANNELS), capacity=4096, context=ctx)
         self.lost = 0
         self._seq = 0.0

@@ -271,11 +271,11 @@ def test_ring_tap_takes_rows_and_status() -> None:
     assert st["seq"] >= 6
     assert st["tripped"] == 1.0
     assert st["state_code"] == 3.0
-    # the queue only carried the trip (once) and the end
+    # the queue only carried the start (before the clock), the trip (once) and the end
     msgs = _drain(tap)
-    assert [kind for kind, _ in msgs] == ["status", "status"]
-    assert msgs[0][1]["reason"] == "STOP pressed"
-    assert msgs[1][1]["state"] == "ended"
+    assert [kind for kind, _ in msgs] == ["started", "status", "status"]
+    assert msgs[1][1]["reason"] == "STOP pressed"
+    assert msgs[2][1]["state"] == "ended"
 
 
 def test_live_status_counts_each_miss_once() -> None:

@@ -7,7 +7,7 @@ import multiprocessing
 import numpy as np
 
 from _helpers import raises_validation
-from mrsuspension.hil.tap import STATUS_FIELDS, TapRing
+from mrsuspension.hil.tap import STATUS_FIELDS, StopFlag, TapRing
 
 
 def test_rows_in_order_and_lost_counted() -> None:
@@ -61,3 +61,19 @@ def test_across_processes() -> None:
 def test_bad_shape() -> None:
     raises_validation(lambda: TapRing(0), "width >= 1")
     raises_validation(lambda: TapRing(2, capacity=1), "capacity >= 2")
+
+
+def _raise(flag: StopFlag) -> None:
+    flag.set()
+
+
+def test_stop_flag_across_processes() -> None:
+    ctx = multiprocessing.get_context("spawn")
+    flag = StopFlag(ctx)
+    assert not flag.is_set()
+    proc = ctx.Process(target=_raise, args=(flag,))
+    proc.start()
+    proc.join(60)
+    assert flag.is_set()
+    flag.clear()
+    assert not flag.is_set()
