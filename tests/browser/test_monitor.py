@@ -183,7 +183,7 @@ def test_acceptance_simulated_rig(
     mean_ft = (
         "() => { const d = window.monitorState.data; const t = d.time, f = d.F_T;"
         " const t1 = t[t.length - 1]; let s = 0, n = 0;"
-        " for (let i = 0; i < t.length; i++) if (t[i] > t1 - 1.0) { s += f[i]; n++; }"
+        " for (let i = 0; i < t.length; i++) if (t[i] > t1 - 2 / 1.5) { s += f[i]; n++; }"
         " return s / n; }"
     )
     ft_before = page.evaluate(mean_ft)
@@ -194,11 +194,13 @@ def test_acceptance_simulated_rig(
     assert status["fields"]["sprung_mass"] == 700.0
     assert status["state"] == "running"
     assert status["ticks"] > ticks0
-    time.sleep(3.0)  # the body settles on the new static load
+    time.sleep(4.0)  # the body settles on the new static load
     ft_after = page.evaluate(mean_ft)
     dw = (700.0 - 563.0) * 9.81  # the tire carries the heavier body: +1344 N
-    print(f"mean tire force over 1 s: {ft_before:.0f} N -> {ft_after:.0f} N (expected +{dw:.0f})")
-    assert ft_after - ft_before == pytest.approx(dw, rel=0.25)
+    print(
+        f"mean tire force over 2 cycles: {ft_before:.0f} -> {ft_after:.0f} N (+{dw:.0f} expected)"
+    )
+    assert ft_after - ft_before == pytest.approx(dw, rel=0.2)
 
     # record a window of about a second
     page.click("#record")
