@@ -161,6 +161,20 @@ class Simulation:
             "estimator": repr(self.controller_estimator),
         }
 
+    def kernel_arrays(self, dt: float) -> dict[str, Any]:
+        """The compiled step's parameter and state arrays at step ``dt`` (checked).
+
+        For :meth:`Stepper.update`; raises :class:`ValidationError` when ``dt`` is too
+        large for this model.
+
+        Examples
+        --------
+        >>> from mrsuspension.excitation import Harmonic
+        >>> sorted(Simulation(Harmonic(1.0, 0.01)).kernel_arrays(1e-4))[:3]
+        ['cek', 'cep', 'ces']
+        """
+        return self._arrays(self.check_dt(dt))
+
     def _arrays(self, dt: float) -> dict[str, Any]:
         kern = self.damper.kernel(dt)
         est = self.controller_estimator
@@ -329,6 +343,52 @@ class Stepper:
             self.y, road, road_velocity, a["vp"], a["fk"], a["dk"], a["dp"], a["ds"], a["dek"], a["dep"],
             a["des"], a["ck"], a["cp"], a["mem"], self._scratch,
         )  # fmt: skip
+
+    def update(self, simulation: Simulation, arrays: dict[str, Any] | None = None) -> None:
+        """Swap in another simulation's vehicle, controller and damper between two steps.
+
+        The vehicle state, the held drive current and the other step memory are kept (a
+        live change, e.g. from the HiL monitor); the damper's and the controller
+        estimator's internal states are kept when their model is unchanged. The
+        excitation is not part of the stepper (the caller gives the road).
+
+        Parameters
+        ----------
+        simulation : Simulation
+            The new configuration (checked for stability at this stepper's ``dt``).
+        arrays : dict, optional
+            ``simulation.kernel_arrays(dt)`` computed beforehand (e.g. by another process,
+            so that the tick that applies the change stays short).
+
+        Raises
+        ------
+        ValidationError
+            When ``dt`` is too large for the new configuration.
+
+        Examples
+        --------
+        >>> from mrsuspension.excitation import Harmonic
+        >>> from mrsuspension.vehicle import QuarterCar
+        >>> stepper = Simulation(Harmonic(1.0, 0.01)).stepper(1e-4)
+        >>> _ = stepper.step(0.0, 0.0628)
+        >>> heavier = Simulation(Harmonic(1.0, 0.01), vehicle=QuarterCar(sprung_mass=700.0))
+        >>> stepper.update(heavier)
+        >>> stepper.simulation.vehicle.sprung_mass
+        700.0
+        """
+        new = arrays if arrays is not None else simulation.kernel_arrays(self.dt)
+        a = self._a
+        old = self.simulation
+        if new["ces"].shape != a["ces"].shape or new["cek"] != a["cek"]:
+            a["ces"] = new["ces"]
+        for key in ("vp", "ck", "cp", "cek", "cep"):
+            a[key] = new[key]
+        if not self.external_force:
+            a["fk"] = new["fk"]
+        if simulation.damper.describe() != old.damper.describe():
+            for key in ("dk", "dp", "ds", "dek", "dep", "des"):
+                a[key] = new[key]
+        self.simulation = simulation
 
     def step(
         self,

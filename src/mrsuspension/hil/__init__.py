@@ -9,6 +9,10 @@ measured force closes the loop through the engine's compiled step. Pieces:
 - :mod:`~mrsuspension.hil.safety`: limits, trips and the start-up sequence;
 - :mod:`~mrsuspension.hil.recorder`: incremental recording and :func:`load_recording`;
 - :mod:`~mrsuspension.hil.loop`: the real-time loop, :func:`run_hil`;
+- :mod:`~mrsuspension.hil.live`: its live hooks (:class:`LoopHooks`,
+  :class:`LiveChange`; the monitor's);
+- :mod:`~mrsuspension.hil.tap`: :class:`TapRing` and :class:`StopFlag`, the shared-memory
+  (lock-free) tap ring and STOP flag;
 - :mod:`~mrsuspension.hil.network`: the UDP rig protocol, :class:`UdpRig` and
   :func:`serve_rig`;
 - :mod:`~mrsuspension.hil.validate`: HiL against offline (``validate.validate``).
@@ -17,15 +21,18 @@ measured force closes the loop through the engine's compiled step. Pieces:
 from __future__ import annotations
 
 from mrsuspension.hil.driver import PICurrentDriver
-from mrsuspension.hil.loop import CHANNELS, HilResult, TickStats, run_hil
+from mrsuspension.hil.loop import CHANNELS, HilResult, LiveChange, LoopHooks, TickStats, run_hil
 from mrsuspension.hil.network import UdpRig, serve_rig
 from mrsuspension.hil.recorder import Recorder, Recording, load_recording
 from mrsuspension.hil.rig import Rig, RigSample, SimulatedRig, ideal_rig
 from mrsuspension.hil.safety import SafetyLimits, SafetySupervisor, StartUp
+from mrsuspension.hil.tap import StopFlag, TapRing
 
 __all__ = [
     "CHANNELS",
     "HilResult",
+    "LiveChange",
+    "LoopHooks",
     "PICurrentDriver",
     "Recorder",
     "Recording",
@@ -35,6 +42,8 @@ __all__ = [
     "SafetySupervisor",
     "SimulatedRig",
     "StartUp",
+    "StopFlag",
+    "TapRing",
     "TickStats",
     "UdpRig",
     "ideal_rig",

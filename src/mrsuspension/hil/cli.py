@@ -19,7 +19,7 @@ from typing import Annotated, Any
 import typer
 
 from mrsuspension._cli_errors import _user_errors
-from mrsuspension.errors import ValidationError
+from mrsuspension.errors import ValidationError, check_range
 from mrsuspension.hil.loop import run_hil
 from mrsuspension.hil.realtime import normalise_mode
 from mrsuspension.hil.rig import Rig, SimulatedRig, ideal_rig
@@ -92,11 +92,26 @@ def hil_run_command(
     realtime: Annotated[
         str, typer.Option(help="scheduling: auto | fifo | off (docs/hil.md)")
     ] = "auto",
+    monitor: Annotated[
+        bool,
+        typer.Option(
+            "--monitor", help="serve the browser monitor with the run attached (until Ctrl-C)"
+        ),
+    ] = False,
+    port: Annotated[int, typer.Option(help="monitor TCP port (with --monitor)")] = 8765,
+    host: Annotated[
+        str, typer.Option(help="monitor address (with --monitor; loopback unless --token)")
+    ] = "127.0.0.1",
+    token: Annotated[
+        str | None, typer.Option(help="monitor access token (with --monitor; ?token=...)")
+    ] = None,
 ) -> None:
     """Run SCENARIO hardware-in-the-loop for DURATION seconds at RATE Hz.
 
     The loop runs in its own process; on exit the stop reason and the deadline
-    statistics are printed. A safety trip exits with code 1.
+    statistics are printed. A safety trip exits with code 1. With --monitor the browser
+    monitor is served instead, with this run started and attached (live plots, live
+    changes, STOP, recording download), until Ctrl-C.
     """
     from mrsuspension.hil.loop import _simulation_of
 
@@ -108,6 +123,17 @@ def hil_run_command(
                 f"--realtime {realtime!r}: `hil run` runs in real time; valid: auto, fifo, off"
             )
         sim = _simulation_of(scenario)
+        if monitor:
+            from mrsuspension.monitor.app import AttachedRun
+            from mrsuspension.monitor.cli import serve
+
+            check_range("duration", duration, 0.0, 1e5, unit="s", low_inclusive=False)
+            check_range("rate", rate, 50.0, 5000.0, unit="Hz")
+            serve(
+                host, port, token, rig=rig, workdir=out,
+                attach=AttachedRun(sim, rate=rate, duration=duration),
+            )  # fmt: skip
+            return
         the_rig = make_rig(rig, sim.damper)
         tmp = None
         target = out

@@ -20,6 +20,13 @@ the recorder's writer runs in another thread behind a bounded queue.
 
 On a trip (or at the end of the run) the drive current goes to 0 in the same tick and
 the actuator is ramped back to mid-stroke before the loop stops.
+
+Optional live hooks (:class:`~mrsuspension.hil.live.LoopHooks`, used by the browser
+monitor; None keeps the loop as it is): a **tap** (decimated rows and status into a bounded queue, dropped when full),
+an external **stop** event (the safety path: current 0 in the tick it is seen, actuator
+back to mid-stroke, reason recorded) and a **settings** queue of new
+:class:`~mrsuspension.hil.live.LiveChange` configurations applied between ticks (a
+controller change ramps the drive current, an excitation change cross-fades the road).
 """
 
 from __future__ import annotations
@@ -43,6 +50,14 @@ import numpy as np
 from mrsuspension.engine.simulate import DEFAULT_DT, Simulation, SimulationDiverged
 from mrsuspension.errors import MRSuspensionError, ValidationError, check_range
 from mrsuspension.hil.driver import PICurrentDriver
+from mrsuspension.hil.live import (
+    LiveChange,
+    LoopHooks,
+    _apply_settings,
+    _live_status,
+    _Road,
+    tick_step,
+)
 from mrsuspension.hil.realtime import normalise_mode, realtime_session
 from mrsuspension.hil.recorder import Recorder, Recording, load_recording
 from mrsuspension.hil.rig import Rig, SimulatedRig
@@ -55,6 +70,8 @@ __all__ = [
     "STATE_STARTUP",
     "STATE_TRIPPED",
     "HilResult",
+    "LiveChange",
+    "LoopHooks",
     "TickStats",
     "run_hil",
 ]
@@ -310,6 +327,7 @@ def run_hil(
     cap_current: bool = True,
     process: bool = False,
     on_stop: Callable[[HilResult], None] | None = None,
+    hooks: LoopHooks | None = None,
 ) -> HilResult:
     """Run a scenario in the loop with a rig.
 
@@ -351,6 +369,8 @@ def run_hil(
         Run the loop in its own process (``multiprocessing``, spawn); needs ``out``.
     on_stop : callable, optional
         Called with the result before it is returned.
+    hooks : LoopHooks, optional
+        Live tap, external stop and settings channel (the monitor's); None: none.
 
     Returns
     -------
@@ -363,6 +383,7 @@ def run_hil(
         return _run_in_process(
             target, rig, duration, rate, Path(out), model_dt=model_dt, limits=limits,
             startup=startup, driver=driver, realtime=realtime, cap_current=cap_current,
+            hooks=hooks,
         )  # fmt: skip
     mode = normalise_mode(realtime)
     realtime = mode != "unpaced"
@@ -381,18 +402,16 @@ def run_hil(
         )
     driver = driver or PICurrentDriver(current_limit=limits.current)
     period = 1.0 / rate
-    n_sub = max(1, math.ceil(period / model_dt - 1e-9))
-    dt = period / n_sub
+    dt = tick_step(rate, model_dt)
+    n_sub = round(period / dt)
     stepper = sim.stepper(dt, external_force=True)
     n_ticks = max(1, round(duration * rate))
-    t_half = np.arange(2 * n_sub * n_ticks + 1) * (0.5 * dt)
-    zr = np.asarray(sim.excitation.displacement(t_half), dtype=float)
-    zrd = np.asarray(sim.excitation.velocity(t_half), dtype=float)
-    if not (np.all(np.isfinite(zr)) and np.all(np.isfinite(zrd))):
-        raise ValidationError("the excitation produced non-finite road values")
-    road = zr.tolist()
-    road_v = zrd.tolist()
-    del zr, zrd, t_half
+    # the whole run's road at once; with live hooks, blocks of 50 ms (the excitation can
+    # change between ticks)
+    road_src = _Road(
+        sim.excitation, n_sub, dt, n_ticks if hooks is None else max(1, round(0.05 * rate))
+    )
+    road, road_v = road_src.block(0)
     max_return = limits.stroke / limits.return_rate + 2 * _SETTLE
     n_max = n_ticks + math.ceil(max_return * rate) + 1
 
@@ -435,10 +454,12 @@ def run_hil(
     )
     compute = np.zeros(n_max)
     lateness = np.zeros(n_max)
+    if hooks is not None:  # a first message before the clock starts (a queue's feeder thread)
+        hooks.send("started", {"rate": rate, "ticks": n_ticks})
     with realtime_session(mode, compute, lateness) as rt:  # scheduling hook (hil/realtime.py)
         reason, ticks = _loop(
             stepper, rig, driver, supervisor, startup, recorder, road, road_v, n_ticks, n_max,
-            n_sub, period, realtime, compute, lateness,
+            n_sub, period, realtime, compute, lateness, hooks, road_src,
         )  # fmt: skip
     stats = TickStats.from_arrays(
         compute[:ticks], lateness[:ticks], period, realtime, scheduling=rt.label()
@@ -453,6 +474,8 @@ def run_hil(
     }
     recorder.close(stop)
     rig.close()
+    if hooks is not None:
+        hooks.send("status", _status(supervisor, "ended", reason, ticks, stats, hooks))
     recording = load_recording(rec_dir)
     if tmp_dir is not None:
         shutil.rmtree(tmp_dir, ignore_errors=True)
@@ -485,6 +508,8 @@ def _loop(
     realtime: bool,
     compute: np.ndarray,
     lateness: np.ndarray,
+    hooks: LoopHooks | None,
+    road_src: _Road,
 ) -> tuple[str, int]:
     """The hot loop; returns (stop reason, ticks run)."""
     perf = time.perf_counter
@@ -517,6 +542,17 @@ def _loop(
     v_d = 0.0
     zr_now = road[0]
     zrd_now = road_v[0]
+    # live hooks (None: none of this runs)
+    hooked = hooks is not None
+    hk = hooks if hooks is not None else LoopHooks()
+    stop_set = hk.stop.is_set if hk.stop is not None else None
+    k_road = 0
+    chunk = road_src.chunk
+    ramp_left = 0
+    ramp_step_i = 0.0
+    last_demand = 0.0
+    demand = 0.0
+    pending: list[tuple[float, ...]] = []
 
     old_switch = sys.getswitchinterval()
     gc_was_enabled = gc.isenabled()
@@ -530,6 +566,12 @@ def _loop(
             release = t0 + k * period
             start = _wait_until(release, spin) if realtime else perf()
             t = k * period
+            if hooked and state <= STATE_RUN and k % hk.poll_every == 0:
+                ramp = _apply_settings(hk, stepper, road_src, supervisor, t, period)
+                if ramp:
+                    ramp_left = ramp
+                    ramp_step_i = lim.current * period / hk.ramp_now
+                    k_road = -chunk  # the new road from this tick on
             sample = read()
             active = state <= STATE_RUN
             if active and k >= n_ticks:
@@ -538,12 +580,19 @@ def _loop(
                 i_out = driver.off()
             if active:
                 try:
-                    tripped = check_sample(
-                        t, sample.force, sample.displacement, sample.current, sample.timestamp
-                    )
+                    if stop_set is not None and stop_set():
+                        supervisor.trip("STOP pressed", t)
+                        tripped = True
+                    else:
+                        tripped = check_sample(
+                            t, sample.force, sample.displacement, sample.current, sample.timestamp
+                        )
+                    if not tripped and k - k_road >= chunk:
+                        k_road = k
+                        road, road_v = road_src.block(k)
                     if not tripped:
                         c = startup.damping_at(t) if state == STATE_STARTUP else 0.0
-                        j = 2 * n_sub * k
+                        j = 2 * n_sub * (k - k_road)
                         for _ in range(n_sub):
                             fd = sample.force + c * v_d
                             out = step(
@@ -560,6 +609,13 @@ def _loop(
                         if state == STATE_STARTUP and k + 1 >= startup_ticks:
                             state = STATE_RUN
                         demand = 0.0 if (state == STATE_STARTUP and hold_current) else i_d
+                        if ramp_left:  # after a controller change: slew-limited demand
+                            ramp_left -= 1
+                            if demand > last_demand + ramp_step_i:
+                                demand = last_demand + ramp_step_i
+                            elif demand < last_demand - ramp_step_i:
+                                demand = last_demand - ramp_step_i
+                        last_demand = demand
                         tripped = check_command(t, out["x_d"], v_d, demand)
                         if not tripped:
                             x_cmd = out["x_d"]
@@ -575,6 +631,9 @@ def _loop(
                 except SimulationDiverged as exc:
                     supervisor.trip(f"vehicle model diverged: {exc}", t)
                     tripped = True
+                except ValidationError as exc:  # a live excitation gave non-finite values
+                    supervisor.trip(str(exc), t)
+                    tripped = True
                 except KeyboardInterrupt:
                     supervisor.trip("interrupted by the user", t)
                     tripped = True
@@ -582,6 +641,7 @@ def _loop(
                     state = STATE_TRIPPED
                     reason = supervisor.reason
                     i_out = driver.off()  # current to 0 in the tick of the trip
+                    last_demand = 0.0
             if state >= STATE_RETURN:
                 # ramp back to mid-stroke at the return rate, coil off
                 i_out = 0.0
@@ -599,19 +659,34 @@ def _loop(
                         k_end = k
                         command(x_cmd, i_out, v_cmd)
                         end = perf()
-                        append(_row(t, state, zr_now, zrd_now, out, sample, fd, i_d, i_out,
-                                    x_cmd, end - start, start - release if realtime else 0.0))  # fmt: skip
+                        row = _row(t, state, zr_now, zrd_now, out, sample, fd, i_d, i_out,
+                                   x_cmd, end - start, start - release if realtime else 0.0)  # fmt: skip
+                        append(row)
                         compute[k] = end - start
                         lateness[k] = start - release if realtime else 0.0
+                        if hooked:
+                            hk.row(row, pending)
+                            if pending:
+                                hk.send("data", pending)
                         return reason, k_end + 1
             command(x_cmd, i_out, v_cmd)
             end = perf()
             late = start - release if realtime else 0.0
-            append(_row(t, state, zr_now, zrd_now, out, sample, fd, i_d, i_out, x_cmd,
-                        end - start, late))  # fmt: skip
+            row = _row(t, state, zr_now, zrd_now, out, sample, fd, i_d, i_out, x_cmd,
+                       end - start, late)  # fmt: skip
+            append(row)
             compute[k] = end - start
             lateness[k] = late
             k += 1
+            if hooked:  # the tap: after the tick's work, never waiting
+                if k % hk.tap_every == 0:
+                    hk.row(row, pending)
+                if k % hk.tap_batch == 0 and pending:
+                    hk.send("data", pending)
+                    pending = []
+                if k % hk.status_every == 0 or (state == STATE_TRIPPED and not hk._trip_sent):
+                    hk.status(_live_status(hk, supervisor, state, k, compute, lateness, period,
+                                           i_out))  # fmt: skip
         if state == STATE_TRIPPED:
             return reason, k
         return f"{reason}; actuator did not settle at mid-stroke", k
@@ -619,6 +694,30 @@ def _loop(
         sys.setswitchinterval(old_switch)
         if gc_was_enabled:
             gc.enable()
+
+
+def _status(
+    supervisor: SafetySupervisor,
+    state: str,
+    reason: str,
+    ticks: int,
+    stats: TickStats,
+    hooks: LoopHooks,
+) -> dict[str, Any]:
+    return {
+        "state": state,
+        "reason": reason,
+        "ticks": ticks,
+        "misses": stats.misses,
+        "in_deadline": stats.in_deadline,
+        "compute_mean": stats.compute_p50,
+        "compute_max": stats.compute_max,
+        "tripped": supervisor.tripped,
+        "current": 0.0,
+        "safe": True,
+        "dropped": hooks.dropped,
+        "applied": hooks.applied,
+    }
 
 
 def _row(

@@ -1,8 +1,11 @@
 """HiL browser monitor (dissertation section 7.2.3): a page served by the toolkit.
 
-See ``docs/monitor.md``. :func:`create_app` builds the ASGI app;
-:func:`~mrsuspension.monitor.cli.monitor_command` serves it (``mrsus monitor``).
-Needs the ``web`` extra (starlette, uvicorn, websockets).
+See ``docs/monitor.md``. Each run is :func:`~mrsuspension.hil.run_hil` with a rig in the
+loop, in its own process, connected through the loop's live hooks (tap, STOP, settings
+applied between ticks). :func:`create_app` builds the ASGI app;
+:func:`~mrsuspension.monitor.cli.monitor_command` serves it (``mrsus monitor``, and
+``mrsus hil run ... --monitor``). Needs the ``web`` extra (starlette, uvicorn,
+websockets).
 """
 
 from __future__ import annotations

@@ -1,11 +1,14 @@
 """The monitor's ASGI application (Starlette): page, JSON API, WebSocket stream.
 
 Routes: ``GET /`` (the page), ``/static/...`` (its JS and CSS, package data),
-``POST /api/start`` (validated settings -> a new run; a :class:`ValidationError` comes
-back as ``400 {"error": ...}``), ``POST /api/stop``, ``GET /api/status``,
-``GET /api/recording`` (CSV of the last run) and ``WS /ws`` (JSON frames at about 20 Hz:
-new decimated samples, loop status, live measures). When the app has an access token
-every request must carry ``?token=...``.
+``POST /api/start`` (validated settings -> a new HiL run; a :class:`ValidationError`
+comes back as ``400 {"error": ...}``), ``POST /api/apply`` (validated settings -> the
+running loop, applied between ticks), ``POST /api/stop`` (STOP), ``POST /api/record``
+(record start/stop), ``POST /api/acquisition`` (period, trigger, display rate),
+``GET /api/status``, ``GET /api/recording`` (CSV of the acquired rows of the HiL
+recording) and ``WS /ws`` (JSON frames at 25 Hz: new samples at the display rate, loop
+status, live measures). When the app has an access token every request must carry
+``?token=...``.
 """
 
 from __future__ import annotations
@@ -15,8 +18,10 @@ import contextlib
 import hmac
 import math
 import tempfile
+import time
 from collections import deque
 from collections.abc import AsyncIterator
+from dataclasses import dataclass
 from importlib import resources
 from pathlib import Path
 from typing import Any
@@ -30,17 +35,34 @@ from starlette.staticfiles import StaticFiles
 from starlette.types import ASGIApp, Receive, Scope, Send
 from starlette.websockets import WebSocket, WebSocketDisconnect
 
+from mrsuspension.engine.simulate import Simulation
 from mrsuspension.errors import ValidationError
-from mrsuspension.measures.steady import G, T_as, T_au, T_dr, T_ds, T_du, dlc
-from mrsuspension.monitor.runner import DISPLAY_CHANNELS, DISPLAY_RATE, LoopHandle
-from mrsuspension.monitor.settings import MonitorSettings, scenario_from_settings
+from mrsuspension.hil.loop import CHANNELS, LiveChange
+from mrsuspension.hil.recorder import META_FILE, load_recording
+from mrsuspension.measures.steady import T_as, T_au, T_dr, T_ds, T_du, dlc
+from mrsuspension.monitor.acquisition import Acquisition, acquisition_from_settings
+from mrsuspension.monitor.runner import TAP_RATE, LoopHandle
+from mrsuspension.monitor.settings import MonitorSettings, page_fields, scenario_from_settings
 
-__all__ = ["MonitorState", "create_app", "live_measures"]
+__all__ = ["DISPLAY_CHANNELS", "AttachedRun", "MonitorState", "create_app", "live_measures"]
+
+#: channels shown by the page (loop channels plus the derived z_r'' and model force F_dmod)
+DISPLAY_CHANNELS: tuple[str, ...] = (
+    "time", "state", "z_r", "z_r_dot", "z_r_ddot", "z_s", "z_s_ddot", "z_u", "z_u_ddot",
+    "x_d", "x_m", "F_dm", "F_dmod", "F_T", "i_d", "i_cmd", "i_dm",
+)  # fmt: skip
+_COL = {name: j for j, (name, _) in enumerate(CHANNELS)}
+#: longest wait for a stopped loop to bring the actuator back to mid-stroke and end [s]
+_RETURN_WAIT = 15.0
+#: live measures are recomputed this often [s]
+_MEASURE_PERIOD = 0.2
+#: rows kept for the model force and z_r'' (contiguous tail of the tap stream)
+_DERIVE_KEEP = 400
 
 #: seconds of display samples kept by the server
 _KEEP = 10.0
-#: frame period of the WebSocket stream [s]
-_FRAME = 0.05
+#: frame period of the WebSocket stream [s] (25 Hz, on a fixed clock: >= 20 Hz under load)
+_FRAME = 0.04
 
 
 def live_measures(data: dict[str, np.ndarray], static_load: float) -> dict[str, float | None]:
@@ -95,51 +117,216 @@ def live_measures(data: dict[str, np.ndarray], static_load: float) -> dict[str, 
     return result
 
 
+@dataclass
+class AttachedRun:
+    """A run the server starts by itself (``mrsus hil run SCENARIO --monitor``).
+
+    Attributes
+    ----------
+    simulation : Simulation
+        The scenario's configuration (its damper stays; the page changes the rest live).
+    rate, duration : float
+        Loop rate [Hz] and run length [s].
+    """
+
+    simulation: Simulation
+    rate: float = 1000.0
+    duration: float = 60.0
+
+
 class MonitorState:
-    """The server's state: current run, display buffers, connected pages.
+    """The server's state: current run, display buffers, acquisition.
 
     Parameters
     ----------
     workdir : path, optional
         Where recordings are written (default: a temporary directory).
+    rig : str
+        Rig of the runs: ``simulated`` (default), ``ideal`` or ``udp://HOST:PORT``.
+    road_dir : path, optional
+        Directory the page may take road files from (None: presets only).
     """
 
-    def __init__(self, workdir: Path | None = None) -> None:
+    def __init__(
+        self, workdir: Path | None = None, rig: str = "simulated", road_dir: Path | None = None
+    ) -> None:
         self.workdir = Path(workdir or tempfile.mkdtemp(prefix="mrsus-monitor-"))
+        self.rig = rig
+        self.road_dir = road_dir
         self.handle: LoopHandle | None = None
         self.settings: MonitorSettings | None = None
+        self.base: Simulation | None = None
+        self.simulation: Simulation | None = None
         self.run_id = 0
-        self.status: dict[str, Any] = {"state": "idle", "reason": ""}
+        self.status: dict[str, Any] = {"state": "idle", "reason": "", "rig": rig}
         self.recording: Path | None = None
-        maxlen = int(_KEEP * DISPLAY_RATE)
+        self.acquisition = Acquisition()
+        maxlen = int(_KEEP * TAP_RATE)
         self.buffers: dict[str, deque[float]] = {c: deque(maxlen=maxlen) for c in DISPLAY_CHANNELS}
-        self.fresh: list[list[float]] = []
+        self.raw: deque[Any] = deque(maxlen=_DERIVE_KEEP)
+        self.fresh: list[list[float | None]] = []
+        self.seen = 0
         self.static_load = 0.0
+        self.loop_time = 0.0
+        self.events: deque[str] = deque(maxlen=20)
+        self._measures: dict[str, float | None] = {}
+        self._measured_at = 0.0
+
+    # -- runs ------------------------------------------------------------------------------
+    def validate(self, raw: dict[str, Any]) -> tuple[MonitorSettings, Simulation]:
+        """Validate page settings; the simulation they describe (on the attached base)."""
+        settings = scenario_from_settings(raw, self.road_dir)  # raises ValidationError
+        return settings, settings.simulation(self.base)
 
     def start(self, raw: dict[str, Any]) -> dict[str, Any]:
         """Validate ``raw`` settings and start a run (stopping any running one)."""
-        settings = scenario_from_settings(raw)  # raises ValidationError
+        settings, sim = self.validate(raw)
+        return self._launch(sim, settings.rate, settings.duration, settings.ramp_time, settings)
+
+    def attach(self, run: AttachedRun) -> dict[str, Any]:
+        """Start the attached run (its scenario's damper is kept for live changes)."""
+        self.base = run.simulation
+        return self._launch(run.simulation, run.rate, run.duration, 0.2, None)
+
+    def _launch(
+        self,
+        sim: Simulation,
+        rate: float,
+        duration: float,
+        ramp_time: float,
+        settings: MonitorSettings | None,
+    ) -> dict[str, Any]:
         self.stop()
         if self.handle is not None:
-            self.handle.join(2.0)
+            self.handle.join(_RETURN_WAIT)
         self.run_id += 1
         self.settings = settings
-        vehicle = settings.scenario().simulations()[0].vehicle
-        self.static_load = (vehicle.sprung_mass + vehicle.unsprung_mass) * G
+        self.simulation = sim
+        self.static_load = sim.vehicle.static_load
         for buf in self.buffers.values():
             buf.clear()
+        self.raw.clear()
         self.fresh = []
-        out = self.workdir / f"run-{self.run_id:03d}.csv"
+        self.seen = 0
+        self.loop_time = 0.0
+        self._measures = {}
+        self._measured_at = 0.0
+        self.acquisition = Acquisition(
+            period=self.acquisition.period,
+            trigger=self.acquisition.trigger,
+            level=self.acquisition.level,
+            edge=self.acquisition.edge,
+            pre_trigger=self.acquisition.pre_trigger,
+            display_rate=self.acquisition.display_rate,
+        )
+        out = self.workdir / f"run-{self.run_id:03d}"
         self.recording = None
-        self.status = {"state": "starting", "reason": "", "run": self.run_id}
-        self.handle = LoopHandle(settings.to_dict(), out)
-        return {"run": self.run_id, "tables": settings.tables}
+        self.status = {
+            "state": "starting", "reason": "", "run": self.run_id, "rig": self.rig,
+            "applied": 0, "safe": False, "fields": page_fields(sim),
+        }  # fmt: skip
+        self.handle = LoopHandle(sim, self.rig, rate, duration, out, ramp_time=ramp_time)
+        return {"run": self.run_id, "rig": self.rig, "fields": self.status["fields"]}
+
+    def apply(self, raw: dict[str, Any]) -> dict[str, Any]:
+        """Validate ``raw`` settings and send them to the running loop (between ticks)."""
+        settings, sim = self.validate(raw)  # invalid settings never reach the loop
+        h = self.handle
+        if (
+            h is None
+            or not h.alive()
+            or self.status.get("state") not in ("starting", "startup", "running")
+        ):
+            raise ValidationError("no run is going: press Start first")
+        old = self.simulation if self.simulation is not None else sim
+        # prepared here: the loop only swaps arrays
+        change = LiveChange.prepare(sim, old, h.rate, ramp_time=settings.ramp_time)
+        if not h.apply(change):
+            raise ValidationError("the loop has not taken the previous change yet; try again")
+        self.simulation = sim
+        self.static_load = sim.vehicle.static_load
+        self.status["fields"] = page_fields(sim)
+        return {"queued": True, "fields": self.status["fields"]}
 
     def stop(self) -> None:
-        """Ask the running loop to stop."""
+        """STOP: ask the running loop to take its safety path."""
         if self.handle is not None and self.handle.alive():
             self.handle.stop()
-            self.status["state"] = "stopping"
+            if self.status.get("state") not in ("ended", "error"):
+                self.status["state"] = "stopping"
+
+    # -- acquisition -----------------------------------------------------------------------
+    def record(self, action: str) -> dict[str, Any]:
+        """Record start/stop at the loop time last heard of."""
+        if action == "start":
+            self.acquisition = self.acquisition.start(self.loop_time)
+        elif action == "stop":
+            self.acquisition = self.acquisition.stop(self.loop_time)
+        else:
+            raise ValidationError(f"unknown record action {action!r}; valid: start, stop")
+        return self.acquisition.describe()
+
+    def set_acquisition(self, raw: dict[str, Any]) -> dict[str, Any]:
+        """Validate and set the acquisition period, trigger and display rate."""
+        self.acquisition = acquisition_from_settings(raw, self.acquisition)
+        return self.acquisition.describe()
+
+    def export(self) -> tuple[Path, int]:
+        """The acquired rows of the current run's HiL recording as a CSV file."""
+        h = self.handle
+        if h is None or not (h.out / META_FILE).exists():
+            raise ValidationError("no recording yet: start a run first")
+        rec = load_recording(h.out)
+        if len(rec) == 0:
+            raise ValidationError("the recording holds no rows yet")
+        path, rows = self.acquisition.export(rec, self.workdir / f"run-{self.run_id:03d}.csv")
+        if rows == 0:
+            raise ValidationError(
+                "no rows acquired (the trigger did not fire or no record window covers data)"
+            )
+        return path, rows
+
+    # -- stream ----------------------------------------------------------------------------
+    def _derive(self, rows: Any) -> np.ndarray:
+        """Display rows of new tap rows: z_r'' and the model damper force added."""
+        self.raw.extend(rows)
+        tail = np.asarray(self.raw, dtype=float)
+        t = tail[:, _COL["time"]]
+        # the contiguous part (a dropped batch leaves a gap)
+        steps = np.diff(t)
+        if steps.size:
+            dt = float(np.median(steps))
+            gaps = np.flatnonzero(np.abs(steps - dt) > 1e-6 * max(dt, 1e-9) + 1e-12)
+            first = int(gaps[-1]) + 1 if gaps.size else 0
+        else:
+            dt, first = 0.0, 0
+        part = tail[first:]
+        n = len(rows)
+        zr_dd = np.zeros(len(part))
+        f_mod = np.full(len(part), math.nan)
+        if len(part) >= 3 and dt > 0:
+            zr_dd = np.gradient(part[:, _COL["z_r_dot"]], dt)
+            sim = self.simulation
+            if sim is not None:
+                damper = sim.damper
+                i = np.clip(part[:, _COL["i_dm"]], 0.0, damper.max_current)
+                with contextlib.suppress(ValidationError):
+                    f_mod = damper.response(
+                        part[:, _COL["time"]], part[:, _COL["x_m"]], current=i
+                    ).force
+        if len(part) < n:  # fewer contiguous rows than new ones: pad the head
+            zr_dd = np.concatenate([np.zeros(n - len(part)), zr_dd])
+            f_mod = np.concatenate([np.full(n - len(part), math.nan), f_mod])
+        new = tail[-n:]
+        out = np.empty((n, len(DISPLAY_CHANNELS)))
+        for j, name in enumerate(DISPLAY_CHANNELS):
+            if name == "z_r_ddot":
+                out[:, j] = zr_dd[-n:]
+            elif name == "F_dmod":
+                out[:, j] = f_mod[-n:]
+            else:
+                out[:, j] = new[:, _COL[name]]
+        return out
 
     def poll(self) -> None:
         """Take what the loop sent (never blocks)."""
@@ -147,34 +334,81 @@ class MonitorState:
         if h is None:
             return
         for kind, msg in h.drain():
-            if kind == "data":
-                rows = np.asarray(msg, dtype=float)
+            if kind == "data" and len(msg):
+                rows = self._derive(msg)
+                self.loop_time = float(rows[-1, 0])
+                step = max(1, round(TAP_RATE / self.acquisition.display_rate))
                 for i, name in enumerate(DISPLAY_CHANNELS):
                     self.buffers[name].extend(rows[:, i].tolist())
-                self.fresh.extend(rows.tolist())
+                for r in rows:
+                    if self.seen % step == 0:
+                        self.fresh.append([float(x) if math.isfinite(x) else None for x in r])
+                    self.seen += 1
             elif kind == "status":
                 self.status.update(msg)
+                self.status["safe"] = msg.get("state") in (
+                    "tripped",
+                    "returning",
+                    "ended",
+                ) and not msg.get("current")
+            elif kind == "applied":
+                self.status["applied"] = msg.get("count", 0)
+                self.events.append(
+                    f"t = {msg.get('time', 0):.2f} s: change #{msg.get('count')} applied"
+                )
+            elif kind == "rejected":
+                self.events.append(
+                    f"t = {msg.get('time', 0):.2f} s: change refused: {msg.get('error')}"
+                )
             elif kind == "end":
                 self.status.update(msg)
                 self.status["safe"] = True
-                if h.out.exists():
-                    self.recording = h.out
-        if not h.alive() and self.status.get("state") in ("starting", "running", "stopping"):
-            if h.out.exists():
                 self.recording = h.out
-            self.status.update({"state": "ended", "safe": True})
+        if not h.alive() and self.status.get("state") in (
+            "starting",
+            "startup",
+            "running",
+            "stopping",
+            "tripped",
+            "returning",
+        ):
+            self.status.update({"state": "ended", "safe": True, "current": 0.0})
+            if (h.out / META_FILE).exists():
+                self.recording = h.out
 
-    def frame(self) -> dict[str, Any]:
-        """One WebSocket frame: new samples, status and live measures."""
-        data = {k: np.fromiter(v, dtype=float) for k, v in self.buffers.items()}
-        fresh, self.fresh = self.fresh, []
+    def measures(self) -> dict[str, float | None]:
+        """Live measures, recomputed at most every 0.2 s (they span seconds)."""
+        now = time.monotonic()
+        if now - self._measured_at >= _MEASURE_PERIOD or not self._measures:
+            names = ("time", "z_r", "z_r_dot", "z_s", "z_u", "z_s_ddot", "z_u_ddot", "x_d", "F_T")
+            data = {k: np.fromiter(self.buffers[k], dtype=float) for k in names}
+            self._measures = live_measures(data, self.static_load) if self.static_load else {}
+            self._measured_at = now
+        return self._measures
+
+    def history(self) -> dict[str, Any]:
+        """A frame with the buffered rows (last 10 s at the display rate), for a new page."""
+        step = max(1, round(TAP_RATE / self.acquisition.display_rate))
+        cols = [list(self.buffers[name])[::step] for name in DISPLAY_CHANNELS]
+        rows = [
+            [float(x) if math.isfinite(x) else None for x in r] for r in zip(*cols, strict=True)
+        ]
+        return {**self.frame(consume=False), "rows": rows, "history": True}
+
+    def frame(self, consume: bool = True) -> dict[str, Any]:
+        """One WebSocket frame: new samples (taken unless ``consume`` is False), status..."""
+        fresh: list[list[float | None]] = []
+        if consume:
+            fresh, self.fresh = self.fresh, []
         return {
             "run": self.run_id,
             "channels": list(DISPLAY_CHANNELS),
             "rows": fresh,
             "status": self.status,
-            "measures": live_measures(data, self.static_load) if self.static_load else {},
-            "recording": self.recording is not None,
+            "measures": self.measures(),
+            "recording": self.recording is not None or self.handle is not None,
+            "acquisition": self.acquisition.describe(),
+            "events": list(self.events),
         }
 
 
@@ -205,7 +439,14 @@ def _static_dir() -> Path:
     return Path(str(resources.files("mrsuspension.monitor") / "static"))
 
 
-def create_app(token: str | None = None, workdir: Path | None = None) -> Starlette:
+def create_app(
+    token: str | None = None,
+    workdir: Path | None = None,
+    *,
+    rig: str = "simulated",
+    attach: AttachedRun | None = None,
+    road_dir: Path | None = None,
+) -> Starlette:
     """Build the monitor application.
 
     Parameters
@@ -215,29 +456,43 @@ def create_app(token: str | None = None, workdir: Path | None = None) -> Starlet
         :func:`~mrsuspension.monitor.cli.monitor_command` off loopback).
     workdir : path, optional
         Directory for the recordings (default: a temporary one).
+    rig : str
+        Rig of the runs: ``simulated`` (default), ``ideal`` or ``udp://HOST:PORT``.
+    attach : AttachedRun, optional
+        A run started with the server (``mrsus hil run ... --monitor``).
+    road_dir : path, optional
+        Directory the page may take road files from (None: presets only).
 
     Returns
     -------
     Starlette
         The ASGI app; ``app.state.monitor`` is its :class:`MonitorState`.
     """
-    state = MonitorState(workdir)
+    state = MonitorState(workdir, rig=rig, road_dir=road_dir)
     clients: set[WebSocket] = set()
 
     async def index(request: Request) -> HTMLResponse:
         return HTMLResponse((_static_dir() / "index.html").read_text(encoding="utf-8"))
 
-    async def start(request: Request) -> JSONResponse:
+    async def _json(request: Request) -> dict[str, Any]:
         try:
             raw = await request.json()
-            if not isinstance(raw, dict):
-                raise ValidationError("settings must be a JSON object")
-            info = await asyncio.to_thread(state.start, raw)
-        except ValidationError as exc:
-            return JSONResponse({"error": str(exc)}, status_code=400)
         except ValueError as exc:
-            return JSONResponse({"error": f"bad request: {exc}"}, status_code=400)
-        return JSONResponse(info)
+            raise ValidationError(f"bad request: {exc}") from None
+        if not isinstance(raw, dict):
+            raise ValidationError("the request body must be a JSON object")
+        return raw
+
+    def _call(fn: Any) -> Any:
+        async def endpoint(request: Request) -> JSONResponse:
+            try:
+                raw = await _json(request)
+                info = await asyncio.to_thread(fn, raw)
+            except ValidationError as exc:
+                return JSONResponse({"error": str(exc)}, status_code=400)
+            return JSONResponse(info)
+
+        return endpoint
 
     async def stop(request: Request) -> JSONResponse:
         state.stop()
@@ -245,16 +500,26 @@ def create_app(token: str | None = None, workdir: Path | None = None) -> Starlet
 
     async def status(request: Request) -> JSONResponse:
         state.poll()
-        return JSONResponse(state.status)
+        return JSONResponse(
+            {**state.status, "acquisition": state.acquisition.describe(), "run": state.run_id}
+        )
 
     async def recording(request: Request) -> Response:
         state.poll()
-        if state.recording is None or not state.recording.exists():
-            return JSONResponse({"error": "no recording yet (stop a run first)"}, status_code=404)
-        return FileResponse(state.recording, media_type="text/csv", filename=state.recording.name)
+        try:
+            path, rows = await asyncio.to_thread(state.export)
+        except ValidationError as exc:
+            return JSONResponse({"error": str(exc)}, status_code=404)
+        return FileResponse(
+            path, media_type="text/csv", filename=path.name, headers={"X-Rows": str(rows)}
+        )
 
     async def ws(websocket: WebSocket) -> None:
         await websocket.accept()
+        try:  # what happened so far, then the stream
+            await websocket.send_json(state.history())
+        except Exception:
+            return
         clients.add(websocket)
         try:
             while True:
@@ -265,13 +530,19 @@ def create_app(token: str | None = None, workdir: Path | None = None) -> Starlet
             clients.discard(websocket)
 
     async def pump() -> None:
+        loop = asyncio.get_running_loop()
+        due = loop.time()
         while True:
-            await asyncio.sleep(_FRAME)
-            state.poll()
-            if not clients:
-                state.fresh = []
+            due += _FRAME
+            now = loop.time()
+            if due < now - 5 * _FRAME:  # far behind (suspended): do not burst
+                due = now
+            await asyncio.sleep(max(0.0, due - now))
+            try:
+                state.poll()
+                frame = state.frame()
+            except Exception:  # never let the stream die
                 continue
-            frame = state.frame()
             for client in list(clients):
                 try:
                     await asyncio.wait_for(client.send_json(frame), timeout=0.5)
@@ -281,19 +552,27 @@ def create_app(token: str | None = None, workdir: Path | None = None) -> Starlet
     @contextlib.asynccontextmanager
     async def lifespan(app: Starlette) -> AsyncIterator[None]:
         task = asyncio.create_task(pump())
+        if attach is not None:
+            await asyncio.to_thread(state.attach, attach)
         try:
             yield
         finally:
             task.cancel()
             state.stop()
             if state.handle is not None:
-                state.handle.join(2.0)
+                await asyncio.to_thread(state.handle.join, _RETURN_WAIT)
+
+    def record(raw: dict[str, Any]) -> dict[str, Any]:
+        return state.record(str(raw.get("action", "")))
 
     app = Starlette(
         routes=[
             Route("/", index),
-            Route("/api/start", start, methods=["POST"]),
+            Route("/api/start", _call(state.start), methods=["POST"]),
+            Route("/api/apply", _call(state.apply), methods=["POST"]),
             Route("/api/stop", stop, methods=["POST"]),
+            Route("/api/record", _call(record), methods=["POST"]),
+            Route("/api/acquisition", _call(state.set_acquisition), methods=["POST"]),
             Route("/api/status", status),
             Route("/api/recording", recording),
             WebSocketRoute("/ws", ws),

@@ -5,13 +5,17 @@ from __future__ import annotations
 import ipaddress
 import secrets
 import webbrowser
-from typing import Annotated
+from pathlib import Path
+from typing import TYPE_CHECKING, Annotated, Any
 
 import typer
 
 from mrsuspension.errors import ValidationError
 
-__all__ = ["check_bind", "is_loopback", "monitor_command"]
+if TYPE_CHECKING:
+    from mrsuspension.monitor.app import AttachedRun
+
+__all__ = ["check_bind", "check_rig", "is_loopback", "monitor_command", "serve"]
 
 
 def is_loopback(host: str) -> bool:
@@ -39,6 +43,53 @@ def check_bind(host: str, token: str | None) -> None:
         )
 
 
+def check_rig(spec: str) -> str:
+    """Validate a ``--rig`` spec (a UDP rig is pinged); returns it normalised.
+
+    Raises
+    ------
+    ValidationError
+        For an unknown rig, a bad ``udp://HOST:PORT`` or a UDP rig that does not answer.
+    """
+    from mrsuspension.dampers import WangSymmetric
+    from mrsuspension.hil.cli import make_rig
+
+    rig = make_rig(spec, WangSymmetric())
+    rig.close()
+    spec = spec.strip()
+    return spec if spec.lower().startswith("udp://") else spec.lower()
+
+
+def serve(
+    host: str,
+    port: int,
+    token: str | None,
+    *,
+    rig: str = "simulated",
+    attach: AttachedRun | None = None,
+    road_dir: Path | None = None,
+    open_browser: bool = False,
+    workdir: Path | None = None,
+) -> None:
+    """Serve the monitor with uvicorn until Ctrl-C (checks the bind and the rig first)."""
+    check_bind(host, token)
+    rig = check_rig(rig)
+    if road_dir is not None and not road_dir.is_dir():
+        raise ValidationError(f"--road-dir {road_dir} is not a directory")
+    import uvicorn
+
+    from mrsuspension.monitor.app import create_app
+
+    app = create_app(token=token, workdir=workdir, rig=rig, attach=attach, road_dir=road_dir)
+    shown = "localhost" if is_loopback(host) else host
+    url = f"http://{shown}:{port}/" + (f"?token={token}" if token else "")
+    typer.echo(f"mrsus monitor ({rig} rig): {url}")
+    if open_browser:
+        webbrowser.open(url)
+    kwargs: dict[str, Any] = {"host": host, "port": port, "log_level": "warning"}
+    uvicorn.run(app, **kwargs)
+
+
 def monitor_command(
     host: Annotated[str, typer.Option(help="address to bind (loopback unless --token)")] = (
         "127.0.0.1"
@@ -49,17 +100,25 @@ def monitor_command(
         typer.Option(help="access token required in the URL (?token=...); needed off loopback"),
     ] = None,
     open_browser: Annotated[bool, typer.Option(help="open the page in a browser")] = False,
+    rig: Annotated[
+        str, typer.Option(help="rig in the loop: simulated | ideal | udp://HOST:PORT")
+    ] = "simulated",
+    road_dir: Annotated[
+        Path | None, typer.Option(help="directory the page may take road profile files from")
+    ] = None,
+    workdir: Annotated[
+        Path | None, typer.Option(help="directory for the recordings (default: a temporary one)")
+    ] = None,
 ) -> None:
-    """Serve the HiL browser monitor (live plots, measures, STOP, recording)."""
-    check_bind(host, token)
-    import uvicorn
+    """Serve the HiL browser monitor (live plots, measures, STOP, recording).
 
-    from mrsuspension.monitor.app import create_app
+    Runs started from the page are HiL runs (`run_hil`) with the --rig rig in the loop,
+    in their own process; settings changed on the page are applied between ticks.
+    """
+    from mrsuspension._cli_errors import _user_errors
 
-    app = create_app(token=token)
-    shown = "localhost" if is_loopback(host) else host
-    url = f"http://{shown}:{port}/" + (f"?token={token}" if token else "")
-    typer.echo(f"mrsus monitor: {url}")
-    if open_browser:
-        webbrowser.open(url)
-    uvicorn.run(app, host=host, port=port, log_level="warning")
+    with _user_errors():
+        serve(
+            host, port, token, rig=rig, road_dir=road_dir, open_browser=open_browser,
+            workdir=workdir,
+        )  # fmt: skip

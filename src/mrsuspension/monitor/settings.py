@@ -8,16 +8,31 @@ building the simulation), so an invalid entry raises
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import Any
+from pathlib import Path
+from typing import Any, ClassVar
 
+import numpy as np
+import numpy.typing as npt
+
+from mrsuspension.engine.simulate import Simulation
 from mrsuspension.errors import ValidationError
-from mrsuspension.excitation import PRESET_ROADS
+from mrsuspension.excitation import PRESET_ROADS, Excitation
 from mrsuspension.scenario import Scenario
+from mrsuspension.vehicle import QuarterCar
 
-__all__ = ["CONTROLLERS", "EXCITATIONS", "MonitorSettings", "scenario_from_settings"]
+__all__ = [
+    "CONTROLLERS",
+    "EXCITATIONS",
+    "VEHICLE_FIELDS",
+    "MonitorSettings",
+    "ZeroRoad",
+    "page_fields",
+    "scenario_from_settings",
+]
 
 #: controller choices of the page
 CONTROLLERS = ("passive-zero", "fixed-current", "skyhook-hilo", "inverse-hilo", "sliding-mode")
@@ -25,8 +40,50 @@ CONTROLLERS = ("passive-zero", "fixed-current", "skyhook-hilo", "inverse-hilo", 
 EXCITATIONS = ("zero", "harmonic", "pulse", "road")
 #: drive-current limit of the monitored run [A] (the HiL safety limit)
 MAX_CURRENT = 0.3
-#: placeholder excitation used to validate a "zero input" run (the road is then held at 0)
+#: placeholder excitation used to validate a "zero input" run (then replaced by ZeroRoad)
 _ZERO_PLACEHOLDER = {"kind": "harmonic", "frequency": 1.0, "amplitude": 0.01}
+#: vehicle parameters of the page (form field -> QuarterCar field, label)
+VEHICLE_FIELDS: dict[str, str] = {
+    "sprung_mass": "m_s [kg]",
+    "unsprung_mass": "m_u [kg]",
+    "suspension_stiffness": "k_s [N/m]",
+    "tire_stiffness": "k_t [N/m]",
+    "tire_damping": "c_t [N s/m]",
+}
+
+
+@dataclass(frozen=True)
+class ZeroRoad(Excitation):
+    """Zero road input (the monitor's "zero input" excitation).
+
+    Examples
+    --------
+    >>> ZeroRoad().displacement([0.0, 1.0]).tolist()
+    [0.0, 0.0]
+    """
+
+    name: ClassVar[str] = "zero"
+
+    def displacement(self, t: npt.ArrayLike) -> np.ndarray:
+        """0 m at every time."""
+        return np.zeros(np.shape(t))
+
+    def velocity(self, t: npt.ArrayLike) -> np.ndarray:
+        """0 m/s at every time."""
+        return np.zeros(np.shape(t))
+
+    def acceleration(self, t: npt.ArrayLike) -> np.ndarray:
+        """0 m/s^2 at every time."""
+        return np.zeros(np.shape(t))
+
+    @property
+    def duration(self) -> float:
+        """10 s."""
+        return 10.0
+
+    def describe(self) -> dict[str, Any]:
+        """``{"kind": "zero"}``."""
+        return {"kind": "zero"}
 
 
 @dataclass(frozen=True)
@@ -43,16 +100,41 @@ class MonitorSettings:
         Loop rate [Hz].
     duration : float
         Longest run [s] (STOP ends it earlier).
+    ramp_time : float
+        Ramp of the drive current after a live controller change [s].
     """
 
     tables: dict[str, dict[str, Any]]
     zero_input: bool
     rate: float
     duration: float
+    ramp_time: float = 0.2
 
     def scenario(self) -> Scenario:
         """The scenario of these settings."""
         return Scenario.from_dict(self.tables)
+
+    def simulation(self, base: Simulation | None = None) -> Simulation:
+        """The simulation of these settings (validated).
+
+        Parameters
+        ----------
+        base : Simulation, optional
+            A running configuration (e.g. a scenario file's) whose damper and estimator
+            are kept; its controller, excitation and vehicle are replaced by these.
+        """
+        sim = self.scenario().simulations()[0]
+        if self.zero_input:
+            sim = dataclasses.replace(sim, excitation=ZeroRoad())
+        if base is not None:
+            sim = dataclasses.replace(
+                base,
+                controller=sim.controller,
+                excitation=sim.excitation,
+                vehicle=sim.vehicle,
+                max_current=min(base.max_current, MAX_CURRENT),
+            )
+        return sim
 
     def to_dict(self) -> dict[str, Any]:
         """Plain data (picklable, for the loop process)."""
@@ -61,6 +143,7 @@ class MonitorSettings:
             "zero_input": self.zero_input,
             "rate": self.rate,
             "duration": self.duration,
+            "ramp_time": self.ramp_time,
         }
 
 
@@ -84,17 +167,24 @@ def _choice(settings: Mapping[str, Any], key: str, choices: tuple[str, ...], def
     return value
 
 
-def scenario_from_settings(settings: Mapping[str, Any]) -> MonitorSettings:
+def scenario_from_settings(
+    settings: Mapping[str, Any], road_dir: str | Path | None = None
+) -> MonitorSettings:
     """Validate the page's settings and build the scenario tables.
 
     Parameters
     ----------
     settings : mapping
         Form fields: ``controller`` (one of :data:`CONTROLLERS`), ``current``, ``gain``
-        (k_c), ``order``, ``lambda``, ``eps``, ``mode`` (``SCM``/``ACM``), ``excitation``
+        (k_c), ``order``, ``lambda``, ``eps``, ``mode`` (``SCM``/``ACM``), optional
+        shaping factors ``p`` (overrides ``mode``), ``xi``, ``p_c``, ``xi_c``, ``excitation``
         (one of :data:`EXCITATIONS`), ``frequency``, ``amplitude``, ``height``,
-        ``severity``, ``speed``, ``profile``, ``road_speed``, ``scale``, ``sprung_mass``,
-        ``rate``, ``duration``.
+        ``severity``, ``speed``, ``profile`` (a preset, or ``file`` with ``road_file``),
+        ``road_speed``, ``scale``, the vehicle parameters of :data:`VEHICLE_FIELDS`,
+        ``rate``, ``duration``, ``ramp_time``.
+    road_dir : path, optional
+        Directory that road files (``road_file``) may be taken from; None: road files are
+        refused (the page cannot name arbitrary server paths).
 
     Returns
     -------
@@ -108,6 +198,14 @@ def scenario_from_settings(settings: Mapping[str, Any]) -> MonitorSettings:
     """
     law = _choice(settings, "controller", CONTROLLERS, "skyhook-hilo")
     mode = _choice(settings, "mode", ("SCM", "ACM"), "ACM")
+    # shaping of the hi-lo and inverse-model laws: p (blank: from SCM/ACM), xi, p_c, xi_c
+    shaping: dict[str, Any] = {"mode": mode}
+    for key, label in (("p", "p"), ("xi", "xi"), ("p_c", "p_c"), ("xi_c", "xi_c")):
+        raw = settings.get(key)
+        if raw is not None and str(raw).strip() != "":
+            shaping[key] = _number(settings, key, 0.0, label)
+    if "p" in shaping:
+        del shaping["mode"]  # an explicit asymmetry factor overrides SCM/ACM
     controller: dict[str, Any]
     if law == "passive-zero":
         controller = {"law": "passive", "current": 0.0}
@@ -116,16 +214,16 @@ def scenario_from_settings(settings: Mapping[str, Any]) -> MonitorSettings:
     elif law == "skyhook-hilo":
         controller = {
             "law": "skyhook-hilo",
-            "mode": mode,
+            **shaping,
             "gain": _number(settings, "gain", 3.0, "k_c"),
             "order": _number(settings, "order", 2.0, "order n"),
         }
     elif law == "inverse-hilo":
-        controller = {"law": "inverse-hilo", "mode": mode}
+        controller = {"law": "inverse-hilo", **shaping}
     else:
         controller = {
             "law": "sliding-mode",
-            "mode": mode,
+            **shaping,
             "lambda": _number(settings, "lambda", 0.5, "lambda"),
             "eps": _number(settings, "eps", 0.05, "eps"),
         }
@@ -149,9 +247,11 @@ def scenario_from_settings(settings: Mapping[str, Any]) -> MonitorSettings:
         }
     else:
         profile = str(settings.get("profile", "smooth"))
-        if profile not in PRESET_ROADS:  # no file paths from the page
+        if profile == "file":
+            profile = _road_file(settings.get("road_file"), road_dir)
+        elif profile not in PRESET_ROADS:
             raise ValidationError(
-                f"unknown road preset {profile!r}; valid: {', '.join(PRESET_ROADS)}"
+                f"unknown road preset {profile!r}; valid: {', '.join(PRESET_ROADS)}, file"
             )
         excitation = {
             "kind": "road",
@@ -159,8 +259,10 @@ def scenario_from_settings(settings: Mapping[str, Any]) -> MonitorSettings:
             "speed": _number(settings, "road_speed", 50.0, "road speed"),
             "scale": _number(settings, "scale", 1.0, "scale"),
         }
+    nominal = QuarterCar()
+    vehicle = {key: _number(settings, key, getattr(nominal, key), key) for key in VEHICLE_FIELDS}
     tables: dict[str, dict[str, Any]] = {
-        "vehicle": {"sprung_mass": _number(settings, "sprung_mass", 563.0, "sprung mass")},
+        "vehicle": vehicle,
         "damper": {"max_current": MAX_CURRENT},
         "controller": controller,
         "excitation": excitation,
@@ -171,6 +273,50 @@ def scenario_from_settings(settings: Mapping[str, Any]) -> MonitorSettings:
     duration = _number(settings, "duration", 60.0, "duration")
     if not 0.0 < duration <= 3600.0:
         raise ValidationError(f"duration must be in (0, 3600] s; got {duration:g} s")
+    ramp_time = _number(settings, "ramp_time", 0.2, "ramp time")
+    if not 0.0 < ramp_time <= 5.0:
+        raise ValidationError(f"ramp time must be in (0, 5] s; got {ramp_time:g} s")
     scenario = Scenario.from_dict(tables)
     scenario.simulations()  # builds the simulation: refuses e.g. a current above i_max
-    return MonitorSettings(tables=tables, zero_input=kind == "zero", rate=rate, duration=duration)
+    return MonitorSettings(
+        tables=tables,
+        zero_input=kind == "zero",
+        rate=rate,
+        duration=duration,
+        ramp_time=ramp_time,
+    )
+
+
+def _road_file(name: Any, road_dir: str | Path | None) -> str:
+    if road_dir is None:
+        raise ValidationError(
+            "road files are not enabled on this server (start it with --road-dir DIR); "
+            f"use a preset: {', '.join(PRESET_ROADS)}"
+        )
+    base = Path(road_dir).resolve()
+    if not name:
+        raise ValidationError(f"road file: give the name of a file in {base}")
+    path = (base / str(name)).resolve()
+    if base not in path.parents or not path.is_file():
+        names = sorted(p.name for p in base.iterdir() if p.is_file()) if base.is_dir() else []
+        raise ValidationError(
+            f"road file {name!r} is not a file in {base}; valid: {', '.join(names) or 'none'}"
+        )
+    return str(path)
+
+
+def page_fields(sim: Simulation) -> dict[str, Any]:
+    """The page's form values describing ``sim`` (its vehicle and controller gain).
+
+    Examples
+    --------
+    >>> from mrsuspension.excitation import Harmonic
+    >>> page_fields(Simulation(Harmonic(1.5, 0.02)))["sprung_mass"]
+    563.0
+    """
+    out: dict[str, Any] = {key: getattr(sim.vehicle, key) for key in VEHICLE_FIELDS}
+    desc = sim.controller.describe()
+    for key in ("gain", "order", "p", "xi", "p_c", "xi_c"):
+        if key in desc:
+            out[key] = desc[key]
+    return out

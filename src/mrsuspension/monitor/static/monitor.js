@@ -5,66 +5,140 @@
   const q = token ? "?token=" + encodeURIComponent(token) : "";
   const KEEP = 10.0; // seconds shown
   const PLOTS = [
-    { title: "current [A]: controller i_z (red), drive i_d (blue)", ch: ["i_z", "i_d"] },
-    { title: "damper force F_d [N]", ch: ["F_d"] },
+    { title: "drive current [A]: commanded i_cmd, measured i_dm, demand i_d", ch: ["i_cmd", "i_dm", "i_d"] },
+    { title: "damper force [N]: measured F_dm, model F_dmod", ch: ["F_dm", "F_dmod"] },
     { title: "tire force F_T [N]", ch: ["F_T"] },
     { title: "z_s [m]", ch: ["z_s"] },
     { title: "z_s'' [m/s^2]", ch: ["z_s_ddot"] },
     { title: "z_u [m]", ch: ["z_u"] },
-    { title: "x_d [m]", ch: ["x_d"] },
+    { title: "z_u'' [m/s^2]", ch: ["z_u_ddot"] },
+    { title: "stroke [m]: model x_d, measured x_m", ch: ["x_d", "x_m"] },
     { title: "z_r [m]", ch: ["z_r"] },
+    { title: "z_r'' [m/s^2]", ch: ["z_r_ddot"] },
   ];
-  const COLORS = ["#c33", "#36c"];
+  const COLORS = ["#c33", "#36c", "#999"];
   const MEASURES = ["T_as", "T_ds", "T_au", "T_du", "T_dr", "DLC"];
+  const PRESETS = ["smooth", "medium-rough", "rough", "file"];
+  const TRIGGERS = ["z_r", "z_s", "z_u", "x_d", "x_m", "F_dm", "F_T", "i_d", "i_cmd", "i_dm", "z_s_ddot"];
   const data = {}; // channel -> array
   let run = -1;
-  const monitor = { points: 0, measures: {}, status: {}, frames: 0 };
+  let startedHere = -1;
+  const monitor = { points: 0, measures: {}, status: {}, frames: 0, last: {}, range: {}, posts: [] };
+  monitor.data = data;
   window.monitorState = monitor;
 
-  const plotsEl = document.getElementById("plots");
+  const $ = (id) => document.getElementById(id);
+  const plotsEl = $("plots");
   const canvases = PLOTS.map((p) => {
     const c = document.createElement("canvas");
     c.width = 600; c.height = 260; c.title = p.title;
     plotsEl.appendChild(c);
     return c;
   });
+  for (const ch of TRIGGERS) {
+    const o = document.createElement("option"); o.value = ch; o.textContent = ch;
+    $("trigger").appendChild(o);
+  }
 
   function rows(tableId, names) {
     const body = document.querySelector("#" + tableId + " tbody");
     const cells = {};
     for (const n of names) {
       const tr = document.createElement("tr");
-      tr.innerHTML = "<td>" + n + "</td><td class='v' id='" + tableId + "-" + n + "'>-</td>";
+      const id = tableId + "-" + n.replace(/[^A-Za-z0-9_]/g, "_");
+      tr.innerHTML = "<td>" + n + "</td><td class='v' id='" + id + "'>-</td>";
       body.appendChild(tr);
       cells[n] = tr.lastChild;
     }
     return cells;
   }
   const measureCells = rows("measures", MEASURES);
-  const healthCells = rows("health", ["state", "reason", "ticks", "misses", "dropped", "tick [us]", "tick max [us]"]);
+  const healthCells = rows("health", ["state", "safety", "reason", "time [s]", "ticks", "misses",
+    "in deadline", "dropped", "lost rows", "tick [us]", "tick max [us]", "late max [us]", "current [A]", "changes applied"]);
 
   function showFields() {
     for (const sel of ["controller", "excitation"]) {
-      const value = document.getElementById(sel).value;
+      const value = $(sel).value;
       document.querySelectorAll("fieldset label[data-for]").forEach((l) => {
         const owner = l.closest("fieldset").querySelector("select").id;
-        if (owner === sel) l.style.display = l.dataset.for === value ? "" : "none";
+        const shaped = ["skyhook-hilo", "inverse-hilo", "sliding-mode"].includes(value);
+        const show = l.dataset.for === value || (l.dataset.for === "shaped" && shaped);
+        if (owner === sel) l.style.display = show ? "" : "none";
       });
     }
   }
-  document.getElementById("controller").addEventListener("change", showFields);
-  document.getElementById("excitation").addEventListener("change", showFields);
+  $("controller").addEventListener("change", showFields);
+  $("excitation").addEventListener("change", showFields);
   showFields();
 
-  function setError(text) { document.getElementById("error").textContent = text || ""; }
+  function setError(text) { $("error").textContent = text || ""; }
+  function setNote(text) { $("note").textContent = text || ""; }
 
   function settings() {
     const out = {};
-    new FormData(document.getElementById("settings")).forEach((v, k) => { out[k] = v; });
+    new FormData($("settings")).forEach((v, k) => { out[k] = v; });
     return out;
   }
 
+  // -- validation in the page (the server validates again) -------------------------------
+  function num(s, key, label, test, rule) {
+    const raw = String(s[key] === undefined ? "" : s[key]).trim();
+    const v = Number(raw);
+    if (raw === "" || !isFinite(v)) return key + " (" + label + ") must be a number; got '" + raw + "'";
+    if (!test(v)) return key + " (" + label + ") must be " + rule + "; got " + raw;
+    return null;
+  }
+  const pos = (v) => v > 0;
+  function validate(s) {
+    const checks = [
+      ["sprung_mass", "m_s [kg]", pos, "> 0"],
+      ["unsprung_mass", "m_u [kg]", pos, "> 0"],
+      ["suspension_stiffness", "k_s [N/m]", pos, "> 0"],
+      ["tire_stiffness", "k_t [N/m]", pos, "> 0"],
+      ["tire_damping", "c_t [N s/m]", (v) => v >= 0, ">= 0"],
+      ["rate", "loop rate [Hz]", (v) => v >= 50 && v <= 5000, "in [50, 5000] Hz"],
+      ["duration", "run [s]", (v) => v > 0 && v <= 3600, "in (0, 3600] s"],
+      ["ramp_time", "ramp [s]", (v) => v > 0 && v <= 5, "in (0, 5] s"],
+    ];
+    const law = s.controller;
+    if (law === "fixed-current") checks.push(["current", "i [A]", (v) => v >= 0 && v <= 0.3, "in [0, 0.3] A"]);
+    if (law === "skyhook-hilo") {
+      checks.push(["gain", "k_c", (v) => v >= 0, ">= 0"]);
+      checks.push(["order", "n", pos, "> 0"]);
+    }
+    if (law === "sliding-mode") {
+      checks.push(["lambda", "lambda", pos, "> 0"]);
+      checks.push(["eps", "eps", pos, "> 0"]);
+    }
+    if (["skyhook-hilo", "inverse-hilo", "sliding-mode"].includes(law)) {
+      const optional = [["p", "p", (v) => v >= 0 && v <= 1, "in [0, 1]"], ["xi", "xi", pos, "> 0"],
+        ["p_c", "p_c", (v) => v >= 0 && v < 1, "in [0, 1)"], ["xi_c", "xi_c", pos, "> 0"]];
+      for (const c of optional) if (String(s[c[0]] || "").trim() !== "") checks.push(c);
+    }
+    const exc = s.excitation;
+    if (exc === "harmonic") {
+      checks.push(["frequency", "f [Hz]", pos, "> 0 Hz"]);
+      checks.push(["amplitude", "a [m]", pos, "> 0 m"]);
+    } else if (exc === "pulse") {
+      checks.push(["height", "pulse height [m]", pos, "> 0 m"]);
+      checks.push(["severity", "severity", pos, "> 0"]);
+      checks.push(["speed", "speed [km/h]", pos, "> 0 km/h"]);
+    } else if (exc === "road") {
+      const p = String(s.profile || "").trim();
+      if (!PRESETS.includes(p)) return "unknown road preset '" + p + "'; valid: " + PRESETS.join(", ");
+      if (p === "file" && !String(s.road_file || "").trim()) return "road file: give a file name";
+      checks.push(["road_speed", "speed [km/h]", pos, "> 0 km/h"]);
+      checks.push(["scale", "scale", pos, "> 0"]);
+    }
+    for (const [key, label, test, rule] of checks) {
+      const msg = num(s, key, label, test, rule);
+      if (msg) return msg;
+    }
+    return null;
+  }
+
   async function post(path, body) {
+    monitor.posts.push(path);
     const r = await fetch(path + q, {
       method: "POST", headers: { "Content-Type": "application/json" },
       body: JSON.stringify(body || {}),
@@ -74,28 +148,78 @@
     return j;
   }
 
-  document.getElementById("start").addEventListener("click", async () => {
-    setError("");
+  async function send(path, what) {
+    setError(""); setNote("");
+    const s = settings();
+    const problem = validate(s);
+    if (problem) { setError("refused: " + problem); return; }
     try {
-      await post("api/start", settings());
+      const info = await post(path, s);
+      if (path === "api/start") startedHere = info.run;
+      setNote(what);
     } catch (e) { setError(e.message); }
-  });
-  document.getElementById("stop").addEventListener("click", async () => {
+  }
+  $("start").addEventListener("click", () => send("api/start", "run started"));
+  $("apply").addEventListener("click", () => send("api/apply", "change sent: applied between ticks"));
+  for (const id of ["controller", "mode"]) {  // switches apply at once; the rest on Apply
+    $(id).addEventListener("change", () => {
+      if (["running", "startup"].includes(monitor.status.state)) send("api/apply", "change sent: applied between ticks");
+    });
+  }
+  $("stop").addEventListener("click", async () => {
     try { await post("api/stop"); } catch (e) { setError(e.message); }
   });
+  $("record").addEventListener("click", async () => {
+    const action = monitor.acquisition && monitor.acquisition.recording ? "stop" : "start";
+    try { monitor.acquisition = await post("api/record", { action: action }); showAcq(); }
+    catch (e) { setError(e.message); }
+  });
+  $("acq_set").addEventListener("click", async () => {
+    setError("");
+    const body = {
+      acq_period: $("acq_period").value, trigger: $("trigger").value,
+      trigger_level: $("trigger_level").value, trigger_edge: $("trigger_edge").value,
+      pre_trigger: $("pre_trigger").value, display_rate: $("display_rate").value,
+    };
+    const p = Number(body.acq_period);
+    if (!(Number.isInteger(p) && p >= 1)) { setError("refused: acquisition period must be a whole number of ticks >= 1; got '" + body.acq_period + "'"); return; }
+    const pre = Number(body.pre_trigger);
+    if (!(pre >= 0 && pre <= 60)) { setError("refused: pre-trigger must be in [0, 60] s; got '" + body.pre_trigger + "'"); return; }
+    if (!isFinite(Number(body.trigger_level)) || String(body.trigger_level).trim() === "") { setError("refused: trigger level must be a number"); return; }
+    try { monitor.acquisition = await post("api/acquisition", body); showAcq(); }
+    catch (e) { setError(e.message); }
+  });
+
+  function showAcq() {
+    const a = monitor.acquisition || {};
+    $("record").textContent = a.recording ? "Record stop" : "Record start";
+    $("record").className = a.recording ? "recording" : "";
+    const w = (a.windows || []).map((x) => fmt(x[0], 2) + "-" + (x[1] === null ? "..." : fmt(x[1], 2))).join(", ");
+    $("acq_state").textContent = (a.recording ? "recording; " : "") + "windows: " + (w || "whole run") +
+      "; every " + a.period + " tick(s)" + (a.trigger ? "; trigger " + a.trigger + " " + a.edge + " " + a.level + " (pre " + a.pre_trigger + " s)" : "") +
+      "; display " + a.display_rate + " Hz";
+  }
 
   function fmt(x, digits) {
     if (x === null || x === undefined || !isFinite(x)) return "-";
     return Number(x).toFixed(digits === undefined ? 3 : digits);
   }
 
+  function fillFields(fields) {
+    for (const [k, v] of Object.entries(fields || {})) {
+      const el = document.querySelector("[name='" + k + "']");
+      if (el && el.tagName === "INPUT") el.value = v;
+    }
+  }
+
   function onFrame(f) {
     monitor.frames += 1;
-    if (f.run !== run) {
+    if (f.run !== run || f.history) {
       run = f.run;
       for (const c of f.channels) data[c] = [];
+      if (run !== startedHere && f.status && f.status.fields) fillFields(f.status.fields);
     }
-    f.channels.forEach((c, i) => { for (const r of f.rows) data[c].push(r[i]); });
+    f.channels.forEach((c, i) => { for (const r of f.rows) data[c].push(r[i] === null ? NaN : r[i]); });
     const t = data.time || [];
     if (t.length) {
       const cut = t[t.length - 1] - KEEP;
@@ -104,28 +228,62 @@
       if (n) for (const c of f.channels) data[c].splice(0, n);
     }
     monitor.points = (data.time || []).length;
+    for (const c of f.channels) {
+      const v = data[c] || [];
+      monitor.last[c] = v.length ? v[v.length - 1] : null;
+      let lo = Infinity, hi = -Infinity;
+      for (const x of v) if (isFinite(x)) { if (x < lo) lo = x; if (x > hi) hi = x; }
+      monitor.range[c] = [lo, hi];
+    }
     monitor.measures = f.measures || {};
     monitor.status = f.status || {};
+    monitor.acquisition = f.acquisition || {};
     for (const m of MEASURES) measureCells[m].textContent = fmt(monitor.measures[m]);
-    document.getElementById("window").textContent =
-      monitor.measures.window ? "(last " + monitor.measures.window + " s)" : "";
+    $("window").textContent = monitor.measures.window ? "(last " + monitor.measures.window + " s)" : "";
     const s = monitor.status;
-    const stateEl = document.getElementById("state");
-    const label = s.state === "stopped" || s.state === "completed" || s.state === "ended"
-      ? s.state + " - safe (i = 0)" : (s.state || "idle");
-    stateEl.textContent = label;
-    stateEl.className = "state " + (s.state || "idle");
-    healthCells.state.textContent = s.state || "-";
-    healthCells.reason.textContent = s.reason || "";
-    healthCells.ticks.textContent = s.ticks === undefined ? "-" : s.ticks;
-    healthCells.misses.textContent = s.misses === undefined ? "-" : s.misses;
-    healthCells.dropped.textContent = s.dropped === undefined ? "-" : s.dropped;
-    healthCells["tick [us]"].textContent = s.compute_mean ? fmt(s.compute_mean * 1e6, 0) : "-";
-    healthCells["tick max [us]"].textContent = s.compute_max ? fmt(s.compute_max * 1e6, 0) : "-";
-    const dl = document.getElementById("download");
+    const stopped = s.reason === "STOP pressed";
+    let label = s.state || "idle";
+    if (s.safe && (stopped || s.state === "ended")) label = (stopped ? "stopped" : "ended") + " - safe (i = 0)";
+    else if (s.state === "tripped") label = "tripped - safe (i = 0)";
+    $("state").textContent = label;
+    $("state").className = "state " + (stopped ? "stopped" : (s.state || "idle"));
+    const safety = s.safe ? "SAFE: current 0" + (s.state === "ended" ? ", at mid-stroke" : ", returning to mid-stroke")
+      : (s.tripped ? "TRIPPED: " + s.reason : (s.state === "running" ? "limits armed" : ""));
+    $("safety").textContent = safety;
+    $("rig").textContent = s.rig ? "rig: " + s.rig : "";
+    const h = healthCells;
+    h.state.textContent = s.state || "-";
+    h.safety.textContent = safety || "-";
+    h.reason.textContent = s.reason || "";
+    h["time [s]"].textContent = fmt(s.time, 2);
+    h.ticks.textContent = s.ticks === undefined ? "-" : s.ticks;
+    h.misses.textContent = s.misses === undefined ? "-" : s.misses;
+    h["in deadline"].textContent = s.ticks ? fmt(100 * (1 - s.misses / s.ticks), 2) + " %" : "-";
+    h.dropped.textContent = s.dropped === undefined ? "-" : s.dropped;
+    h["lost rows"].textContent = s.lost === undefined ? "-" : s.lost;
+    h["tick [us]"].textContent = s.compute_mean ? fmt(s.compute_mean * 1e6, 0) : "-";
+    h["tick max [us]"].textContent = s.compute_max ? fmt(s.compute_max * 1e6, 0) : "-";
+    h["late max [us]"].textContent = s.lateness_max ? fmt(s.lateness_max * 1e6, 0) : "-";
+    h["current [A]"].textContent = fmt(s.current, 3);
+    h["changes applied"].textContent = s.applied === undefined ? "-" : s.applied;
+    const ev = $("events");
+    ev.innerHTML = "";
+    for (const e of (f.events || []).slice(-6)) { const li = document.createElement("li"); li.textContent = e; ev.appendChild(li); }
+    const dl = $("download");
     if (f.recording) { dl.href = "api/recording" + q; dl.className = ""; }
     else { dl.href = "#"; dl.className = "disabled"; }
-    draw();
+    showAcq();
+    scheduleDraw();
+  }
+
+  // redraw at most every 100 ms, in an animation frame: the page (and STOP) stays responsive
+  let drawPending = false;
+  let lastDraw = 0;
+  function scheduleDraw() {
+    if (drawPending) return;
+    drawPending = true;
+    const wait = Math.max(0, 100 - (performance.now() - lastDraw));
+    setTimeout(() => requestAnimationFrame(() => { drawPending = false; lastDraw = performance.now(); draw(); }), wait);
   }
 
   function draw() {
@@ -138,19 +296,23 @@
       g.fillText(p.title, 8, 22);
       if (t.length < 2) return;
       let lo = Infinity, hi = -Infinity;
-      for (const ch of p.ch) for (const v of data[ch]) { if (v < lo) lo = v; if (v > hi) hi = v; }
+      for (const ch of p.ch) for (const v of data[ch] || []) { if (!isFinite(v)) continue; if (v < lo) lo = v; if (v > hi) hi = v; }
+      if (!isFinite(lo)) return;
       if (!(hi > lo)) { hi = lo + 1e-9; lo = lo - 1e-9; }
       const t1 = t[t.length - 1], t0 = t1 - KEEP;
       const X = (x) => ((x - t0) / KEEP) * (c.width - 10) + 5;
       const Y = (y) => c.height - 8 - ((y - lo) / (hi - lo)) * (c.height - 40);
-      g.fillText(fmt(hi, 4), c.width - 110, 22);
+      g.fillText(fmt(hi, 4), c.width - 110, 44);
       g.fillText(fmt(lo, 4), c.width - 110, c.height - 10);
       p.ch.forEach((ch, j) => {
-        const v = data[ch];
+        const v = data[ch] || [];
         g.strokeStyle = COLORS[j % COLORS.length]; g.lineWidth = 2;
         g.beginPath();
-        for (let i = 0; i < v.length; i++) {
-          if (i === 0) g.moveTo(X(t[i]), Y(v[i])); else g.lineTo(X(t[i]), Y(v[i]));
+        let pen = false;
+        const stride = Math.max(1, Math.floor(v.length / 400));  // about 400 points a trace
+        for (let i = 0; i < v.length; i += stride) {
+          if (!isFinite(v[i])) { pen = false; continue; }
+          if (!pen) { g.moveTo(X(t[i]), Y(v[i])); pen = true; } else g.lineTo(X(t[i]), Y(v[i]));
         }
         g.stroke();
       });

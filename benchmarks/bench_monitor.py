@@ -1,0 +1,38 @@
+"""Monitor load: ``python benchmarks/bench_monitor.py [--duration S] [--pairs N] [--browser PATH]``.
+
+Alternates unmonitored HiL runs and runs with the browser monitor attached (a WebSocket
+client reading every frame, or with ``--browser /usr/bin/chromium`` the real page in
+headless chromium) and prints each run's in-deadline share, the client's frame rate and
+the median miss rates (:mod:`mrsuspension.monitor.loadtest`).
+"""
+
+from __future__ import annotations
+
+import argparse
+
+from mrsuspension.monitor.loadtest import measure
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0] if __doc__ else None)
+    ap.add_argument("--duration", type=float, default=10.0, help="seconds per run")
+    ap.add_argument("--rate", type=float, default=1000.0, help="loop rate [Hz]")
+    ap.add_argument("--pairs", type=int, default=3, help="unmonitored/monitored pairs")
+    ap.add_argument("--rig", default="simulated", help="simulated | ideal | udp://HOST:PORT")
+    ap.add_argument("--browser", default=None, help="chromium executable (attach the page)")
+    args = ap.parse_args()
+    d = measure(args.duration, args.rate, args.rig, args.pairs, args.browser)
+    for kind in ("plain", "monitored"):
+        for r in d[kind]:
+            rate = f", frames {r['frame_rate']:.1f} Hz" if "frame_rate" in r else ""
+            print(f"{kind:>9}: {100 * r['in_deadline']:.2f} % in deadline ({r['misses']} misses "
+                  f"in {r['ticks']} ticks){rate}")  # fmt: skip
+    print(
+        f"median miss rate: unmonitored {100 * d['miss_plain']:.2f} %, monitored "
+        f"{100 * d['miss_monitored']:.2f} % ({d['client']} client); load average "
+        f"{d['loadavg'][0]:.2f} -> {d['loadavg'][1]:.2f}"
+    )
+
+
+if __name__ == "__main__":
+    main()
