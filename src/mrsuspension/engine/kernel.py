@@ -139,15 +139,17 @@ def rates(
         if ft < 0.0:
             ft = 0.0
     spring = vp[V_KS] * xd
+    # multiply by the reciprocal masses: their divisions depend on parameters only, so
+    # they leave the chain of dependent operations from one RK4 stage to the next
     dy[0] = vs
-    dy[1] = (spring + fd - vp[V_CSKY] * vs) / vp[V_MS]
+    dy[1] = (spring + fd - vp[V_CSKY] * vs) * (1.0 / vp[V_MS])
     dy[2] = vu
-    dy[3] = (ft - (vp[V_MS] + vp[V_MU]) * vp[V_G] - spring - fd) / vp[V_MU]
+    dy[3] = (ft - (vp[V_MS] + vp[V_MU]) * vp[V_G] - spring - fd) * (1.0 / vp[V_MU])
     if reference:
         # single-DOF modified-skyhook reference (3.18), driven by the plant's z_u
         z0, v0 = y[4], y[5]
         dy[4] = v0
-        dy[5] = (-cp[P_C0] * (v0 - vu) - cp[P_CS] * v0 - vp[V_KS] * (z0 - zu)) / cp[P_MS0]
+        dy[5] = (-cp[P_C0] * (v0 - vu) - cp[P_CS] * v0 - vp[V_KS] * (z0 - zu)) * (1.0 / cp[P_MS0])
     else:
         dy[4] = 0.0
         dy[5] = 0.0

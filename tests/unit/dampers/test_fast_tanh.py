@@ -58,9 +58,12 @@ def test_odd(x: float) -> None:
 
 
 def test_special_values() -> None:
-    assert K.fast_tanh(0.0) == 0.0 and math.copysign(1.0, K.fast_tanh(-0.0)) == -1.0
-    assert K.fast_tanh(math.inf) == 1.0 and K.fast_tanh(-math.inf) == -1.0
-    assert K.fast_tanh(40.0) == 1.0 and K.fast_tanh(-40.0) == -1.0
+    assert K.fast_tanh(0.0) == 0.0
+    assert math.copysign(1.0, K.fast_tanh(-0.0)) == -1.0
+    assert K.fast_tanh(math.inf) == 1.0
+    assert K.fast_tanh(-math.inf) == -1.0
+    assert K.fast_tanh(40.0) == 1.0
+    assert K.fast_tanh(-40.0) == -1.0
     assert math.isnan(K.fast_tanh(math.nan))
 
 
