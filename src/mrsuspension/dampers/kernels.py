@@ -106,15 +106,16 @@ TANH_RATIONAL_BELOW = 0.55
 
 @njit(cache=True, inline="always")
 def fast_tanh(u: float) -> float:
-    """tanh(u) to a few units in the last place, with one exp or one division.
+    """tanh(u) to round-off, with at most one exp and one division.
 
-    libm's tanh goes through expm1 and is the slowest operation of the simulation step
-    (five per step, one per RK4 stage). Here, for ``|u| >= 0.55``,
-    ``tanh|u| = 1 - 2/(exp(2|u|) + 1)`` (no cancellation: the result is >= 0.5); below,
+    libm's tanh goes through expm1 and was the slowest operation of the simulation step
+    (five per step, one per RK4 stage, on the chain from one stage to the next). Here,
+    for ``|u| >= 0.55``, ``tanh|u| = (1 - t)/(1 + t)`` with ``t = exp(-2|u|) <= 0.33``
+    (no cancellation; ``t`` underflows to 0 for large ``|u|``, giving exactly 1); below,
     the convergent ``u P(u^2)/Q(u^2)`` of Lambert's continued fraction
     ``u/(1 + u^2/(3 + u^2/(5 + ...)))`` truncated after the term 15 (truncation error
-    below 1e-17 there). The relative error is at most ~4 ulp everywhere (tested against
-    decimal arithmetic: below 4e-16, libm's own is 3e-16), i.e. round-off.
+    below 1e-17 there). Relative error below 3.5e-16 on the tested points (against
+    40-digit decimal arithmetic; libm's tanh: 3e-16), i.e. round-off.
 
     Examples
     --------
@@ -131,7 +132,8 @@ def fast_tanh(u: float) -> float:
             * (2027025.0 + z * (270270.0 + z * (6930.0 + z * 36.0)))
             / (2027025.0 + z * (945945.0 + z * (51975.0 + z * (630.0 + z))))
         )
-    r = 1.0 if a > 20.0 else 1.0 - 2.0 / (math.exp(2.0 * a) + 1.0)
+    t = math.exp(-2.0 * a)  # <= exp(-1.1); 0 for large |u|, which gives exactly 1
+    r = (1.0 - t) / (1.0 + t)
     return r if u > 0.0 else (-r if u < 0.0 else u)
 
 
