@@ -417,7 +417,7 @@ def bench(
     typer.echo(
         f"single run ({res['duration_s']:g} s simulated, dt = 1e-4 s): {res['single_run_s']:.3f} s "
         f"({res['single_run_ns_per_step']:.0f} ns per step, of which road sampling "
-        f"{res['single_run_road_sampling_s']:.3f} s)"
+        f"{res['single_run_road_sampling_s'] * 1e3:.1f} ms)"
     )
     typer.echo(
         f"  vs scipy RK45: {res['speedup_vs_scipy']:.1f}x ({res['scipy_baseline_s']:.2f} s, "
