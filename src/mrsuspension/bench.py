@@ -18,6 +18,7 @@ Baselines are written here in plain Python, independent of the package's kernels
 from __future__ import annotations
 
 import math
+import os
 import time
 from collections import deque
 from collections.abc import Callable
@@ -159,6 +160,13 @@ def _best(fn: Callable[[], Any], repeat: int) -> float:
     return best
 
 
+def _load_average() -> float | None:
+    try:
+        return os.getloadavg()[0]
+    except OSError:  # not available on this platform
+        return None
+
+
 def _fresh_compile(sim: Any) -> float:
     """Seconds to compile the engine's run loop without numba's on-disk cache."""
     from numba import njit
@@ -200,6 +208,7 @@ def run_benchmarks(
     from mrsuspension.excitation import Harmonic, log_frequencies, two_stage_amplitude
 
     duration = 1.0 if quick else 10.0
+    load_before = _load_average()
     sim = Simulation(Harmonic(F, A), controller=HiLo(1, mode="SCM"))
     say("first call (compiles, or loads numba's on-disk cache)")
     t0 = time.perf_counter()
@@ -211,6 +220,10 @@ def run_benchmarks(
 
     say(f"engine: {duration:g} s at dt = 1e-4 s")
     single = _best(lambda: sim.run(duration, output_rate=1000.0), 3)
+    n_single = round(duration / 1e-4)
+    grid = np.arange(2 * n_single + 1) * 5e-5
+    # the road samples (z_r, z_r' every dt/2) are computed by numpy before the loop
+    road_s = _best(lambda: (sim.excitation.displacement(grid), sim.excitation.velocity(grid)), 3)
     engine = sim.run(duration, output_rate=1e4)
 
     say("plain-Python RK4 of the same algorithm")
@@ -247,9 +260,12 @@ def run_benchmarks(
     rows = run_many(sims, reduce=measures_of, workers=workers)
     sweep_s = time.perf_counter() - t0
     steps = sum(round(s.excitation.duration / 1e-4) for s in sims)
+    cores = min(len(sims), workers or os.cpu_count() or 1)
     return {
         "duration_s": duration,
         "single_run_s": single,
+        "single_run_ns_per_step": single / n_single * 1e9,
+        "single_run_road_sampling_s": road_s,
         "scipy_baseline_s": scipy_s,
         "speedup_vs_scipy": scipy_s / single,
         "scipy_rhs_evaluations": nfev,
@@ -262,7 +278,12 @@ def run_benchmarks(
         "sweep_runs": len(rows),
         "sweep_steps": steps,
         "sweep_s": sweep_s,
-        "sweep_ns_per_step_per_core": sweep_s * min(len(sims), workers or 2) / steps * 1e9,
+        "sweep_workers": cores,
+        "sweep_ns_per_step_per_core": sweep_s * cores / steps * 1e9,
+        # the sweep's time if each core ran its share at the single run's cost per step
+        "sweep_at_single_run_speed_s": steps * single / n_single / cores,
         "compile_s": compile_s,
         "first_call_s": first_call,
+        # 1-minute load average before and after: other processes share the cores
+        "load_average": [load_before, _load_average()],
     }

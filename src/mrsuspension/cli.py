@@ -441,7 +441,9 @@ def bench(
         typer.echo(json.dumps(res))
         return
     typer.echo(
-        f"single run ({res['duration_s']:g} s simulated, dt = 1e-4 s): {res['single_run_s']:.3f} s"
+        f"single run ({res['duration_s']:g} s simulated, dt = 1e-4 s): {res['single_run_s']:.3f} s "
+        f"({res['single_run_ns_per_step']:.0f} ns per step, of which road sampling "
+        f"{res['single_run_road_sampling_s'] * 1e3:.1f} ms)"
     )
     typer.echo(
         f"  vs scipy RK45: {res['speedup_vs_scipy']:.1f}x ({res['scipy_baseline_s']:.2f} s, "
@@ -454,10 +456,13 @@ def bench(
     )
     typer.echo(
         f"sweep: {res['sweep_runs']} runs, {res['sweep_steps'] / 1e6:.1f} M steps in {res['sweep_s']:.2f} s "
-        f"({res['sweep_ns_per_step_per_core']:.0f} ns per step per core)"
+        f"on {res['sweep_workers']} processes ({res['sweep_ns_per_step_per_core']:.0f} ns per step "
+        f"per core; {res['sweep_at_single_run_speed_s']:.2f} s at the single run's speed)"
     )
     compiled = "skipped" if res["compile_s"] is None else f"{res['compile_s']:.1f} s"
     typer.echo(f"compile (fresh, no cache): {compiled}; first call: {res['first_call_s']:.2f} s")
+    load = ", ".join("n/a" if x is None else f"{x:.2f}" for x in res["load_average"])
+    typer.echo(f"load average (1 min) before, after: {load}")
 
 
 @app.command()

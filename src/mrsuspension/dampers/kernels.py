@@ -100,18 +100,41 @@ def sigmoid(u: float) -> float:
     return e / (1.0 + e)
 
 
+#: |u| below which :func:`fast_tanh` uses its rational form (else its exp form)
+TANH_RATIONAL_BELOW = 0.55
+
+
 @njit(cache=True, inline="always")
 def fast_tanh(u: float) -> float:
-    """tanh(u) through one exp: 1 - 2/(exp(2u) + 1) (exact to ~1e-16 absolute).
+    """tanh(u) to round-off, with at most one exp and one division.
 
-    About 3x faster than libm's tanh; the absolute error is at round-off level, which is
-    what the force (F_t tanh) needs.
+    libm's tanh goes through expm1 and was the slowest operation of the simulation step
+    (five per step, one per RK4 stage, on the chain from one stage to the next). Here,
+    for ``|u| >= 0.55``, ``tanh|u| = (1 - t)/(1 + t)`` with ``t = exp(-2|u|) <= 0.33``
+    (no cancellation; ``t`` underflows to 0 for large ``|u|``, giving exactly 1); below,
+    the convergent ``u P(u^2)/Q(u^2)`` of Lambert's continued fraction
+    ``u/(1 + u^2/(3 + u^2/(5 + ...)))`` truncated after the term 15 (truncation error
+    below 1e-17 there). Relative error below 3.5e-16 on the tested points (against
+    40-digit decimal arithmetic; libm's tanh: 3e-16), i.e. round-off.
+
+    Examples
+    --------
+    >>> import math
+    >>> all(abs(fast_tanh(u) - math.tanh(u)) <= 4e-16 * abs(math.tanh(u))
+    ...     for u in (-30.0, -1.0, -0.3, 1e-9, 0.54, 0.56, 3.0))
+    True
     """
-    if u > 20.0:
-        return 1.0
-    if u < -20.0:
-        return -1.0
-    return 1.0 - 2.0 / (math.exp(2.0 * u) + 1.0)
+    a = abs(u)
+    if a < TANH_RATIONAL_BELOW:
+        z = u * u
+        return (
+            u
+            * (2027025.0 + z * (270270.0 + z * (6930.0 + z * 36.0)))
+            / (2027025.0 + z * (945945.0 + z * (51975.0 + z * (630.0 + z))))
+        )
+    t = math.exp(-2.0 * a)  # <= exp(-1.1); 0 for large |u|, which gives exactly 1
+    r = (1.0 - t) / (1.0 + t)
+    return r if u > 0.0 else (-r if u < 0.0 else u)
 
 
 @njit(cache=True, inline="always")
@@ -172,7 +195,7 @@ def passive_hysteron(p: np.ndarray, v: float, sgn_a: float, vm: float) -> float:
     vh = sgn_a * p[W_K4] * vm
     return (
         transition_force(p, vm)
-        * math.tanh(0.5 * hysteresis_slope(p, vm) * (v + vh))
+        * fast_tanh(0.5 * hysteresis_slope(p, vm) * (v + vh))
         * linear_rise(p, v, vm)
     )
 
@@ -216,7 +239,7 @@ def wang_eval(p: np.ndarray, s: np.ndarray, v: float, i: float) -> float:
     if i != s[WS_I]:  # also true for the NaN set by wang_latch_motion
         wang_latch_current(p, s, i)
     k1 = p[W_K1C] if v >= 0.0 else p[W_K1E]
-    tanh = math.tanh(s[WS_HALF_ALPHA] * (v + s[WS_SHIFT]))
+    tanh = fast_tanh(s[WS_HALF_ALPHA] * (v + s[WS_SHIFT]))
     return p[W_KD] * s[WS_CI] * (s[WS_FT] * tanh - s[WS_FB]) * (1.0 + k1 * s[WS_DECAY] * abs(v))
 
 
