@@ -66,11 +66,9 @@ from __future__ import annotations
 import copy
 import json
 import math
-import os
 import time
 import tomllib
 from collections.abc import Callable, Iterator, Mapping, Sequence
-from concurrent.futures import Executor, ProcessPoolExecutor
 from contextlib import contextmanager
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -78,7 +76,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from mrsuspension.engine.simulate import Simulation, SimulationDiverged, measures_of
+from mrsuspension._batch import Job, job_of, process_pool, run_jobs
 from mrsuspension.errors import ValidationError, did_you_mean
 from mrsuspension.excitation import EXCITATION_OPTIONS
 from mrsuspension.scenario import SCENARIO_KEYS, Scenario
@@ -687,40 +685,6 @@ class OptimizationProblem:
         return out
 
 
-# -- evaluating ---------------------------------------------------------------------------
-_Job = tuple[Simulation, float | None, float, float]
-
-
-def _measure(job: _Job) -> dict[str, Any] | None:
-    """One run reduced to its measures; None when it diverges (module level: picklable)."""
-    sim, duration, dt, rate = job
-    try:
-        return measures_of(sim.run(duration, dt=dt, output_rate=rate))
-    except SimulationDiverged:
-        return None
-
-
-def _job(scenario: Scenario) -> _Job:
-    return (scenario.simulations()[0], scenario.duration, scenario.dt, scenario.output_rate)
-
-
-@contextmanager
-def _pool(workers: int | None, jobs_per_batch: int) -> Iterator[Executor | None]:
-    """One process pool for the whole search (a pool per generation costs ~0.3 s)."""
-    n = min(jobs_per_batch, workers or os.cpu_count() or 1)
-    if n <= 1:
-        yield None
-        return
-    with ProcessPoolExecutor(max_workers=n) as pool:
-        yield pool
-
-
-def _run_jobs(jobs: Sequence[_Job], pool: Executor | None) -> list[dict[str, Any] | None]:
-    if pool is None:
-        return [_measure(j) for j in jobs]
-    return list(pool.map(_measure, jobs))
-
-
 @dataclass
 class OptimizationResult:
     """The best candidate, its measures on every road, and the search history.
@@ -932,8 +896,8 @@ def optimize(
     cache: dict[tuple[float, ...], tuple[float, list[dict[str, Any]] | None]] = {}
     generation = 0
 
-    with _pool(n_workers, problem.population * len(roads)) as pool:
-        ref_rows = _run_jobs([_job(problem.scenario(None, r)) for r in roads], pool)
+    with process_pool(n_workers, problem.population * len(roads)) as pool:
+        ref_rows = run_jobs([job_of(problem.scenario(None, r)) for r in roads], pool)
         if any(row is None for row in ref_rows):
             raise ValidationError("the reference controller's run diverged; check the problem")
         reference = [dict(row or {}) for row in ref_rows]
@@ -946,7 +910,7 @@ def optimize(
             candidates = [problem.values(columns[:, s]) for s in range(columns.shape[1])]
             keys = [tuple(c.values()) for c in candidates]
             new = [k for k in dict.fromkeys(keys) if k not in cache]
-            jobs: list[_Job] = []
+            jobs: list[Job] = []
             owners: list[tuple[float, ...]] = []
             for key in new:
                 values = dict(zip((p.field for p in problem.parameters), key, strict=True))
@@ -955,9 +919,9 @@ def optimize(
                 except ValidationError:
                     cache[key] = (math.inf, None)
                     continue
-                jobs.extend(_job(s) for s in scenarios)
+                jobs.extend(job_of(s) for s in scenarios)
                 owners.extend([key] * len(roads))
-            rows = _run_jobs(jobs, pool)
+            rows = run_jobs(jobs, pool)
             by_key: dict[tuple[float, ...], list[dict[str, Any] | None]] = {}
             for key, row in zip(owners, rows, strict=True):
                 by_key.setdefault(key, []).append(row)

@@ -30,8 +30,9 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 import numpy.typing as npt
 
+from mrsuspension._batch import job_of, process_pool, run_jobs
 from mrsuspension.errors import ValidationError
-from mrsuspension.optimize import Road, _job, _pool, _run_jobs
+from mrsuspension.optimize import Road
 from mrsuspension.scenario import Scenario
 
 if TYPE_CHECKING:
@@ -380,11 +381,11 @@ def tradeoff(
                 raise ValidationError(
                     f"tradeoff setting {fam} {label} on {road.name}: {err}"
                 ) from None
-            jobs.append(_job(scenario))
+            jobs.append(job_of(scenario))
     if progress:
         progress(f"trade-off: {len(settings)} settings x {len(roads)} roads")
-    with _pool(workers, len(jobs)) as pool:
-        rows = _run_jobs(jobs, pool)
+    with process_pool(workers, len(jobs)) as pool:
+        rows = run_jobs(jobs, pool)
     weights = np.array([r.weight for r in roads], dtype=float)
     weights = weights / weights.sum()
     points = []

@@ -12,12 +12,11 @@ import numpy as np
 import pytest
 
 from _helpers import raises_validation
+from mrsuspension._batch import job_of, measure_job
 from mrsuspension.optimize import (
     OptimizationProblem,
     Parameter,
     Road,
-    _job,
-    _measure,
     objective_value,
     optimize,
 )
@@ -170,12 +169,12 @@ def test_round_trip_through_to_dict() -> None:
 def test_finds_the_brute_force_optimum() -> None:
     problem = OptimizationProblem.from_dict(PASSIVE)
     road = problem.roads[0]
-    reference = _measure(_job(problem.scenario(None, road)))
+    reference = measure_job(job_of(problem.scenario(None, road)))
     assert reference is not None
     grid = np.linspace(0.0, 0.5, 51)
     scan = []
     for current in grid:
-        row = _measure(_job(problem.scenario({"controller.current": float(current)}, road)))
+        row = measure_job(job_of(problem.scenario({"controller.current": float(current)}, road)))
         assert row is not None
         scan.append(objective_value([row], [reference], problem.weights))
     values = np.array(scan)
