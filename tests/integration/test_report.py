@@ -133,7 +133,7 @@ def test_shock_tables_of_chapters_5_and_6_carry_the_dissertation(report: Path) -
 
 CHAPTERS_3_4 = {
     3: ["3.2", "3.4", "3.9", "3.10"],
-    4: ["4.3", "4.5", "4.6", "4.9", "4.10", "4.13", "4.17", "4.26"],
+    4: ["4.3", "4.5", "4.5b", "4.6", "4.9", "4.10", "4.13", "4.17", "4.26"],
 }
 
 
@@ -156,6 +156,12 @@ def test_chapters_3_and_4_listed_with_data(report: Path) -> None:
     # Fig 4.5 records each policy's body-resonance peak
     for p, g in (("I", 3), ("II", 10), ("III", 10), ("IV", 300)):
         assert ch4["4.5"][f"peak T_as policy {p} (k_c = {g})"] > 1.0
+    # Fig 4.5b: with v_m clamped to the identified range, policy IV peaks highest (4.3.1)
+    peaks = {
+        p: ch4["4.5b"][f"peak T_as policy {p} (k_c = {g})"]
+        for p, g in (("I", 3), ("II", 10), ("III", 10), ("IV", 300))
+    }
+    assert max(peaks, key=peaks.__getitem__) == "IV", peaks
 
 
 CHAPTERS_5_6 = {5: ["5.5", "5.6b", "5.9"], 6: ["6.2", "6.5b", "6.8", "6.12"]}
