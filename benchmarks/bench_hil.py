@@ -7,7 +7,7 @@ largest deviation of the start-to-start interval), and the CPU time the machine 
 meanwhile (``steal``: taken by the hypervisor, ``others``: cores busy with other
 processes, the emulator included with ``--rig udp``), then the highest rate sustained
 with >= 99.9 % of ticks in deadline.
-``--realtime auto|fifo|off`` selects the scheduling (docs/hil.md); ``--rig udp`` runs
+``--realtime auto|fifo|spin|off`` selects the scheduling (docs/hil.md); ``--rig udp`` runs
 the rig in a ``mrsus rig-emulator`` process (same scheduling option) over loopback UDP.
 
 On a quiet machine (the issue-6 acceptance measurements)::
@@ -71,7 +71,7 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=(__doc__ or "").splitlines()[0])
     ap.add_argument("--duration", type=float, default=60.0, help="seconds per rate")
     ap.add_argument("--rates", default="1000,2000,5000", help="loop rates [Hz]")
-    ap.add_argument("--realtime", default="auto", help="auto | fifo | off (docs/hil.md)")
+    ap.add_argument("--realtime", default="auto", help="auto | fifo | spin | off (docs/hil.md)")
     ap.add_argument("--rig", default="simulated", choices=("simulated", "udp"))
     ap.add_argument("--watchdog", type=float, default=None, help="rig watchdog [s] (0.05)")
     args = ap.parse_args()

@@ -90,7 +90,7 @@ def hil_run_command(
         bool, typer.Option("--json", help="print the outcome and tick statistics as JSON")
     ] = False,
     realtime: Annotated[
-        str, typer.Option(help="scheduling: auto | fifo | off (docs/hil.md)")
+        str, typer.Option(help="scheduling: auto | fifo | spin | off (docs/hil.md)")
     ] = "auto",
     monitor: Annotated[
         bool,
@@ -120,7 +120,7 @@ def hil_run_command(
             raise ValidationError(f"scenario file {scenario} does not exist")
         if normalise_mode(realtime) == "unpaced":
             raise ValidationError(
-                f"--realtime {realtime!r}: `hil run` runs in real time; valid: auto, fifo, off"
+                f"--realtime {realtime!r}: `hil run` runs in real time; valid: auto, fifo, spin, off"
             )
         sim = _simulation_of(scenario)
         if monitor:
@@ -196,7 +196,7 @@ def hil_validate_command(
     realtime: Annotated[
         str | None,
         typer.Option(
-            help="auto | fifo | off | unpaced (default: unpaced for simulated and ideal "
+            help="auto | fifo | spin | off | unpaced (default: unpaced for simulated and ideal "
             "rigs, auto for a UDP rig, which always runs paced)"
         ),
     ] = None,
@@ -314,7 +314,7 @@ def rig_emulator_command(
         typer.Option(help="client silence [s] after which the rig goes safe (0: never)"),
     ] = 0.25,
     realtime: Annotated[
-        str, typer.Option(help="scheduling: auto | fifo | off (docs/hil.md)")
+        str, typer.Option(help="scheduling: auto | fifo | spin | off (docs/hil.md)")
     ] = "auto",
 ) -> None:
     """Serve a simulated rig over UDP (the network rig protocol, docs/hil.md).

@@ -108,8 +108,9 @@ CHANNELS: tuple[tuple[str, str], ...] = (
 _NAMES = tuple(n for n, _ in CHANNELS)
 #: settling allowance after the return ramp [s]
 _SETTLE = 1.0
-#: spin (busy-wait) for the last part of each wait [s]
+#: spin (busy-wait) for the last part of each wait [s], at most this fraction of a period
 _SPIN = 3e-4
+_SPIN_FRACTION = 0.25
 
 
 @dataclass(frozen=True)
@@ -398,7 +399,7 @@ def run_hil(
     if not realtime and not isinstance(rig, SimulatedRig):
         raise ValidationError(
             f"realtime='unpaced' needs a rig simulated in this process (simulated or ideal); "
-            f"a {type(rig).__name__} runs in real time: use realtime='auto', 'fifo' or 'off'"
+            f"a {type(rig).__name__} runs in real time: use realtime='auto', 'fifo', 'spin' or 'off'"
         )
     driver = driver or PICurrentDriver(current_limit=limits.current)
     period = 1.0 / rate
@@ -457,9 +458,11 @@ def run_hil(
     if hooks is not None:  # a first message before the clock starts (a queue's feeder thread)
         hooks.send("started", {"rate": rate, "ticks": n_ticks})
     with realtime_session(mode, compute, lateness) as rt:  # scheduling hook (hil/realtime.py)
+        if rt.spin and hasattr(rig, "spin"):
+            rig.spin = True  # a network rig polls for its replies too
         reason, ticks = _loop(
             stepper, rig, driver, supervisor, startup, recorder, road, road_v, n_ticks, n_max,
-            n_sub, period, realtime, compute, lateness, hooks, road_src,
+            n_sub, period, realtime, compute, lateness, hooks, road_src, rt.spin,
         )  # fmt: skip
     stats = TickStats.from_arrays(
         compute[:ticks], lateness[:ticks], period, realtime, scheduling=rt.label()
@@ -510,6 +513,7 @@ def _loop(
     lateness: np.ndarray,
     hooks: LoopHooks | None,
     road_src: _Road,
+    spin_all: bool = False,
 ) -> tuple[str, int]:
     """The hot loop; returns (stop reason, ticks run)."""
     perf = time.perf_counter
@@ -526,8 +530,9 @@ def _loop(
     startup_ticks = math.ceil(startup.duration / period - 1e-9)
     hold_current = startup.hold_current
     home_tol = max(2e-3, 0.02 * lim.stroke)
-    # spin at most a quarter period: a SCHED_FIFO loop that never sleeps is throttled
-    spin = min(_SPIN, 0.25 * period)
+    # spin at most a quarter period: a SCHED_FIFO loop that never sleeps is throttled;
+    # realtime="spin" (or "auto" on a virtual machine) busy-waits the whole period
+    spin = period if spin_all else min(_SPIN, _SPIN_FRACTION * period)
 
     state = STATE_STARTUP if startup_ticks > 0 else STATE_RUN
     reason = "completed"

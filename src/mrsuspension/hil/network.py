@@ -158,6 +158,10 @@ class UdpRig(Rig):
         Longest wait for the reply to a reset or a heartbeat [s] (retried three times).
     heartbeat : float
         Period of the client's heartbeats [s] (sent with the commands; 0: none).
+    spin : bool
+        Wait for the reply by polling the socket rather than sleeping in ``select``
+        (default: sleep). On a virtual machine a sleeping vCPU can take milliseconds to
+        wake; use it with the loop's ``realtime="spin"``. The wait is at most ``timeout``.
 
     Attributes
     ----------
@@ -175,8 +179,10 @@ class UdpRig(Rig):
         timeout: float | None = None,
         reset_timeout: float = 1.0,
         heartbeat: float = DEFAULT_HEARTBEAT,
+        spin: bool = False,
     ) -> None:
         self.host = str(host)
+        self.spin = bool(spin)
         self.port = int(check_range("port", port, 1, 65535))
         if timeout is not None:
             check_range("timeout", timeout, 0.0, 1.0, unit="s")
@@ -374,9 +380,10 @@ class UdpRig(Rig):
                 rem = end - time.perf_counter()
                 if rem <= 0:
                     break
-                ready, _, _ = select.select([sock], [], [], rem)
-                if not ready:
-                    break
+                if not self.spin:
+                    ready, _, _ = select.select([sock], [], [], rem)
+                    if not ready:
+                        break
                 try:
                     take(recv(_BUF))
                 except (BlockingIOError, ConnectionRefusedError):
@@ -515,7 +522,9 @@ def serve_rig(
     realtime : bool or str
         Scheduling of the server (``"auto"``, ``"fifo"`` or ``"off"``, as for
         :func:`~mrsuspension.hil.loop.run_hil`; the server pins itself to a core other
-        than the loop's).
+        than the loop's). With ``"spin"`` the server polls its socket instead of sleeping
+        in ``select`` (it keeps one core busy; a sleeping virtual CPU can take
+        milliseconds to wake).
 
     Returns
     -------
@@ -542,13 +551,13 @@ def serve_rig(
     mode = normalise_mode(realtime)
     if mode == "unpaced":
         raise ValidationError(
-            "the rig server runs in real time: realtime must be 'auto', 'fifo' or 'off'; "
+            "the rig server runs in real time: realtime must be 'auto', 'fifo', 'spin' or 'off'; "
             f"got {realtime!r}"
         )
-    with realtime_session(mode, cpu=pick_cpu("emulator")):
+    with realtime_session(mode, cpu=pick_cpu("emulator")) as rt:
         return _serve(
             rig, host, port, rate, drop, delay, delay_probability, drop_after, seed, duration,
-            ready, should_stop, heartbeat, watchdog, return_rate,
+            ready, should_stop, heartbeat, watchdog, return_rate, rt.spin,
         )  # fmt: skip
 
 
@@ -568,6 +577,7 @@ def _serve(
     heartbeat: float,
     watchdog: float,
     return_rate: float,
+    spin: bool = False,
 ) -> dict[str, int]:
     rng = random.Random(seed)
     perf = time.perf_counter
@@ -613,6 +623,8 @@ def _serve(
             if armed and not safe:
                 due = min(due, last_rx + watchdog)
             wait = min(wait, max(0.0, due - t))
+            if spin:  # poll: a sleeping virtual CPU can take milliseconds to wake
+                wait = 0.0
             ready_r, _, _ = select.select([sock], [], [], wait)
             if ready_r:
                 data, addr = sock.recvfrom(_BUF)

@@ -26,6 +26,11 @@ Modes (``realtime=``):
 ``"auto"``     paced; every step above, each falling back with a note (default;
                ``True`` means the same)
 ``"fifo"``     paced; as ``"auto"`` but SCHED_FIFO is required (an error otherwise)
+``"spin"``     paced; pinned core, locked memory, frozen GC, but ordinary priority,
+               and the loop busy-waits the whole period instead of sleeping. On a
+               virtual machine a sleeping vCPU can take milliseconds to wake, and a
+               SCHED_FIFO loop that never sleeps is throttled by the kernel, so this
+               mode suits VMs with a core to spare (measured in docs/hil.md)
 ``"off"``      paced on the clock; the scheduling is left as it is
 ``"unpaced"``  ticks back to back, as fast as possible (``False`` means the same);
                only for rigs that are simulated in the same process
@@ -61,7 +66,7 @@ __all__ = [
 ]
 
 #: accepted values of ``realtime=`` (besides True = "auto" and False = "unpaced")
-REALTIME_MODES = ("auto", "fifo", "off", "unpaced")
+REALTIME_MODES = ("auto", "fifo", "spin", "off", "unpaced")
 #: SCHED_FIFO priority of the loop (1..99; the kernel's own threads run at 50 and 99)
 DEFAULT_PRIORITY = 40
 _MCL_CURRENT, _MCL_FUTURE = 1, 2
@@ -149,9 +154,12 @@ class RealtimeSession:
         Whether ``gc.freeze()`` was applied.
     notes : list of str
         Steps refused by the system (and why).
+    spin : bool
+        The loop busy-waits for the whole period (``"spin"``).
     """
 
     mode: str
+    spin: bool = False
     policy: str = "unchanged"
     cpu: int | None = None
     memory_locked: bool = False
@@ -177,6 +185,8 @@ class RealtimeSession:
         if self.mode == "off":
             return "off (paced; scheduling unchanged)"
         parts = [self.policy]
+        if self.spin:
+            parts.append("busy-wait")
         if self.cpu is not None:
             parts.append(f"cpu {self.cpu}")
         if self.memory_locked:
@@ -193,6 +203,7 @@ class RealtimeSession:
         return {
             "mode": self.mode,
             "paced": self.paced,
+            "spin": self.spin,
             "policy": self.policy,
             "cpu": self.cpu,
             "memory_locked": self.memory_locked,
@@ -339,14 +350,16 @@ def realtime_session(
     for buf in buffers:
         buf.fill(0.0)  # write every page before the clock starts
     try:
-        if mode in ("auto", "fifo"):
+        if mode in ("auto", "fifo", "spin"):
             gc.collect()
             gc.freeze()
             session.gc_frozen = True
             session._undo.append(gc.unfreeze)
             _lock_memory(session)
             _pin(session, cpu)
-            _set_fifo(session, priority, required=mode == "fifo")
+            session.spin = mode == "spin"
+            if not session.spin:
+                _set_fifo(session, priority, required=mode == "fifo")
         yield session
     finally:
         session.restore()

@@ -142,3 +142,28 @@ def test_jitter_max_and_misses_from_arrays() -> None:
     unpaced = TickStats.from_arrays(compute, np.zeros(6), 1e-3, False)
     assert unpaced.misses == 0
     assert unpaced.jitter_max == 0.0
+
+
+@pytest.mark.skipif(not LINUX_SCHED, reason="Linux scheduling calls")
+def test_spin_pins_without_fifo_and_busy_waits() -> None:
+    policy = os.sched_getscheduler(0)
+    affinity = os.sched_getaffinity(0)
+    with realtime_session("spin") as rt:
+        assert rt.spin
+        assert rt.policy == "unchanged"
+        assert os.sched_getscheduler(0) == policy  # ordinary priority: no RT throttling
+        if len(affinity) > 1:
+            assert os.sched_getaffinity(0) == {rt.cpu}
+        assert "busy-wait" in rt.label()
+        assert rt.describe()["spin"] is True
+    assert os.sched_getaffinity(0) == affinity
+    with realtime_session("auto") as rt:
+        assert not rt.spin
+
+
+def test_spin_run_and_network_rig_poll() -> None:
+    """A spin run records its scheduling and puts a network rig's reads in poll mode."""
+    result = run_hil(_sim(), SimulatedRig(), duration=0.3, rate=1000.0, realtime="spin")
+    assert "busy-wait" in result.stats.scheduling
+    assert result.meta["scheduling"]["spin"] is True
+    assert not UdpRig().spin  # sleeping in select stays the default
