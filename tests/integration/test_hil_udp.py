@@ -81,9 +81,7 @@ def test_udp_run_at_1khz() -> None:
         if linux:
             cpu0 = (_cpu_seconds(), time.process_time(), _cpu_seconds(emu.proc.pid))
         wall = time.perf_counter()
-        result = run_hil(
-            _sim(), rig, duration=3.0, rate=1000.0, limits=LIMITS, realtime="spin"
-        )
+        result = run_hil(_sim(), rig, duration=3.0, rate=1000.0, limits=LIMITS, realtime="spin")
         wall = time.perf_counter() - wall
         if linux:
             busy = _cpu_seconds() - cpu0[0]
