@@ -24,7 +24,19 @@ import numpy as np
 from mrsuspension.engine.result import SimulationResult
 from mrsuspension.engine.simulate import run_many
 from mrsuspension.report.ch2 import _subplots
-from mrsuspension.report.families import FigureSpec, ShockTable, in_worker, passive, vary
+from mrsuspension.report.families import (
+    HARMONIC_AMPS,
+    MASSES,
+    PULSE_AMPS,
+    ROADS,
+    SPEEDS,
+    FigureSpec,
+    ShockTable,
+    in_worker,
+    passive,
+    spec_factory,
+    vary,
+)
 from mrsuspension.report.html import FigureRecord
 from mrsuspension.scenario import Scenario
 from mrsuspension.studies import Study, StudyResult, run_study
@@ -332,23 +344,8 @@ _SCM_ACM = {
 }
 _PASSIVE_ACM = {**passive(0.0, 0.1), _ACM: {}}
 _POLICIES = {f"policy {p} (k_c = {c['controller']['gain']:g})": c for p, c in POLICY_CASES.items()}
-_MASSES = vary("vehicle", "sprung_mass", (422.0, 563.0, 703.0), "m_s = {:g} kg".format, 563.0)
-_SPEEDS = vary("excitation", "speed", (50.0, 100.0), "V = {:g} km/h".format, 50.0)
-_ROADS = {"medium-rough": {"excitation": {"profile": "medium-rough"}}, "rough": {}}
 
 
-def _cm(a: float) -> str:
-    return f"{a * 100:g} cm"
-
-
-_HARMONIC_AMPS = {
-    f"a = {_cm(a)}": ({} if a == 0.025 else {"excitation": {"amplitude": a}})
-    for a in (0.015, 0.025, 0.035)
-}
-_PULSE_AMPS = {
-    f"a_m = {_cm(a)}": ({} if a == 0.035 else {"excitation": {"amplitude": a}})
-    for a in (0.02, 0.035, 0.05)
-}
 _GAINS = vary("controller", "gain", (0.5, 1.5, 3.0), "k_c = {:g}".format, 3.0)
 _ORDERS = vary("controller", "order", (1, 2, 3), "n = {}".format, 2)
 _TRACK = ("F_d", "i_d", "a_s", "a_u", "x_r", "F_T")
@@ -370,16 +367,7 @@ _R = (
 _C = "Skyhook hi-lo ACM (k_c = 3, n = 2, p = 0, xi = 4.5, p_c = 0, xi_c = 10)"
 
 
-def _spec(number: str, kind: str, title: str, caption: str, variants: Any, **kw: Any) -> FigureSpec:
-    return FigureSpec(
-        number=number,
-        kind=kind,
-        title=title,
-        caption=caption,
-        base=kw.pop("base", BASE),
-        variants=variants,
-        **kw,
-    )
+_spec = spec_factory(BASE)
 
 
 FIGURES: tuple[FigureSpec, ...] = (
@@ -454,54 +442,54 @@ FIGURES: tuple[FigureSpec, ...] = (
     ),
     _spec(
         "4.12", "time", "Sprung-mass variation: harmonic responses",
-        f"m_s = 422, 563, 703 kg (nominal +-25 %); {_C}; {_H}.", _MASSES,
+        f"m_s = 422, 563, 703 kg (nominal +-25 %); {_C}; {_H}.", MASSES,
     ),
     _spec(
         "4.13", "freq", "Sprung-mass variation: frequency responses",
         f"m_s = 422, 563, 703 kg; {_C}; {_SW}. The dissertation finds the lightest vehicle has "
         "the highest DLC at every frequency.",
-        _MASSES,
+        MASSES,
     ),
     _spec(
         "4.14", "pulse", "Sprung-mass variation: rounded-pulse responses",
-        f"m_s = 422, 563, 703 kg; {_C}; {_P}. Measures in Table 4.1.", _MASSES,
+        f"m_s = 422, 563, 703 kg; {_C}; {_P}. Measures in Table 4.1.", MASSES,
     ),
     _spec(
         "4.15", "psd", "Sprung-mass variation: random-road responses",
         f"m_s = 422, 563, 703 kg; {_C}; {_R}. The dissertation's text gives DLC 0.114 and "
         "0.176 for the two extreme masses (and says it rises with the mass).",
-        _MASSES, given={"m_s = 422 kg": 0.114, "m_s = 703 kg": 0.176},
+        MASSES, given={"m_s = 422 kg": 0.114, "m_s = 703 kg": 0.176},
     ),
     _spec(
         "4.16", "pulse", "Vehicle-speed variation: rounded-pulse responses",
         f"V = 50 and 100 km/h (omega_0 = 10.4 and 20.8 rad/s, erratum 9); {_C}; rounded pulse "
         "mu = 3, a_m = 3.5 cm. Measures in Table 4.2.",
-        _SPEEDS,
+        SPEEDS,
     ),
     _spec(
         "4.17", "psd", "Vehicle-speed variation: random-road PSDs",
         f"V = 50 and 100 km/h on the 'rough' preset; {_C}; {_R}. The dissertation gives DLC 0.138 "
         "(50 km/h) and 0.142 (100 km/h).",
-        _SPEEDS, given={"V = 50 km/h": 0.138, "V = 100 km/h": 0.142},
+        SPEEDS, given={"V = 50 km/h": 0.138, "V = 100 km/h": 0.142},
     ),
     _spec(
         "4.18", "time", "Harmonic amplitude variation (1.5 Hz): time histories",
-        f"a = 1.5, 2.5, 3.5 cm at 1.5 Hz; {_C}; steady state 6-7.4 s.", _HARMONIC_AMPS,
+        f"a = 1.5, 2.5, 3.5 cm at 1.5 Hz; {_C}; steady state 6-7.4 s.", HARMONIC_AMPS,
     ),
     _spec(
         "4.19", "freq", "Harmonic amplitude variation: frequency responses",
         f"Two-stage swept excitation with a = 1.5, 2.5, 3.5 cm (f_T = 2.1 Hz); {_C}.",
-        _HARMONIC_AMPS,
+        HARMONIC_AMPS,
     ),
     _spec(
         "4.20", "pulse", "Pulse-height variation: rounded-pulse responses",
-        f"a_m = 2, 3.5, 5 cm (mu = 3, 50 km/h); {_C}. Measures in Table 4.3.", _PULSE_AMPS,
+        f"a_m = 2, 3.5, 5 cm (mu = 3, 50 km/h); {_C}. Measures in Table 4.3.", PULSE_AMPS,
     ),
     _spec(
         "4.21", "psd", "Road-roughness variation: random-road PSDs",
         "'medium-rough' and 'rough' presets (stand-ins for the Canadian roads) at 50 km/h; "
         f"{_C}. The dissertation gives DLC 0.045 (medium-rough) and 0.138 (rough).",
-        _ROADS, given={"medium-rough": 0.045, "rough": 0.138},
+        ROADS, given={"medium-rough": 0.045, "rough": 0.138},
     ),
     _spec(
         "4.22", "time", "Control-gain variation: harmonic responses",

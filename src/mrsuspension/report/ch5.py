@@ -34,7 +34,19 @@ from mrsuspension.engine.simulate import run_many
 from mrsuspension.measures import force_tracking_error
 from mrsuspension.report.ch2 import _subplots
 from mrsuspension.report.ch4 import _plot, _run, sweep_study
-from mrsuspension.report.families import FigureSpec, ShockTable, in_worker, passive, vary
+from mrsuspension.report.families import (
+    HARMONIC_AMPS,
+    MASSES,
+    PULSE_AMPS,
+    ROADS,
+    SPEEDS,
+    FigureSpec,
+    ShockTable,
+    in_worker,
+    passive,
+    spec_factory,
+    vary,
+)
 from mrsuspension.report.html import FigureRecord
 from mrsuspension.scenario import Scenario
 
@@ -324,17 +336,6 @@ BASE: dict[str, Any] = {
 }
 _ACM = "inverse-model hi-lo ACM"
 _PASSIVE_ACM = {**passive(0.0, 0.1), _ACM: {}}
-_MASSES = vary("vehicle", "sprung_mass", (422.0, 563.0, 703.0), "m_s = {:g} kg".format, 563.0)
-_SPEEDS = vary("excitation", "speed", (50.0, 100.0), "V = {:g} km/h".format, 50.0)
-_ROADS = {"medium-rough": {"excitation": {"profile": "medium-rough"}}, "rough": {}}
-_HARMONIC_AMPS = {
-    f"a = {a * 100:g} cm": ({} if a == 0.025 else {"excitation": {"amplitude": a}})
-    for a in (0.015, 0.025, 0.035)
-}
-_PULSE_AMPS = {
-    f"a_m = {a * 100:g} cm": ({} if a == 0.035 else {"excitation": {"amplitude": a}})
-    for a in (0.02, 0.035, 0.05)
-}
 #: Force-tracking panels: damper force, its target, current, accelerations, stroke
 TRACK = ("F_d", "F*", "i_d", "a_s", "a_u", "x_r")
 _MEAN = {"damper": {"hysteresis": False}}
@@ -351,16 +352,7 @@ _C = "Inverse-model hi-lo ACM (k_d = 2.5, p = 0, xi = 10, p_c = 0, xi_c = 50)"
 _MIX = {"controller": {"inverse": "mean"}}
 
 
-def _spec(number: str, kind: str, title: str, caption: str, variants: Any, **kw: Any) -> FigureSpec:
-    return FigureSpec(
-        number=number,
-        kind=kind,
-        title=title,
-        caption=caption,
-        base=kw.pop("base", BASE),
-        variants=variants,
-        **kw,
-    )
+_spec = spec_factory(BASE)
 
 
 _SCM1 = {"controller": {"law": "inverse-hilo", "mode": "SCM"}}
@@ -432,51 +424,51 @@ FIGURES: tuple[FigureSpec, ...] = (
     ),
     _spec(
         "5.12", "time", "Sprung-mass variation: harmonic responses",
-        f"m_s = 422, 563, 703 kg; {_C}; {_H}.", _MASSES,
+        f"m_s = 422, 563, 703 kg; {_C}; {_H}.", MASSES,
     ),
     _spec(
         "5.13", "freq", "Sprung-mass variation: frequency responses",
-        f"m_s = 422, 563, 703 kg; {_C}; {_SW}.", _MASSES,
+        f"m_s = 422, 563, 703 kg; {_C}; {_SW}.", MASSES,
     ),
     _spec(
         "5.14", "pulse", "Sprung-mass variation: rounded-pulse responses",
-        f"m_s = 422, 563, 703 kg; {_C}; {_P}. Measures in Table 5.1.", _MASSES,
+        f"m_s = 422, 563, 703 kg; {_C}; {_P}. Measures in Table 5.1.", MASSES,
     ),
     _spec(
         "5.15", "psd", "Sprung-mass variation: random-road PSDs",
         f"m_s = 422, 563, 703 kg; {_C}; {_R}. The dissertation gives DLC 0.091 and 0.147 for "
         "the extreme masses.",
-        _MASSES, given={"m_s = 422 kg": 0.091, "m_s = 703 kg": 0.147},
+        MASSES, given={"m_s = 422 kg": 0.091, "m_s = 703 kg": 0.147},
     ),
     _spec(
         "5.16", "pulse", "Vehicle-speed variation: rounded-pulse responses",
         f"V = 50 and 100 km/h (omega_0 scaled with speed, erratum 9); {_C}; a_m = 3.5 cm. "
         "Measures in Table 5.2.",
-        _SPEEDS,
+        SPEEDS,
     ),
     _spec(
         "5.17", "psd", "Vehicle-speed variation: random-road PSDs",
         f"V = 50 and 100 km/h on the 'rough' preset; {_C}. The dissertation gives DLC 0.113 "
         "(50 km/h) and 0.114 (100 km/h).",
-        _SPEEDS, given={"V = 50 km/h": 0.113, "V = 100 km/h": 0.114},
+        SPEEDS, given={"V = 50 km/h": 0.113, "V = 100 km/h": 0.114},
     ),
     _spec(
         "5.18", "time", "Harmonic amplitude variation (1.5 Hz): time histories",
-        f"a = 1.5, 2.5, 3.5 cm at 1.5 Hz; {_C}.", _HARMONIC_AMPS,
+        f"a = 1.5, 2.5, 3.5 cm at 1.5 Hz; {_C}.", HARMONIC_AMPS,
     ),
     _spec(
         "5.19", "freq", "Harmonic amplitude variation: frequency responses",
-        f"Two-stage swept excitation with a = 1.5, 2.5, 3.5 cm; {_C}.", _HARMONIC_AMPS,
+        f"Two-stage swept excitation with a = 1.5, 2.5, 3.5 cm; {_C}.", HARMONIC_AMPS,
     ),
     _spec(
         "5.20", "pulse", "Pulse-height variation: rounded-pulse responses",
-        f"a_m = 2, 3.5, 5 cm (mu = 3, 50 km/h); {_C}. Measures in Table 5.3.", _PULSE_AMPS,
+        f"a_m = 2, 3.5, 5 cm (mu = 3, 50 km/h); {_C}. Measures in Table 5.3.", PULSE_AMPS,
     ),
     _spec(
         "5.21", "psd", "Road-roughness variation: random-road PSDs",
         f"'medium-rough' and 'rough' presets at 50 km/h; {_C}. The dissertation gives DLC 0.056 "
         "(medium-rough) and 0.113 (rough).",
-        _ROADS, given={"medium-rough": 0.056, "rough": 0.113},
+        ROADS, given={"medium-rough": 0.056, "rough": 0.113},
     ),
     FigureSpec(
         number="5.6b", kind="special", title="Force-tracking error against k_d",

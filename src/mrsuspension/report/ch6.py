@@ -22,7 +22,18 @@ from mrsuspension.engine.result import SimulationResult
 from mrsuspension.engine.simulate import run_many
 from mrsuspension.report.ch4 import SKYHOOK_ACM
 from mrsuspension.report.ch5 import HARMONIC, STEADY_FROM, TRACK, error_figure, shock_tables, step
-from mrsuspension.report.families import FigureSpec, ShockTable, in_worker, passive, vary
+from mrsuspension.report.families import (
+    HARMONIC_AMPS,
+    MASSES,
+    PULSE_AMPS,
+    ROADS,
+    SPEEDS,
+    FigureSpec,
+    ShockTable,
+    in_worker,
+    passive,
+    spec_factory,
+)
 from mrsuspension.report.html import FigureRecord
 from mrsuspension.scenario import Scenario
 
@@ -147,17 +158,6 @@ BASE: dict[str, Any] = {
 }
 _ACM = "sliding mode ACM"
 _PASSIVE_ACM = {**passive(0.0, 0.1), _ACM: {}}
-_MASSES = vary("vehicle", "sprung_mass", (422.0, 563.0, 703.0), "m_s = {:g} kg".format, 563.0)
-_SPEEDS = vary("excitation", "speed", (50.0, 100.0), "V = {:g} km/h".format, 50.0)
-_ROADS = {"medium-rough": {"excitation": {"profile": "medium-rough"}}, "rough": {}}
-_HARMONIC_AMPS = {
-    f"a = {a * 100:g} cm": ({} if a == 0.025 else {"excitation": {"amplitude": a}})
-    for a in (0.015, 0.025, 0.035)
-}
-_PULSE_AMPS = {
-    f"a_m = {a * 100:g} cm": ({} if a == 0.035 else {"excitation": {"amplitude": a}})
-    for a in (0.02, 0.035, 0.05)
-}
 _MEAN = {"damper": {"hysteresis": False}}
 _HYST: dict[str, Any] = {}
 _SCM1 = {"controller": {"law": "sliding-mode", "mode": "SCM"}}
@@ -182,16 +182,7 @@ _C = (
 _MIX = {"controller": {"inverse": "mean"}}
 
 
-def _spec(number: str, kind: str, title: str, caption: str, variants: Any, **kw: Any) -> FigureSpec:
-    return FigureSpec(
-        number=number,
-        kind=kind,
-        title=title,
-        caption=caption,
-        base=kw.pop("base", BASE),
-        variants=variants,
-        **kw,
-    )
+_spec = spec_factory(BASE)
 
 
 FIGURES: tuple[FigureSpec, ...] = (
@@ -246,54 +237,54 @@ FIGURES: tuple[FigureSpec, ...] = (
     _spec(
         "6.11", "time", "Sprung-mass variation: harmonic responses",
         f"m_s = 422, 563, 703 kg (controller's nominal m_s0 = 563 kg, beta = 1.25); {_C}; {_H}.",
-        _MASSES,
+        MASSES,
     ),
     _spec(
         "6.12", "freq", "Sprung-mass variation: frequency responses",
         f"m_s = 422, 563, 703 kg (m_s0 = 563 kg); {_C}; {_SW}. Section 6.5: the sliding-mode "
         "controller is the most robust to the load.",
-        _MASSES,
+        MASSES,
     ),
     _spec(
         "6.13", "pulse", "Sprung-mass variation: rounded-pulse responses",
-        f"m_s = 422, 563, 703 kg; {_C}; {_P}. Measures in Table 6.1.", _MASSES,
+        f"m_s = 422, 563, 703 kg; {_C}; {_P}. Measures in Table 6.1.", MASSES,
     ),
     _spec(
         "6.14", "psd", "Sprung-mass variation (422, 703 kg): random-road PSDs",
         f"m_s = 422 and 703 kg, as the dissertation; {_C}; {_R}. The dissertation gives DLC "
         "0.091 and 0.141.",
-        {k: v for k, v in _MASSES.items() if k != "m_s = 563 kg"},
+        {k: v for k, v in MASSES.items() if k != "m_s = 563 kg"},
         given={"m_s = 422 kg": 0.091, "m_s = 703 kg": 0.141},
     ),
     _spec(
         "6.15", "pulse", "Vehicle-speed variation: rounded-pulse responses",
         f"V = 50 and 100 km/h (omega_0 scaled with speed, erratum 9); {_C}; a_m = 3.5 cm. "
         "Measures in Table 6.2.",
-        _SPEEDS,
+        SPEEDS,
     ),
     _spec(
         "6.16", "psd", "Vehicle-speed variation: random-road PSDs",
         f"V = 50 and 100 km/h on the 'rough' preset; {_C}. The dissertation gives DLC 0.112 "
         "(50 km/h) and 0.114 (100 km/h).",
-        _SPEEDS, given={"V = 50 km/h": 0.112, "V = 100 km/h": 0.114},
+        SPEEDS, given={"V = 50 km/h": 0.112, "V = 100 km/h": 0.114},
     ),
     _spec(
         "6.17", "time", "Harmonic amplitude variation (1.5 Hz): time histories",
-        f"a = 1.5, 2.5, 3.5 cm at 1.5 Hz; {_C}.", _HARMONIC_AMPS,
+        f"a = 1.5, 2.5, 3.5 cm at 1.5 Hz; {_C}.", HARMONIC_AMPS,
     ),
     _spec(
         "6.18", "freq", "Harmonic amplitude variation: frequency responses",
-        f"Two-stage swept excitation with a = 1.5, 2.5, 3.5 cm; {_C}.", _HARMONIC_AMPS,
+        f"Two-stage swept excitation with a = 1.5, 2.5, 3.5 cm; {_C}.", HARMONIC_AMPS,
     ),
     _spec(
         "6.19", "pulse", "Pulse-height variation: rounded-pulse responses",
-        f"a_m = 2, 3.5, 5 cm (mu = 3, 50 km/h); {_C}. Measures in Table 6.3.", _PULSE_AMPS,
+        f"a_m = 2, 3.5, 5 cm (mu = 3, 50 km/h); {_C}. Measures in Table 6.3.", PULSE_AMPS,
     ),
     _spec(
         "6.20", "psd", "Road-roughness variation: random-road PSDs",
         f"'medium-rough' and 'rough' presets at 50 km/h; {_C}. The dissertation gives DLC 0.054 "
         "(medium-rough) and 0.112 (rough).",
-        _ROADS, given={"medium-rough": 0.054, "rough": 0.112},
+        ROADS, given={"medium-rough": 0.054, "rough": 0.112},
     ),
     FigureSpec(
         number="6.5b", kind="special", title="Force-tracking error against k_d",

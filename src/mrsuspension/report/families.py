@@ -68,7 +68,12 @@ import numpy as np
 from mrsuspension.errors import ValidationError
 
 __all__ = [
+    "HARMONIC_AMPS",
     "KINDS",
+    "MASSES",
+    "PULSE_AMPS",
+    "ROADS",
+    "SPEEDS",
     "FigureSpec",
     "ShockTable",
     "Unit",
@@ -81,6 +86,7 @@ __all__ = [
     "render",
     "run_unit",
     "shock_table",
+    "spec_factory",
     "vary",
 ]
 
@@ -962,6 +968,52 @@ def passive(*currents: float) -> dict[str, dict[str, Any]]:
         }
         for i in currents
     }
+
+
+# -- the variant sets the three controller chapters share (sections 4.4, 5.4, 6.4) -------
+#: sprung mass +-25 % (563 kg nominal)
+MASSES = vary("vehicle", "sprung_mass", (422.0, 563.0, 703.0), "m_s = {:g} kg".format, 563.0)
+#: vehicle speed over a pulse or a road (50 km/h nominal)
+SPEEDS = vary("excitation", "speed", (50.0, 100.0), "V = {:g} km/h".format, 50.0)
+#: road roughness (the presets standing in for the dissertation's roads)
+ROADS: dict[str, dict[str, Any]] = {
+    "medium-rough": {"excitation": {"profile": "medium-rough"}},
+    "rough": {},
+}
+#: harmonic amplitude at 1.5 Hz (2.5 cm nominal)
+HARMONIC_AMPS = vary(
+    "excitation", "amplitude", (0.015, 0.025, 0.035), lambda a: f"a = {a * 100:g} cm", 0.025
+)
+#: rounded-pulse height (3.5 cm nominal)
+PULSE_AMPS = vary(
+    "excitation", "amplitude", (0.02, 0.035, 0.05), lambda a: f"a_m = {a * 100:g} cm", 0.035
+)
+
+
+def spec_factory(base: Mapping[str, Any]) -> Callable[..., FigureSpec]:
+    """A :class:`FigureSpec` maker whose ``base`` defaults to a chapter's controller.
+
+    Examples
+    --------
+    >>> spec = spec_factory({"controller": {"law": "passive"}})
+    >>> spec("9.1", "time", "T", "C", {"a": {}}).base["controller"]["law"]
+    'passive'
+    """
+
+    def spec(
+        number: str, kind: str, title: str, caption: str, variants: Any, **kw: Any
+    ) -> FigureSpec:
+        return FigureSpec(
+            number=number,
+            kind=kind,
+            title=title,
+            caption=caption,
+            base=kw.pop("base", base),
+            variants=variants,
+            **kw,
+        )
+
+    return spec
 
 
 def check_finite(data: Mapping[str, Any]) -> list[str]:
