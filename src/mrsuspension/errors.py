@@ -7,11 +7,14 @@ so that a user can fix the input without reading the source.
 from __future__ import annotations
 
 import difflib
+import tomllib
 from collections.abc import Iterable
+from pathlib import Path
+from typing import Any
 
 import numpy as np
 
-__all__ = ["MRSuspensionError", "ValidationError", "did_you_mean"]
+__all__ = ["MRSuspensionError", "ValidationError", "did_you_mean", "read_toml"]
 
 
 class MRSuspensionError(Exception):
@@ -106,3 +109,26 @@ def check_range(
         where = f" at index {k}" if arr.ndim else ""
         raise ValidationError(f"{name} must be in {lb}{lo}, {hi}{rb}{u}; got {flat[k]:g}{u}{where}")
     return arr
+
+
+def read_toml(path: str | Path, what: str) -> dict[str, Any]:
+    """The contents of a TOML file; any problem reading it is a :class:`ValidationError`.
+
+    ``what`` names the file in the messages ("scenario", "study", ...).
+
+    Examples
+    --------
+    >>> read_toml("no/such.toml", "scenario")
+    Traceback (most recent call last):
+    ...
+    mrsuspension.errors.ValidationError: scenario file not found: 'no/such.toml'
+    """
+    path = Path(path)
+    if not path.is_file():
+        raise ValidationError(f"{what} file not found: {str(path)!r}")
+    try:
+        return tomllib.loads(path.read_text(encoding="utf-8"))
+    except tomllib.TOMLDecodeError as exc:
+        raise ValidationError(f"{what} file {str(path)!r} is not valid TOML: {exc}") from None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise ValidationError(f"cannot read {what} file {str(path)!r}: {exc}") from None

@@ -67,7 +67,6 @@ import copy
 import json
 import math
 import time
-import tomllib
 from collections.abc import Callable, Iterator, Mapping, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass, field
@@ -77,7 +76,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from mrsuspension._batch import Job, job_of, process_pool, run_jobs
-from mrsuspension.errors import ValidationError, did_you_mean
+from mrsuspension.errors import ValidationError, did_you_mean, read_toml
 from mrsuspension.excitation import EXCITATION_OPTIONS
 from mrsuspension.scenario import SCENARIO_KEYS, Scenario
 from mrsuspension.studies.study import MEASURES
@@ -487,14 +486,7 @@ class OptimizationProblem:
     def load(cls, path: str | Path) -> OptimizationProblem:
         """Read and validate a problem TOML file (relative paths from its folder)."""
         path = Path(path)
-        if not path.is_file():
-            raise ValidationError(f"optimisation problem file not found: {str(path)!r}")
-        try:
-            data = tomllib.loads(path.read_text(encoding="utf-8"))
-        except tomllib.TOMLDecodeError as exc:
-            raise ValidationError(f"problem file {str(path)!r} is not valid TOML: {exc}") from None
-        except (OSError, UnicodeDecodeError) as exc:
-            raise ValidationError(f"cannot read problem file {str(path)!r}: {exc}") from None
+        data = read_toml(path, "optimisation problem")
         problem = data.get("problem", {})
         if isinstance(problem, dict):
             problem.setdefault("name", path.stem)

@@ -37,7 +37,6 @@ from __future__ import annotations
 import copy
 import dataclasses
 import inspect
-import tomllib
 from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass, field
@@ -49,7 +48,7 @@ from mrsuspension.control import CONTROLLERS, Controller, HiLo, make_controller
 from mrsuspension.dampers import DAMPERS, ESTIMATORS, DamperModel, make_damper
 from mrsuspension.engine.result import SimulationResult
 from mrsuspension.engine.simulate import DEFAULT_DT, Simulation, run_many
-from mrsuspension.errors import ValidationError, check_range, did_you_mean
+from mrsuspension.errors import ValidationError, check_range, did_you_mean, read_toml
 from mrsuspension.excitation import (
     EXCITATION_OPTIONS,
     EXCITATIONS,
@@ -313,14 +312,7 @@ class Scenario:
             wrong types and out-of-range values (naming ``[section] key``).
         """
         path = Path(path)
-        if not path.is_file():
-            raise ValidationError(f"scenario file not found: {str(path)!r}")
-        try:
-            data = tomllib.loads(path.read_text(encoding="utf-8"))
-        except tomllib.TOMLDecodeError as exc:
-            raise ValidationError(f"scenario file {str(path)!r} is not valid TOML: {exc}") from None
-        except (OSError, UnicodeDecodeError) as exc:
-            raise ValidationError(f"cannot read scenario file {str(path)!r}: {exc}") from None
+        data = read_toml(path, "scenario")
         scenario = cls.from_dict(data, base_dir=path.resolve().parent)
         return dataclasses.replace(scenario, source=path)
 

@@ -48,7 +48,6 @@ import hashlib
 import itertools
 import json
 import re
-import tomllib
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -56,7 +55,7 @@ from typing import Any
 
 import numpy as np
 
-from mrsuspension.errors import ValidationError, did_you_mean
+from mrsuspension.errors import ValidationError, did_you_mean, read_toml
 from mrsuspension.excitation import log_frequencies
 from mrsuspension.scenario import SCENARIO_KEYS, Scenario
 
@@ -296,12 +295,7 @@ class Study:
     def load(cls, path: str | Path) -> Study:
         """Read and validate a study TOML file (relative paths from its folder)."""
         path = Path(path)
-        if not path.is_file():
-            raise ValidationError(f"study file not found: {str(path)!r}")
-        try:
-            data = tomllib.loads(path.read_text(encoding="utf-8"))
-        except tomllib.TOMLDecodeError as exc:
-            raise ValidationError(f"study file {str(path)!r} is not valid TOML: {exc}") from None
+        data = read_toml(path, "study")
         data.setdefault("study", {}).setdefault("name", path.stem)
         return cls.from_dict(data, base_dir=path.resolve().parent)
 
