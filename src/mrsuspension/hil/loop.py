@@ -31,6 +31,7 @@ controller change ramps the drive current, an excitation change cross-fades the 
 
 from __future__ import annotations
 
+import contextlib
 import dataclasses
 import gc
 import json
@@ -40,7 +41,7 @@ import shutil
 import sys
 import tempfile
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -111,6 +112,8 @@ _SETTLE = 1.0
 #: spin (busy-wait) for the last part of each wait [s], at most this fraction of a period
 _SPIN = 3e-4
 _SPIN_FRACTION = 0.25
+#: first release after the clock starts [s]
+_START_DELAY = 2e-3
 
 
 @dataclass(frozen=True)
@@ -293,6 +296,41 @@ def _simulation_of(target: Any) -> Simulation:
     raise ValidationError(
         f"run_hil needs a Simulation, a Scenario or a scenario path; got {type(target).__name__}"
     )
+
+
+def _spin_window(period: float, spin_all: bool) -> float:
+    """How long before each release the loop stops sleeping and spins [s].
+
+    At most a quarter period (a SCHED_FIFO loop that never sleeps is throttled by the
+    kernel); the whole period with ``spin_all`` (``realtime="spin"``: never sleep).
+
+    Examples
+    --------
+    >>> _spin_window(1e-3, False), _spin_window(1e-4, False), _spin_window(1e-3, True)
+    (0.0003, 2.5e-05, 0.001)
+    """
+    return period if spin_all else min(_SPIN, _SPIN_FRACTION * period)
+
+
+@contextlib.contextmanager
+def _quiet_interpreter() -> Iterator[float]:
+    """Garbage collection off and a short thread switch interval while ticks run.
+
+    Yields the clock time of the first release (2 ms from now); tick ``k`` is released
+    at ``t0 + k T`` and its deadline is the next release. Both settings are restored
+    on exit.
+    """
+    old_switch = sys.getswitchinterval()
+    gc_was_enabled = gc.isenabled()
+    gc.collect()
+    gc.disable()
+    sys.setswitchinterval(5e-4)
+    try:
+        yield time.perf_counter() + _START_DELAY
+    finally:
+        sys.setswitchinterval(old_switch)
+        if gc_was_enabled:
+            gc.enable()
 
 
 def _wait_until(deadline: float, spin: float = _SPIN) -> float:
@@ -530,9 +568,7 @@ def _loop(
     startup_ticks = math.ceil(startup.duration / period - 1e-9)
     hold_current = startup.hold_current
     home_tol = max(2e-3, 0.02 * lim.stroke)
-    # spin at most a quarter period: a SCHED_FIFO loop that never sleeps is throttled;
-    # realtime="spin" (or "auto" on a virtual machine) busy-waits the whole period
-    spin = period if spin_all else min(_SPIN, _SPIN_FRACTION * period)
+    spin = _spin_window(period, spin_all)
 
     state = STATE_STARTUP if startup_ticks > 0 else STATE_RUN
     reason = "completed"
@@ -559,14 +595,8 @@ def _loop(
     demand = 0.0
     pending: list[tuple[float, ...]] = []
 
-    old_switch = sys.getswitchinterval()
-    gc_was_enabled = gc.isenabled()
-    gc.collect()
-    gc.disable()
-    sys.setswitchinterval(5e-4)
     k = 0
-    t0 = perf() + 2e-3
-    try:
+    with _quiet_interpreter() as t0:
         while k < n_max:
             release = t0 + k * period
             start = _wait_until(release, spin) if realtime else perf()
@@ -695,10 +725,6 @@ def _loop(
         if state == STATE_TRIPPED:
             return reason, k
         return f"{reason}; actuator did not settle at mid-stroke", k
-    finally:
-        sys.setswitchinterval(old_switch)
-        if gc_was_enabled:
-            gc.enable()
 
 
 def _status(
