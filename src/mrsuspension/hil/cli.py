@@ -112,7 +112,8 @@ def hil_run_command(
     The loop runs in its own process; on exit the stop reason and the deadline
     statistics are printed. A safety trip exits with code 1. With --monitor the browser
     monitor is served instead, with this run started and attached (live plots, live
-    changes, STOP, recording download), until Ctrl-C.
+    changes, STOP, recording download), until Ctrl-C; with --monitor --json the run's
+    outcome is printed as JSON when it ends (the monitor's address goes to stderr).
     """
     from mrsuspension.hil.loop import _simulation_of
 
@@ -130,9 +131,18 @@ def hil_run_command(
 
             check_range("duration", duration, 0.0, 1e5, unit="s", low_inclusive=False)
             check_range("rate", rate, 50.0, 5000.0, unit="Hz")
+
+            def print_result(info: dict[str, Any]) -> None:
+                # the object `hil run --json` prints (the recording is the run's folder)
+                if out is None and "out" in info:
+                    info["out"] = None
+                typer.echo(json.dumps(_clean(info), indent=2))
+
             serve(
-                host, port, token, rig=rig, workdir=out,
-                attach=AttachedRun(sim, rate=rate, duration=duration),
+                host, port, token, rig=rig, workdir=out, url_to_stderr=as_json,
+                attach=AttachedRun(
+                    sim, rate=rate, duration=duration, on_end=print_result if as_json else None
+                ),
             )  # fmt: skip
             return
         the_rig = make_rig(rig, sim.damper)

@@ -74,6 +74,7 @@ __all__ = [
     "LiveChange",
     "LoopHooks",
     "TickStats",
+    "load_result",
     "run_hil",
 ]
 
@@ -801,12 +802,42 @@ def _run_in_process(
 ) -> HilResult:
     proc = start_process(target, rig, duration, rate, out, **kw)
     proc.join()
-    recording = load_recording(out)
-    stop = recording.stop
-    if proc.exitcode != 0 or not recording.complete:
+    if proc.exitcode != 0:
+        recording = load_recording(out)
         raise MRSuspensionError(
             f"the HiL loop process ended with exit code {proc.exitcode} before finishing; "
             f"the recording in {out} holds {len(recording)} rows"
+        )
+    return load_result(out)
+
+
+def load_result(out: str | Path) -> HilResult:
+    """The :class:`HilResult` of a finished run from its recording directory.
+
+    What :func:`run_hil` returns, rebuilt from the recording (its stop record holds the
+    reason and the tick statistics): used for runs in their own process.
+
+    Raises
+    ------
+    MRSuspensionError
+        When the recording is incomplete (the run has not finished or its process died).
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from mrsuspension.excitation import Harmonic
+    >>> out = Path(tempfile.mkdtemp()) / "rec"
+    >>> run = run_hil(Simulation(Harmonic(1.5, 0.01)), duration=0.05, realtime="unpaced", out=out)
+    >>> again = load_result(out)
+    >>> again.reason, again.stats == run.stats, again.describe()["rows"] == len(run.recording)
+    ('completed', True, True)
+    """
+    out = Path(out)
+    recording = load_recording(out)
+    stop = recording.stop
+    if not recording.complete:
+        raise MRSuspensionError(
+            f"the HiL run in {out} did not finish; its recording holds {len(recording)} rows"
         )
     stats = TickStats(**stop["stats"])
     meta = json.loads((out / "meta.json").read_text()) if (out / "meta.json").exists() else {}
