@@ -33,7 +33,7 @@ from mrsuspension.errors import MRSuspensionError, ValidationError, check_range
 from mrsuspension.hil.loop import TickStats, _quiet_interpreter, _spin_window, _wait_until
 from mrsuspension.hil.realtime import normalise_mode, realtime_session
 
-__all__ = ["LATENCY_MODES", "LatencyResult", "cpu_times", "measure_latency"]
+__all__ = ["LATENCY_MODES", "LatencyResult", "count_stalls", "cpu_times", "measure_latency"]
 
 #: scheduling modes of :func:`measure_latency` (the paced modes of ``run_hil``)
 LATENCY_MODES = ("auto", "fifo", "spin", "off")
@@ -70,6 +70,27 @@ def cpu_times() -> tuple[float, float]:
     return busy / hz, v[7] / hz
 
 
+def count_stalls(lateness: np.ndarray, period: float) -> int:
+    """Stalls longer than one period in a paced run's per-tick release lateness.
+
+    A stall is a time the loop's thread did not run: a start-to-start interval longer
+    than two periods (the start more than one period past its spacing), or a first tick
+    released more than a period late. Each stall counts once, however many late ticks
+    follow it while the loop catches up.
+
+    Examples
+    --------
+    >>> late = np.array([0, 6, 5, 4, 3, 2, 1, 0, 0, 1.5, 0.5, 0]) * 1e-3   # 2 stalls
+    >>> count_stalls(late, 1e-3), int(np.count_nonzero(late > 1e-3))
+    (2, 6)
+    """
+    lateness = np.asarray(lateness, dtype=float)
+    if lateness.size == 0:
+        return 0
+    gaps = np.diff(lateness)  # start-to-start interval minus the period
+    return int(np.count_nonzero(gaps > period)) + int(lateness[0] > period)
+
+
 @dataclass(frozen=True)
 class LatencyResult:
     """Outcome of :func:`measure_latency` (times in seconds).
@@ -96,7 +117,7 @@ class LatencyResult:
     longest_stall : float
         Largest release lateness [s].
     stalls : int
-        Ticks released more than one period late.
+        Stalls longer than one period (:func:`count_stalls`; each counted once).
     scheduling : dict
         What the real-time session did (:meth:`RealtimeSession.describe`).
     """
@@ -277,7 +298,7 @@ def measure_latency(
         steal=steal1 - steal0,
         others=max(0.0, (busy1 - busy0) - own),
         longest_stall=float(lateness.max()),
-        stalls=int(np.count_nonzero(lateness > period)),
+        stalls=count_stalls(lateness, period),
         scheduling=rt.describe(),
     )
 
