@@ -89,13 +89,13 @@ def _bench(args: argparse.Namespace, port: int) -> None:
         f"{'others':>6}"
     )
     if args.floor:
-        head += f" | {'floor %':>8} {'stalls':>6} {'steal':>6}"
+        head += f" | {'floor %':>8} {'stalls':>6} {'steal':>6} {'others':>6}"
     print("times in us; steal [s] and others [cores] over the run")
     if args.floor:
         print(
             "floor: the machine alone right before (mrsus hil latency, "
             f"{args.floor_work_us:g} us of work per tick): % in deadline, stalls > 1 period, "
-            "steal [s]"
+            "steal [s], others [cores]"
         )
     print(head)
     rows: list[tuple[float, TickStats]] = []
@@ -103,7 +103,10 @@ def _bench(args: argparse.Namespace, port: int) -> None:
         floor = ""
         if args.floor:  # the machine alone, right before the loop, same rate and mode
             f = measure_latency(rate, args.duration, args.realtime, work=args.floor_work_us * 1e-6)
-            floor = f" | {100 * f.stats.in_deadline:8.3f} {f.stalls:6d} {f.steal:6.2f}"
+            f_others = f.others / f.wall if f.wall > 0 else float("nan")
+            floor = (
+                f" | {100 * f.stats.in_deadline:8.3f} {f.stalls:6d} {f.steal:6.2f} {f_others:6.2f}"
+            )
         busy0, steal0 = cpu_times()
         cpu0 = time.process_time()
         wall = time.perf_counter()
