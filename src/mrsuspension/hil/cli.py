@@ -1,10 +1,11 @@
-"""HiL command functions: ``mrsus hil run``, ``mrsus hil validate``, ``mrsus rig-emulator``.
+"""HiL command functions: ``mrsus hil run``, ``hil validate``, ``hil latency``, ``rig-emulator``.
 
 Plain typer command functions; :mod:`mrsuspension.cli` registers them. ``hil run`` runs
 the loop in its own process with a simulated, ideal or network (``udp://HOST:PORT``)
 rig; the recording goes to ``--out`` (see docs/hil.md for the format). ``hil validate``
-runs a scenario in HiL and offline and compares them. ``rig-emulator`` serves a
-simulated rig over UDP.
+runs a scenario in HiL and offline and compares them. ``hil latency`` measures the
+machine's latency floor (the loop's pacing and scheduling alone). ``rig-emulator``
+serves a simulated rig over UDP.
 """
 
 from __future__ import annotations
