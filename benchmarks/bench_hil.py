@@ -9,6 +9,11 @@ processes, the emulator included with ``--rig udp``), then the highest rate sust
 with >= 99.9 % of ticks in deadline.
 ``--realtime auto|fifo|spin|off`` selects the scheduling (docs/hil.md); ``--rig udp`` runs
 the rig in a ``mrsus rig-emulator`` process (same scheduling option) over loopback UDP.
+``--floor`` measures the machine's floor right before each HiL run
+(:func:`~mrsuspension.hil.latency.measure_latency`, ``mrsus hil latency``: the same rate,
+duration and scheduling with empty ticks, or ``--floor-work-us`` of busy work per tick)
+and prints its share of ticks in deadline, stalls longer than a period and steal beside
+the loop's row: the machine floor against the loop.
 
 On a quiet machine (the issue-6 acceptance measurements)::
 
@@ -20,7 +25,6 @@ from __future__ import annotations
 
 import argparse
 import contextlib
-import os
 import subprocess
 import sys
 import time
@@ -28,23 +32,13 @@ from collections.abc import Iterator
 from pathlib import Path
 
 from mrsuspension.hil import Rig, SafetyLimits, SimulatedRig, UdpRig, run_hil
+from mrsuspension.hil.latency import cpu_times, measure_latency
 from mrsuspension.hil.loop import TickStats
 from mrsuspension.scenario import Scenario
 
 ROOT = Path(__file__).resolve().parents[1]
 #: the issue-6 target share of ticks in deadline
 TARGET = 0.999
-
-
-def _cpu_times() -> tuple[float, float]:
-    """(busy, steal) seconds of the whole machine so far (Linux; zeros elsewhere)."""
-    try:
-        v = [int(x) for x in Path("/proc/stat").read_text().split("\n", 1)[0].split()[1:9]]
-    except OSError:
-        return 0.0, 0.0
-    hz = os.sysconf("SC_CLK_TCK")
-    busy = sum(v) - v[3] - v[4] - v[7]
-    return busy / hz, v[7] / hz
 
 
 @contextlib.contextmanager
@@ -74,6 +68,12 @@ def main() -> None:
     ap.add_argument("--realtime", default="auto", help="auto | fifo | spin | off (docs/hil.md)")
     ap.add_argument("--rig", default="simulated", choices=("simulated", "udp"))
     ap.add_argument("--watchdog", type=float, default=None, help="rig watchdog [s] (0.05)")
+    ap.add_argument(
+        "--floor", action="store_true", help="measure the machine floor before each run"
+    )
+    ap.add_argument(
+        "--floor-work-us", type=float, default=0.0, help="busy work per floor tick [us]"
+    )
     args = ap.parse_args()
     with contextlib.ExitStack() as stack:
         port = stack.enter_context(_emulator(args.realtime)) if args.rig == "udp" else 0
@@ -88,11 +88,26 @@ def _bench(args: argparse.Namespace, port: int) -> None:
         f"{'max':>7} {'late p99':>8} {'max':>7} {'jit sd':>7} {'max':>7} {'steal':>6} "
         f"{'others':>6}"
     )
+    if args.floor:
+        head += f" | {'floor %':>8} {'stalls':>6} {'steal':>6} {'others':>6}"
     print("times in us; steal [s] and others [cores] over the run")
+    if args.floor:
+        print(
+            "floor: the machine alone right before (mrsus hil latency, "
+            f"{args.floor_work_us:g} us of work per tick): % in deadline, stalls > 1 period, "
+            "steal [s], others [cores]"
+        )
     print(head)
     rows: list[tuple[float, TickStats]] = []
     for rate in (float(r) for r in args.rates.split(",")):
-        busy0, steal0 = _cpu_times()
+        floor = ""
+        if args.floor:  # the machine alone, right before the loop, same rate and mode
+            f = measure_latency(rate, args.duration, args.realtime, work=args.floor_work_us * 1e-6)
+            f_others = f.others / f.wall if f.wall > 0 else float("nan")
+            floor = (
+                f" | {100 * f.stats.in_deadline:8.3f} {f.stalls:6d} {f.steal:6.2f} {f_others:6.2f}"
+            )
+        busy0, steal0 = cpu_times()
         cpu0 = time.process_time()
         wall = time.perf_counter()
         rig: Rig = UdpRig("127.0.0.1", port) if port else SimulatedRig(sim.damper)
@@ -101,7 +116,7 @@ def _bench(args: argparse.Namespace, port: int) -> None:
             sim, rig, duration=args.duration, rate=rate, realtime=args.realtime, limits=limits
         )
         wall = time.perf_counter() - wall
-        busy1, steal1 = _cpu_times()
+        busy1, steal1 = cpu_times()
         others = max(0.0, (busy1 - busy0) - (time.process_time() - cpu0)) / wall
         s = result.stats
         rows.append((rate, s))
@@ -109,7 +124,7 @@ def _bench(args: argparse.Namespace, port: int) -> None:
             f"{rate:6.0f} {s.ticks:7d} {100 * s.in_deadline:8.3f} {s.misses:5d} "
             f"{s.compute_p50 * us:8.1f} {s.compute_p99 * us:7.1f} {s.compute_max * us:7.0f} "
             f"{s.lateness_p99 * us:8.1f} {s.lateness_max * us:7.0f} {s.jitter * us:7.1f} "
-            f"{s.jitter_max * us:7.0f} {steal1 - steal0:6.2f} {others:6.2f}"
+            f"{s.jitter_max * us:7.0f} {steal1 - steal0:6.2f} {others:6.2f}{floor}"
         )
         if result.reason != "completed":
             print(f"       stopped early: {result.reason}")

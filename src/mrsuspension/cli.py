@@ -18,7 +18,12 @@ from mrsuspension._cli_errors import _user_errors
 from mrsuspension.cli_optimize import optimize_command
 from mrsuspension.cli_sim import simulate_command, sweep_command
 from mrsuspension.errors import MRSuspensionError, ValidationError
-from mrsuspension.hil.cli import hil_run_command, hil_validate_command, rig_emulator_command
+from mrsuspension.hil.cli import (
+    hil_latency_command,
+    hil_run_command,
+    hil_validate_command,
+    rig_emulator_command,
+)
 from mrsuspension.identify.cli import identify_command
 from mrsuspension.monitor.cli import monitor_command
 
@@ -42,6 +47,7 @@ hil_app = typer.Typer(
 app.add_typer(hil_app, name="hil")
 hil_app.command("run")(hil_run_command)
 hil_app.command("validate")(hil_validate_command)
+hil_app.command("latency")(hil_latency_command)
 app.command("rig-emulator")(rig_emulator_command)
 app.command("monitor")(monitor_command)
 

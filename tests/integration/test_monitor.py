@@ -7,6 +7,7 @@ import os
 import socket
 import subprocess
 import sys
+import threading
 import time
 import urllib.request
 from pathlib import Path
@@ -96,6 +97,34 @@ def test_hil_run_monitor_serves_the_attached_run(tmp_path: Path) -> None:
     assert "mrsus monitor (ideal rig): http://localhost:" in (
         proc.stdout.read() if proc.stdout else ""
     )
+
+
+def test_hil_run_monitor_json_prints_the_result_when_the_run_ends(tmp_path: Path) -> None:
+    """Issue 7: ``--json`` with ``--monitor`` prints what ``hil run --json`` prints."""
+    proc = subprocess.Popen(
+        [*MRSUS, "hil", "run", str(SCENARIO), "--monitor", "--port", str(_free_port()),
+         "--duration", "0.5", "--rig", "ideal", "--json"],
+        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+    )  # fmt: skip
+    lines: list[str] = []
+    guard = threading.Timer(90.0, proc.kill)  # never hang on a JSON that does not come
+    guard.start()
+    try:
+        assert proc.stdout is not None
+        for line in proc.stdout:  # the JSON object ends with a closing brace at column 0
+            lines.append(line)
+            if line.rstrip() == "}":
+                break
+    finally:
+        guard.cancel()
+        proc.terminate()
+        _, err = proc.communicate(timeout=20)
+    info = json.loads("".join(lines))  # stdout holds the JSON only
+    assert set(info) == {"reason", "tripped", "rows", "out", "stats", "rms_body_acceleration"}
+    assert info["reason"] == "completed"
+    assert info["out"] is None  # no --out: as `hil run --json`
+    assert info["stats"]["ticks"] >= 500
+    assert "mrsus monitor (ideal rig): http://localhost:" in err  # the address on stderr
 
 
 @pytest.mark.parametrize(

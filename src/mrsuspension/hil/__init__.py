@@ -9,6 +9,8 @@ measured force closes the loop through the engine's compiled step. Pieces:
 - :mod:`~mrsuspension.hil.safety`: limits, trips and the start-up sequence;
 - :mod:`~mrsuspension.hil.recorder`: incremental recording and :func:`load_recording`;
 - :mod:`~mrsuspension.hil.loop`: the real-time loop, :func:`run_hil`;
+- :mod:`~mrsuspension.hil.latency`: the machine's latency floor for that loop
+  (``measure_latency``, ``mrsus hil latency``);
 - :mod:`~mrsuspension.hil.live`: its live hooks (:class:`LoopHooks`,
   :class:`LiveChange`; the monitor's);
 - :mod:`~mrsuspension.hil.tap`: :class:`TapRing` and :class:`StopFlag`, the shared-memory

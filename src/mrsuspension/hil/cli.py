@@ -1,10 +1,11 @@
-"""HiL command functions: ``mrsus hil run``, ``mrsus hil validate``, ``mrsus rig-emulator``.
+"""HiL command functions: ``mrsus hil run``, ``hil validate``, ``hil latency``, ``rig-emulator``.
 
 Plain typer command functions; :mod:`mrsuspension.cli` registers them. ``hil run`` runs
 the loop in its own process with a simulated, ideal or network (``udp://HOST:PORT``)
 rig; the recording goes to ``--out`` (see docs/hil.md for the format). ``hil validate``
-runs a scenario in HiL and offline and compares them. ``rig-emulator`` serves a
-simulated rig over UDP.
+runs a scenario in HiL and offline and compares them. ``hil latency`` measures the
+machine's latency floor (the loop's pacing and scheduling alone). ``rig-emulator``
+serves a simulated rig over UDP.
 """
 
 from __future__ import annotations
@@ -26,6 +27,7 @@ from mrsuspension.hil.rig import Rig, SimulatedRig, ideal_rig
 
 __all__ = [
     "RIGS",
+    "hil_latency_command",
     "hil_run_command",
     "hil_validate_command",
     "make_rig",
@@ -111,7 +113,8 @@ def hil_run_command(
     The loop runs in its own process; on exit the stop reason and the deadline
     statistics are printed. A safety trip exits with code 1. With --monitor the browser
     monitor is served instead, with this run started and attached (live plots, live
-    changes, STOP, recording download), until Ctrl-C.
+    changes, STOP, recording download), until Ctrl-C; with --monitor --json the run's
+    outcome is printed as JSON when it ends (the monitor's address goes to stderr).
     """
     from mrsuspension.hil.loop import _simulation_of
 
@@ -129,9 +132,18 @@ def hil_run_command(
 
             check_range("duration", duration, 0.0, 1e5, unit="s", low_inclusive=False)
             check_range("rate", rate, 50.0, 5000.0, unit="Hz")
+
+            def print_result(info: dict[str, Any]) -> None:
+                # the object `hil run --json` prints (the recording is the run's folder)
+                if out is None and "out" in info:
+                    info["out"] = None
+                typer.echo(json.dumps(_clean(info), indent=2))
+
             serve(
-                host, port, token, rig=rig, workdir=out,
-                attach=AttachedRun(sim, rate=rate, duration=duration),
+                host, port, token, rig=rig, workdir=out, url_to_stderr=as_json,
+                attach=AttachedRun(
+                    sim, rate=rate, duration=duration, on_end=print_result if as_json else None
+                ),
             )  # fmt: skip
             return
         the_rig = make_rig(rig, sim.damper)
@@ -161,6 +173,55 @@ def hil_run_command(
             typer.echo(f"recording: {info['out']}")
     if result.tripped:
         raise typer.Exit(1)
+
+
+def hil_latency_command(
+    rate: Annotated[float, typer.Option(help="tick rate [Hz]")] = 1000.0,
+    duration: Annotated[float, typer.Option(help="length of the measurement [s]")] = 10.0,
+    realtime: Annotated[
+        str, typer.Option(help="scheduling: auto | fifo | spin | off (as `hil run`)")
+    ] = "auto",
+    work_us: Annotated[
+        float,
+        typer.Option(
+            "--work-us", help="busy work per tick [us] (e.g. a run's compute p50; 0: empty)"
+        ),
+    ] = 0.0,
+    as_json: Annotated[
+        bool, typer.Option("--json", help="print the statistics as one JSON object")
+    ] = False,
+) -> None:
+    """Measure the machine's latency floor for the HiL loop (like cyclictest).
+
+    Paces ticks at RATE Hz for DURATION seconds exactly as `hil run` does (same
+    scheduling modes) with no model and no rig, only WORK-US of busy work per tick, in
+    its own process, and prints the share of ticks in deadline, the release lateness,
+    the stalls longer than one period and the CPU time stolen by the hypervisor or used
+    by other processes meanwhile. Misses here come from the machine, not the loop
+    (docs/hil.md, "Checking a machine").
+    """
+    import sys
+
+    from mrsuspension.cli_sim import _progress
+    from mrsuspension.hil.latency import LATENCY_MODES, measure_latency
+
+    with _user_errors():
+        rate = float(check_range("--rate", rate, 0.0, 100000.0, unit="Hz", low_inclusive=False))
+        check_range("--duration", duration, 0.0, 1e6, unit="s", low_inclusive=False)
+        check_range("--work-us", work_us, 0.0, 1e6 / rate, unit="us", high_inclusive=False)
+        if normalise_mode(realtime) not in LATENCY_MODES:
+            raise ValidationError(
+                f"--realtime {realtime!r} has no deadlines to measure; "
+                f"valid: {', '.join(LATENCY_MODES)}"
+            )
+        with _progress(not as_json and sys.stderr.isatty(), "latency") as progress:
+            result = measure_latency(
+                rate, duration, realtime, work=work_us / 1e6, progress=progress, process=True
+            )
+    if as_json:
+        typer.echo(json.dumps(_clean(result.describe())))
+    else:
+        typer.echo(result.summary())
 
 
 def hil_validate_command(

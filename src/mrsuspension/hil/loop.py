@@ -31,6 +31,7 @@ controller change ramps the drive current, an excitation change cross-fades the 
 
 from __future__ import annotations
 
+import contextlib
 import dataclasses
 import gc
 import json
@@ -40,7 +41,7 @@ import shutil
 import sys
 import tempfile
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -73,6 +74,7 @@ __all__ = [
     "LiveChange",
     "LoopHooks",
     "TickStats",
+    "load_result",
     "run_hil",
 ]
 
@@ -111,6 +113,8 @@ _SETTLE = 1.0
 #: spin (busy-wait) for the last part of each wait [s], at most this fraction of a period
 _SPIN = 3e-4
 _SPIN_FRACTION = 0.25
+#: first release after the clock starts [s]
+_START_DELAY = 2e-3
 
 
 @dataclass(frozen=True)
@@ -293,6 +297,41 @@ def _simulation_of(target: Any) -> Simulation:
     raise ValidationError(
         f"run_hil needs a Simulation, a Scenario or a scenario path; got {type(target).__name__}"
     )
+
+
+def _spin_window(period: float, spin_all: bool) -> float:
+    """How long before each release the loop stops sleeping and spins [s].
+
+    At most a quarter period (a SCHED_FIFO loop that never sleeps is throttled by the
+    kernel); the whole period with ``spin_all`` (``realtime="spin"``: never sleep).
+
+    Examples
+    --------
+    >>> _spin_window(1e-3, False), _spin_window(1e-4, False), _spin_window(1e-3, True)
+    (0.0003, 2.5e-05, 0.001)
+    """
+    return period if spin_all else min(_SPIN, _SPIN_FRACTION * period)
+
+
+@contextlib.contextmanager
+def _quiet_interpreter() -> Iterator[float]:
+    """Garbage collection off and a short thread switch interval while ticks run.
+
+    Yields the clock time of the first release (2 ms from now); tick ``k`` is released
+    at ``t0 + k T`` and its deadline is the next release. Both settings are restored
+    on exit.
+    """
+    old_switch = sys.getswitchinterval()
+    gc_was_enabled = gc.isenabled()
+    gc.collect()
+    gc.disable()
+    sys.setswitchinterval(5e-4)
+    try:
+        yield time.perf_counter() + _START_DELAY
+    finally:
+        sys.setswitchinterval(old_switch)
+        if gc_was_enabled:
+            gc.enable()
 
 
 def _wait_until(deadline: float, spin: float = _SPIN) -> float:
@@ -530,9 +569,7 @@ def _loop(
     startup_ticks = math.ceil(startup.duration / period - 1e-9)
     hold_current = startup.hold_current
     home_tol = max(2e-3, 0.02 * lim.stroke)
-    # spin at most a quarter period: a SCHED_FIFO loop that never sleeps is throttled;
-    # realtime="spin" (or "auto" on a virtual machine) busy-waits the whole period
-    spin = period if spin_all else min(_SPIN, _SPIN_FRACTION * period)
+    spin = _spin_window(period, spin_all)
 
     state = STATE_STARTUP if startup_ticks > 0 else STATE_RUN
     reason = "completed"
@@ -559,14 +596,8 @@ def _loop(
     demand = 0.0
     pending: list[tuple[float, ...]] = []
 
-    old_switch = sys.getswitchinterval()
-    gc_was_enabled = gc.isenabled()
-    gc.collect()
-    gc.disable()
-    sys.setswitchinterval(5e-4)
     k = 0
-    t0 = perf() + 2e-3
-    try:
+    with _quiet_interpreter() as t0:
         while k < n_max:
             release = t0 + k * period
             start = _wait_until(release, spin) if realtime else perf()
@@ -695,10 +726,6 @@ def _loop(
         if state == STATE_TRIPPED:
             return reason, k
         return f"{reason}; actuator did not settle at mid-stroke", k
-    finally:
-        sys.setswitchinterval(old_switch)
-        if gc_was_enabled:
-            gc.enable()
 
 
 def _status(
@@ -775,12 +802,42 @@ def _run_in_process(
 ) -> HilResult:
     proc = start_process(target, rig, duration, rate, out, **kw)
     proc.join()
-    recording = load_recording(out)
-    stop = recording.stop
-    if proc.exitcode != 0 or not recording.complete:
+    if proc.exitcode != 0:
+        recording = load_recording(out)
         raise MRSuspensionError(
             f"the HiL loop process ended with exit code {proc.exitcode} before finishing; "
             f"the recording in {out} holds {len(recording)} rows"
+        )
+    return load_result(out)
+
+
+def load_result(out: str | Path) -> HilResult:
+    """The :class:`HilResult` of a finished run from its recording directory.
+
+    What :func:`run_hil` returns, rebuilt from the recording (its stop record holds the
+    reason and the tick statistics): used for runs in their own process.
+
+    Raises
+    ------
+    MRSuspensionError
+        When the recording is incomplete (the run has not finished or its process died).
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from mrsuspension.excitation import Harmonic
+    >>> out = Path(tempfile.mkdtemp()) / "rec"
+    >>> run = run_hil(Simulation(Harmonic(1.5, 0.01)), duration=0.05, realtime="unpaced", out=out)
+    >>> again = load_result(out)
+    >>> again.reason, again.stats == run.stats, again.describe()["rows"] == len(run.recording)
+    ('completed', True, True)
+    """
+    out = Path(out)
+    recording = load_recording(out)
+    stop = recording.stop
+    if not recording.complete:
+        raise MRSuspensionError(
+            f"the HiL run in {out} did not finish; its recording holds {len(recording)} rows"
         )
     stats = TickStats(**stop["stats"])
     meta = json.loads((out / "meta.json").read_text()) if (out / "meta.json").exists() else {}

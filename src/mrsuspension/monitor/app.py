@@ -20,7 +20,7 @@ import math
 import tempfile
 import time
 from collections import deque
-from collections.abc import AsyncIterator
+from collections.abc import AsyncIterator, Callable
 from dataclasses import dataclass
 from importlib import resources
 from pathlib import Path
@@ -36,8 +36,8 @@ from starlette.types import ASGIApp, Receive, Scope, Send
 from starlette.websockets import WebSocket, WebSocketDisconnect
 
 from mrsuspension.engine.simulate import Simulation
-from mrsuspension.errors import ValidationError
-from mrsuspension.hil.loop import CHANNELS, LiveChange
+from mrsuspension.errors import MRSuspensionError, ValidationError
+from mrsuspension.hil.loop import CHANNELS, LiveChange, load_result
 from mrsuspension.hil.recorder import META_FILE, load_recording
 from mrsuspension.measures.steady import T_as, T_au, T_dr, T_ds, T_du, dlc
 from mrsuspension.monitor.acquisition import Acquisition, acquisition_from_settings
@@ -127,11 +127,16 @@ class AttachedRun:
         The scenario's configuration (its damper stays; the page changes the rest live).
     rate, duration : float
         Loop rate [Hz] and run length [s].
+    on_end : callable, optional
+        Called once with the run's result description (what ``mrsus hil run --json``
+        prints: :meth:`~mrsuspension.hil.loop.HilResult.describe`) when the run has
+        ended, or with ``{"state": "error", "reason": ...}`` when its loop failed.
     """
 
     simulation: Simulation
     rate: float = 1000.0
     duration: float = 60.0
+    on_end: Callable[[dict[str, Any]], None] | None = None
 
 
 class MonitorState:
@@ -171,6 +176,7 @@ class MonitorState:
         self.events: deque[str] = deque(maxlen=20)
         self._measures: dict[str, float | None] = {}
         self._measured_at = 0.0
+        self._on_end: Callable[[dict[str, Any]], None] | None = None  # the attached run's
 
     # -- runs ------------------------------------------------------------------------------
     def validate(self, raw: dict[str, Any]) -> tuple[MonitorSettings, Simulation]:
@@ -186,7 +192,22 @@ class MonitorState:
     def attach(self, run: AttachedRun) -> dict[str, Any]:
         """Start the attached run (its scenario's damper is kept for live changes)."""
         self.base = run.simulation
-        return self._launch(run.simulation, run.rate, run.duration, 0.2, None)
+        info = self._launch(run.simulation, run.rate, run.duration, 0.2, None)
+        self._on_end = run.on_end
+        return info
+
+    def report_end(self) -> None:
+        """Give the attached run's result to its ``on_end`` once it has ended (once)."""
+        h = self.handle
+        if self._on_end is None or h is None or h.alive():
+            return
+        on_end, self._on_end = self._on_end, None
+        try:
+            info = load_result(h.out).describe()
+        except (MRSuspensionError, OSError, ValueError):  # the loop failed: no result
+            reason = self.status.get("reason") or "the loop process ended without a result"
+            info = {"state": "error", "reason": reason}
+        on_end(info)
 
     def _launch(
         self,
@@ -199,6 +220,7 @@ class MonitorState:
         self.stop()
         if self.handle is not None:
             self.handle.join(_RETURN_WAIT)
+            self.report_end()  # an attached run stopped by this start
         self.run_id += 1
         self.settings = settings
         self.simulation = sim
@@ -375,6 +397,7 @@ class MonitorState:
             self.status.update({"state": "ended", "safe": True, "current": 0.0})
             if (h.out / META_FILE).exists():
                 self.recording = h.out
+        self.report_end()
 
     def measures(self) -> dict[str, float | None]:
         """Live measures, recomputed at most every 0.2 s (they span seconds)."""
@@ -561,6 +584,7 @@ def create_app(
             state.stop()
             if state.handle is not None:
                 await asyncio.to_thread(state.handle.join, _RETURN_WAIT)
+                state.poll()  # the attached run's end, when the server stops first
 
     def record(raw: dict[str, Any]) -> dict[str, Any]:
         return state.record(str(raw.get("action", "")))

@@ -70,8 +70,13 @@ def serve(
     road_dir: Path | None = None,
     open_browser: bool = False,
     workdir: Path | None = None,
+    url_to_stderr: bool = False,
 ) -> None:
-    """Serve the monitor with uvicorn until Ctrl-C (checks the bind and the rig first)."""
+    """Serve the monitor with uvicorn until Ctrl-C (checks the bind and the rig first).
+
+    The monitor's address is printed on stdout (on stderr with ``url_to_stderr``, when
+    stdout carries JSON).
+    """
     check_bind(host, token)
     rig = check_rig(rig)
     if road_dir is not None and not road_dir.is_dir():
@@ -83,7 +88,7 @@ def serve(
     app = create_app(token=token, workdir=workdir, rig=rig, attach=attach, road_dir=road_dir)
     shown = "localhost" if is_loopback(host) else host
     url = f"http://{shown}:{port}/" + (f"?token={token}" if token else "")
-    typer.echo(f"mrsus monitor ({rig} rig): {url}")
+    typer.echo(f"mrsus monitor ({rig} rig): {url}", err=url_to_stderr)
     if open_browser:
         webbrowser.open(url)
     kwargs: dict[str, Any] = {"host": host, "port": port, "log_level": "warning"}

@@ -1,0 +1,61 @@
+"""Issue 7: the attached run (``hil run --monitor``) hands its result over when it ends."""
+
+from __future__ import annotations
+
+import time
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+from mrsuspension.control import HiLo
+from mrsuspension.engine.simulate import Simulation
+from mrsuspension.excitation import Harmonic
+from mrsuspension.hil.loop import TickStats
+
+pytest.importorskip("starlette")
+
+from mrsuspension.monitor.app import AttachedRun, MonitorState
+
+
+def _wait_for(state: MonitorState, got: list[Any], timeout: float = 90.0) -> None:
+    deadline = time.monotonic() + timeout
+    while not got and time.monotonic() < deadline:
+        state.poll()
+        time.sleep(0.05)
+
+
+def test_attached_run_reports_its_result_once(tmp_path: Path) -> None:
+    state = MonitorState(tmp_path, rig="ideal")
+    got: list[dict[str, Any]] = []
+    sim = Simulation(Harmonic(1.5, 0.01), controller=HiLo(1, mode="ACM"), max_current=0.3)
+    state.attach(AttachedRun(sim, rate=1000.0, duration=0.3, on_end=got.append))
+    _wait_for(state, got)
+    assert len(got) == 1
+    info = got[0]
+    # the object `hil run --json` prints without --monitor
+    assert set(info) == {"reason", "tripped", "rows", "out", "stats", "rms_body_acceleration"}
+    assert info["reason"] == "completed"
+    assert info["tripped"] is False
+    assert info["stats"]["ticks"] == info["rows"] >= 300
+    assert info["out"] == str(tmp_path / "run-001")
+    assert set(info["stats"]) == set(TickStats.__dataclass_fields__)
+    state.poll()  # once only
+    state.report_end()
+    assert len(got) == 1
+
+
+def test_a_stopped_attached_run_reports_too(tmp_path: Path) -> None:
+    state = MonitorState(tmp_path, rig="ideal")
+    got: list[dict[str, Any]] = []
+    sim = Simulation(Harmonic(1.5, 0.01), controller=HiLo(1, mode="ACM"), max_current=0.3)
+    state.attach(AttachedRun(sim, rate=1000.0, duration=30.0, on_end=got.append))
+    time.sleep(0.5)
+    state.stop()
+    assert state.handle is not None
+    state.handle.join(30.0)
+    state.poll()
+    assert len(got) == 1
+    assert got[0]["reason"] == "STOP pressed"
+    assert got[0]["tripped"] is True
+    assert got[0]["stats"]["ticks"] < 30000
