@@ -172,14 +172,14 @@ def _fresh_compile(sim: Any) -> float:
     from numba import njit
 
     from mrsuspension.engine import kernel as EK
+    from mrsuspension.engine.simulate import road_grid
 
     fresh = njit(**EK.NO_REFCOUNT)(EK.run.py_func)
     a = sim._arrays(1e-4)
     n = 10
-    th = np.arange(2 * n + 1) * 5e-5
+    zr, zrd = road_grid(sim.excitation, 2 * n + 1, 5e-5)
     args = (
-        np.zeros(6), n, 1e-4, np.ascontiguousarray(sim.excitation.displacement(th)),
-        np.ascontiguousarray(sim.excitation.velocity(th)), a["vp"], a["fk"], a["dk"], a["dp"],
+        np.zeros(6), n, 1e-4, zr, zrd, a["vp"], a["fk"], a["dk"], a["dp"],
         a["ds"], a["dek"], a["dep"], a["des"], a["ck"], a["cp"], a["cek"], a["cep"], a["ces"],
         a["mem"], 1, np.zeros((n + 1, EK.N_REC)), np.array([10.0, 100.0, 1e6, 1e7]),
         np.zeros(EK.SCRATCH_SIZE),
@@ -205,6 +205,7 @@ def run_benchmarks(
     from mrsuspension.control import HiLo, Passive, SlidingMode
     from mrsuspension.dampers import WangSymmetric
     from mrsuspension.engine import Simulation, measures_of, run_many
+    from mrsuspension.engine.simulate import road_grid
     from mrsuspension.excitation import Harmonic, log_frequencies, two_stage_amplitude
 
     duration = 1.0 if quick else 10.0
@@ -221,9 +222,8 @@ def run_benchmarks(
     say(f"engine: {duration:g} s at dt = 1e-4 s")
     single = _best(lambda: sim.run(duration, output_rate=1000.0), 3)
     n_single = round(duration / 1e-4)
-    grid = np.arange(2 * n_single + 1) * 5e-5
-    # the road samples (z_r, z_r' every dt/2) are computed by numpy before the loop
-    road_s = _best(lambda: (sim.excitation.displacement(grid), sim.excitation.velocity(grid)), 3)
+    # the road samples (z_r, z_r' every dt/2) are computed before the loop
+    road_s = _best(lambda: road_grid(sim.excitation, 2 * n_single + 1, 5e-5), 3)
     engine = sim.run(duration, output_rate=1e4)
 
     say("plain-Python RK4 of the same algorithm")

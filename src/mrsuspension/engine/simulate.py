@@ -50,6 +50,17 @@ class RoadInput(Protocol):
     def duration(self) -> float: ...
 
 
+def road_grid(excitation: RoadInput, n: int, step: float) -> tuple[np.ndarray, np.ndarray]:
+    """The road (z_r, z_r') at ``k * step``, ``k < n``: the excitation's fast grid if it has one."""
+    grid = getattr(excitation, "sample_grid", None)
+    if grid is not None:
+        zr, zrd = grid(n, step)
+    else:  # any object with displacement() and velocity() will do
+        t = np.arange(n) * step
+        zr, zrd = excitation.displacement(t), excitation.velocity(t)
+    return np.ascontiguousarray(zr, dtype=float), np.ascontiguousarray(zrd, dtype=float)
+
+
 class SimulationDiverged(MRSuspensionError):
     """A run left the physical range; the message says when and which signal."""
 
@@ -237,9 +248,7 @@ class Simulation:
         decimate = max(1, round(1.0 / (rate * dt)))
         # whole output intervals covering the duration (the record ends at or after it)
         n = max(1, math.ceil(duration / (dt * decimate) - 1e-9)) * decimate
-        t_half = np.arange(2 * n + 1) * (0.5 * dt)
-        zr = np.ascontiguousarray(self.excitation.displacement(t_half), dtype=float)
-        zrd = np.ascontiguousarray(self.excitation.velocity(t_half), dtype=float)
+        zr, zrd = road_grid(self.excitation, 2 * n + 1, 0.5 * dt)
         if not (np.all(np.isfinite(zr)) and np.all(np.isfinite(zrd))):
             raise ValidationError("the excitation produced non-finite road values")
         a = self._arrays(dt)

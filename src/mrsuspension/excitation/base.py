@@ -59,6 +59,26 @@ class Excitation(ABC):
         """
         return (0.0, self.duration)
 
+    def sample_grid(self, n: int, step: float) -> tuple[FloatArray, FloatArray]:
+        """``(z_r, dz_r/dt)`` at the ``n`` times ``k * step``, ``k = 0 .. n-1``.
+
+        What the simulation engine asks for (the road at every half step). The default
+        evaluates :meth:`displacement` and :meth:`velocity` on the grid; excitations with
+        a faster exact way to fill a uniform grid override it.
+
+        Examples
+        --------
+        >>> from mrsuspension.excitation import Harmonic
+        >>> z, v = Harmonic(1.0, 0.01).sample_grid(3, 0.25)
+        >>> z.round(12).tolist(), v.round(12).tolist()
+        ([0.0, 0.01, 0.0], [0.062831853072, 0.0, -0.062831853072])
+        """
+        n = int(check_range("n", n, 1, None))
+        t = np.arange(n) * float(
+            check_range("step", step, 0.0, None, unit="s", low_inclusive=False)
+        )
+        return self.displacement(t), self.velocity(t)
+
 
 def time_array(t: npt.ArrayLike) -> FloatArray:
     """``t`` as a float array, checked finite (named ``time`` in the error)."""

@@ -12,6 +12,7 @@ from typing import Any, ClassVar
 
 import numpy as np
 import numpy.typing as npt
+from numba import njit
 
 from mrsuspension.errors import ValidationError, check_range
 from mrsuspension.excitation.base import (
@@ -63,6 +64,29 @@ OMEGA0_REFERENCE = 10.4
 REFERENCE_SPEED_KMH = 50.0
 #: time [s] left after a pulse for the response to settle (a simulation-length default)
 PULSE_SETTLING_TIME = 2.0
+
+#: points per block of :func:`_harmonic_grid` (exact sin/cos at each block's start)
+_GRID_BLOCK = 64
+
+
+@njit(cache=True)
+def _harmonic_grid(a: float, w: float, h: float, z: np.ndarray, v: np.ndarray) -> None:
+    """``z[k] = a sin(w k h)``, ``v[k] = a w cos(w k h)`` by blockwise angle addition."""
+    n = z.shape[0]
+    sb = np.empty(_GRID_BLOCK)
+    cb = np.empty(_GRID_BLOCK)
+    for j in range(_GRID_BLOCK):
+        sb[j] = math.sin(w * (j * h))
+        cb[j] = math.cos(w * (j * h))
+    aw = a * w
+    for start in range(0, n, _GRID_BLOCK):
+        th = w * (start * h)
+        sa = math.sin(th)
+        ca = math.cos(th)
+        for j in range(min(_GRID_BLOCK, n - start)):
+            z[start + j] = a * (sa * cb[j] + ca * sb[j])
+            v[start + j] = aw * (ca * cb[j] - sa * sb[j])
+
 
 _MAX_FREQUENCY = 1000.0  # Hz; far above anything a quarter car responds to
 _MAX_AMPLITUDE = 1.0  # m
@@ -130,6 +154,31 @@ class Harmonic(Excitation):
         """``d2z_r/dt2 = -a omega^2 sin(omega t)`` [m/s^2]."""
         w = self.angular_frequency
         return -self.amplitude * w * w * np.sin(w * time_array(t))
+
+    def sample_grid(self, n: int, step: float) -> tuple[FloatArray, FloatArray]:
+        """``(z_r, dz_r/dt)`` at ``k * step``, ``k < n``, by angle addition (about 10x faster).
+
+        Exact sines and cosines at every 64th point, and of the 64 offsets within a
+        block, combined by ``sin(A + B) = sin A cos B + cos A sin B``: a few ulp from
+        :meth:`displacement` (whose own argument ``omega t`` rounds to a relative 1e-16),
+        without the error growth of a recurrence.
+
+        Examples
+        --------
+        >>> z = Harmonic(2.0, 0.02)
+        >>> zr, vr = z.sample_grid(10001, 5e-5)
+        >>> t = np.arange(10001) * 5e-5
+        >>> bool(np.allclose(zr, z.displacement(t), rtol=0, atol=1e-15))
+        True
+        >>> bool(np.allclose(vr, z.velocity(t), rtol=0, atol=1e-14))
+        True
+        """
+        n = int(check_range("n", n, 1, None))
+        step = float(check_range("step", step, 0.0, None, unit="s", low_inclusive=False))
+        z = np.empty(n)
+        v = np.empty(n)
+        _harmonic_grid(self.amplitude, self.angular_frequency, step, z, v)
+        return z, v
 
     def measure_window(self) -> tuple[float, float]:
         """Steady-state window ``(t_start, t_end)`` [s] of spec section 9.

@@ -330,3 +330,32 @@ def test_result_round_trips_through_standard_formats(tmp_path, suffix: str) -> N
 
         df = pd.read_parquet(path)
         np.testing.assert_allclose(df["i_d [A]"].to_numpy(), res.i_d)
+
+
+class _PlainHarmonic:
+    """A road input with only the RoadInput protocol (no sample_grid)."""
+
+    def __init__(self, inner: Harmonic) -> None:
+        self.inner = inner
+        self.duration = 1.0
+
+    def displacement(self, t):
+        return self.inner.displacement(t)
+
+    def velocity(self, t):
+        return self.inner.velocity(t)
+
+    def acceleration(self, t):
+        return self.inner.acceleration(t)
+
+    def describe(self):
+        return {"kind": "plain harmonic"}
+
+
+def test_any_road_input_works_and_the_fast_harmonic_grid_changes_nothing_but_round_off() -> None:
+    fast = Simulation(Harmonic(3.0, 0.02), controller=HiLo(1, mode="ACM"))
+    plain = Simulation(_PlainHarmonic(Harmonic(3.0, 0.02)), controller=HiLo(1, mode="ACM"))
+    a, b = fast.run(1.0), plain.run(1.0)
+    scale = np.max(np.abs(b.z_s))
+    assert np.max(np.abs(a.z_s - b.z_s)) <= 1e-11 * scale
+    assert np.max(np.abs(a.F_d - b.F_d)) <= 1e-8 * np.max(np.abs(b.F_d))

@@ -258,3 +258,35 @@ class TestRoundedPulse:
     )
     def test_bad_parameters(self, kwargs, fragments):
         _raises(lambda: RoundedPulse(**kwargs), *fragments)
+
+
+# -- uniform grids (what the engine samples) ---------------------------------------------
+@pytest.mark.parametrize("frequency", [0.5, 2.1, 15.0, 80.0])
+@pytest.mark.parametrize("n", [1, 63, 64, 65, 20001])
+def test_harmonic_grid_matches_pointwise_evaluation(frequency: float, n: int) -> None:
+    z = Harmonic(frequency, 0.03)
+    zr, vr = z.sample_grid(n, 5e-5)
+    t = np.arange(n) * 5e-5
+    assert zr.shape == vr.shape == (n,)
+    # a few ulp of the amplitude (the direct form's own angle rounds at 1e-16 relative)
+    w = z.angular_frequency
+    atol = 8 * np.finfo(float).eps * max(1.0, w * t[-1])
+    np.testing.assert_allclose(zr, z.displacement(t), rtol=0, atol=atol * 0.03)
+    np.testing.assert_allclose(vr, z.velocity(t), rtol=0, atol=atol * 0.03 * w)
+
+
+def test_default_grid_is_pointwise_evaluation() -> None:
+    bump = RoundedPulse(amplitude=0.05, severity=2)
+    zr, vr = bump.sample_grid(101, 0.01)
+    t = np.arange(101) * 0.01
+    np.testing.assert_array_equal(zr, bump.displacement(t))
+    np.testing.assert_array_equal(vr, bump.velocity(t))
+
+
+@pytest.mark.parametrize(
+    ("n", "step", "fragments"),
+    [(0, 1e-3, ("n", "0")), (5, 0.0, ("step", "0")), (5, -1e-3, ("step",))],
+)
+def test_grid_refuses_bad_sizes(n: int, step: float, fragments: tuple[str, ...]) -> None:
+    _raises(lambda: Harmonic(1.0, 0.01).sample_grid(n, step), *fragments)
+    _raises(lambda: RoundedPulse(amplitude=0.05, severity=2).sample_grid(n, step), *fragments)
