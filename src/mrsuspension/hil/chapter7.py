@@ -22,6 +22,11 @@ Controller cases (``cases=``): ``scenario`` (the scenario's controller), ``passi
 ``passive-0.1`` (0 and 0.1 A), ``skyhook-scm`` and ``skyhook-acm`` (hi-lo, n = 2,
 k_c = 3, as in section 7.3.2).
 
+Sprung masses (``masses=``, default the scenario's own): every comparison runs for each
+mass, the vehicle of both runs changed to it (Chapter 7 uses 563 and 703 kg: Figs 7.14,
+7.16, 7.18, 7.21). With several masses, the entries are keyed ``<case>@<mass>kg`` and the
+pulse and road figures get one overlay of the masses per case.
+
 A rig simulated in the same process may run unpaced (``realtime="unpaced"``: as fast as
 possible, not real time; the outputs say so), so a sweep validates in seconds; a
 network rig always runs paced.
@@ -64,6 +69,7 @@ __all__ = [
     "WHAT",
     "parse_cases",
     "parse_frequencies",
+    "parse_masses",
     "parse_what",
     "run_pair",
     "validate_chapter7",
@@ -90,6 +96,8 @@ PSD_CHANNELS = (
 )
 #: band of the PSD comparison [Hz]
 PSD_BAND = (0.5, 20.0)
+#: most sprung masses one validation compares
+MAX_MASSES = 6
 _CHANNELS = ("z_r", "z_s", "z_u", "z_s_ddot", "z_u_ddot", "x_d", "v_d", "F_d", "F_T", "i_d")
 
 
@@ -167,6 +175,57 @@ def parse_frequencies(text: str | Sequence[float] | None) -> tuple[float, ...]:
             raise ValidationError(f"--frequencies: {f:g} Hz is given twice")
         out.append(f)
     return tuple(out)
+
+
+def parse_masses(text: str | Sequence[float] | None) -> tuple[float, ...]:
+    """Sprung masses [kg] of a ``--masses`` list (empty: the scenario's own mass).
+
+    Examples
+    --------
+    >>> parse_masses("563, 703")
+    (563.0, 703.0)
+    >>> parse_masses(None)
+    ()
+    >>> parse_masses("563,563")
+    Traceback (most recent call last):
+    ...
+    mrsuspension.errors.ValidationError: --masses: 563 kg is given twice
+    """
+    if text is None or (isinstance(text, str) and not text.strip()):
+        return ()
+    items = text.split(",") if isinstance(text, str) else list(text)
+    out: list[float] = []
+    for raw in items:
+        try:
+            if isinstance(raw, bool):
+                raise TypeError
+            m = float(raw)
+        except (TypeError, ValueError):
+            raise ValidationError(
+                f"--masses: {str(raw).strip()!r} is not a number; "
+                "give sprung masses in kg separated by commas, e.g. 563,703"
+            ) from None
+        if not (math.isfinite(m) and m > 0.0):
+            raise ValidationError(
+                f"--masses: each sprung mass must be finite and > 0 kg; got {m:g}"
+            )
+        if m in out:
+            raise ValidationError(f"--masses: {m:g} kg is given twice")
+        out.append(m)
+    if len(out) > MAX_MASSES:
+        raise ValidationError(
+            f"--masses: at most {MAX_MASSES} sprung masses; got {len(out)} "
+            f"({', '.join(f'{m:g}' for m in out)})"
+        )
+    return tuple(out)
+
+
+def _mass_tag(mass: float) -> str:
+    return f"m{mass:g}"
+
+
+def _entry_key(case: str, mass: float, several: bool) -> str:
+    return f"{case}@{mass:g}kg" if several else case
 
 
 def case_simulation(sim: Simulation, case: str) -> Simulation:
@@ -398,6 +457,7 @@ def validate_chapter7(
     model_dt: float = DEFAULT_DT,
     limits: SafetyLimits | None = None,
     realtime: bool | str | None = None,
+    masses: Sequence[float] | None = None,
 ) -> dict[str, Any]:
     """The Chapter 7 comparisons of HiL against offline (see the module docstring).
 
@@ -431,6 +491,13 @@ def validate_chapter7(
     realtime : bool or str, optional
         Pacing (:mod:`~mrsuspension.hil.realtime`); default ``"unpaced"`` for a
         :class:`~mrsuspension.hil.rig.SimulatedRig`, ``"auto"`` for any other rig.
+    masses : sequence of float, optional
+        Sprung masses [kg] (at most :data:`MAX_MASSES`); each comparison runs for each,
+        with the vehicle of both runs changed to it. Default: the scenario's own. With
+        one mass the entries are keyed as without (``data["pulse"][case]``, one
+        ``time`` report); with several, ``data[what]["<case>@<mass>kg"]`` (``time``:
+        ``"scenario@<mass>kg"``, its files in ``m<mass>/``). Every entry has its
+        ``sprung_mass``.
 
     Returns
     -------
@@ -440,11 +507,28 @@ def validate_chapter7(
     Raises
     ------
     ValidationError
-        For an unknown comparison or case, a bad frequency, or an unpaced network rig.
+        For an unknown comparison or case, a bad frequency or mass, or an unpaced
+        network rig.
+
+    Examples
+    --------
+    >>> from mrsuspension.excitation import Harmonic
+    >>> from mrsuspension.hil import ideal_rig
+    >>> sim = Simulation(Harmonic(1.5, 0.02))
+    >>> data = validate_chapter7(
+    ...     sim, ideal_rig(sim.damper), what=["pulse"], masses=[563, 703], rate=500.0
+    ... )
+    >>> sorted(data["pulse"]), data["pulse"]["scenario@703kg"]["sprung_mass"]
+    (['scenario@563kg', 'scenario@703kg'], 703.0)
     """
     what = parse_what(list(what))
     cases = parse_cases(list(cases))
     frequencies = parse_frequencies(list(frequencies))
+    mass_list = parse_masses(None if masses is None else list(masses))
+    mass_list = mass_list or (sim.vehicle.sprung_mass,)
+    several = len(mass_list) > 1
+    # the vehicles first: a mass the vehicle refuses fails before any run
+    vehicles = {m: sim.vehicle.with_(sprung_mass=m) for m in mass_list}
     if not (isinstance(amplitude, int | float) and 0.0 < amplitude <= 0.1):
         raise ValidationError(f"amplitude must be in (0, 0.1] m; got {amplitude!r}")
     if realtime is None:
@@ -472,32 +556,56 @@ def validate_chapter7(
         "scenario": sim.describe(),
         "what": list(what),
         "cases": list(cases),
+        "masses": list(mass_list),
     }
     figures: dict[str, list[str]] = {}
     pulses: dict[str, Any] = {}
     roads: dict[str, Any] = {}
+
+    def entries() -> list[tuple[str, str, float, Simulation]]:
+        """(key, case, mass, simulation) of every (case, mass) pair."""
+        return [
+            (_entry_key(c, m, several), c, m,
+             case_simulation(dataclasses.replace(sim, vehicle=vehicles[m]), c))
+            for c in cases
+            for m in mass_list
+        ]  # fmt: skip
+
     if "time" in what:
         from mrsuspension.hil.validate import validate
 
-        report = validate(
-            sim, rig, duration=duration, rate=rate, out=out_dir, model_dt=model_dt,
-            limits=limits, realtime=mode,
-        )  # fmt: skip
-        data["time"] = report.describe()
-        figures["time"] = [p.name for p in report.figures]
+        reports: dict[str, Any] = {}
+        figures["time"] = []
+        for m in mass_list:
+            where = out_dir / _mass_tag(m) if out_dir is not None and several else out_dir
+            report = validate(
+                dataclasses.replace(sim, vehicle=vehicles[m]), rig, duration=duration,
+                rate=rate, out=where, model_dt=model_dt, limits=limits, realtime=mode,
+            )  # fmt: skip
+            reports[_entry_key("scenario", m, several)] = {
+                **report.describe(),
+                "sprung_mass": m,
+            }
+            if out_dir is not None:
+                figures["time"] += [p.relative_to(out_dir).as_posix() for p in report.figures]
+        data["time"] = reports if several else next(iter(reports.values()))
     if "frequency" in what:
         data["frequency"] = {
-            c: frequency_response(case_simulation(sim, c), rig, frequencies, amplitude, rate, **kw)
-            for c in cases
+            key: {
+                "case": c,
+                "sprung_mass": m,
+                **frequency_response(s, rig, frequencies, amplitude, rate, **kw),
+            }
+            for key, c, m, s in entries()
         }
     if "pulse" in what:
-        for c in cases:
-            pulses[c] = pulse_response(case_simulation(sim, c), rig, rate, **kw)
+        for key, c, m, s in entries():
+            pulses[key] = {"case": c, "sprung_mass": m, **pulse_response(s, rig, rate, **kw)}
         data["pulse"] = {c: {k: v for k, v in r.items() if k != "_pair"} for c, r in pulses.items()}
     if "road" in what:
         road = default_road(road_duration)
-        for c in cases:
-            roads[c] = road_response(case_simulation(sim, c), rig, rate, road, **kw)
+        for key, c, m, s in entries():
+            roads[key] = {"case": c, "sprung_mass": m, **road_response(s, rig, rate, road, **kw)}
         data["road"] = roads
     if out_dir is not None:
         figures.update(_figures(data, pulses, out_dir))
@@ -519,6 +627,21 @@ def _clean(value: Any) -> Any:
     return value
 
 
+#: panels of the pulse figures: (channel, label)
+_PULSE_PANELS = (
+    ("z_s", "x_s [m]"), ("z_s_ddot", "a_s [m/s^2]"), ("z_u_ddot", "a_u [m/s^2]"),
+    ("x_d", "x_r [m]"), ("F_d", "F_d [N]"), ("F_T", "F_T [N]"),
+)  # fmt: skip
+
+
+def _by_case(entries: dict[str, Any]) -> dict[str, list[dict[str, Any]]]:
+    """Entries grouped by controller case, in mass order."""
+    out: dict[str, list[dict[str, Any]]] = {}
+    for res in entries.values():
+        out.setdefault(res["case"], []).append(res)
+    return out
+
+
 def _figures(data: dict[str, Any], pulses: dict[str, Any], out: Path) -> dict[str, list[str]]:
     import matplotlib
 
@@ -526,39 +649,47 @@ def _figures(data: dict[str, Any], pulses: dict[str, Any], out: Path) -> dict[st
     import matplotlib.pyplot as plt
 
     tag = " [UNPACED]" if data["realtime"] == "unpaced" else ""
+    masses = data["masses"]
+    several = len(masses) > 1
+
+    def suffix(mass: float) -> str:
+        return f"_{_mass_tag(mass)}" if several else ""
+
     made: dict[str, list[str]] = {}
     if "frequency" in data:
-        fig, axes = plt.subplots(2, 2, figsize=(10, 7), sharex=True)
-        for i, (case, fr) in enumerate(data["frequency"].items()):
-            color = f"C{i}"
+        made["frequency"] = []
+        for mass in masses:
+            fig, axes = plt.subplots(2, 2, figsize=(10, 7), sharex=True)
+            here = [fr for fr in data["frequency"].values() if fr["sprung_mass"] == mass]
+            for i, fr in enumerate(here):
+                color, case = f"C{i}", fr["case"]
+                for ax, k in zip(axes.flat, FREQUENCY_MEASURES, strict=True):
+                    ax.plot(
+                        fr["frequency"], fr["offline"][k], "-", color=color, label=f"{case} offline"
+                    )
+                    ax.plot(fr["frequency"], fr["hil"][k], "o", mfc="none", color=color,
+                            label=f"{case} HiL")  # fmt: skip
             for ax, k in zip(axes.flat, FREQUENCY_MEASURES, strict=True):
-                ax.plot(
-                    fr["frequency"], fr["offline"][k], "-", color=color, label=f"{case} offline"
-                )
-                ax.plot(fr["frequency"], fr["hil"][k], "o", mfc="none", color=color,
-                        label=f"{case} HiL")  # fmt: skip
-        for ax, k in zip(axes.flat, FREQUENCY_MEASURES, strict=True):
-            ax.set_xscale("log")
-            ax.set_ylabel(k)
-            ax.grid(True, which="both", alpha=0.3)
-        for ax in axes[1]:
-            ax.set_xlabel("frequency [Hz]")
-        axes[0, 0].legend(fontsize=7)
-        fig.suptitle(f"Frequency responses, HiL (markers) vs offline (lines){tag}")
-        fig.tight_layout()
-        fig.savefig(out / "frequency_response.png", dpi=90)
-        plt.close(fig)
-        made["frequency"] = ["frequency_response.png"]
+                ax.set_xscale("log")
+                ax.set_ylabel(k)
+                ax.grid(True, which="both", alpha=0.3)
+            for ax in axes[1]:
+                ax.set_xlabel("frequency [Hz]")
+            axes[0, 0].legend(fontsize=7)
+            fig.suptitle(
+                f"Frequency responses, m_s = {mass:g} kg: HiL (markers) vs offline (lines){tag}"
+            )
+            fig.tight_layout()
+            name = f"frequency_response{suffix(mass)}.png"
+            fig.savefig(out / name, dpi=90)
+            plt.close(fig)
+            made["frequency"].append(name)
     if pulses:
         made["pulse"] = []
-        panels = (
-            ("z_s", "x_s [m]"), ("z_s_ddot", "a_s [m/s^2]"), ("z_u_ddot", "a_u [m/s^2]"),
-            ("x_d", "x_r [m]"), ("F_d", "F_d [N]"), ("F_T", "F_T [N]"),
-        )  # fmt: skip
-        for case, res in pulses.items():
-            pair = res["_pair"]
+        for res in pulses.values():
+            case, mass, pair = res["case"], res["sprung_mass"], res["_pair"]
             fig, axes = plt.subplots(3, 2, figsize=(10, 8), sharex=True)
-            for ax, (ch, ylabel) in zip(axes.flat, panels, strict=True):
+            for ax, (ch, ylabel) in zip(axes.flat, _PULSE_PANELS, strict=True):
                 ax.plot(pair["time"], pair["offline"][ch], label="offline", lw=1.2)
                 ax.plot(pair["time"], pair["hil"][ch], "--", label="HiL", lw=1.0)
                 ax.set_ylabel(ylabel)
@@ -566,15 +697,39 @@ def _figures(data: dict[str, Any], pulses: dict[str, Any], out: Path) -> dict[st
             axes[0, 0].legend()
             for ax in axes[2]:
                 ax.set_xlabel("time [s]")
-            fig.suptitle(f"Rounded pulse, {case}: HiL vs offline{tag}")
+            fig.suptitle(f"Rounded pulse, {case}, m_s = {mass:g} kg: HiL vs offline{tag}")
             fig.tight_layout()
-            name = f"pulse_{case}.png"
+            name = f"pulse_{case}{suffix(mass)}.png"
             fig.savefig(out / name, dpi=90)
             plt.close(fig)
             made["pulse"].append(name)
+        if several:  # Fig 7.18: the masses overlaid, one figure per case
+            made["pulse_masses"] = []
+            for case, group in _by_case(pulses).items():
+                fig, axes = plt.subplots(3, 2, figsize=(10, 8), sharex=True)
+                for i, res in enumerate(group):
+                    pair, m = res["_pair"], res["sprung_mass"]
+                    for ax, (ch, ylabel) in zip(axes.flat, _PULSE_PANELS, strict=True):
+                        ax.plot(pair["time"], pair["offline"][ch], "-", color=f"C{i}", lw=1.2,
+                                label=f"{m:g} kg offline")  # fmt: skip
+                        ax.plot(pair["time"], pair["hil"][ch], "--", color=f"C{i}", lw=1.0,
+                                label=f"{m:g} kg HiL")  # fmt: skip
+                        ax.set_ylabel(ylabel)
+                for ax in axes.flat:
+                    ax.grid(True, alpha=0.3)
+                axes[0, 0].legend(fontsize=7)
+                for ax in axes[2]:
+                    ax.set_xlabel("time [s]")
+                fig.suptitle(f"Rounded pulse, {case}, sprung masses overlaid (Fig 7.18){tag}")
+                fig.tight_layout()
+                name = f"pulse_masses_{case}.png"
+                fig.savefig(out / name, dpi=90)
+                plt.close(fig)
+                made["pulse_masses"].append(name)
     if "road" in data:
         made["road"] = []
-        for case, res in data["road"].items():
+        for res in data["road"].values():
+            case, mass = res["case"], res["sprung_mass"]
             fig, axes = plt.subplots(2, 2, figsize=(10, 7), sharex=True)
             for ax, (_, label, unit) in zip(axes.flat, PSD_CHANNELS, strict=True):
                 s = res["psd"][label]
@@ -585,12 +740,42 @@ def _figures(data: dict[str, Any], pulses: dict[str, Any], out: Path) -> dict[st
             axes[0, 0].legend()
             for ax in axes[1]:
                 ax.set_xlabel("frequency [Hz]")
-            fig.suptitle(f"Random road (rough, 50 km/h, x0.5), {case}: HiL vs offline{tag}")
+            fig.suptitle(
+                f"Random road (rough, 50 km/h, x0.5), {case}, m_s = {mass:g} kg: "
+                f"HiL vs offline{tag}"
+            )
             fig.tight_layout()
-            name = f"road_psd_{case}.png"
+            name = f"road_psd_{case}{suffix(mass)}.png"
             fig.savefig(out / name, dpi=90)
             plt.close(fig)
             made["road"].append(name)
+        if several:  # Fig 7.21: the masses overlaid, one figure per case
+            made["road_masses"] = []
+            for case, group in _by_case(data["road"]).items():
+                fig, axes = plt.subplots(2, 2, figsize=(10, 7), sharex=True)
+                for i, res in enumerate(group):
+                    m = res["sprung_mass"]
+                    for ax, (_, label, unit) in zip(axes.flat, PSD_CHANNELS, strict=True):
+                        s = res["psd"][label]
+                        ax.loglog(s["frequency"], s["offline"], "-", color=f"C{i}", lw=1.2,
+                                  label=f"{m:g} kg offline")  # fmt: skip
+                        ax.loglog(s["frequency"], s["hil"], "--", color=f"C{i}", lw=1.0,
+                                  label=f"{m:g} kg HiL")  # fmt: skip
+                        ax.set_ylabel(f"PSD {label} [({unit})^2/Hz]")
+                for ax in axes.flat:
+                    ax.grid(True, which="both", alpha=0.3)
+                axes[0, 0].legend(fontsize=7)
+                for ax in axes[1]:
+                    ax.set_xlabel("frequency [Hz]")
+                fig.suptitle(
+                    f"Random road (rough, 50 km/h, x0.5), {case}, sprung masses overlaid "
+                    f"(Fig 7.21){tag}"
+                )
+                fig.tight_layout()
+                name = f"road_psd_masses_{case}.png"
+                fig.savefig(out / name, dpi=90)
+                plt.close(fig)
+                made["road_masses"].append(name)
     return made
 
 
@@ -609,6 +794,23 @@ def _table(head: Sequence[str], rows: Sequence[Sequence[str]]) -> str:
 
 
 def _index(data: dict[str, Any], figures: dict[str, list[str]]) -> str:
+    several = len(data["masses"]) > 1
+    made = {name for group in figures.values() for name in group}
+    placed: list[str] = []
+
+    def img(name: str) -> str:
+        if name not in made:
+            return ""
+        placed.append(name)
+        return f"<p><img src='{html.escape(name)}' style='max-width:100%'></p>"
+
+    def title(res: dict[str, Any]) -> str:
+        mass = f", m_s = {res['sprung_mass']:g} kg" if several else ""
+        return f"<h3>{html.escape(res['case'])}{mass}</h3>"
+
+    def suffix(mass: float) -> str:
+        return f"_{_mass_tag(mass)}" if several else ""
+
     parts = [
         "<!doctype html><html><head><meta charset='utf-8'><title>HiL validation</title>",
         "<style>body{font-family:sans-serif;margin:2em}table{border-collapse:collapse;"
@@ -617,20 +819,30 @@ def _index(data: dict[str, Any], figures: dict[str, list[str]]) -> str:
         "<h1>HiL against offline (dissertation Chapter 7)</h1>",
         f"<p class='pacing'>{html.escape(data['pacing'])}</p>",
         f"<p>rig: {html.escape(json.dumps(_clean(data['rig'])))}</p>",
+        "<p>sprung mass m_s: " + ", ".join(f"{m:g} kg" for m in data["masses"]) + "</p>",
     ]
     if "time" in data:
-        t = data["time"]
-        parts.append("<h2>Time histories and F-v loop (scenario excitation)</h2>")
-        parts.append(f"<p>{html.escape(str(t['reason']))}</p>")
-        rows = [
-            [m["label"], _fmt(m["hil"]), _fmt(m["offline"]), _fmt(m["relative_difference"], True)]
-            for m in t["rms"].values()
-        ]
-        parts.append(_table(["RMS", "HiL", "offline", "difference"], rows))
+        parts.append(
+            "<h2>Time histories and F-v loop, scenario excitation "
+            "(Figs 7.7, 7.8, 7.12, 7.13; Fig 7.14 at m_s = 703 kg)</h2>"
+        )
+        reports = data["time"] if several else {"": data["time"]}
+        for t in reports.values():
+            if several:
+                parts.append(f"<h3>m_s = {t['sprung_mass']:g} kg</h3>")
+            parts.append(f"<p>{html.escape(str(t['reason']))}</p>")
+            rows = [
+                [m["label"], _fmt(m["hil"]), _fmt(m["offline"]),
+                 _fmt(m["relative_difference"], True)]
+                for m in t["rms"].values()
+            ]  # fmt: skip
+            parts.append(_table(["RMS", "HiL", "offline", "difference"], rows))
+            prefix = f"{_mass_tag(t['sprung_mass'])}/" if several else ""
+            parts += [img(n) for n in figures.get("time", []) if n.startswith(prefix)]
     if "frequency" in data:
-        parts.append("<h2>Frequency responses (Figs 7.9, 7.15, 7.16)</h2>")
-        for case, fr in data["frequency"].items():
-            parts.append(f"<h3>{html.escape(case)}</h3>")
+        parts.append("<h2>Frequency responses (Figs 7.9, 7.15; Fig 7.16 at m_s = 703 kg)</h2>")
+        for fr in data["frequency"].values():
+            parts.append(title(fr))
             head = ["f [Hz]", "a [mm]"]
             for k in FREQUENCY_MEASURES:
                 head += [f"{k} HiL", f"{k} offline", "diff"]
@@ -645,20 +857,30 @@ def _index(data: dict[str, Any], figures: dict[str, list[str]]) -> str:
                     ]
                 rows.append(row)
             parts.append(_table(head, rows))
+        for mass in data["masses"]:
+            if several:
+                parts.append(f"<h3>Frequency responses, m_s = {mass:g} kg</h3>")
+            parts.append(img(f"frequency_response{suffix(mass)}.png"))
     if "pulse" in data:
-        parts.append("<h2>Rounded pulse (Figs 7.10, 7.17, 7.18)</h2>")
-        for case, res in data["pulse"].items():
-            parts.append(f"<h3>{html.escape(case)}</h3>")
+        parts.append("<h2>Rounded pulse (Figs 7.10, 7.17)</h2>")
+        for res in data["pulse"].values():
+            parts.append(title(res))
             rows = [
                 [k, _fmt(res["hil"][k]), _fmt(res["offline"][k]),
                  _fmt(res["relative_difference"][k], True)]
                 for k in res["hil"]
             ]  # fmt: skip
             parts.append(_table(["measure", "HiL", "offline", "difference"], rows))
+            parts.append(img(f"pulse_{res['case']}{suffix(res['sprung_mass'])}.png"))
+        if several:
+            parts.append("<h2>Rounded pulse, sprung masses overlaid (Fig 7.18)</h2>")
+            for case in _by_case(data["pulse"]):
+                parts.append(f"<h3>{html.escape(case)}</h3>")
+                parts.append(img(f"pulse_masses_{case}.png"))
     if "road" in data:
-        parts.append("<h2>Random road PSDs (Figs 7.11, 7.19-7.21)</h2>")
-        for case, res in data["road"].items():
-            parts.append(f"<h3>{html.escape(case)}</h3>")
+        parts.append("<h2>Random road PSDs (Figs 7.11, 7.19, 7.20)</h2>")
+        for res in data["road"].values():
+            parts.append(title(res))
             lo, hi = res["band"]
             rows = [
                 [f"{label} [{b['unit']}]", _fmt(b["hil"]), _fmt(b["offline"]),
@@ -668,8 +890,15 @@ def _index(data: dict[str, Any], figures: dict[str, list[str]]) -> str:
             ]  # fmt: skip
             head = [f"RMS {lo:g}-{hi:g} Hz", "HiL", "offline", "difference", "max PSD diff"]
             parts.append(_table(head, rows))
-    for group in figures.values():
-        for name in group:
-            parts.append(f"<p><img src='{html.escape(name)}' style='max-width:100%'></p>")
+            parts.append(img(f"road_psd_{res['case']}{suffix(res['sprung_mass'])}.png"))
+        if several:
+            parts.append("<h2>Random road PSDs, sprung masses overlaid (Fig 7.21)</h2>")
+            for case in _by_case(data["road"]):
+                parts.append(f"<h3>{html.escape(case)}</h3>")
+                parts.append(img(f"road_psd_masses_{case}.png"))
+    rest = [n for group in figures.values() for n in group if n not in placed]
+    if rest:
+        parts.append("<h2>Other figures</h2>")
+        parts += [img(n) for n in rest]
     parts.append("</body></html>\n")
-    return "\n".join(parts)
+    return "\n".join(p for p in parts if p)

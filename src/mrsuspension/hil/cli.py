@@ -251,6 +251,13 @@ def hil_validate_command(
         ),
     ] = "scenario",
     amplitude: Annotated[float, typer.Option(help="sweep amplitude up to 2 Hz [m]")] = 0.015,
+    masses: Annotated[
+        str | None,
+        typer.Option(
+            help="sprung masses [kg], e.g. 563,703: every comparison for each "
+            "(default: the scenario's own)"
+        ),
+    ] = None,
     road_duration: Annotated[
         float | None, typer.Option(help="length of the random road [s] (default: all 36 s)")
     ] = None,
@@ -267,7 +274,8 @@ def hil_validate_command(
     Comparisons (--what): time histories and F-v loops under the scenario's excitation
     (time), frequency responses T_as, T_au, T_dr and DLC over a frequency list
     (frequency), transient responses under the rounded pulse (pulse) and PSDs under the
-    random road (road), for each controller case (--cases). Prints the differences; with
+    random road (road), for each controller case (--cases) and sprung mass (--masses,
+    e.g. 563,703 for Figs 7.14, 7.16, 7.18, 7.21). Prints the differences; with
     --out writes the figures, validation.json (every number), index.html, and for
     'time' summary.json and the HiL recording. A simulated or ideal rig runs unpaced by
     default (as fast as possible; the outputs say so). A safety trip exits with code 1.
@@ -275,6 +283,7 @@ def hil_validate_command(
     from mrsuspension.hil.chapter7 import (
         parse_cases,
         parse_frequencies,
+        parse_masses,
         parse_what,
         validate_chapter7,
     )
@@ -284,6 +293,7 @@ def hil_validate_command(
         chosen = parse_what(what)
         case_list = parse_cases(cases)
         freq_list = parse_frequencies(frequencies)
+        mass_list = parse_masses(masses) or None
         if realtime is not None:
             normalise_mode(realtime)
         if not scenario.exists():
@@ -295,11 +305,13 @@ def hil_validate_command(
         data = validate_chapter7(
             sim, the_rig, out, what=chosen, cases=case_list, frequencies=freq_list,
             amplitude=amplitude, duration=duration, road_duration=road_duration, rate=rate,
-            realtime=realtime,
+            realtime=realtime, masses=mass_list,
         )  # fmt: skip
     tripped = _tripped(data)
-    info: dict[str, Any] = dict(data.get("time", {}))
-    info.update({k: v for k, v in data.items() if k != "time"})
+    # one time report is printed flat (as before masses); several stay under "time"
+    flat = _flat_time(data)
+    info: dict[str, Any] = dict(data["time"]) if flat else {}
+    info.update({k: v for k, v in data.items() if not (flat and k == "time")})
     info["scenario"] = str(scenario)
     info["rig"] = rig
     if as_json:
@@ -310,8 +322,19 @@ def hil_validate_command(
         raise typer.Exit(1)
 
 
+def _flat_time(data: dict[str, Any]) -> bool:
+    """One ``time`` report (one mass), not one per mass."""
+    return "reason" in data.get("time", {})
+
+
+def _time_reports(data: dict[str, Any]) -> list[dict[str, Any]]:
+    if "time" not in data:
+        return []
+    return [data["time"]] if _flat_time(data) else list(data["time"].values())
+
+
 def _tripped(data: dict[str, Any]) -> bool:
-    if data.get("time", {}).get("tripped"):
+    if any(t.get("tripped") for t in _time_reports(data)):
         return True
     reasons = [r for fr in data.get("frequency", {}).values() for r in fr["reasons"]]
     reasons += [r["reason"] for key in ("pulse", "road") for r in data.get(key, {}).values()]
@@ -324,9 +347,9 @@ def _pct(v: Any) -> str:
 
 def _print_validation(data: dict[str, Any], out: Path | None) -> None:
     typer.echo(data["pacing"])
-    if "time" in data:
-        t = data["time"]
-        typer.echo(f"time histories: HiL stopped: {t['reason']}")
+    for t in _time_reports(data):
+        mass = "" if _flat_time(data) else f", m_s = {t['sprung_mass']:g} kg"
+        typer.echo(f"time histories{mass}: HiL stopped: {t['reason']}")
         typer.echo(f"{'RMS':<34}{'HiL':>12}{'offline':>12}{'diff':>10}")
         for m in t["rms"].values():
             typer.echo(
