@@ -1,4 +1,4 @@
-"""Monitor load: ``python benchmarks/bench_monitor.py [--duration S] [--pairs N] [--browser PATH]``.
+"""Monitor load: ``python benchmarks/bench_monitor.py [--duration S] [--pairs N] [--browser PATH] [--realtime MODE] [--floor]``.
 
 Alternates unmonitored HiL runs and runs with the browser monitor attached (a WebSocket
 client reading every frame, or with ``--browser /usr/bin/chromium`` the real page in
@@ -20,8 +20,21 @@ def main() -> None:
     ap.add_argument("--pairs", type=int, default=3, help="unmonitored/monitored pairs")
     ap.add_argument("--rig", default="simulated", help="simulated | ideal | udp://HOST:PORT")
     ap.add_argument("--browser", default=None, help="chromium executable (attach the page)")
+    ap.add_argument("--realtime", default="auto", help="loop scheduling: auto | fifo | spin | off")
+    ap.add_argument(
+        "--floor",
+        action="store_true",
+        help="first measure the machine's floor (mrsus hil latency, same rate, mode, duration)",
+    )
     args = ap.parse_args()
-    d = measure(args.duration, args.rate, args.rig, args.pairs, args.browser)
+    if args.floor:
+        from mrsuspension.hil.latency import measure_latency
+
+        floor = measure_latency(args.rate, args.duration, args.realtime, process=True)
+        print(f"    floor: {floor.summary()}")
+    d = measure(
+        args.duration, args.rate, args.rig, args.pairs, args.browser, realtime=args.realtime
+    )
     for kind in ("plain", "monitored"):
         for r in d[kind]:
             rate = f", frames {r['frame_rate']:.1f} Hz" if "frame_rate" in r else ""
@@ -29,7 +42,8 @@ def main() -> None:
                   f"in {r['ticks']} ticks){rate}")  # fmt: skip
     print(
         f"median miss rate: unmonitored {100 * d['miss_plain']:.2f} %, monitored "
-        f"{100 * d['miss_monitored']:.2f} % ({d['client']} client); load average "
+        f"{100 * d['miss_monitored']:.2f} % ({d['client']} client, realtime "
+        f"{d['realtime']}); load average "
         f"{d['loadavg'][0]:.2f} -> {d['loadavg'][1]:.2f}"
     )
 

@@ -134,6 +134,9 @@ def test_hil_run_monitor_json_prints_the_result_when_the_run_ends(tmp_path: Path
         (["monitor", "--host", "0.0.0.0"], "token"),
         (["hil", "run", str(SCENARIO), "--monitor", "--rig", "simulatd"], "unknown --rig"),
         (["hil", "run", str(SCENARIO), "--monitor", "--rate", "10"], "rate"),
+        (["monitor", "--realtime", "unpaced"], "runs in real time"),
+        (["monitor", "--realtime", "spinn"], "spin"),
+        (["hil", "run", str(SCENARIO), "--monitor", "--realtime", "fast"], "realtime"),
     ],
 )
 def test_cli_refuses_bad_options(args: list[str], fragment: str) -> None:

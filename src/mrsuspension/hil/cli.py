@@ -140,7 +140,7 @@ def hil_run_command(
                 typer.echo(json.dumps(_clean(info), indent=2))
 
             serve(
-                host, port, token, rig=rig, workdir=out, url_to_stderr=as_json,
+                host, port, token, rig=rig, workdir=out, url_to_stderr=as_json, realtime=realtime,
                 attach=AttachedRun(
                     sim, rate=rate, duration=duration, on_end=print_result if as_json else None
                 ),

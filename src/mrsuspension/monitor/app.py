@@ -38,6 +38,7 @@ from starlette.websockets import WebSocket, WebSocketDisconnect
 from mrsuspension.engine.simulate import Simulation
 from mrsuspension.errors import MRSuspensionError, ValidationError
 from mrsuspension.hil.loop import CHANNELS, LiveChange, load_result
+from mrsuspension.hil.realtime import normalise_mode
 from mrsuspension.hil.recorder import META_FILE, load_recording
 from mrsuspension.measures.steady import T_as, T_au, T_dr, T_ds, T_du, dlc
 from mrsuspension.monitor.acquisition import Acquisition, acquisition_from_settings
@@ -117,6 +118,22 @@ def live_measures(data: dict[str, np.ndarray], static_load: float) -> dict[str, 
     return result
 
 
+def monitor_realtime(realtime: str) -> str:
+    """A monitor run's scheduling mode, checked: the monitor always runs in real time.
+
+    Examples
+    --------
+    >>> monitor_realtime("SPIN")
+    'spin'
+    """
+    mode = normalise_mode(realtime)
+    if mode == "unpaced":
+        raise ValidationError(
+            f"realtime {realtime!r}: the monitor runs in real time; valid: auto, fifo, spin, off"
+        )
+    return mode
+
+
 @dataclass
 class AttachedRun:
     """A run the server starts by itself (``mrsus hil run SCENARIO --monitor``).
@@ -150,11 +167,19 @@ class MonitorState:
         Rig of the runs: ``simulated`` (default), ``ideal`` or ``udp://HOST:PORT``.
     road_dir : path, optional
         Directory the page may take road files from (None: presets only).
+    realtime : str
+        How the loop processes are scheduled: ``auto`` (default), ``fifo``, ``spin`` or
+        ``off`` (:mod:`mrsuspension.hil.realtime`; ``spin`` does best on a virtual machine).
     """
 
     def __init__(
-        self, workdir: Path | None = None, rig: str = "simulated", road_dir: Path | None = None
+        self,
+        workdir: Path | None = None,
+        rig: str = "simulated",
+        road_dir: Path | None = None,
+        realtime: str = "auto",
     ) -> None:
+        self.realtime = monitor_realtime(realtime)
         self.workdir = Path(workdir or tempfile.mkdtemp(prefix="mrsus-monitor-"))
         self.rig = rig
         self.road_dir = road_dir
@@ -247,7 +272,9 @@ class MonitorState:
             "state": "starting", "reason": "", "run": self.run_id, "rig": self.rig,
             "applied": 0, "safe": False, "fields": page_fields(sim),
         }  # fmt: skip
-        self.handle = LoopHandle(sim, self.rig, rate, duration, out, ramp_time=ramp_time)
+        self.handle = LoopHandle(
+            sim, self.rig, rate, duration, out, ramp_time=ramp_time, realtime=self.realtime
+        )
         return {"run": self.run_id, "rig": self.rig, "fields": self.status["fields"]}
 
     def apply(self, raw: dict[str, Any]) -> dict[str, Any]:
@@ -469,6 +496,7 @@ def create_app(
     rig: str = "simulated",
     attach: AttachedRun | None = None,
     road_dir: Path | None = None,
+    realtime: str = "auto",
 ) -> Starlette:
     """Build the monitor application.
 
@@ -485,13 +513,15 @@ def create_app(
         A run started with the server (``mrsus hil run ... --monitor``).
     road_dir : path, optional
         Directory the page may take road files from (None: presets only).
+    realtime : str
+        How the loop processes are scheduled (``auto``, ``fifo``, ``spin``, ``off``).
 
     Returns
     -------
     Starlette
         The ASGI app; ``app.state.monitor`` is its :class:`MonitorState`.
     """
-    state = MonitorState(workdir, rig=rig, road_dir=road_dir)
+    state = MonitorState(workdir, rig=rig, road_dir=road_dir, realtime=realtime)
     clients: set[WebSocket] = set()
 
     async def index(request: Request) -> HTMLResponse:

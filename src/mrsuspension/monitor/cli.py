@@ -71,6 +71,7 @@ def serve(
     open_browser: bool = False,
     workdir: Path | None = None,
     url_to_stderr: bool = False,
+    realtime: str = "auto",
 ) -> None:
     """Serve the monitor with uvicorn until Ctrl-C (checks the bind and the rig first).
 
@@ -85,7 +86,10 @@ def serve(
 
     from mrsuspension.monitor.app import create_app
 
-    app = create_app(token=token, workdir=workdir, rig=rig, attach=attach, road_dir=road_dir)
+    app = create_app(
+        token=token, workdir=workdir, rig=rig, attach=attach, road_dir=road_dir,
+        realtime=realtime,
+    )  # fmt: skip
     shown = "localhost" if is_loopback(host) else host
     url = f"http://{shown}:{port}/" + (f"?token={token}" if token else "")
     typer.echo(f"mrsus monitor ({rig} rig): {url}", err=url_to_stderr)
@@ -114,6 +118,13 @@ def monitor_command(
     workdir: Annotated[
         Path | None, typer.Option(help="directory for the recordings (default: a temporary one)")
     ] = None,
+    realtime: Annotated[
+        str,
+        typer.Option(
+            help="scheduling of the loop: auto (SCHED_FIFO when permitted) | fifo | spin "
+            "(busy-wait on a pinned core; best on a virtual machine) | off"
+        ),
+    ] = "auto",
 ) -> None:
     """Serve the HiL browser monitor (live plots, measures, STOP, recording).
 
@@ -125,5 +136,5 @@ def monitor_command(
     with _user_errors():
         serve(
             host, port, token, rig=rig, road_dir=road_dir, open_browser=open_browser,
-            workdir=workdir,
+            workdir=workdir, realtime=realtime,
         )  # fmt: skip

@@ -41,7 +41,9 @@ def _free_port() -> int:
         return int(s.getsockname()[1])
 
 
-def unmonitored_run(duration: float, rate: float, rig: str, workdir: Path) -> dict[str, Any]:
+def unmonitored_run(
+    duration: float, rate: float, rig: str, workdir: Path, realtime: str = "auto"
+) -> dict[str, Any]:
     """The scenario through ``run_hil`` in its own process; its deadline figures."""
     from mrsuspension.hil.cli import make_rig
     from mrsuspension.hil.loop import run_hil
@@ -50,8 +52,9 @@ def unmonitored_run(duration: float, rate: float, rig: str, workdir: Path) -> di
     sim = scenario_from_settings({**_SETTINGS, "rate": rate}).simulation()
     out = Path(tempfile.mkdtemp(prefix="plain-", dir=workdir))
     result = run_hil(
-        sim, make_rig(rig, sim.damper), duration=duration, rate=rate, out=out, process=True
-    )
+        sim, make_rig(rig, sim.damper), duration=duration, rate=rate, out=out, process=True,
+        realtime=realtime,
+    )  # fmt: skip
     s = result.stats
     return {"ticks": s.ticks, "misses": s.misses, "in_deadline": s.in_deadline}
 
@@ -159,11 +162,13 @@ def measure(
     rig: str = "simulated",
     pairs: int = 1,
     browser: str | None = None,
+    realtime: str = "auto",
 ) -> dict[str, Any]:
     """Alternate ``pairs`` unmonitored and monitored runs; their figures and ratios.
 
     ``browser``: path of a chromium to attach the real page with (Playwright, headless)
-    instead of a bare WebSocket client.
+    instead of a bare WebSocket client. ``realtime``: how both kinds of run are
+    scheduled (``auto``, ``fifo``, ``spin``, ``off``).
 
     Returns
     -------
@@ -183,7 +188,10 @@ def measure(
     port = _free_port()
     server = uvicorn.Server(
         uvicorn.Config(
-            create_app(workdir=work, rig=rig), host="127.0.0.1", port=port, log_level="warning"
+            create_app(workdir=work, rig=rig, realtime=realtime),
+            host="127.0.0.1",
+            port=port,
+            log_level="warning",
         )
     )
     thread = threading.Thread(target=server.run, daemon=True)
@@ -213,7 +221,7 @@ def measure(
             order = ("plain", "monitored") if k % 2 == 0 else ("monitored", "plain")
             for kind in order:
                 if kind == "plain":
-                    plain.append(unmonitored_run(duration, rate, rig, work))
+                    plain.append(unmonitored_run(duration, rate, rig, work, realtime))
                 elif page is not None:
                     monitored.append(browser_run(page, base, duration, rate))
                 else:
@@ -232,6 +240,7 @@ def measure(
         "miss_monitored": statistics.median(miss(r) for r in monitored),
         "frame_rate_min": min(r["frame_rate"] for r in monitored),
         "client": "browser" if browser else "websocket",
+        "realtime": realtime,
         "loadavg": [load0[0], os.getloadavg()[0]],
     }
 
@@ -248,8 +257,13 @@ def main(argv: list[str] | None = None) -> None:
         default=None,
         help="chromium executable: attach the real page (Playwright) instead of a WebSocket client",
     )
+    parser.add_argument(
+        "--realtime", default="auto", help="loop scheduling: auto | fifo | spin | off"
+    )
     args = parser.parse_args(argv)
-    result = measure(args.duration, args.rate, args.rig, args.pairs, args.browser)
+    result = measure(
+        args.duration, args.rate, args.rig, args.pairs, args.browser, realtime=args.realtime
+    )
     print(json.dumps(result, indent=2))
 
 

@@ -54,6 +54,7 @@ def loop_main(
     stop: Any,
     settings: Any,
     ring: Any = None,
+    realtime: str = "auto",
 ) -> None:
     """Body of the loop process: build the rig and run :func:`run_hil` with the hooks.
 
@@ -73,6 +74,9 @@ def loop_main(
         The bounded queue to the server, the STOP event and the settings queue.
     ring : TapRing, optional
         Shared-memory ring for the rows and the status (else they go through ``tap``).
+    realtime : str
+        How the loop is scheduled (:func:`~mrsuspension.hil.loop.run_hil`'s ``realtime``:
+        ``auto``, ``fifo``, ``spin`` or ``off``).
     """
     from mrsuspension.hil.cli import make_rig
     from mrsuspension.hil.loop import LoopHooks, run_hil
@@ -95,7 +99,9 @@ def loop_main(
             poll_every=max(1, round(0.01 * rate)),
             ramp_time=ramp_time,
         )
-        result = run_hil(sim, rig, duration=duration, rate=rate, out=out, hooks=hooks)
+        result = run_hil(
+            sim, rig, duration=duration, rate=rate, out=out, hooks=hooks, realtime=realtime
+        )
     except Exception as exc:  # reported to the page, never raised in the server
         end({"state": "error", "reason": f"{type(exc).__name__}: {exc}", "safe": True})
         return
@@ -135,6 +141,8 @@ class LoopHandle:
         Current ramp after a controller change [s].
     queue_size : int
         Capacity of the tap queue (messages; full -> the loop drops).
+    realtime : str
+        How the loop process is scheduled (``auto``, ``fifo``, ``spin`` or ``off``).
     """
 
     def __init__(
@@ -146,6 +154,7 @@ class LoopHandle:
         out: Path,
         ramp_time: float = 0.2,
         queue_size: int = 64,
+        realtime: str = "auto",
     ) -> None:
         ctx = multiprocessing.get_context("spawn")
         self.out = Path(out)
@@ -160,7 +169,7 @@ class LoopHandle:
             target=loop_main,
             args=(
                 sim, rig, float(rate), float(duration), str(self.out), float(ramp_time),
-                self.queue, self.stop_event, self.settings, self.ring,
+                self.queue, self.stop_event, self.settings, self.ring, realtime,
             ),
             name="mrsus-monitor-loop",
             daemon=True,

@@ -8,6 +8,7 @@ from typing import Any
 
 import pytest
 
+from _helpers import raises_validation
 from mrsuspension.control import HiLo
 from mrsuspension.engine.simulate import Simulation
 from mrsuspension.excitation import Harmonic
@@ -59,3 +60,26 @@ def test_a_stopped_attached_run_reports_too(tmp_path: Path) -> None:
     assert got[0]["reason"] == "STOP pressed"
     assert got[0]["tripped"] is True
     assert got[0]["stats"]["ticks"] < 30000
+
+
+@pytest.mark.parametrize("mode", ["off", "spin"])
+def test_the_monitor_runs_its_loop_with_the_chosen_scheduling(tmp_path: Path, mode: str) -> None:
+    state = MonitorState(tmp_path, rig="ideal", realtime=mode.upper())
+    assert state.realtime == mode
+    got: list[dict[str, Any]] = []
+    sim = Simulation(Harmonic(1.5, 0.01), controller=HiLo(1, mode="ACM"), max_current=0.3)
+    state.attach(AttachedRun(sim, rate=1000.0, duration=0.2, on_end=got.append))
+    _wait_for(state, got)
+    assert got
+    assert got[0]["reason"] == "completed"
+    assert got[0]["stats"]["scheduling"].startswith(mode)
+
+
+@pytest.mark.parametrize(
+    ("mode", "fragments"),
+    [("unpaced", ("unpaced", "real time", "spin")), ("spinn", ("spinn", "spin"))],
+)
+def test_the_monitor_refuses_a_scheduling_it_cannot_run(
+    tmp_path: Path, mode: str, fragments: tuple[str, ...]
+) -> None:
+    raises_validation(lambda: MonitorState(tmp_path, realtime=mode), *fragments)
