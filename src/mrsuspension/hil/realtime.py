@@ -63,6 +63,8 @@ __all__ = [
     "normalise_mode",
     "pick_cpu",
     "realtime_session",
+    "widen_affinity",
+    "yield_loop_cpu",
 ]
 
 #: accepted values of ``realtime=`` (besides True = "auto" and False = "unpaced")
@@ -134,6 +136,52 @@ def pick_cpu(role: str = "loop") -> int | None:
     if len(cpus) < 2:
         return None
     return cpus[-1] if role == "loop" else cpus[0]
+
+
+@contextlib.contextmanager
+def yield_loop_cpu() -> Iterator[set[int] | None]:
+    """Keep the calling thread, and what it starts meanwhile, off the loop's core.
+
+    For the helpers around a loop (the monitor's server, a browser started for it): on a
+    machine with few cores they would otherwise be scheduled on the core the loop spins
+    or waits on and delay its ticks. Yields the CPUs allowed before (to hand to a loop
+    process started from here, see :func:`widen_affinity`), or None when there is
+    nothing to do (one core, or no affinity control). Linux applies affinity per
+    thread: threads and processes started inside the block inherit it; the calling
+    thread gets its old set back at the end.
+
+    Examples
+    --------
+    >>> with yield_loop_cpu() as before:
+    ...     inside = os.sched_getaffinity(0) if before else None
+    >>> before is None or (pick_cpu("loop") not in inside and os.sched_getaffinity(0) == before)
+    True
+    """
+    getaff = getattr(os, "sched_getaffinity", None)
+    setaff = getattr(os, "sched_setaffinity", None)
+    loop = pick_cpu("loop")
+    if getaff is None or setaff is None or loop is None:
+        yield None
+        return
+    before = set(getaff(0))
+    try:
+        setaff(0, before - {loop})
+    except OSError:
+        yield None
+        return
+    try:
+        yield before
+    finally:
+        setaff(0, before)
+
+
+def widen_affinity(cpus: set[int] | None) -> None:
+    """Allow the calling process the ``cpus`` again (a loop started by a helper that
+    yielded the loop's core, so that the loop can pin itself there); None: no change."""
+    setaff = getattr(os, "sched_setaffinity", None)
+    if cpus and setaff is not None:
+        with contextlib.suppress(OSError):
+            setaff(0, set(cpus))
 
 
 @dataclass

@@ -180,6 +180,8 @@ class MonitorState:
         realtime: str = "auto",
     ) -> None:
         self.realtime = monitor_realtime(realtime)
+        #: CPUs the loop processes may use when the server keeps off the loop's core
+        self.loop_cpus: set[int] | None = None
         self.workdir = Path(workdir or tempfile.mkdtemp(prefix="mrsus-monitor-"))
         self.rig = rig
         self.road_dir = road_dir
@@ -273,8 +275,9 @@ class MonitorState:
             "applied": 0, "safe": False, "fields": page_fields(sim),
         }  # fmt: skip
         self.handle = LoopHandle(
-            sim, self.rig, rate, duration, out, ramp_time=ramp_time, realtime=self.realtime
-        )
+            sim, self.rig, rate, duration, out, ramp_time=ramp_time, realtime=self.realtime,
+            cpus=self.loop_cpus,
+        )  # fmt: skip
         return {"run": self.run_id, "rig": self.rig, "fields": self.status["fields"]}
 
     def apply(self, raw: dict[str, Any]) -> dict[str, Any]:

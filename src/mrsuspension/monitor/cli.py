@@ -93,10 +93,16 @@ def serve(
     shown = "localhost" if is_loopback(host) else host
     url = f"http://{shown}:{port}/" + (f"?token={token}" if token else "")
     typer.echo(f"mrsus monitor ({rig} rig): {url}", err=url_to_stderr)
-    if open_browser:
-        webbrowser.open(url)
     kwargs: dict[str, Any] = {"host": host, "port": port, "log_level": "warning"}
-    uvicorn.run(app, **kwargs)
+    from mrsuspension.hil.realtime import yield_loop_cpu
+
+    # the server (and a browser it opens) keep off the core the loop pins itself to;
+    # the loop processes it starts get every core back and pin themselves there
+    with yield_loop_cpu() as cpus:
+        app.state.monitor.loop_cpus = cpus
+        if open_browser:
+            webbrowser.open(url)
+        uvicorn.run(app, **kwargs)
 
 
 def monitor_command(

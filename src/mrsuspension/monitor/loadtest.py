@@ -182,19 +182,21 @@ def measure(
 
     import uvicorn
 
+    from mrsuspension.hil.realtime import yield_loop_cpu
     from mrsuspension.monitor.app import create_app
 
     work = Path(tempfile.mkdtemp(prefix="mrsus-loadtest-"))
     port = _free_port()
-    server = uvicorn.Server(
-        uvicorn.Config(
-            create_app(workdir=work, rig=rig, realtime=realtime),
-            host="127.0.0.1",
-            port=port,
-            log_level="warning",
-        )
-    )
-    thread = threading.Thread(target=server.run, daemon=True)
+    app = create_app(workdir=work, rig=rig, realtime=realtime)
+    server = uvicorn.Server(uvicorn.Config(app, host="127.0.0.1", port=port, log_level="warning"))
+
+    def serve() -> None:
+        # as `mrsus monitor` does: the server thread keeps off the loop's core
+        with yield_loop_cpu() as cpus:
+            app.state.monitor.loop_cpus = cpus
+            server.run()
+
+    thread = threading.Thread(target=serve, daemon=True)
     thread.start()
     t_end = time.time() + 20
     while not server.started and time.time() < t_end:
@@ -210,10 +212,11 @@ def measure(
         if browser:
             from playwright.sync_api import sync_playwright
 
-            pw = stack.enter_context(sync_playwright())
-            chromium = pw.chromium.launch(
-                executable_path=browser, args=["--no-sandbox", "--disable-gpu"]
-            )
+            with yield_loop_cpu():  # the browser's processes keep off the loop's core
+                pw = stack.enter_context(sync_playwright())
+                chromium = pw.chromium.launch(
+                    executable_path=browser, args=["--no-sandbox", "--disable-gpu"]
+                )
             stack.callback(chromium.close)
             page = chromium.new_page(viewport={"width": 1500, "height": 1100})
             page.goto(base)

@@ -55,6 +55,7 @@ def loop_main(
     settings: Any,
     ring: Any = None,
     realtime: str = "auto",
+    cpus: set[int] | None = None,
 ) -> None:
     """Body of the loop process: build the rig and run :func:`run_hil` with the hooks.
 
@@ -77,9 +78,15 @@ def loop_main(
     realtime : str
         How the loop is scheduled (:func:`~mrsuspension.hil.loop.run_hil`'s ``realtime``:
         ``auto``, ``fifo``, ``spin`` or ``off``).
+    cpus : set of int, optional
+        CPUs the loop may use, when the server that started it keeps off the loop's core
+        (:func:`~mrsuspension.hil.realtime.yield_loop_cpu`).
     """
     from mrsuspension.hil.cli import make_rig
     from mrsuspension.hil.loop import LoopHooks, run_hil
+    from mrsuspension.hil.realtime import widen_affinity
+
+    widen_affinity(cpus)
 
     def end(info: dict[str, Any]) -> None:
         with contextlib.suppress(queue_mod.Full):
@@ -143,6 +150,8 @@ class LoopHandle:
         Capacity of the tap queue (messages; full -> the loop drops).
     realtime : str
         How the loop process is scheduled (``auto``, ``fifo``, ``spin`` or ``off``).
+    cpus : set of int, optional
+        CPUs the loop process may use (the server may keep off the loop's core).
     """
 
     def __init__(
@@ -155,6 +164,7 @@ class LoopHandle:
         ramp_time: float = 0.2,
         queue_size: int = 64,
         realtime: str = "auto",
+        cpus: set[int] | None = None,
     ) -> None:
         ctx = multiprocessing.get_context("spawn")
         self.out = Path(out)
@@ -169,7 +179,7 @@ class LoopHandle:
             target=loop_main,
             args=(
                 sim, rig, float(rate), float(duration), str(self.out), float(ramp_time),
-                self.queue, self.stop_event, self.settings, self.ring, realtime,
+                self.queue, self.stop_event, self.settings, self.ring, realtime, cpus,
             ),
             name="mrsus-monitor-loop",
             daemon=True,

@@ -83,3 +83,20 @@ def test_the_monitor_refuses_a_scheduling_it_cannot_run(
     tmp_path: Path, mode: str, fragments: tuple[str, ...]
 ) -> None:
     raises_validation(lambda: MonitorState(tmp_path, realtime=mode), *fragments)
+
+
+def test_a_server_off_the_loop_core_still_gives_its_loop_that_core(tmp_path: Path) -> None:
+    from mrsuspension.hil.realtime import pick_cpu, yield_loop_cpu
+
+    loop_cpu = pick_cpu("loop")
+    got: list[dict[str, Any]] = []
+    sim = Simulation(Harmonic(1.5, 0.01), controller=HiLo(1, mode="ACM"), max_current=0.3)
+    with yield_loop_cpu() as cpus:  # as `mrsus monitor` serves
+        state = MonitorState(tmp_path, rig="ideal", realtime="spin")
+        state.loop_cpus = cpus
+        state.attach(AttachedRun(sim, rate=1000.0, duration=0.2, on_end=got.append))
+        _wait_for(state, got)
+    assert got
+    assert got[0]["reason"] == "completed"
+    if cpus is not None:  # two cores or more: the loop pinned itself to the freed one
+        assert f"cpu {loop_cpu}" in got[0]["stats"]["scheduling"]
