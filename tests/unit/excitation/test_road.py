@@ -300,3 +300,33 @@ class TestPresets:
 
     def test_unknown_preset(self):
         _raises(lambda: preset_road("ruogh"), "unknown preset road", "Did you mean 'rough'?")
+
+
+# -- the uniform grid the engine samples -------------------------------------------------
+@pytest.mark.parametrize(
+    "road",
+    [
+        preset_road("rough"),
+        preset_road("smooth", speed_kmh=100.0),
+        preset_road("rough", fade_in=5.0),
+        RoadProfile([0.0, 0.4, 0.5, 1.7, 2.0, 3.1], [0.0, 0.01, -0.004, 0.02, 0.0, 0.003]),
+    ],
+    ids=["rough", "smooth-100", "fade-in", "uneven"],
+)
+def test_road_grid_matches_pointwise_evaluation(road: RoadProfile) -> None:
+    step = 5e-5
+    n = int(1.2 * road.duration / step)  # past the end too (end elevation, zero velocity)
+    zr, vr = road.sample_grid(n, step)
+    t = np.arange(n) * step
+    z0, v0 = road.displacement(t), road.velocity(t)
+    scale_z, scale_v = np.max(np.abs(z0)), np.max(np.abs(v0))
+    np.testing.assert_allclose(zr, z0, rtol=0, atol=1e-13 * scale_z)
+    np.testing.assert_allclose(vr, v0, rtol=0, atol=1e-12 * scale_v)
+    assert vr[-1] == 0.0
+    assert zr[-1] == pytest.approx(road.elevation[-1], abs=1e-15)  # the end elevation
+
+
+def test_road_grid_refuses_bad_sizes() -> None:
+    road = preset_road("smooth")
+    _raises(lambda: road.sample_grid(0, 1e-4), "n", "0")
+    _raises(lambda: road.sample_grid(10, -1e-4), "step")
