@@ -176,8 +176,19 @@ def yield_loop_cpu() -> Iterator[set[int] | None]:
 
 
 def widen_affinity(cpus: set[int] | None) -> None:
-    """Allow the calling process the ``cpus`` again (a loop started by a helper that
-    yielded the loop's core, so that the loop can pin itself there); None: no change."""
+    """Allow the calling process the ``cpus`` again; None: no change.
+
+    For a loop process started by a helper that yielded the loop's core
+    (:func:`yield_loop_cpu`): it inherits the narrowed set and gets the full one back,
+    so that it can pin itself to that core.
+
+    Examples
+    --------
+    >>> before = os.sched_getaffinity(0) if hasattr(os, "sched_getaffinity") else None
+    >>> widen_affinity(None)  # nothing to do
+    >>> before is None or os.sched_getaffinity(0) == before
+    True
+    """
     setaff = getattr(os, "sched_setaffinity", None)
     if cpus and setaff is not None:
         with contextlib.suppress(OSError):
