@@ -679,11 +679,7 @@ def _figures(data: dict[str, Any], pulses: dict[str, Any], out: Path) -> dict[st
             fig.suptitle(
                 f"Frequency responses, m_s = {mass:g} kg: HiL (markers) vs offline (lines){tag}"
             )
-            fig.tight_layout()
-            name = f"frequency_response{suffix(mass)}.png"
-            fig.savefig(out / name, dpi=90)
-            plt.close(fig)
-            made["frequency"].append(name)
+            made["frequency"].append(_save(fig, out, f"frequency_response{suffix(mass)}.png"))
     if pulses:
         made["pulse"] = []
         for res in pulses.values():
@@ -698,11 +694,7 @@ def _figures(data: dict[str, Any], pulses: dict[str, Any], out: Path) -> dict[st
             for ax in axes[2]:
                 ax.set_xlabel("time [s]")
             fig.suptitle(f"Rounded pulse, {case}, m_s = {mass:g} kg: HiL vs offline{tag}")
-            fig.tight_layout()
-            name = f"pulse_{case}{suffix(mass)}.png"
-            fig.savefig(out / name, dpi=90)
-            plt.close(fig)
-            made["pulse"].append(name)
+            made["pulse"].append(_save(fig, out, f"pulse_{case}{suffix(mass)}.png"))
         if several:  # Fig 7.18: the masses overlaid, one figure per case
             made["pulse_masses"] = []
             for case, group in _by_case(pulses).items():
@@ -721,11 +713,7 @@ def _figures(data: dict[str, Any], pulses: dict[str, Any], out: Path) -> dict[st
                 for ax in axes[2]:
                     ax.set_xlabel("time [s]")
                 fig.suptitle(f"Rounded pulse, {case}, sprung masses overlaid (Fig 7.18){tag}")
-                fig.tight_layout()
-                name = f"pulse_masses_{case}.png"
-                fig.savefig(out / name, dpi=90)
-                plt.close(fig)
-                made["pulse_masses"].append(name)
+                made["pulse_masses"].append(_save(fig, out, f"pulse_masses_{case}.png"))
     if "road" in data:
         made["road"] = []
         for res in data["road"].values():
@@ -744,11 +732,7 @@ def _figures(data: dict[str, Any], pulses: dict[str, Any], out: Path) -> dict[st
                 f"Random road (rough, 50 km/h, x0.5), {case}, m_s = {mass:g} kg: "
                 f"HiL vs offline{tag}"
             )
-            fig.tight_layout()
-            name = f"road_psd_{case}{suffix(mass)}.png"
-            fig.savefig(out / name, dpi=90)
-            plt.close(fig)
-            made["road"].append(name)
+            made["road"].append(_save(fig, out, f"road_psd_{case}{suffix(mass)}.png"))
         if several:  # Fig 7.21: the masses overlaid, one figure per case
             made["road_masses"] = []
             for case, group in _by_case(data["road"]).items():
@@ -771,12 +755,18 @@ def _figures(data: dict[str, Any], pulses: dict[str, Any], out: Path) -> dict[st
                     f"Random road (rough, 50 km/h, x0.5), {case}, sprung masses overlaid "
                     f"(Fig 7.21){tag}"
                 )
-                fig.tight_layout()
-                name = f"road_psd_masses_{case}.png"
-                fig.savefig(out / name, dpi=90)
-                plt.close(fig)
-                made["road_masses"].append(name)
+                made["road_masses"].append(_save(fig, out, f"road_psd_masses_{case}.png"))
     return made
+
+
+def _save(fig: Any, out: Path, name: str) -> str:
+    """Lay out, write (``out/name``, PNG) and close a comparison figure; its file name."""
+    import matplotlib.pyplot as plt
+
+    fig.tight_layout()
+    fig.savefig(out / name, dpi=90)
+    plt.close(fig)
+    return name
 
 
 def _fmt(v: Any, pct: bool = False) -> str:
