@@ -148,22 +148,58 @@ def accelerations(
         fd = cp[P_CS] * vd if xd * vd < 0.0 else 0.0
     else:
         fd = mem[M_FEXT]
-    delta = zr - zu + vp[V_DXU]
-    ft = 0.0
-    if delta > 0.0:
-        ft = vp[V_KT] * delta + vp[V_CT] * (zrd - vu)
-        if ft < 0.0:
-            ft = 0.0
-    spring = vp[V_KS] * xd
     # multiply by the reciprocal masses: their divisions depend on parameters only, so
     # they leave the chain of dependent operations from one RK4 stage to the next
-    a_s = (spring + fd - vp[V_CSKY] * vs) * (1.0 / vp[V_MS])
-    a_u = (ft - (vp[V_MS] + vp[V_MU]) * vp[V_G] - spring - fd) * (1.0 / vp[V_MU])
-    a_0 = 0.0
-    if reference:
-        # single-DOF modified-skyhook reference (3.18), driven by the plant's z_u
-        a_0 = (-cp[P_C0] * (v0 - vu) - cp[P_CS] * v0 - vp[V_KS] * (z0 - zu)) * (1.0 / cp[P_MS0])
+    a_s, a_u, a_0, ft = plant_rates(
+        zs, vs, zu, vu, z0, v0, zr, zrd, fd, vp[V_KS], vp[V_CSKY], 1.0 / vp[V_MS],
+        1.0 / vp[V_MU], (vp[V_MS] + vp[V_MU]) * vp[V_G], vp[V_KT], vp[V_CT], vp[V_DXU],
+        reference, cp[P_C0], cp[P_CS], 1.0 / cp[P_MS0] if reference else 0.0,
+    )  # fmt: skip
     return a_s, a_u, a_0, fd, ft
+
+
+@njit(cache=True, inline="always")
+def plant_rates(
+    zs: float,
+    vs: float,
+    zu: float,
+    vu: float,
+    z0: float,
+    v0: float,
+    zr: float,
+    zrd: float,
+    fd: float,
+    ks: float,
+    csky: float,
+    inv_ms: float,
+    inv_mu: float,
+    weight: float,
+    kt: float,
+    ct: float,
+    dxu: float,
+    reference: bool,
+    c0: float,
+    cs: float,
+    inv_ms0: float,
+) -> tuple[float, float, float, float]:
+    """``(z_s'', z_u'', z_s0'', F_T)`` given the damper force: the quarter car of spec 4.
+
+    The one place the vehicle's equations are written, for :func:`accelerations` and the
+    lane kernel alike. Branch-free (selects), so that a loop over independent cars
+    compiles to vector instructions. ``weight = (m_s + m_u) g``; the tire force is zero
+    when the tire has lifted off (``delta <= 0``) and never pulls.
+    """
+    xd = zu - zs
+    delta = zr - zu + dxu
+    ft = kt * delta + ct * (zrd - vu)
+    ft = 0.0 if ft < 0.0 else ft
+    ft = ft if delta > 0.0 else 0.0
+    spring = ks * xd
+    a_s = (spring + fd - csky * vs) * inv_ms
+    a_u = (ft - weight - spring - fd) * inv_mu
+    # single-DOF modified-skyhook reference (3.18), driven by the plant's z_u
+    a_0 = (-c0 * (v0 - vu) - cs * v0 - ks * (z0 - zu)) * inv_ms0 if reference else 0.0
+    return a_s, a_u, a_0, ft
 
 
 @njit(cache=True, inline="always")
@@ -460,6 +496,27 @@ def start(
 D_OK, D_STATE, D_FORCE, D_TIRE = 0, 1, 2, 3
 
 
+@njit(cache=True, inline="always")
+def check_limits(y: np.ndarray, mem: np.ndarray, limits: np.ndarray) -> tuple[int, int, float]:
+    """``(status, index, value)`` of the first state or force out of ``limits`` (D_OK: none).
+
+    ``limits = [max |z|, max |z'|, max |F_d|, max F_T]``; a non-finite state is out.
+    """
+    for q in range(NY):
+        if not math.isfinite(y[q]):
+            return D_STATE, q, y[q]
+    for q in (0, 2, 4):
+        if abs(y[q]) > limits[0]:
+            return D_STATE, q, y[q]
+        if abs(y[q + 1]) > limits[1]:
+            return D_STATE, q + 1, y[q + 1]
+    if not abs(mem[M_FD]) <= limits[2]:
+        return D_FORCE, 0, mem[M_FD]
+    if not mem[M_FT] <= limits[3]:
+        return D_TIRE, 0, mem[M_FT]
+    return D_OK, 0, 0.0
+
+
 @njit(cache=True, **NO_REFCOUNT)
 def run(
     y: np.ndarray,
@@ -502,18 +559,9 @@ def run(
             y, dt, zr[j], zrd[j], zr[j + 1], zrd[j + 1], zr[j + 2], zrd[j + 2], vp, fk, dk, dp,
             ds, dek, dep, des, ck, cp, cek, cep, ces, mem, scratch,
         )  # fmt: skip
-        for q in range(NY):
-            if not math.isfinite(y[q]):
-                return D_STATE, k + 1, q, y[q]
-        for q in (0, 2, 4):
-            if abs(y[q]) > limits[0]:
-                return D_STATE, k + 1, q, y[q]
-            if abs(y[q + 1]) > limits[1]:
-                return D_STATE, k + 1, q + 1, y[q + 1]
-        if not abs(mem[M_FD]) <= limits[2]:
-            return D_FORCE, k + 1, 0, mem[M_FD]
-        if not mem[M_FT] <= limits[3]:
-            return D_TIRE, k + 1, 0, mem[M_FT]
+        status, q, value = check_limits(y, mem, limits)
+        if status != D_OK:
+            return status, k + 1, q, value
         if (k + 1) % decimate == 0 and row < rec.shape[0]:
             _record(rec, row, y, zr[j + 2], zrd[j + 2], mem)
             row += 1

@@ -235,22 +235,8 @@ class Simulation:
             When a state, the damper force or the tire force leaves the physical range:
             the message says when and which signal.
         """
-        if check_stability:
-            dt = self.check_dt(dt)
-        else:
-            dt = float(check_range("dt", dt, 0.0, 0.01, unit="s", low_inclusive=False))
-        if duration is None:
-            duration = float(self.excitation.duration)
-        duration = float(check_range("duration", duration, 0.0, 1e5, unit="s", low_inclusive=False))
-        rate = float(
-            check_range("output_rate", output_rate, 0.0, None, unit="Hz", low_inclusive=False)
-        )
-        decimate = max(1, round(1.0 / (rate * dt)))
-        # whole output intervals covering the duration (the record ends at or after it)
-        n = max(1, math.ceil(duration / (dt * decimate) - 1e-9)) * decimate
-        zr, zrd = road_grid(self.excitation, 2 * n + 1, 0.5 * dt)
-        if not (np.all(np.isfinite(zr)) and np.all(np.isfinite(zrd))):
-            raise ValidationError("the excitation produced non-finite road values")
+        dt, n, decimate = self._plan(duration, dt, output_rate, check_stability)
+        zr, zrd = self._road(n, dt)
         a = self._arrays(dt)
         y = np.array([zr[0], 0.0, zr[0], 0.0, zr[0], 0.0])
         rows = n // decimate + 1
@@ -264,6 +250,32 @@ class Simulation:
             raise self._diverged(status, k * dt, idx, value, dt)
         time = np.arange(rows) * (decimate * dt)
         return self._result(time, rec, dt)
+
+    def _plan(
+        self, duration: float | None, dt: float, output_rate: float, check_stability: bool
+    ) -> tuple[float, int, int]:
+        """Checked ``(dt, steps, decimate)`` of a run (see :meth:`run`)."""
+        if check_stability:
+            dt = self.check_dt(dt)
+        else:
+            dt = float(check_range("dt", dt, 0.0, 0.01, unit="s", low_inclusive=False))
+        if duration is None:
+            duration = float(self.excitation.duration)
+        duration = float(check_range("duration", duration, 0.0, 1e5, unit="s", low_inclusive=False))
+        rate = float(
+            check_range("output_rate", output_rate, 0.0, None, unit="Hz", low_inclusive=False)
+        )
+        decimate = max(1, round(1.0 / (rate * dt)))
+        # whole output intervals covering the duration (the record ends at or after it)
+        n = max(1, math.ceil(duration / (dt * decimate) - 1e-9)) * decimate
+        return dt, n, decimate
+
+    def _road(self, n: int, dt: float) -> tuple[np.ndarray, np.ndarray]:
+        """The road at every half step of an ``n``-step run (checked finite)."""
+        zr, zrd = road_grid(self.excitation, 2 * n + 1, 0.5 * dt)
+        if not (np.all(np.isfinite(zr)) and np.all(np.isfinite(zrd))):
+            raise ValidationError("the excitation produced non-finite road values")
+        return zr, zrd
 
     def _diverged(
         self, status: int, t: float, idx: int, value: float, dt: float
@@ -459,6 +471,23 @@ def _run_one(
     return result if reduce is None else reduce(result)
 
 
+def _run_batch(
+    args: tuple[
+        list[Simulation], float | None, float, float, Callable[[SimulationResult], Any] | None
+    ],
+) -> list[Any]:
+    """A lane batch (:func:`~mrsuspension.engine.lanes.run_lanes`), reduced; raises the
+    first divergence, as a run on its own would."""
+    from mrsuspension.engine.lanes import run_lanes
+
+    sims, duration, dt, rate, reduce = args
+    results = run_lanes(sims, duration=duration, dt=dt, output_rate=rate)
+    for r in results:
+        if isinstance(r, SimulationDiverged):
+            raise r
+    return results if reduce is None else [reduce(r) for r in results]  # type: ignore[arg-type]
+
+
 def run_many(
     simulations: Sequence[Simulation],
     *,
@@ -468,6 +497,7 @@ def run_many(
     workers: int | None = None,
     progress: Callable[[int, int], None] | None = None,
     reduce: Callable[[SimulationResult], Any] | None = None,
+    lanes: bool = True,
 ) -> list[Any]:
     """Run many simulations, across processes (default: one per CPU core).
 
@@ -475,25 +505,61 @@ def run_many(
     finish. ``workers=1`` runs in this process. ``reduce`` (a module-level function, so
     it can be sent to the workers) maps each result before it is returned, e.g.
     :func:`measures_of` for sweeps, which keeps the traffic between processes small.
+
+    With ``lanes`` (default), runs that differ only in their excitation (a sweep) and use
+    the dissertation's damper model are stepped together in vector instructions
+    (:mod:`mrsuspension.engine.lanes`), at least
+    :data:`~mrsuspension.engine.lanes.MIN_GROUP` at a time: 1.4-1.7x the throughput of
+    single runs. Their results agree with :meth:`Simulation.run` to round-off (its exp
+    is computed differently), not bit for bit; ``lanes=False`` runs each on its own.
+
+    Examples
+    --------
+    >>> from mrsuspension.excitation import Harmonic
+    >>> sims = [Simulation(Harmonic(f, 0.01)) for f in (1.0, 2.0)]
+    >>> [round(float(r.time[-1]), 1) for r in run_many(sims, duration=0.5, workers=1)]
+    [0.5, 0.5]
     """
-    jobs = [(s, duration, dt, output_rate, reduce) for s in simulations]
-    if not jobs:
+    from mrsuspension.engine.lanes import plan_batches
+
+    sims = list(simulations)
+    if not sims:
         return []
-    n_workers = min(len(jobs), workers or os.cpu_count() or 1)
+    n_workers = min(len(sims), workers or os.cpu_count() or 1)
+    if lanes:
+        batches = plan_batches(sims, dt, duration, n_workers)
+    else:
+        batches = [[j] for j in range(len(sims))]
+
+    def task(batch: list[int]) -> tuple[Callable[[Any], Any], Any]:
+        if len(batch) == 1:
+            return _run_one, (sims[batch[0]], duration, dt, output_rate, reduce)
+        return _run_batch, ([sims[j] for j in batch], duration, dt, output_rate, reduce)
+
+    results: list[Any] = [None] * len(sims)
+    done = 0
+
+    def collect(batch: list[int], value: Any) -> None:
+        nonlocal done
+        values = [value] if len(batch) == 1 else value
+        for j, v in zip(batch, values, strict=True):
+            results[j] = v
+        done += len(batch)
+        if progress:
+            progress(done, len(sims))
+
     if n_workers <= 1:
-        out = []
-        for k, job in enumerate(jobs):
-            out.append(_run_one(job))
-            if progress:
-                progress(k + 1, len(jobs))
-        return out
+        for batch in batches:
+            fn, arg = task(batch)
+            collect(batch, fn(arg))
+        return results
     from concurrent.futures import ProcessPoolExecutor, as_completed
 
-    results: list[Any] = [None] * len(jobs)
     with ProcessPoolExecutor(max_workers=n_workers) as pool:
-        futures = {pool.submit(_run_one, job): k for k, job in enumerate(jobs)}
-        for done, fut in enumerate(as_completed(futures), start=1):
-            results[futures[fut]] = fut.result()
-            if progress:
-                progress(done, len(jobs))
+        futures = {}
+        for batch in batches:
+            fn, arg = task(batch)
+            futures[pool.submit(fn, arg)] = batch
+        for fut in as_completed(futures):
+            collect(futures[fut], fut.result())
     return results

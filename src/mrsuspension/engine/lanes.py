@@ -1,0 +1,490 @@
+"""Lane kernel: many runs of one configuration stepped together in vector instructions.
+
+A frequency sweep runs the same car, damper and controller under many road inputs. The
+scalar step (:func:`mrsuspension.engine.kernel.step`) is a chain of dependent operations
+(five damper evaluations per step, each waiting for the previous one), so one run leaves
+most of the core idle. Here :data:`LANES` runs advance together: each step, the
+per-run bookkeeping (peak-velocity estimator, latching, controller, checks, record) runs
+run by run with the scalar kernels, and the RK4 stages of all the runs (where the time
+goes) run as one loop over the lanes that compiles to vector instructions. When a run
+ends, its lane takes the next one, so lanes stay busy whatever the run lengths.
+
+Three things make that loop vectorise: it calls nothing (the damper's tanh uses
+:func:`~mrsuspension.dampers.kernels.lane_tanh`, whose exp is plain arithmetic: numba has
+no vector exp without Intel's SVML), it cannot raise (compiled with
+``error_model="numpy"``: no division-by-zero exits) and it reads one array and writes
+another with field offsets known at compile time (so the vectoriser needs one overlap
+check instead of one per field pair, over its limit).
+
+The physics is shared, not copied: the force is
+:func:`~mrsuspension.dampers.kernels.wang_combine`, the car
+:func:`~mrsuspension.engine.kernel.plant_rates`, the per-run parts the scalar kernels
+themselves. The only numerical difference from :meth:`Simulation.run` is that exp, which
+is within 1.5 ulp of libm's: results agree to round-off (about 1e-13 relative over a
+sweep run), not bit for bit.
+
+Eligible: the dissertation's damper model (:class:`~mrsuspension.dampers.WangSymmetric`
+and the asymmetric variant) with any controller acting through it; runs that differ only
+in their excitation and duration share a lane group (:func:`lane_key`).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+from numba import njit
+
+from mrsuspension import shaping as _shaping
+from mrsuspension._numba_cache import invalidate_if_changed
+from mrsuspension.dampers import kernels as DK
+from mrsuspension.dampers.kernels import NO_REFCOUNT
+from mrsuspension.engine import kernel as EK
+
+if TYPE_CHECKING:
+    from mrsuspension.engine.result import SimulationResult
+    from mrsuspension.engine.simulate import Simulation, SimulationDiverged
+
+invalidate_if_changed(__file__, DK.__file__, EK.__file__, _shaping.__file__)
+
+__all__ = ["LANES", "lane_key", "run_lanes"]
+
+#: runs stepped together (a compile-time constant: the vectoriser needs fixed offsets;
+#: 16 measured faster per run-step than 8, as fast as 32)
+LANES = 16
+
+# fields of the lane input (IN) and output (OUT) arrays, LANES values each
+(
+    I_ZS, I_VS, I_ZU, I_VU, I_Z0, I_V0,  # state at the start of the step
+    I_HA, I_SH, I_FT, I_FB, I_KDCI, I_DEC,  # latched damper terms (WS_* of the kernels)
+    I_R0, I_D0, I_R1, I_D1, I_R2, I_D2,  # road and its rate at t, t + dt/2, t + dt
+) = range(18)  # fmt: skip
+N_IN = 18
+O_ZS, O_VS, O_ZU, O_VU, O_Z0, O_V0, O_AS, O_AU, O_A0, O_FD, O_FT = range(11)
+N_OUT = 11
+
+
+@njit(cache=True, inline="always")
+def _lane_rates(
+    zs: float,
+    vs: float,
+    zu: float,
+    vu: float,
+    z0: float,
+    v0: float,
+    zr: float,
+    zrd: float,
+    ha: float,
+    shift: float,
+    ftr: float,
+    fb: float,
+    kdci: float,
+    decay: float,
+    k1c: float,
+    k1e: float,
+    c: np.ndarray,
+    reference: bool,
+) -> tuple[float, float, float, float, float]:
+    """:func:`~mrsuspension.engine.kernel.accelerations` for the Wang model, branch-free."""
+    vd = vu - vs
+    k1 = k1c if vd >= 0.0 else k1e
+    fd = DK.wang_combine(kdci, ftr, fb, DK.lane_tanh(ha * (vd + shift)), k1, decay, vd)
+    a_s, a_u, a_0, ft = EK.plant_rates(
+        zs, vs, zu, vu, z0, v0, zr, zrd, fd, c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7],
+        reference, c[8], c[9], c[10],
+    )  # fmt: skip
+    return a_s, a_u, a_0, fd, ft
+
+
+@njit(cache=True, error_model="numpy", fastmath={"contract"}, **NO_REFCOUNT)
+def lane_stages(
+    lin: np.ndarray, lout: np.ndarray, dt: float, k1c: float, k1e: float, c: np.ndarray,
+    reference: bool,
+) -> None:  # fmt: skip
+    """One RK4 step of every lane (the arithmetic of :func:`~mrsuspension.engine.kernel.step`).
+
+    ``lin`` holds :data:`N_IN` fields of :data:`LANES` values (field-major), ``lout``
+    :data:`N_OUT`; ``c`` the car's constants (see :func:`_constants`). Lanes without a
+    run compute on stale values, which nobody reads.
+    """
+    h = 0.5 * dt
+    w6 = dt / 6.0
+    n = LANES
+    for q in range(LANES):
+        zs, vs, zu, vu = lin[I_ZS * n + q], lin[I_VS * n + q], lin[I_ZU * n + q], lin[I_VU * n + q]
+        z0, v0 = lin[I_Z0 * n + q], lin[I_V0 * n + q]
+        ha, sh, ftr = lin[I_HA * n + q], lin[I_SH * n + q], lin[I_FT * n + q]
+        fb, kdci, dec = lin[I_FB * n + q], lin[I_KDCI * n + q], lin[I_DEC * n + q]
+        r0, d0, r1 = lin[I_R0 * n + q], lin[I_D0 * n + q], lin[I_R1 * n + q]
+        d1, r2, d2 = lin[I_D1 * n + q], lin[I_R2 * n + q], lin[I_D2 * n + q]
+        # the stages in the order and grouping of kernel.step, so that only the exp differs
+        s1, u1, o1, _, _ = _lane_rates(
+            zs, vs, zu, vu, z0, v0, r0, d0, ha, sh, ftr, fb, kdci, dec, k1c, k1e, c, reference
+        )
+        w1 = v0 if reference else 0.0
+        azs, avs, azu, avu, az0, av0 = vs, s1, vu, u1, w1, o1
+        tzs, tvs, tzu, tvu = zs + h * vs, vs + h * s1, zu + h * vu, vu + h * u1
+        tz0, tv0 = z0 + h * w1, v0 + h * o1
+        s2, u2, o2, _, _ = _lane_rates(
+            tzs, tvs, tzu, tvu, tz0, tv0, r1, d1, ha, sh, ftr, fb, kdci, dec, k1c, k1e, c,
+            reference,
+        )  # fmt: skip
+        w2 = tv0 if reference else 0.0
+        azs += 2.0 * tvs
+        avs += 2.0 * s2
+        azu += 2.0 * tvu
+        avu += 2.0 * u2
+        az0 += 2.0 * w2
+        av0 += 2.0 * o2
+        tzs, tvs, tzu, tvu = zs + h * tvs, vs + h * s2, zu + h * tvu, vu + h * u2
+        tz0, tv0 = z0 + h * w2, v0 + h * o2
+        s3, u3, o3, _, _ = _lane_rates(
+            tzs, tvs, tzu, tvu, tz0, tv0, r1, d1, ha, sh, ftr, fb, kdci, dec, k1c, k1e, c,
+            reference,
+        )  # fmt: skip
+        w3 = tv0 if reference else 0.0
+        azs += 2.0 * tvs
+        avs += 2.0 * s3
+        azu += 2.0 * tvu
+        avu += 2.0 * u3
+        az0 += 2.0 * w3
+        av0 += 2.0 * o3
+        tzs, tvs, tzu, tvu = zs + dt * tvs, vs + dt * s3, zu + dt * tvu, vu + dt * u3
+        tz0, tv0 = z0 + dt * w3, v0 + dt * o3
+        s4, u4, o4, _, _ = _lane_rates(
+            tzs, tvs, tzu, tvu, tz0, tv0, r2, d2, ha, sh, ftr, fb, kdci, dec, k1c, k1e, c,
+            reference,
+        )  # fmt: skip
+        w4 = tv0 if reference else 0.0
+        azs += tvs
+        avs += s4
+        azu += tvu
+        avu += u4
+        az0 += w4
+        av0 += o4
+        zs += w6 * azs
+        vs += w6 * avs
+        zu += w6 * azu
+        vu += w6 * avu
+        z0 += w6 * az0
+        v0 += w6 * av0
+        s5, u5, o5, fd, ft = _lane_rates(
+            zs, vs, zu, vu, z0, v0, r2, d2, ha, sh, ftr, fb, kdci, dec, k1c, k1e, c, reference
+        )
+        lout[O_ZS * n + q], lout[O_VS * n + q], lout[O_ZU * n + q] = zs, vs, zu
+        lout[O_VU * n + q], lout[O_Z0 * n + q], lout[O_V0 * n + q] = vu, z0, v0
+        lout[O_AS * n + q], lout[O_AU * n + q], lout[O_A0 * n + q] = s5, u5, o5
+        lout[O_FD * n + q], lout[O_FT * n + q] = fd, ft
+
+
+@njit(cache=True, inline="always")
+def _start_lane(
+    q: int, j: int, y: np.ndarray, mem: np.ndarray, ds: np.ndarray, des: np.ndarray,
+    ces: np.ndarray, ds0: np.ndarray, des0: np.ndarray, ces0: np.ndarray, road_off: np.ndarray,
+    zr: np.ndarray, zrd: np.ndarray, rec_off: np.ndarray, rec: np.ndarray, vp: np.ndarray,
+    dk: int, dp: np.ndarray, dek: int, dep: np.ndarray, ck: int, cp: np.ndarray,
+    scratch: np.ndarray,
+) -> None:  # fmt: skip
+    """Fresh state for run ``j`` in lane ``q``, its initial rates and record row 0."""
+    o = road_off[j]
+    y[0], y[1], y[2], y[3], y[4], y[5] = zr[o], 0.0, zr[o], 0.0, zr[o], 0.0
+    mem[:] = 0.0
+    # element loops: a slice copy would need numba's allocator (for overlapping arrays)
+    for m in range(ds.size):
+        ds[m] = ds0[m]
+    for m in range(des.size):
+        des[m] = des0[m]
+    for m in range(ces.size):
+        ces[m] = ces0[m]
+    EK.start(y, zr[o], zrd[o], vp, EK.F_MODEL, dk, dp, ds, dek, dep, des, ck, cp, mem, scratch)
+    EK._record(rec, rec_off[j], y, zr[o], zrd[o], mem)
+
+
+@njit(cache=True, error_model="numpy", **NO_REFCOUNT)
+def run_lanes_kernel(
+    n_steps: np.ndarray, road_off: np.ndarray, zr: np.ndarray, zrd: np.ndarray,
+    rec_off: np.ndarray, rec: np.ndarray, decimate: int, status: np.ndarray, dt: float,
+    vp: np.ndarray, dk: int, dp: np.ndarray, ds0: np.ndarray, dek: int, dep: np.ndarray,
+    des0: np.ndarray, ck: int, cp: np.ndarray, cek: int, cep: np.ndarray, ces0: np.ndarray,
+    limits: np.ndarray, consts: np.ndarray, ys: np.ndarray, mems: np.ndarray,
+    dss: np.ndarray, dess: np.ndarray, cess: np.ndarray, lin: np.ndarray, lout: np.ndarray,
+    lane_run: np.ndarray, lane_k: np.ndarray, scratch: np.ndarray,
+) -> None:  # fmt: skip
+    """Every run of one configuration, :data:`LANES` at a time (see the module docstring).
+
+    Run ``j`` has ``n_steps[j]`` steps, its road (every half step) at
+    ``zr/zrd[road_off[j]:]`` and its record rows (every ``decimate`` steps, row 0 the
+    initial state) at ``rec[rec_off[j]:]``. ``status[j]`` gets ``(status, step, index,
+    value)`` as :func:`~mrsuspension.engine.kernel.run` returns them. The rest is work
+    space: per-lane state rows (``ys``, ``mems``, ``dss``, ``dess``, ``cess``, initialised
+    from ``ds0``, ``des0``, ``ces0``), the lane arrays and the lane bookkeeping.
+    """
+    runs = n_steps.shape[0]
+    n = LANES
+    reference = ck == EK.C_SLIDING
+    k1c, k1e = dp[DK.W_K1C], dp[DK.W_K1E]
+    nxt = 0
+    active = 0
+    for q in range(LANES):
+        lane_run[q] = -1
+        if nxt < runs:
+            _start_lane(
+                q, nxt, ys[q], mems[q], dss[q], dess[q], cess[q], ds0, des0, ces0, road_off,
+                zr, zrd, rec_off, rec, vp, dk, dp, dek, dep, ck, cp, scratch,
+            )  # fmt: skip
+            lane_run[q] = nxt
+            lane_k[q] = 0
+            nxt += 1
+            active += 1
+    while active > 0:
+        for q in range(LANES):
+            j = lane_run[q]
+            if j < 0:
+                continue
+            y, mem, ds = ys[q], mems[q], dss[q]
+            # kernel.step's part before the stages, run by run
+            xd = y[2] - y[0]
+            vd = y[3] - y[1]
+            ad = mem[EK.M_AD]
+            DK.damper_sample(dk, dp, ds, dek, dep, dess[q], xd, vd, ad, mem[EK.M_ID])
+            if cek == EK.EST_SHARED:
+                vm = ds[DK.WS_VM]
+            else:
+                vm = DK.estimator_update(cek, cep, cess[q], xd, vd, ad)
+            mem[EK.M_VM] = vm
+            EK.control(ck, cp, vp, dp, y, ad, vm, mem)
+            i = mem[EK.M_ID]
+            if i != ds[DK.WS_I]:
+                DK.wang_latch_current(dp, ds, i)
+            lin[I_ZS * n + q], lin[I_VS * n + q], lin[I_ZU * n + q] = y[0], y[1], y[2]
+            lin[I_VU * n + q], lin[I_Z0 * n + q], lin[I_V0 * n + q] = y[3], y[4], y[5]
+            lin[I_HA * n + q] = ds[DK.WS_HALF_ALPHA]
+            lin[I_SH * n + q] = ds[DK.WS_SHIFT]
+            lin[I_FT * n + q] = ds[DK.WS_FT]
+            lin[I_FB * n + q] = ds[DK.WS_FB]
+            lin[I_KDCI * n + q] = dp[DK.W_KD] * ds[DK.WS_CI]
+            lin[I_DEC * n + q] = ds[DK.WS_DECAY]
+            o = road_off[j] + 2 * lane_k[q]
+            lin[I_R0 * n + q], lin[I_D0 * n + q] = zr[o], zrd[o]
+            lin[I_R1 * n + q], lin[I_D1 * n + q] = zr[o + 1], zrd[o + 1]
+            lin[I_R2 * n + q], lin[I_D2 * n + q] = zr[o + 2], zrd[o + 2]
+        lane_stages(lin, lout, dt, k1c, k1e, consts, reference)
+        for q in range(LANES):
+            j = lane_run[q]
+            if j < 0:
+                continue
+            y, mem = ys[q], mems[q]
+            y[0], y[1], y[2] = lout[O_ZS * n + q], lout[O_VS * n + q], lout[O_ZU * n + q]
+            y[3], y[4], y[5] = lout[O_VU * n + q], lout[O_Z0 * n + q], lout[O_V0 * n + q]
+            s5, u5 = lout[O_AS * n + q], lout[O_AU * n + q]
+            mem[EK.M_AS] = s5
+            mem[EK.M_AU] = u5
+            mem[EK.M_A0] = lout[O_A0 * n + q]
+            mem[EK.M_FD] = lout[O_FD * n + q]
+            mem[EK.M_FT] = lout[O_FT * n + q]
+            mem[EK.M_AD] = u5 - s5
+            # (the dissertation's model has no internal dynamics to advance)
+            k = lane_k[q] + 1
+            lane_k[q] = k
+            code, idx, value = EK.check_limits(y, mem, limits)
+            done = code != EK.D_OK or k == n_steps[j]
+            if code == EK.D_OK and k % decimate == 0:
+                o = road_off[j] + 2 * k
+                EK._record(rec, rec_off[j] + k // decimate, y, zr[o], zrd[o], mem)
+            if not done:
+                continue
+            status[j, 0] = code
+            status[j, 1] = k
+            status[j, 2] = idx
+            status[j, 3] = value
+            lane_run[q] = -1
+            active -= 1
+            if nxt < runs:
+                _start_lane(
+                    q, nxt, y, mem, dss[q], dess[q], cess[q], ds0, des0, ces0, road_off, zr,
+                    zrd, rec_off, rec, vp, dk, dp, dek, dep, ck, cp, scratch,
+                )  # fmt: skip
+                lane_run[q] = nxt
+                lane_k[q] = 0
+                nxt += 1
+                active += 1
+
+
+def _constants(vp: np.ndarray, cp: np.ndarray) -> np.ndarray:
+    """The car's constants as :func:`~mrsuspension.engine.kernel.plant_rates` takes them.
+
+    Computed as :func:`~mrsuspension.engine.kernel.accelerations` computes them, so the
+    lane and scalar steps use the same numbers.
+    """
+    ms, mu = vp[EK.V_MS], vp[EK.V_MU]
+    return np.array(
+        [
+            vp[EK.V_KS], vp[EK.V_CSKY], 1.0 / ms, 1.0 / mu, (ms + mu) * vp[EK.V_G], vp[EK.V_KT],
+            vp[EK.V_CT], vp[EK.V_DXU], cp[EK.P_C0], cp[EK.P_CS], 1.0 / cp[EK.P_MS0],
+        ]
+    )  # fmt: skip
+
+
+def lane_key(simulation: Simulation, dt: float) -> tuple[Any, ...] | None:
+    """What runs must share to step in one lane group; None when the run is not eligible.
+
+    Eligible: the damper is the dissertation's model and the controller acts through it
+    (not an ideal reference force). The key holds every kernel array except the road.
+    """
+    a = simulation._arrays(dt)
+    if a["fk"] != EK.F_MODEL or a["dk"] != DK.WANG:
+        return None
+    arrays = tuple(
+        np.asarray(a[k], dtype=float).tobytes() for k in ("vp", "dp", "ds", "dep", "des", "cp", "cep", "ces")
+    )  # fmt: skip
+    return (float(dt), int(a["dk"]), int(a["dek"]), int(a["ck"]), int(a["cek"]), *arrays)
+
+
+def run_lanes(
+    simulations: Sequence[Simulation],
+    *,
+    duration: float | None = None,
+    dt: float = 1e-4,
+    output_rate: float = 1000.0,
+    check_stability: bool = True,
+) -> list[SimulationResult | SimulationDiverged]:
+    """Run simulations that share a :func:`lane_key` together in the lane kernel.
+
+    Same arguments and results as :meth:`Simulation.run` for each simulation, in order;
+    a run that diverges gives its :class:`SimulationDiverged` in its place (not raised,
+    so that the others are kept).
+
+    Raises
+    ------
+    ValidationError
+        When the simulations do not share one lane key, or as :meth:`Simulation.run`
+        for bad ``duration``, ``dt`` or ``output_rate``.
+
+    Examples
+    --------
+    >>> from mrsuspension.control import HiLo
+    >>> from mrsuspension.engine import Simulation
+    >>> from mrsuspension.excitation import Harmonic
+    >>> sims = [Simulation(Harmonic(f, 0.02), controller=HiLo(1)) for f in (1.0, 2.0, 4.0)]
+    >>> results = run_lanes(sims, duration=1.0)
+    >>> single = sims[1].run(1.0)
+    >>> bool(abs(results[1].z_s - single.z_s).max() < 1e-12)
+    True
+    """
+    from mrsuspension.engine.simulate import LIMITS
+    from mrsuspension.errors import ValidationError
+
+    sims = list(simulations)
+    if not sims:
+        return []
+    plans = [s._plan(duration, dt, output_rate, check_stability) for s in sims]
+    dt = plans[0][0]
+    decimate = plans[0][2]
+    keys = {lane_key(s, dt) for s in sims}
+    if len(keys) != 1 or None in keys:
+        raise ValidationError(
+            "run_lanes needs simulations that differ only in their excitation, with the "
+            "dissertation's damper model (see lane_key); use run_many for any mix"
+        )
+    roads = [s._road(n, dt) for s, (_, n, _) in zip(sims, plans, strict=True)]
+    steps = np.array([n for _, n, _ in plans], dtype=np.int64)
+    road_len = 2 * steps + 1
+    road_off = np.concatenate([[0], np.cumsum(road_len)[:-1]]).astype(np.int64)
+    rows = steps // decimate + 1
+    rec_off = np.concatenate([[0], np.cumsum(rows)[:-1]]).astype(np.int64)
+    zr = np.concatenate([r[0] for r in roads])
+    zrd = np.concatenate([r[1] for r in roads])
+    rec = np.zeros((int(rows.sum()), EK.N_REC))
+    status = np.zeros((len(sims), 4))
+    a = sims[0]._arrays(dt)
+    w = LANES
+    args = (
+        steps, road_off, zr, zrd, rec_off, rec, decimate, status, dt, a["vp"], a["dk"], a["dp"],
+        a["ds"].copy(), a["dek"], a["dep"], a["des"].copy(), a["ck"], a["cp"], a["cek"],
+        a["cep"], a["ces"].copy(), LIMITS, _constants(a["vp"], a["cp"]), np.zeros((w, EK.NY)),
+        np.zeros((w, EK.MEM_SIZE)), np.zeros((w, a["ds"].size)), np.zeros((w, a["des"].size)),
+        np.zeros((w, a["ces"].size)), np.zeros(N_IN * w), np.zeros(N_OUT * w),
+        np.full(w, -1, dtype=np.int64), np.zeros(w, dtype=np.int64), np.zeros(EK.SCRATCH_SIZE),
+    )  # fmt: skip
+    run_lanes_kernel(*args)
+    out: list[SimulationResult | SimulationDiverged] = []
+    for j, sim in enumerate(sims):
+        code, k, idx, value = status[j]
+        if int(code) != EK.D_OK:
+            out.append(sim._diverged(int(code), int(k) * dt, int(idx), float(value), dt))
+            continue
+        block = rec[rec_off[j] : rec_off[j] + rows[j]]
+        time = np.arange(rows[j]) * (decimate * dt)
+        out.append(sim._result(time, block, dt))
+    return out
+
+
+#: fewest runs worth a lane group (the stages cost the same for idle lanes)
+MIN_GROUP = LANES // 2
+#: most steps in one lane batch: its roads (every half step) and records are held at
+#: once, about 40 bytes per step (400 MB here); larger groups are split
+MAX_BATCH_STEPS = 10_000_000
+
+
+def plan_batches(
+    simulations: Sequence[Simulation], dt: float, duration: float | None, parts: int
+) -> list[list[int]]:
+    """Split runs into batches: lane groups (longest first) and single runs.
+
+    Runs that share a :func:`lane_key` and number at least :data:`MIN_GROUP` become lane
+    batches. A group is split (into batches of similar total length and at least
+    :data:`MIN_GROUP` runs) only as far as needed to give each of ``parts`` workers a
+    batch (the fewer the batches, the better the lanes are used) and to keep each batch
+    under :data:`MAX_BATCH_STEPS` steps (memory). Every other run is a batch of its own.
+    Each index appears once.
+
+    Examples
+    --------
+    >>> from mrsuspension.engine import Simulation
+    >>> from mrsuspension.excitation import Harmonic
+    >>> from mrsuspension.dampers import LinearViscous
+    >>> sims = [Simulation(Harmonic(f, 0.01)) for f in range(1, 21)]
+    >>> sims.append(Simulation(Harmonic(1.0, 0.01), damper=LinearViscous(damping=1000.0)))
+    >>> batches = plan_batches(sims, 1e-4, None, parts=2)  # two lane batches and one run
+    >>> [len(b) for b in batches]
+    [9, 11, 1]
+    >>> [round(sum(sims[j].excitation.duration for j in b)) for b in batches[:2]]  # seconds
+    [76, 82]
+    """
+    groups: dict[Any, list[int]] = {}
+    singles: list[list[int]] = []
+    for j, sim in enumerate(simulations):
+        try:
+            key = lane_key(sim, sim.check_dt(dt))
+        except Exception:  # a bad dt is reported by the run itself
+            key = None
+        if key is None:
+            singles.append([j])
+        else:
+            groups.setdefault(key, []).append(j)
+    batches: list[list[int]] = []
+    eligible = [m for m in groups.values() if len(m) >= MIN_GROUP]
+    # as few parts as keep every worker busy: a lane batch needs many more runs than
+    # lanes, else its longest run sets its length while the other lanes idle
+    share = -(-parts // max(1, len(eligible)))
+    for members in groups.values():
+        if len(members) < MIN_GROUP:
+            singles.extend([j] for j in members)
+            continue
+        length = {
+            j: float(duration if duration is not None else simulations[j].excitation.duration)
+            for j in members
+        }
+        steps = sum(length.values()) / dt
+        wanted = max(share, math.ceil(steps / MAX_BATCH_STEPS))
+        n_parts = max(1, min(wanted, len(members) // MIN_GROUP))
+        bins: list[list[int]] = [[] for _ in range(n_parts)]
+        load = [0.0] * n_parts
+        for j in sorted(members, key=lambda m: -length[m]):  # longest first, least loaded
+            b = load.index(min(load))
+            bins[b].append(j)
+            load[b] += length[j]
+        batches.extend(bins)  # each longest first: the lanes' tail is the short runs
+    return batches + singles

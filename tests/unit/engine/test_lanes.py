@@ -1,0 +1,232 @@
+"""The lane kernel (many runs stepped together) against single runs of the scalar step.
+
+The lanes share the scalar kernels for everything but the RK4 stages, where the damper's
+tanh takes its exp from plain arithmetic (``exp_neg``, within 1.5 ulp of libm's). So
+every signal must agree with :meth:`Simulation.run` to round-off, for every controller
+acting through the damper, with runs of different lengths refilling the lanes.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from mrsuspension.control import CONTROLLERS, make_controller
+from mrsuspension.dampers import LinearViscous, WangAsymmetric, WangSymmetric
+from mrsuspension.dampers import kernels as DK
+from mrsuspension.engine import Simulation, SimulationDiverged, measures_of, run_many
+from mrsuspension.engine import lanes as LN
+from mrsuspension.engine import simulate as SIM
+from mrsuspension.errors import ValidationError
+from mrsuspension.excitation import Harmonic, RoundedPulse
+
+SIGNALS = ("z_s", "z_u", "z_s_ddot", "z_u_ddot", "F_d", "F_T", "i_d", "v_m", "z_s0")
+THROUGH_DAMPER = [law for law in CONTROLLERS if not law.startswith("ideal-")]
+
+
+def agree(lane, single, rtol=1e-9) -> None:  # type: ignore[no-untyped-def]
+    assert lane.time.shape == single.time.shape
+    np.testing.assert_array_equal(lane.time, single.time)
+    for name in SIGNALS:
+        a, b = lane.signals[name], single.signals[name]
+        scale = max(float(np.max(np.abs(b))), 1e-30)
+        assert float(np.max(np.abs(a - b))) <= rtol * scale, name
+
+
+# -- the vectorisable exp and tanh -----------------------------------------------------
+def test_exp_neg_within_round_off_of_libm() -> None:
+    xs = -np.concatenate([np.linspace(0.0, 40.0, 200_001), np.geomspace(1e-12, 1.0, 1000)])
+    got = np.array([DK.exp_neg(float(x)) for x in xs])
+    rel = np.abs(got - np.exp(xs)) / np.exp(xs)
+    assert rel.max() < 4e-16  # about 1.5 ulp
+    assert DK.exp_neg(0.0) == 1.0
+
+
+def test_exp_neg_clamps_far_below() -> None:
+    assert DK.exp_neg(-1e6) == DK.exp_neg(DK.EXP_NEG_FLOOR)
+    assert 0.0 < DK.exp_neg(-1e6) < 1e-17
+
+
+def test_lane_tanh_matches_fast_tanh_and_both_forms() -> None:
+    edge = DK.TANH_RATIONAL_BELOW
+    us = np.concatenate(
+        [np.linspace(-25.0, 25.0, 20_001), [0.0, -0.0, edge, -edge, np.nextafter(edge, 0.0)]]
+    )
+    for u in us:
+        ref = DK.fast_tanh(float(u))
+        assert abs(DK.lane_tanh(float(u)) - ref) <= 8e-16 * abs(ref), u  # a few ulp
+    assert DK.lane_tanh(30.0) == 1.0
+    assert DK.lane_tanh(-30.0) == -1.0
+    assert DK.lane_tanh(0.0) == 0.0
+
+
+def test_wang_combine_is_the_models_force() -> None:
+    # the scalar model assembles its force with wang_combine: same value bit for bit
+    dp = WangSymmetric(force_gain=1.7).kernel(1e-4).params
+    s = np.zeros(DK.STATE_SIZE)
+    DK.wang_latch_motion(dp, s, 0.2, -1.0)
+    for v in (-0.3, -0.01, 0.0, 0.05, 0.4):
+        f = DK.wang_eval(dp, s, v, 0.3)
+        k1 = dp[DK.W_K1C] if v >= 0 else dp[DK.W_K1E]
+        tanh = DK.fast_tanh(s[DK.WS_HALF_ALPHA] * (v + s[DK.WS_SHIFT]))
+        kdci = dp[DK.W_KD] * s[DK.WS_CI]
+        assert DK.wang_combine(kdci, s[DK.WS_FT], s[DK.WS_FB], tanh, k1, s[DK.WS_DECAY], v) == f
+
+
+# -- lanes against single runs --------------------------------------------------------
+@pytest.mark.parametrize("law", THROUGH_DAMPER)
+def test_every_controller_matches_single_runs(law: str) -> None:
+    needs = make_controller(law).needs_inverse
+    damper = WangSymmetric(force_gain=2.5 if needs else 1.0)
+    sims = [
+        Simulation(Harmonic(f, 0.02), controller=make_controller(law), damper=damper)
+        for f in (0.8, 1.5, 2.5, 4.0, 7.0, 11.0)
+    ]
+    lanes = LN.run_lanes(sims, duration=1.5)
+    for sim, lane in zip(sims, lanes, strict=True):
+        assert not isinstance(lane, Exception)
+        agree(lane, sim.run(1.5))
+
+
+def test_more_runs_than_lanes_of_different_lengths_refill_the_lanes() -> None:
+    # pulses at different speeds and delays: lengths from 2.1 to 3.6 s, all run to the
+    # end of their own excitation, more runs than lanes (lanes are refilled)
+    hilo = make_controller("skyhook-hilo")
+    sims = [
+        Simulation(
+            RoundedPulse(
+                0.02 + 0.001 * k, 2.0 + k % 3, speed_kmh=30.0 + 7.0 * k, delay=0.1 * (k % 5)
+            ),
+            controller=hilo,
+        )
+        for k in range(LN.LANES + 5)
+    ]
+    lengths = {round(s.excitation.duration, 3) for s in sims}
+    assert len(lengths) > 10
+    lanes = LN.run_lanes(sims, output_rate=500.0)
+    for sim, lane in zip(sims, lanes, strict=True):
+        agree(lane, sim.run(output_rate=500.0))
+
+
+def test_the_asymmetric_model_runs_in_lanes() -> None:
+    sims = [
+        Simulation(
+            Harmonic(f, 0.02), controller=make_controller("skyhook-hilo"), damper=WangAsymmetric()
+        )
+        for f in (1.0, 3.0, 6.0)
+    ]
+    for sim, lane in zip(sims, LN.run_lanes(sims, duration=1.0), strict=True):
+        agree(lane, sim.run(1.0))  # type: ignore[arg-type]
+
+
+def test_a_diverging_run_is_reported_and_the_others_kept(monkeypatch: pytest.MonkeyPatch) -> None:
+    # a small |z| limit: the 4 cm runs leave it, the 1 mm runs do not
+    monkeypatch.setattr(SIM, "LIMITS", np.array([0.01, 100.0, 1e6, 1e7]))
+    sims = [Simulation(Harmonic(2.0, a)) for a in (0.001, 0.04, 0.001, 0.04)]
+    out = LN.run_lanes(sims, duration=1.0)
+    for sim, lane in zip(sims, out, strict=True):
+        if sim.excitation.amplitude < 0.01:  # type: ignore[attr-defined]
+            agree(lane, sim.run(1.0))  # type: ignore[arg-type]
+            continue
+        assert isinstance(lane, SimulationDiverged)
+        with pytest.raises(SimulationDiverged) as single:
+            sim.run(1.0)
+        assert lane.signal == single.value.signal
+        assert math.isclose(lane.time, single.value.time)
+        assert str(lane) == str(single.value)
+
+
+def test_runs_that_cannot_share_lanes_are_refused() -> None:
+    base = Simulation(Harmonic(1.0, 0.01))
+    with pytest.raises(ValidationError, match="differ only in their excitation"):
+        LN.run_lanes(
+            [base, Simulation(Harmonic(2.0, 0.01), controller=make_controller("skyhook-hilo"))]
+        )
+    with pytest.raises(ValidationError, match="dissertation's damper model"):
+        LN.run_lanes([Simulation(Harmonic(1.0, 0.01), damper=LinearViscous(damping=1500.0))] * 2)
+    with pytest.raises(ValidationError):
+        LN.run_lanes([base, base], dt=-1.0)
+    assert LN.run_lanes([]) == []
+
+
+def test_lane_key_separates_what_matters() -> None:
+    a = Simulation(Harmonic(1.0, 0.01))
+    assert LN.lane_key(a, 1e-4) == LN.lane_key(Simulation(Harmonic(5.0, 0.03)), 1e-4)
+    assert LN.lane_key(a, 1e-4) != LN.lane_key(a, 5e-5)
+    assert LN.lane_key(a, 1e-4) != LN.lane_key(
+        Simulation(Harmonic(1.0, 0.01), damper=WangSymmetric(force_gain=2.0)), 1e-4
+    )
+    assert (
+        LN.lane_key(
+            Simulation(Harmonic(1.0, 0.01), controller=make_controller("ideal-skyhook")), 1e-4
+        )
+        is None
+    )
+    assert (
+        LN.lane_key(Simulation(Harmonic(1.0, 0.01), damper=LinearViscous(damping=1500.0)), 1e-4)
+        is None
+    )
+
+
+def test_plan_batches_groups_splits_and_leaves_the_rest_single() -> None:
+    hilo = make_controller("skyhook-hilo")
+    group_a = [Simulation(Harmonic(1.0 + k, 0.01)) for k in range(2 * LN.MIN_GROUP)]
+    group_b = [
+        Simulation(Harmonic(1.0 + k, 0.01), controller=hilo) for k in range(LN.MIN_GROUP - 1)
+    ]
+    linear = [Simulation(Harmonic(1.0, 0.01), damper=LinearViscous(damping=1500.0))]
+    sims = group_a + group_b + linear
+    one = LN.plan_batches(sims, 1e-4, None, parts=1)
+    two = LN.plan_batches(sims, 1e-4, None, parts=2)
+    for plan in (one, two):
+        assert sorted(j for b in plan for j in b) == list(range(len(sims)))
+    assert [len(b) for b in one] == [len(group_a)] + [1] * (len(group_b) + 1)
+    # two workers and one lane group: the group is split in two of similar length
+    halves = two[:2]
+    assert sorted(halves[0] + halves[1]) == list(range(len(group_a)))
+    load = [sum(sims[j].excitation.duration for j in b) for b in halves]
+    assert abs(load[0] - load[1]) <= max(sims[j].excitation.duration for j in halves[0] + halves[1])
+    assert [len(b) for b in two[2:]] == [1] * (len(group_b) + 1)
+
+
+# -- through run_many -----------------------------------------------------------------
+def test_run_many_with_lanes_matches_without(tmp_path) -> None:  # type: ignore[no-untyped-def]
+    acm = make_controller("skyhook-hilo", mode="ACM")
+    sims = [
+        Simulation(RoundedPulse(0.035, 2.0, speed_kmh=v), controller=acm)
+        for v in np.linspace(20.0, 120.0, LN.MIN_GROUP + 3)
+    ]
+    sims.append(Simulation(RoundedPulse(0.035, 2.0), damper=LinearViscous(damping=1500.0)))
+    seen: list[tuple[int, int]] = []
+    with_lanes = run_many(
+        sims, workers=1, reduce=measures_of, progress=lambda d, t: seen.append((d, t))
+    )
+    without = run_many(sims, workers=1, reduce=measures_of, lanes=False)
+    assert seen[-1] == (len(sims), len(sims))
+    for a, b in zip(with_lanes, without, strict=True):
+        assert a.keys() == b.keys()
+        for key in ("SDR_s", "SAR_s", "SDR_u", "SAR_u", "RDR", "peak_tire_force"):
+            assert math.isclose(a[key], b[key], rel_tol=1e-9), key
+    parallel = run_many(sims, workers=2, reduce=measures_of)
+    assert parallel == with_lanes
+
+
+def test_run_many_raises_a_lane_runs_divergence(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setattr(SIM, "LIMITS", np.array([0.01, 100.0, 1e6, 1e7]))
+    sims = [Simulation(Harmonic(2.0, 0.001)) for _ in range(LN.MIN_GROUP)]
+    sims[5] = Simulation(Harmonic(2.0, 0.04))
+    with pytest.raises(SimulationDiverged, match=r"z_s|z_u"):
+        run_many(sims, duration=1.0, workers=1)
+
+
+def test_plan_batches_keeps_batches_under_the_step_limit(monkeypatch: pytest.MonkeyPatch) -> None:
+    sims = [Simulation(Harmonic(5.0, 0.01)) for _ in range(4 * LN.MIN_GROUP)]  # 7 s each
+    assert [len(b) for b in LN.plan_batches(sims, 1e-4, None, parts=1)] == [len(sims)]
+    # each run is 70 000 steps: a limit of 3 runs' worth asks for many batches, but a
+    # batch keeps at least MIN_GROUP runs
+    monkeypatch.setattr(LN, "MAX_BATCH_STEPS", 210_000)
+    assert [len(b) for b in LN.plan_batches(sims, 1e-4, None, parts=1)] == [LN.MIN_GROUP] * 4
+    monkeypatch.setattr(LN, "MAX_BATCH_STEPS", 1_200_000)  # 17 runs' worth: two batches
+    assert [len(b) for b in LN.plan_batches(sims, 1e-4, 7.0, parts=1)] == [2 * LN.MIN_GROUP] * 2
