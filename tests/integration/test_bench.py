@@ -13,7 +13,15 @@ def test_bench_quick_json() -> None:
     result = CliRunner().invoke(app, ["bench", "--quick", "--json"])
     assert result.exit_code == 0, result.stderr
     data = json.loads(result.stdout)
-    for key in ("single_run_s", "scipy_baseline_s", "speedup_vs_scipy", "sweep_s", "compile_s"):
+    for key in (
+        "single_run_s",
+        "scipy_baseline_s",
+        "speedup_vs_scipy",
+        "sweep_s",
+        "compile_s",
+        "sweep_without_lanes_s",
+        "lanes_speedup",
+    ):
         assert key in data
     # the plain-Python RK4 is the engine's algorithm written independently: same numbers
     assert data["python_rk4_max_difference_m"] < 1e-12
