@@ -466,8 +466,8 @@ def bench(
         f"per core; {res['sweep_at_single_run_speed_s']:.2f} s at the single run's speed)"
     )
     typer.echo(
-        f"  without lanes (each run on its own): {res['sweep_without_lanes_s']:.2f} s; "
-        f"lanes {res['lanes_speedup']:.2f}x"
+        f"  in lane batches (run_many(lanes=True)): {res['sweep_lanes_s']:.2f} s, "
+        f"{res['lanes_speedup']:.2f}x"
     )
     compiled = "skipped" if res["compile_s"] is None else f"{res['compile_s']:.1f} s"
     typer.echo(f"compile (fresh, no cache): {compiled}; first call: {res['first_call_s']:.2f} s")

@@ -19,7 +19,7 @@ def test_bench_quick_json() -> None:
         "speedup_vs_scipy",
         "sweep_s",
         "compile_s",
-        "sweep_without_lanes_s",
+        "sweep_lanes_s",
         "lanes_speedup",
     ):
         assert key in data

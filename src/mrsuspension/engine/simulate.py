@@ -515,7 +515,7 @@ def run_many(
     workers: int | None = None,
     progress: Callable[[int, int], None] | None = None,
     reduce: Callable[[SimulationResult], Any] | None = None,
-    lanes: bool = True,
+    lanes: bool = False,
 ) -> list[Any]:
     """Run many simulations, across processes (default: one per CPU core).
 
@@ -524,12 +524,14 @@ def run_many(
     it can be sent to the workers) maps each result before it is returned, e.g.
     :func:`measures_of` for sweeps, which keeps the traffic between processes small.
 
-    With ``lanes`` (default), runs that differ only in their excitation (a sweep) and use
-    the dissertation's damper model are stepped together in vector instructions
+    With ``lanes=True``, runs that differ only in their excitation (a sweep) and use the
+    dissertation's damper model are stepped together in vector instructions
     (:mod:`mrsuspension.engine.lanes`), at least
-    :data:`~mrsuspension.engine.lanes.MIN_GROUP` at a time: 1.4-1.7x the throughput of
-    single runs. Their results agree with :meth:`Simulation.run` to round-off (its exp
-    is computed differently), not bit for bit; ``lanes=False`` runs each on its own.
+    :data:`~mrsuspension.engine.lanes.MIN_GROUP` at a time. In one process that is
+    1.3-1.4x the throughput of single runs; across the 2-vCPU test VM's processes the
+    gain varied from none to 1.2x, so it is not the default. Lane results agree with
+    :meth:`Simulation.run` to round-off (the lanes compute exp differently), not bit for
+    bit. Progress is then reported per batch.
 
     Examples
     --------

@@ -192,7 +192,15 @@ def test_plan_batches_groups_splits_and_leaves_the_rest_single() -> None:
 
 
 # -- through run_many -----------------------------------------------------------------
-def test_run_many_with_lanes_matches_without(tmp_path) -> None:  # type: ignore[no-untyped-def]
+def test_run_many_with_lanes_matches_without(monkeypatch: pytest.MonkeyPatch) -> None:
+    batches: list[int] = []
+    real = LN.run_lanes
+
+    def spy(sims, **kw):  # type: ignore[no-untyped-def]
+        batches.append(len(sims))
+        return real(sims, **kw)
+
+    monkeypatch.setattr(LN, "run_lanes", spy)
     acm = make_controller("skyhook-hilo", mode="ACM")
     sims = [
         Simulation(RoundedPulse(0.035, 2.0, speed_kmh=v), controller=acm)
@@ -201,15 +209,17 @@ def test_run_many_with_lanes_matches_without(tmp_path) -> None:  # type: ignore[
     sims.append(Simulation(RoundedPulse(0.035, 2.0), damper=LinearViscous(damping=1500.0)))
     seen: list[tuple[int, int]] = []
     with_lanes = run_many(
-        sims, workers=1, reduce=measures_of, progress=lambda d, t: seen.append((d, t))
+        sims, workers=1, reduce=measures_of, lanes=True, progress=lambda d, t: seen.append((d, t))
     )
-    without = run_many(sims, workers=1, reduce=measures_of, lanes=False)
+    assert batches == [len(sims) - 1]  # the linear damper's run went on its own
+    without = run_many(sims, workers=1, reduce=measures_of)  # the default: no lanes
+    assert batches == [len(sims) - 1]
     assert seen[-1] == (len(sims), len(sims))
     for a, b in zip(with_lanes, without, strict=True):
         assert a.keys() == b.keys()
         for key in ("SDR_s", "SAR_s", "SDR_u", "SAR_u", "RDR", "peak_tire_force"):
             assert math.isclose(a[key], b[key], rel_tol=1e-9), key
-    parallel = run_many(sims, workers=2, reduce=measures_of)
+    parallel = run_many(sims, workers=2, reduce=measures_of, lanes=True)
     assert parallel == with_lanes
 
 
@@ -218,7 +228,7 @@ def test_run_many_raises_a_lane_runs_divergence(monkeypatch: pytest.MonkeyPatch)
     sims = [Simulation(Harmonic(2.0, 0.001)) for _ in range(LN.MIN_GROUP)]
     sims[5] = Simulation(Harmonic(2.0, 0.04))
     with pytest.raises(SimulationDiverged, match=r"z_s|z_u"):
-        run_many(sims, duration=1.0, workers=1)
+        run_many(sims, duration=1.0, workers=1, lanes=True)
 
 
 def test_plan_batches_keeps_batches_under_the_step_limit(monkeypatch: pytest.MonkeyPatch) -> None:
