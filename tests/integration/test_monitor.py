@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import os
+import signal
 import socket
 import subprocess
 import sys
@@ -125,6 +126,44 @@ def test_hil_run_monitor_json_prints_the_result_when_the_run_ends(tmp_path: Path
     assert info["out"] is None  # no --out: as `hil run --json`
     assert info["stats"]["ticks"] >= 500
     assert "mrsus monitor (ideal rig): http://localhost:" in err  # the address on stderr
+
+
+def _monitored_json(args: list[str]) -> tuple[dict, subprocess.Popen]:  # type: ignore[type-arg]
+    """Start ``hil run --monitor --json``, read the result JSON, stop the server."""
+    proc = subprocess.Popen(
+        [*MRSUS, "hil", "run", *args, "--monitor", "--port", str(_free_port()), "--json"],
+        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+    )  # fmt: skip
+    lines: list[str] = []
+    guard = threading.Timer(90.0, proc.kill)
+    guard.start()
+    try:
+        assert proc.stdout is not None
+        for line in proc.stdout:
+            lines.append(line)
+            if line.rstrip() == "}":
+                break
+    finally:
+        guard.cancel()
+        proc.send_signal(signal.SIGINT)  # Ctrl-C: the server shuts down
+        proc.communicate(timeout=20)
+    return json.loads("".join(lines)), proc
+
+
+def test_hil_run_monitor_exits_1_when_the_attached_run_trips(tmp_path: Path) -> None:
+    """As `hil run`: a safety trip of the attached run is exit code 1 once served."""
+    big = tmp_path / "big.toml"
+    big.write_text(SCENARIO.read_text().replace("amplitude = 0.025", "amplitude = 0.3"))
+    info, proc = _monitored_json([str(big), "--duration", "3", "--rig", "ideal"])
+    assert info["tripped"] is True  # 30 cm at 1.5 Hz: a force or stroke limit
+    assert info["reason"] != "completed"
+    assert proc.returncode == 1
+
+
+def test_hil_run_monitor_exits_0_when_the_attached_run_completes() -> None:
+    info, proc = _monitored_json([str(SCENARIO), "--duration", "0.5", "--rig", "ideal"])
+    assert info["reason"] == "completed"
+    assert proc.returncode == 0
 
 
 @pytest.mark.parametrize(

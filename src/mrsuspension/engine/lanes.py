@@ -50,7 +50,7 @@ if TYPE_CHECKING:
 
 invalidate_if_changed(__file__, DK.__file__, EK.__file__, _shaping.__file__)
 
-__all__ = ["LANES", "lane_key", "run_lanes"]
+__all__ = ["LANES", "MAX_BATCH_STEPS", "MIN_GROUP", "lane_key", "plan_batches", "run_lanes"]
 
 #: runs stepped together (a compile-time constant: the vectoriser needs fixed offsets;
 #: with 8 it judged the loop not worth vectorising, 32 measured no faster than 16)

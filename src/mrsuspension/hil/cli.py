@@ -113,10 +113,11 @@ def hil_run_command(
     The loop runs in its own process; on exit the stop reason and the deadline
     statistics are printed. A safety trip exits with code 1. With --monitor the browser
     monitor is served instead, with this run started and attached (live plots, live
-    changes, STOP, recording download), until Ctrl-C; with --monitor --json the run's
-    outcome is printed as JSON when it ends (the monitor's address goes to stderr).
+    changes, STOP, recording download), until Ctrl-C, and the exit code is 1 if that
+    run tripped (not when STOP was pressed); with --monitor --json the run's outcome is printed as JSON when it ends
+    (the monitor's address goes to stderr).
     """
-    from mrsuspension.hil.loop import _simulation_of
+    from mrsuspension.hil.loop import STOP_REASON, _simulation_of
 
     with _user_errors():
         if not scenario.exists():
@@ -133,18 +134,24 @@ def hil_run_command(
             check_range("duration", duration, 0.0, 1e5, unit="s", low_inclusive=False)
             check_range("rate", rate, 50.0, 5000.0, unit="Hz")
 
-            def print_result(info: dict[str, Any]) -> None:
-                # the object `hil run --json` prints (the recording is the run's folder)
-                if out is None and "out" in info:
-                    info["out"] = None
-                typer.echo(json.dumps(_clean(info), indent=2))
+            ended: dict[str, Any] = {}
+
+            def on_end(info: dict[str, Any]) -> None:
+                ended.update(info)
+                if as_json:  # the object `hil run --json` prints (the recording: the run's folder)
+                    if out is None and "out" in info:
+                        info["out"] = None
+                    typer.echo(json.dumps(_clean(info), indent=2))
 
             serve(
                 host, port, token, rig=rig, workdir=out, url_to_stderr=as_json, realtime=realtime,
-                attach=AttachedRun(
-                    sim, rate=rate, duration=duration, on_end=print_result if as_json else None
-                ),
+                attach=AttachedRun(sim, rate=rate, duration=duration, on_end=on_end),
             )  # fmt: skip
+            # as `hil run`: a safety trip (or a failed loop) of the attached run exits 1;
+            # the operator's STOP (which takes the same safe path) does not
+            stopped = ended.get("reason") == STOP_REASON
+            if (ended.get("tripped") and not stopped) or ended.get("state") == "error":
+                raise typer.Exit(1)
             return
         the_rig = make_rig(rig, sim.damper)
         tmp = None

@@ -78,6 +78,10 @@ __all__ = [
     "run_hil",
 ]
 
+#: the stop reason recorded when the operator presses STOP (the safety path, not a trip
+#: of a limit)
+STOP_REASON = "STOP pressed"
+
 #: loop states (the ``state`` channel)
 STATE_STARTUP, STATE_RUN, STATE_RETURN, STATE_TRIPPED = 0, 1, 2, 3
 
@@ -617,7 +621,7 @@ def _loop(
             if active:
                 try:
                     if stop_set is not None and stop_set():
-                        supervisor.trip("STOP pressed", t)
+                        supervisor.trip(STOP_REASON, t)
                         tripped = True
                     else:
                         tripped = check_sample(
