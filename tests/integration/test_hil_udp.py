@@ -179,15 +179,22 @@ def test_cli_hil_run_over_udp(tmp_path: Path) -> None:
     assert rec.meta["rig"]["address"] == f"udp://127.0.0.1:{port}"
 
 
-def test_rig_emulator_command() -> None:
+def _ignore_sigint() -> None:
+    signal.signal(signal.SIGINT, signal.SIG_IGN)  # as a background job of a script
+
+
+@pytest.mark.parametrize("stop", [signal.SIGINT, signal.SIGTERM], ids=["ctrl-c", "sigterm"])
+def test_rig_emulator_command(stop: signal.Signals) -> None:
     code = (
         "import typer\nfrom mrsuspension.hil.cli import rig_emulator_command\n"
         "typer.run(rig_emulator_command)"
     )
+    # started with SIGINT ignored, it still stops on Ctrl-C (and on SIGTERM) with counts
     proc = subprocess.Popen(
         [sys.executable, "-c", code, "--port", "0", "--rig", "ideal"],
         stdout=subprocess.PIPE,
         text=True,
+        preexec_fn=_ignore_sigint,
     )
     try:
         assert proc.stdout is not None
@@ -202,7 +209,7 @@ def test_rig_emulator_command() -> None:
         sample = rig.read()
         assert sample.displacement == pytest.approx(0.01)
         rig.close()
-        proc.send_signal(signal.SIGINT)
+        proc.send_signal(stop)
         rest, _ = proc.communicate(timeout=10)
         assert "stopped: commands 1" in rest
     finally:

@@ -410,10 +410,21 @@ def rig_emulator_command(
 ) -> None:
     """Serve a simulated rig over UDP (the network rig protocol, docs/hil.md).
 
-    Runs until Ctrl-C. Connect a loop with `mrsus hil run SCENARIO --rig udp://HOST:PORT`.
+    Runs until Ctrl-C (or SIGTERM, e.g. `kill`), then prints its packet counts. Connect a
+    loop with `mrsus hil run SCENARIO --rig udp://HOST:PORT`.
     """
+    import signal
+
     from mrsuspension.dampers import make_damper
     from mrsuspension.hil.network import serve_rig
+
+    def interrupt(_signum: int, _frame: Any) -> None:
+        raise KeyboardInterrupt
+
+    # stop cleanly on Ctrl-C even when started with SIGINT ignored (a background job of
+    # a script), and on SIGTERM
+    signal.signal(signal.SIGINT, signal.default_int_handler)
+    signal.signal(signal.SIGTERM, interrupt)
 
     with _user_errors():
         spec = rig.strip().lower()
