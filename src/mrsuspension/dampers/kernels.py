@@ -132,14 +132,18 @@ def fast_tanh(u: float) -> float:
 
 
 @njit(cache=True, inline="always")
-def _tanh_rational(u: float) -> float:
-    """Lambert's continued fraction for tanh, truncated after the term 15 (|u| < 0.55)."""
+def _tanh_rational_parts(u: float) -> tuple[float, float]:
+    """Numerator and denominator of Lambert's continued fraction for tanh, truncated
+    after the term 15 (for |u| < 0.55)."""
     z = u * u
-    return (
-        u
-        * (2027025.0 + z * (270270.0 + z * (6930.0 + z * 36.0)))
-        / (2027025.0 + z * (945945.0 + z * (51975.0 + z * (630.0 + z))))
-    )
+    num = u * (2027025.0 + z * (270270.0 + z * (6930.0 + z * 36.0)))
+    return num, 2027025.0 + z * (945945.0 + z * (51975.0 + z * (630.0 + z)))
+
+
+@njit(cache=True, inline="always")
+def _tanh_rational(u: float) -> float:
+    num, den = _tanh_rational_parts(u)
+    return num / den
 
 
 @njit(cache=True, inline="always")
@@ -214,12 +218,10 @@ def lane_tanh(u: float) -> float:
     """
     a = abs(u)
     t = exp_neg(-2.0 * a)
-    z = u * u
     small = a < TANH_RATIONAL_BELOW
     # one division for both forms: select numerator and denominator first
-    num = u * (2027025.0 + z * (270270.0 + z * (6930.0 + z * 36.0))) if small else 1.0 - t
-    den = 2027025.0 + z * (945945.0 + z * (51975.0 + z * (630.0 + z))) if small else 1.0 + t
-    r = num / den
+    rn, rd = _tanh_rational_parts(u)
+    r = (rn if small else 1.0 - t) / (rd if small else 1.0 + t)
     return r if small or u > 0.0 else (-r if u < 0.0 else u)
 
 
