@@ -100,6 +100,38 @@ def _lane_rates(
     return a_s, a_u, a_0, fd, ft
 
 
+@njit(cache=True, inline="always")
+def _lane_stage(
+    y: tuple[float, float, float, float, float, float],
+    t: tuple[float, float, float, float, float, float],
+    acc: tuple[float, float, float, float, float, float],
+    weight: float, step: float, zr: float, zrd: float,
+    p: tuple[float, float, float, float, float, float, float, float],
+    c: np.ndarray, reference: bool,
+) -> tuple[
+    tuple[float, float, float, float, float, float], tuple[float, float, float, float, float, float]
+]:  # fmt: skip
+    """One RK4 stage at the stage state ``t``: ``acc + weight k`` and ``y + step k``.
+
+    ``k`` is the rates at ``t`` (velocities, then accelerations; the reference model's
+    only with ``reference``); ``p`` the latched damper terms and ``k1c, k1e``.
+    """
+    s, u, o, _, _ = _lane_rates(
+        t[0], t[1], t[2], t[3], t[4], t[5], zr, zrd, p[0], p[1], p[2], p[3], p[4], p[5],
+        p[6], p[7], c, reference,
+    )  # fmt: skip
+    w = t[5] if reference else 0.0
+    acc = (
+        acc[0] + weight * t[1], acc[1] + weight * s, acc[2] + weight * t[3],
+        acc[3] + weight * u, acc[4] + weight * w, acc[5] + weight * o,
+    )  # fmt: skip
+    nxt = (
+        y[0] + step * t[1], y[1] + step * s, y[2] + step * t[3], y[3] + step * u,
+        y[4] + step * w, y[5] + step * o,
+    )  # fmt: skip
+    return acc, nxt
+
+
 @njit(cache=True, error_model="numpy", fastmath={"contract"}, **NO_REFCOUNT)
 def lane_stages(
     lin: np.ndarray, lout: np.ndarray, dt: float, k1c: float, k1e: float, c: np.ndarray,
@@ -122,50 +154,14 @@ def lane_stages(
         r0, d0, r1 = lin[I_R0 * n + q], lin[I_D0 * n + q], lin[I_R1 * n + q]
         d1, r2, d2 = lin[I_D1 * n + q], lin[I_R2 * n + q], lin[I_D2 * n + q]
         # the stages in the order and grouping of kernel.step, so that only the exp differs
-        s1, u1, o1, _, _ = _lane_rates(
-            zs, vs, zu, vu, z0, v0, r0, d0, ha, sh, ftr, fb, kdci, dec, k1c, k1e, c, reference
-        )
-        w1 = v0 if reference else 0.0
-        azs, avs, azu, avu, az0, av0 = vs, s1, vu, u1, w1, o1
-        tzs, tvs, tzu, tvu = zs + h * vs, vs + h * s1, zu + h * vu, vu + h * u1
-        tz0, tv0 = z0 + h * w1, v0 + h * o1
-        s2, u2, o2, _, _ = _lane_rates(
-            tzs, tvs, tzu, tvu, tz0, tv0, r1, d1, ha, sh, ftr, fb, kdci, dec, k1c, k1e, c,
-            reference,
-        )  # fmt: skip
-        w2 = tv0 if reference else 0.0
-        azs += 2.0 * tvs
-        avs += 2.0 * s2
-        azu += 2.0 * tvu
-        avu += 2.0 * u2
-        az0 += 2.0 * w2
-        av0 += 2.0 * o2
-        tzs, tvs, tzu, tvu = zs + h * tvs, vs + h * s2, zu + h * tvu, vu + h * u2
-        tz0, tv0 = z0 + h * w2, v0 + h * o2
-        s3, u3, o3, _, _ = _lane_rates(
-            tzs, tvs, tzu, tvu, tz0, tv0, r1, d1, ha, sh, ftr, fb, kdci, dec, k1c, k1e, c,
-            reference,
-        )  # fmt: skip
-        w3 = tv0 if reference else 0.0
-        azs += 2.0 * tvs
-        avs += 2.0 * s3
-        azu += 2.0 * tvu
-        avu += 2.0 * u3
-        az0 += 2.0 * w3
-        av0 += 2.0 * o3
-        tzs, tvs, tzu, tvu = zs + dt * tvs, vs + dt * s3, zu + dt * tvu, vu + dt * u3
-        tz0, tv0 = z0 + dt * w3, v0 + dt * o3
-        s4, u4, o4, _, _ = _lane_rates(
-            tzs, tvs, tzu, tvu, tz0, tv0, r2, d2, ha, sh, ftr, fb, kdci, dec, k1c, k1e, c,
-            reference,
-        )  # fmt: skip
-        w4 = tv0 if reference else 0.0
-        azs += tvs
-        avs += s4
-        azu += tvu
-        avu += u4
-        az0 += w4
-        av0 += o4
+        y = (zs, vs, zu, vu, z0, v0)
+        p = (ha, sh, ftr, fb, kdci, dec, k1c, k1e)
+        acc = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+        acc, t = _lane_stage(y, y, acc, 1.0, h, r0, d0, p, c, reference)
+        acc, t = _lane_stage(y, t, acc, 2.0, h, r1, d1, p, c, reference)
+        acc, t = _lane_stage(y, t, acc, 2.0, dt, r1, d1, p, c, reference)
+        acc, _ = _lane_stage(y, t, acc, 1.0, dt, r2, d2, p, c, reference)
+        azs, avs, azu, avu, az0, av0 = acc
         zs += w6 * azs
         vs += w6 * avs
         zu += w6 * azu
