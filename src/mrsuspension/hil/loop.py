@@ -16,7 +16,8 @@ Each tick (default 1 kHz):
 Timing: each tick is released at ``t0 + k T`` (sleep until shortly before, then spin on
 :func:`time.perf_counter`); its deadline is the next release. Compute time, lateness of
 the release and misses are kept per tick; garbage collection is off during the run and
-the recorder's writer runs in another thread behind a bounded queue.
+the recorder's writer runs in another process, behind a shared-memory ring (no second
+thread in the loop's process).
 
 On a trip (or at the end of the run) the drive current goes to 0 in the same tick and
 the actuator is ramped back to mid-stroke before the loop stops.
@@ -59,7 +60,11 @@ from mrsuspension.hil.live import (
     _Road,
     tick_step,
 )
-from mrsuspension.hil.realtime import normalise_mode, realtime_session
+from mrsuspension.hil.realtime import (
+    normalise_mode,
+    realtime_session,
+    yield_loop_cpu,
+)
 from mrsuspension.hil.recorder import Recorder, Recording, load_recording
 from mrsuspension.hil.rig import Rig, SimulatedRig
 from mrsuspension.hil.safety import SafetyLimits, SafetySupervisor, StartUp
@@ -119,6 +124,8 @@ _SPIN = 3e-4
 _SPIN_FRACTION = 0.25
 #: first release after the clock starts [s]
 _START_DELAY = 2e-3
+#: the recorder's ring holds this long a stretch of rows (how far its writer may lag) [s]
+_RING_SECONDS = 10.0
 
 
 @dataclass(frozen=True)
@@ -489,27 +496,35 @@ def run_hil(
         "startup": dataclasses.asdict(startup),
         "driver": dataclasses.asdict(driver),
     }
-    recorder = Recorder(
-        rec_dir,
-        _NAMES,
-        units=dict(CHANNELS),
-        block_rows=max(1, round(0.1 * rate)),
-        meta=meta,
-    )
+    with yield_loop_cpu():  # the recorder's writer process keeps off the loop's core
+        recorder = Recorder(
+            rec_dir,
+            _NAMES,
+            units=dict(CHANNELS),
+            buffer_rows=max(16384, round(_RING_SECONDS * rate)),
+            wait=not realtime,  # unpaced: wait for the writer rather than lose rows
+            meta=meta,
+        )
     compute = np.zeros(n_max)
     lateness = np.zeros(n_max)
-    if hooks is not None:  # a first message before the clock starts (a queue's feeder thread)
-        hooks.send("started", {"rate": rate, "ticks": n_ticks})
-    with realtime_session(mode, compute, lateness) as rt:  # scheduling hook (hil/realtime.py)
-        if rt.spin and hasattr(rig, "spin"):
-            rig.spin = True  # a network rig polls for its replies too
-        reason, ticks = _loop(
-            stepper, rig, driver, supervisor, startup, recorder, road, road_v, n_ticks, n_max,
-            n_sub, period, realtime, compute, lateness, hooks, road_src, rt.spin,
-        )  # fmt: skip
-    stats = TickStats.from_arrays(
-        compute[:ticks], lateness[:ticks], period, realtime, scheduling=rt.label()
-    )
+    try:
+        if hooks is not None:  # a first message before the clock starts (a queue's feeder)
+            hooks.send("started", {"rate": rate, "ticks": n_ticks})
+        with realtime_session(mode, compute, lateness) as rt:  # scheduling (hil/realtime.py)
+            if rt.spin and hasattr(rig, "spin"):
+                rig.spin = True  # a network rig polls for its replies too
+            reason, ticks = _loop(
+                stepper, rig, driver, supervisor, startup, recorder, road, road_v, n_ticks,
+                n_max, n_sub, period, realtime, compute, lateness, hooks, road_src, rt.spin,
+            )  # fmt: skip
+        stats = TickStats.from_arrays(
+            compute[:ticks], lateness[:ticks], period, realtime, scheduling=rt.label()
+        )
+    except BaseException as exc:  # the recording says so and its writer ends
+        with contextlib.suppress(MRSuspensionError):
+            recorder.close({"reason": f"the loop failed: {type(exc).__name__}: {exc}"})
+        rig.close()
+        raise
     meta["scheduling"] = rt.describe()
     stop = {
         "reason": reason,

@@ -1,35 +1,53 @@
 """Recorder of the HiL loop: every channel at loop rate, written while the loop runs.
 
-The loop fills preallocated row blocks in memory and hands each full block (a tenth of a
-second by default) to a writer thread through a bounded queue; the loop never waits for
-the disk (a full queue drops the block and counts it). The writer appends the rows as
-little-endian float64 to ``channels.f64`` and flushes after each block, so a crash or a
-kill loses at most the block being filled. The layout is described in ``meta.json``
-(channel names and units, loop rate); ``stop.json`` states ``"running"`` until the run
-ends, then the reason it stopped. :func:`load_recording` reads a directory back (also one
-left by a killed run) and :meth:`Recording.to_csv` exports it.
+The loop copies each row into a shared-memory ring and publishes it (a counter in the
+same memory): no lock, no system call and no second thread in the loop's process, so
+nothing there competes with the loop for the interpreter lock or the loop's core. A
+writer **process** (``hil/_recwriter.py``, standard library only, started from the
+recorder and kept off the loop's core by :func:`~mrsuspension.hil.loop.run_hil`)
+appends the published rows to ``channels.f64`` as little-endian float64 every 20 ms. A
+crash or a kill of the loop process loses only the row being written: the ring outlives
+the loop in the writer, which writes everything published before it exits. When the
+writer falls a whole ring behind, a real-time loop overwrites the oldest unwritten rows
+(counted as ``dropped_rows``) rather than wait; an unpaced run waits for it instead. The
+layout is described in ``meta.json`` (channel names and units, loop rate);
+``stop.json`` states ``"running"`` until the run ends, then the reason it stopped.
+:func:`load_recording` reads a directory back (also one left by a killed run) and
+:meth:`Recording.to_csv` exports it.
 """
 
 from __future__ import annotations
 
+import contextlib
 import json
+import mmap
 import os
-import queue
-import threading
+import subprocess
+import sys
+import tempfile
+import time
+import weakref
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import IO, Any
 
 import numpy as np
 
-from mrsuspension.errors import ValidationError
+from mrsuspension.errors import MRSuspensionError, ValidationError
+from mrsuspension.hil import _recwriter as rw
 
 __all__ = ["DATA_FILE", "META_FILE", "STOP_FILE", "Recorder", "Recording", "load_recording"]
 
 DATA_FILE = "channels.f64"
 META_FILE = "meta.json"
 STOP_FILE = "stop.json"
+#: the writer process's script (run by path: it imports the standard library only)
+_WRITER = Path(rw.__file__)
+#: how long :meth:`Recorder.close` lets the writer drain the ring [s]
+_CLOSE_TIMEOUT = 60.0
+#: how long the writer may take to start [s]
+_START_TIMEOUT = 30.0
 
 
 def _write_json(path: Path, data: Mapping[str, Any]) -> None:
@@ -38,8 +56,30 @@ def _write_json(path: Path, data: Mapping[str, Any]) -> None:
     os.replace(tmp, path)
 
 
+def _shared_buffer(size: int) -> tuple[int, mmap.mmap, IO[bytes] | None]:
+    """An anonymous shared buffer that a child process can map through its descriptor."""
+    if hasattr(os, "memfd_create"):  # Linux
+        fd, keep = os.memfd_create("mrsus-recorder"), None
+    else:  # other POSIX systems: an unlinked temporary file
+        keep = tempfile.TemporaryFile()  # noqa: SIM115 (closed with the recorder)
+        fd = keep.fileno()
+    os.ftruncate(fd, size)
+    return fd, mmap.mmap(fd, size), keep
+
+
+def _abandon(proc: subprocess.Popen[bytes], buf: mmap.mmap) -> None:
+    """Finalizer of a recorder never closed: let its writer drain and end."""
+    with contextlib.suppress(ValueError, OSError):  # buffer already closed
+        rw._put(buf, rw.CLOSE, 1)
+    try:
+        proc.wait(_CLOSE_TIMEOUT)
+    except subprocess.TimeoutExpired:
+        proc.kill()
+        proc.wait()
+
+
 class Recorder:
-    """Incremental writer of fixed-width float64 rows.
+    """Incremental writer of fixed-width float64 rows (the HiL loop's recording).
 
     Parameters
     ----------
@@ -49,12 +89,30 @@ class Recorder:
         Column names, in row order.
     units : mapping, optional
         Unit of each channel (for ``meta.json``).
-    block_rows : int
-        Rows per block handed to the writer (the most a kill can lose).
-    queue_blocks : int
-        Capacity of the queue between the loop and the writer, in blocks.
+    buffer_rows : int
+        Rows the shared ring holds: how far the writer may fall behind before rows are
+        lost (``wait=False``) or the loop waits (``wait=True``).
+    flush_interval : float
+        How often the writer appends the new rows to the file [s] (0.02: at most the
+        last 20 ms are missing from a file read while the run goes on).
+    wait : bool
+        When the ring is full, wait for the writer (True: for unpaced runs, which must
+        lose nothing) instead of overwriting the oldest unwritten rows (False, the
+        default: a real-time loop never waits; the lost rows are counted).
     meta : mapping, optional
         Extra metadata for ``meta.json`` (scenario, rig, rate...).
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> out = Path(tempfile.mkdtemp()) / "rec"
+    >>> rec = Recorder(out, ["time", "x"], units={"time": "s", "x": "m"})
+    >>> for k in range(5):
+    ...     rec.append((0.001 * k, 2.0 * k))
+    >>> rec.close({"reason": "completed"})
+    >>> back = load_recording(out)
+    >>> back["x"].tolist(), back.complete, back.stop["rows"]
+    ([0.0, 2.0, 4.0, 6.0, 8.0], True, 5)
     """
 
     def __init__(
@@ -63,98 +121,151 @@ class Recorder:
         channels: Sequence[str],
         *,
         units: Mapping[str, str] | None = None,
-        block_rows: int = 100,
-        queue_blocks: int = 64,
+        buffer_rows: int = 16384,
+        flush_interval: float = 0.02,
+        wait: bool = False,
         meta: Mapping[str, Any] | None = None,
     ) -> None:
-        if block_rows < 1 or queue_blocks < 1:
-            raise ValidationError("block_rows and queue_blocks must be at least 1")
+        if not isinstance(buffer_rows, int) or buffer_rows < 2:
+            raise ValidationError(f"buffer_rows must be an integer >= 2; got {buffer_rows!r}")
+        if not 1e-4 <= flush_interval <= 10.0:
+            raise ValidationError(
+                f"flush_interval must be within [0.0001, 10] s; got {flush_interval!r}"
+            )
         self.out = Path(out)
         self.out.mkdir(parents=True, exist_ok=True)
         self.channels = tuple(channels)
         self.width = len(self.channels)
-        self.block_rows = int(block_rows)
-        self._queue: queue.Queue[tuple[np.ndarray, int] | None] = queue.Queue(queue_blocks)
-        self._free: queue.Queue[np.ndarray] = queue.Queue()
-        for _ in range(queue_blocks + 2):
-            self._free.put(np.zeros((self.block_rows, self.width)))
-        self._blk = self._free.get()
-        self._pos = 0
-        self.rows = 0
-        self.dropped_blocks = 0
+        if self.width < 1:
+            raise ValidationError("a recording needs at least one channel")
+        self.capacity = int(buffer_rows)
+        self._wait = bool(wait)
+        self._n = 0
+        self.dropped_rows = 0
         self.written_rows = 0
-        self._error: BaseException | None = None
         meta_data = {
             "format": "float64 little-endian rows, one column per channel",
             "data_file": DATA_FILE,
             "channels": list(self.channels),
             "units": dict(units or {}),
-            "block_rows": self.block_rows,
+            "flush_interval": flush_interval,
             **dict(meta or {}),
         }
         _write_json(self.out / META_FILE, meta_data)
         _write_json(self.out / STOP_FILE, {"status": "running"})
-        self._file = open(self.out / DATA_FILE, "wb")  # noqa: SIM115 (closed by the writer)
-        self._thread = threading.Thread(target=self._writer, name="hil-recorder", daemon=True)
-        self._thread.start()
-
-    # -- loop side (no waiting) ---------------------------------------------------------
-    def append(self, values: Sequence[float]) -> None:
-        """Add one row (the loop's hot path: a copy into a preallocated block)."""
-        self._blk[self._pos] = values
-        self._pos += 1
-        if self._pos == self.block_rows:
-            self._hand_over()
-
-    def _hand_over(self) -> None:
+        (self.out / DATA_FILE).write_bytes(b"")
+        size = 8 * (rw.HEADER + self.capacity * self.width)
+        fd, self._buf, self._keep = _shared_buffer(size)
+        self._head = np.frombuffer(self._buf, dtype=np.int64, count=rw.HEADER)
+        self._data = np.frombuffer(self._buf, dtype=np.float64, offset=8 * rw.HEADER).reshape(
+            self.capacity, self.width
+        )
+        self._data.fill(0.0)  # every page of the ring in memory before the loop runs
+        args = [str(fd), str(self.out / DATA_FILE), str(self.capacity), str(self.width)]
+        args += [str(os.getpid()), repr(float(flush_interval))]
         try:
-            self._queue.put_nowait((self._blk, self._pos))
-        except queue.Full:
-            self.dropped_blocks += 1
-            self._pos = 0
-            return
-        self.rows += self._pos
-        try:
-            self._blk = self._free.get_nowait()
-        except queue.Empty:  # the writer is behind; allocate rather than wait
-            self._blk = np.zeros((self.block_rows, self.width))
-        self._pos = 0
-
-    # -- writer thread ------------------------------------------------------------------
-    def _writer(self) -> None:
-        f = self._file
-        try:
-            while True:
-                item = self._queue.get()
-                if item is None:
-                    break
-                blk, n = item
-                f.write(blk[:n].data)
-                f.flush()
-                self.written_rows += n
-                self._free.put(blk)
-        except BaseException as exc:
-            self._error = exc
+            self._proc = subprocess.Popen(
+                [sys.executable, "-I", "-S", str(_WRITER), *args],
+                pass_fds=(fd,),
+                stdin=subprocess.DEVNULL,
+                stdout=subprocess.DEVNULL,
+                stderr=subprocess.PIPE,
+            )
         finally:
-            f.close()
+            if self._keep is None:
+                os.close(fd)  # the mapping and the child keep the memory
+        self._finalizer = weakref.finalize(self, _abandon, self._proc, self._buf)
+        t_end = time.monotonic() + _START_TIMEOUT
+        while self._head[rw.STATE] == rw.STARTING:
+            if self._proc.poll() is not None or time.monotonic() > t_end:
+                self._finalizer()
+                raise MRSuspensionError(
+                    f"the recorder's writer process did not start: {self._writer_error()}"
+                )
+            time.sleep(1e-3)
+
+    @property
+    def rows(self) -> int:
+        """Rows appended so far."""
+        return self._n
+
+    @property
+    def ring(self) -> np.ndarray:
+        """The shared ring (``buffer_rows`` x channels)."""
+        return self._data
+
+    # -- loop side ----------------------------------------------------------------------
+    def append(self, values: Sequence[float]) -> None:
+        """Add one row (the loop's hot path: a copy into shared memory, then publish)."""
+        n = self._n
+        if self._wait and n - int(self._head[rw.CONSUMED]) >= self.capacity:
+            self._wait_for_writer(n)
+        self._data[n % self.capacity] = values
+        self._n = n + 1
+        self._head[rw.PUBLISHED] = n + 1  # published after the row is in place
+
+    def _wait_for_writer(self, n: int) -> None:
+        while n - int(self._head[rw.CONSUMED]) >= self.capacity:
+            if self._proc.poll() is not None:
+                raise MRSuspensionError(
+                    f"the recorder's writer process ended while the run went on: "
+                    f"{self._writer_error()}"
+                )
+            time.sleep(1e-4)
+
+    def _writer_error(self) -> str:
+        code = self._proc.poll()
+        if code is None:
+            return "it is still running"
+        err = self._proc.stderr.read().decode(errors="replace").strip() if self._proc.stderr else ""
+        tail = err.splitlines()[-1] if err else "no message"
+        return f"exit code {code} ({tail})"
 
     def close(self, stop: Mapping[str, Any]) -> None:
-        """Write the partial block, stop the writer and record why the run stopped."""
-        if self._pos:
-            self._queue.put((self._blk, self._pos))
-            self.rows += self._pos
-            self._pos = 0
-        self._queue.put(None)
-        self._thread.join()
+        """Let the writer write every row, stop it and record why the run stopped.
+
+        Raises
+        ------
+        MRSuspensionError
+            When the writer failed (``stop.json`` is written first and says so).
+        """
+        if self._buf.closed:
+            raise MRSuspensionError(f"the recording in {self.out} is already closed")
+        self._finalizer.detach()
+        self._head[rw.CLOSE] = 1
+        error = ""
+        try:
+            code = self._proc.wait(_CLOSE_TIMEOUT)
+        except subprocess.TimeoutExpired:
+            self._proc.kill()
+            self._proc.wait()
+            code = None
+            error = f"the recorder's writer did not finish within {_CLOSE_TIMEOUT:g} s"
+        consumed = int(self._head[rw.CONSUMED])
+        self.dropped_rows = int(self._head[rw.LOST])
+        self.written_rows = consumed - self.dropped_rows
+        if not error and (code != 0 or consumed != self._n):
+            error = (
+                f"the recorder's writer failed: {self._writer_error()}; "
+                f"{consumed} of {self._n} rows handled"
+            )
+        if self._proc.stderr is not None:
+            self._proc.stderr.close()
         data = {
             "status": "stopped",
             "rows": self.written_rows,
-            "dropped_blocks": self.dropped_blocks,
+            "dropped_rows": self.dropped_rows,
             **dict(stop),
         }
+        if error:
+            data["recorder_error"] = error
         _write_json(self.out / STOP_FILE, data)
-        if self._error is not None:
-            raise self._error
+        del self._head, self._data  # the views go before the mapping
+        self._buf.close()
+        if self._keep is not None:
+            self._keep.close()
+        if error:
+            raise MRSuspensionError(error)
 
 
 @dataclass

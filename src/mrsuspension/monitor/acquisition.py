@@ -1,7 +1,7 @@
 """Acquisition settings of the monitor: what part of the HiL recording is downloaded.
 
 The HiL loop records every channel at the loop rate through its
-:class:`~mrsuspension.hil.recorder.Recorder` (a writer thread, never the loop's hot path).
+:class:`~mrsuspension.hil.recorder.Recorder` (a writer process, never the loop's hot path).
 The page's acquisition controls select from that recording: record start/stop windows
 (loop time), the acquisition period (every k-th tick), a trigger (the first crossing of a
 channel through a level, with a pre-trigger time) and the display sampling rate of the

@@ -19,7 +19,7 @@ or ``udp://HOST:PORT``) in a separate process (``spawn``) with the loop's live h
   change ramps the current, a road change cross-fades).
 
 Every tick is recorded by the HiL :class:`~mrsuspension.hil.recorder.Recorder` (its writer
-thread) into the run's recording directory.
+process) into the run's recording directory.
 """
 
 from __future__ import annotations
