@@ -254,7 +254,16 @@ def test_acceptance_simulated_rig(
 def test_invalid_start_refused_in_the_page(server: str, browser: Any) -> None:
     page = browser.new_page()
     page.goto(server)
+    page.wait_for_function("() => window.monitorState.frames > 0", timeout=10000)
     page.fill("#sprung_mass", "-5")
+    # a run started elsewhere sends its fields: they fill the form, but never over what
+    # the user typed
+    _start_short_run(server, sprung_mass=611.0, suspension_stiffness=31234.0)
+    page.wait_for_function(
+        "() => Number(document.getElementById('suspension_stiffness').value) === 31234",
+        timeout=10000,
+    )
+    assert page.input_value("#sprung_mass") == "-5"
     page.click("#start")
     page.wait_for_function(
         "() => document.getElementById('error').textContent.length > 0", timeout=10000
@@ -262,6 +271,21 @@ def test_invalid_start_refused_in_the_page(server: str, browser: Any) -> None:
     assert "sprung_mass" in (page.text_content("#error") or "")
     assert _posts(page) == []
     page.close()
+
+
+def _start_short_run(server: str, **fields: float) -> None:
+    """Start a 0.3 s run through the API (as another page would) and wait for its end."""
+    req = urllib.request.Request(
+        server + "api/start",
+        data=json.dumps({"duration": 0.3, **fields}).encode(),
+        headers={"Content-Type": "application/json"},
+        method="POST",
+    )
+    urllib.request.urlopen(req).read()
+    deadline = time.monotonic() + 60.0
+    while _status(server)["state"] not in ("ended", "error"):
+        assert time.monotonic() < deadline, "the short run did not end"
+        time.sleep(0.1)
 
 
 def test_server_refuses_what_the_page_would(server: str) -> None:

@@ -156,6 +156,7 @@
     try {
       const info = await post(path, s);
       if (path === "api/start") startedHere = info.run;
+      edited.clear();  // the run has what the form shows
       setNote(what);
     } catch (e) { setError(e.message); }
   }
@@ -205,10 +206,14 @@
     return Number(x).toFixed(digits === undefined ? 3 : digits);
   }
 
+  // fields the user has typed into since the last start/apply: a run's fields arriving
+  // in a frame (on connecting, or a run started elsewhere) never overwrite them
+  const edited = new Set();
+  $("settings").addEventListener("input", (e) => { if (e.target.name) edited.add(e.target.name); });
   function fillFields(fields) {
     for (const [k, v] of Object.entries(fields || {})) {
       const el = document.querySelector("[name='" + k + "']");
-      if (el && el.tagName === "INPUT") el.value = v;
+      if (el && el.tagName === "INPUT" && !edited.has(k)) el.value = v;
     }
   }
 
