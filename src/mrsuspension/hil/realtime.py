@@ -50,9 +50,10 @@ import os
 import resource
 import sys
 import threading
+import time
 from collections.abc import Iterable, Iterator
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 
@@ -270,11 +271,17 @@ class IsolationReport:
 class _Moved:
     old: frozenset[int]
     new: frozenset[int]
-    start: str | None
+    start: int | None
 
 
-def _stat(tid: int) -> tuple[bool, str] | None:
-    """(kernel thread, start time) of a task from ``/proc/TID/stat``; None if unreadable."""
+class _TaskInfo(NamedTuple):
+    kernel: bool  # a kernel thread
+    ppid: int  # parent process
+    start: int  # start time [clock ticks after boot]
+
+
+def _stat(tid: int) -> _TaskInfo | None:
+    """A task's line of ``/proc/TID/stat``, in part; None if unreadable (ended)."""
     try:
         with open(f"/proc/{tid}/stat", encoding="ascii", errors="replace") as f:
             text = f.read()
@@ -282,26 +289,38 @@ def _stat(tid: int) -> tuple[bool, str] | None:
         return None
     fields = text[text.rfind(")") + 2 :].split()  # after "pid (comm) "; comm may hold ")"
     try:
-        ppid, flags, start = int(fields[1]), int(fields[6]), fields[19]
+        ppid, flags, start = int(fields[1]), int(fields[6]), int(fields[19])
     except (IndexError, ValueError):
         return None
     kernel = bool(flags & _PF_KTHREAD) or tid == 2 or ppid == 2
-    return kernel, start
+    return _TaskInfo(kernel, ppid, start)
+
+
+def _boot_ticks() -> int:
+    """Now, in the clock ticks after boot of ``/proc/PID/stat``'s start times."""
+    return int(time.clock_gettime(time.CLOCK_BOOTTIME) * os.sysconf("SC_CLK_TCK"))
+
+
+def _all_tasks() -> list[tuple[int, int]]:
+    """Every task of the machine as (process id, thread id): ``/proc/[0-9]*/task/[0-9]*``."""
+    tasks: list[tuple[int, int]] = []
+    try:
+        pids = [int(e.name) for e in os.scandir("/proc") if e.name.isdigit()]
+    except OSError:
+        return tasks
+    for pid in pids:
+        try:
+            tasks.extend(
+                (pid, int(e.name)) for e in os.scandir(f"/proc/{pid}/task") if e.name.isdigit()
+            )
+        except OSError:  # ended meanwhile
+            continue
+    return tasks
 
 
 def _all_tids() -> list[int]:
-    """Every task (thread) of the machine, from ``/proc/[0-9]*/task/[0-9]*``."""
-    tids: list[int] = []
-    try:
-        pids = [e.name for e in os.scandir("/proc") if e.name.isdigit()]
-    except OSError:
-        return tids
-    for pid in pids:
-        try:
-            tids.extend(int(e.name) for e in os.scandir(f"/proc/{pid}/task") if e.name.isdigit())
-        except OSError:  # ended meanwhile
-            continue
-    return tids
+    """Every task (thread) of the machine."""
+    return [tid for _, tid in _all_tasks()]
 
 
 def _own_tids() -> set[int]:
@@ -325,15 +344,16 @@ def isolate_cpu(
     kernel threads such as ``ksoftirqd/N``, ``migration/N``, ``kworker/N:*``: counted as
     ``fixed``) and, without root or ``CAP_SYS_NICE``, other users' tasks (``denied``).
     Tasks started during the scan are caught by up to two further scans; tasks started
-    later inherit their parent's affinity, so a task started by a moved one stays off
-    the core (and keeps that after the block), one started by a task that was not moved
-    may run on it.
+    later inherit their creator's affinity: off the core when started by a moved task,
+    possibly on it when started by one that was not moved.
 
     At the end each moved task gets its old affinity back, unless its affinity is no
     longer the one set here (someone changed it meanwhile: left as it is). Tasks that
-    ended are ignored, and so is a thread id reused by a new task. A process killed
-    inside the block (SIGKILL) cannot restore anything: the moved tasks stay off the
-    core until moved back (``taskset -p``).
+    ended are ignored, and so is a thread id reused by a new task. Tasks started inside
+    the block by a moved task (or by such a task's descendants) get the old affinity of
+    that moved ancestor, on the same condition (they still have the affinity they
+    inherited). A process killed inside the block (SIGKILL) cannot restore anything:
+    the moved tasks stay off the core until moved back (``taskset -p``).
 
     Parameters
     ----------
@@ -370,6 +390,7 @@ def isolate_cpu(
     chosen = None if tasks is None else [int(t) for t in tasks]
     moved: dict[int, _Moved] = {}
     counts = {"kernel": 0, "fixed": 0, "denied": 0}
+    since = _boot_ticks()
     try:
         seen: set[int] = set(skip)
         for _ in range(_ISOLATE_PASSES if chosen is None else 1):
@@ -387,7 +408,7 @@ def isolate_cpu(
             denied=counts["denied"],
         )
     finally:
-        _restore(moved)
+        _restore(moved, since)
 
 
 def _move(tid: int, cpu: int, moved: dict[int, _Moved], counts: dict[str, int]) -> None:
@@ -417,24 +438,50 @@ def _move(tid: int, cpu: int, moved: dict[int, _Moved], counts: dict[str, int]) 
         now = frozenset(os.sched_getaffinity(tid))  # as the kernel stores it
     except OSError:
         return  # ended right after the move
-    moved[tid] = _Moved(old, now, None if info is None else info[1])
-    if info is not None and info[0]:
+    moved[tid] = _Moved(old, now, None if info is None else info.start)
+    if info is not None and info.kernel:
         counts["kernel"] += 1
 
 
-def _restore(moved: dict[int, _Moved]) -> None:
-    """Give each moved task its old affinity back, if it still has the one set."""
-    for tid, m in moved.items():
-        try:
-            if m.start is not None:
-                info = _stat(tid)
-                if info is None or info[1] != m.start:
-                    continue  # ended, or the id now belongs to another task
-            if frozenset(os.sched_getaffinity(tid)) != m.new:
-                continue  # changed by someone else meanwhile: theirs now
+def _set_back(tid: int, m: _Moved) -> None:
+    """The old affinity of ``m`` for ``tid`` if it still has ``m``'s new one."""
+    try:
+        if frozenset(os.sched_getaffinity(tid)) == m.new:  # else changed by someone else
             os.sched_setaffinity(tid, m.old)
-        except OSError:  # ended, or the old set is no longer allowed
+    except OSError:  # ended, or the old set is no longer allowed
+        pass
+
+
+def _restore(moved: dict[int, _Moved], since: int) -> None:
+    """Give the moved tasks, and the tasks they started, their old affinity back."""
+    if not moved:
+        return
+    infos = {tid: (pid, _stat(tid)) for pid, tid in _all_tasks()}
+
+    def same(tid: int, m: _Moved) -> bool:  # not a new task with a reused id
+        info = infos.get(tid, (0, None))[1]
+        return m.start is None or (info is not None and info.start == m.start)
+
+    def origin(tid: int) -> _Moved | None:
+        """The moved task a task descends from, for a task started inside the block."""
+        for _ in range(64):  # a chain of tasks started inside the block, never a loop
+            if tid in moved and same(tid, moved[tid]):
+                return moved[tid]
+            pid, info = infos.get(tid, (0, None))
+            if info is None or info.start < since:
+                return None
+            tid = pid if tid != pid else info.ppid  # a thread's process, a process's parent
+        return None
+
+    for tid, (pid, info) in infos.items():
+        if tid in moved or info is None or info.start < since:
             continue
+        m = origin(pid if tid != pid else info.ppid)
+        if m is not None:
+            _set_back(tid, m)
+    for tid, m in moved.items():
+        if tid in infos and same(tid, m):
+            _set_back(tid, m)
     moved.clear()
 
 

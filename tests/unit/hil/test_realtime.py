@@ -2,8 +2,10 @@
 
 from __future__ import annotations
 
+import contextlib
 import gc
 import os
+import signal
 import subprocess
 import sys
 import threading
@@ -253,6 +255,44 @@ def test_isolate_does_not_restore_over_someone_elses_change(
         other.wait(10)
 
 
+_SPAWNER = """
+import subprocess, sys, time
+sys.stdin.readline()
+child = subprocess.Popen([sys.executable, "-c", "import time; time.sleep(30)"])
+print(child.pid, flush=True)
+time.sleep(30)
+"""
+
+
+@pytest.mark.skipif(not MULTI_CPU, reason="needs Linux and two CPUs")
+def test_isolate_restores_tasks_started_by_moved_ones() -> None:
+    """A process started inside the block by a moved one inherits its narrowed affinity;
+    it gets the old one back at the end, as its parent does."""
+    cpus = os.sched_getaffinity(0)
+    cpu = max(cpus)
+    parent = subprocess.Popen(
+        [sys.executable, "-c", _SPAWNER], stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True
+    )
+    grandchild = 0
+    try:
+        assert parent.stdin is not None
+        assert parent.stdout is not None
+        with isolate_cpu(cpu, tasks=_tids(parent.pid)) as report:
+            parent.stdin.write("go\n")
+            parent.stdin.flush()
+            grandchild = int(parent.stdout.readline())
+            assert os.sched_getaffinity(grandchild) == cpus - {cpu}  # inherited
+        assert report.moved == len(_tids(parent.pid))
+        assert os.sched_getaffinity(parent.pid) == cpus
+        assert os.sched_getaffinity(grandchild) == cpus
+    finally:
+        if grandchild:
+            with contextlib.suppress(ProcessLookupError):
+                os.kill(grandchild, signal.SIGKILL)
+        parent.kill()
+        parent.wait(10)
+
+
 def test_isolation_report_label_and_kernel_threads() -> None:
     r = IsolationReport(1, moved=143, kernel_threads=12, fixed=9, denied=3)
     assert r.label() == (
@@ -264,10 +304,11 @@ def test_isolation_report_label_and_kernel_threads() -> None:
     if sys.platform.startswith("linux"):
         own = _stat(os.getpid())
         assert own is not None
-        assert own[0] is False
+        assert own.kernel is False
+        assert own.ppid == os.getppid()
         kthreadd = _stat(2)  # pid 2 is the kernel's thread creator
         if kthreadd is not None:
-            assert kthreadd[0] is True
+            assert kthreadd.kernel is True
 
 
 def test_isolate_does_nothing_with_one_cpu(monkeypatch: pytest.MonkeyPatch) -> None:
@@ -295,7 +336,7 @@ def test_isolate_whole_machine_round_trip(sleeper: subprocess.Popen[bytes]) -> N
         info = _stat(tid)
         try:
             if info is not None:
-                before[tid] = (frozenset(os.sched_getaffinity(tid)), info[1])
+                before[tid] = (frozenset(os.sched_getaffinity(tid)), info.start)
         except OSError:
             continue
     child = _tids(sleeper.pid)
@@ -308,7 +349,7 @@ def test_isolate_whole_machine_round_trip(sleeper: subprocess.Popen[bytes]) -> N
     left = []
     for tid, (old, start) in before.items():
         info = _stat(tid)
-        if info is None or info[1] != start or cpu not in old:
+        if info is None or info.start != start or cpu not in old:
             continue  # ended, or the id reused
         try:
             now = frozenset(os.sched_getaffinity(tid))
