@@ -9,6 +9,8 @@ processes, the emulator included with ``--rig udp``), then the highest rate sust
 with >= 99.9 % of ticks in deadline.
 ``--realtime auto|fifo|spin|off`` selects the scheduling (docs/hil.md); ``--rig udp`` runs
 the rig in a ``mrsus rig-emulator`` process (same scheduling option) over loopback UDP.
+``--isolate`` moves every other movable task off the loop's core during each run (and
+each floor): ``run_hil(..., isolate=True)``, docs/hil.md "Isolating the loop's core".
 ``--floor`` measures the machine's floor right before each HiL run
 (:func:`~mrsuspension.hil.latency.measure_latency`, ``mrsus hil latency``: the same rate,
 duration and scheduling with empty ticks, or ``--floor-work-us`` of busy work per tick)
@@ -66,6 +68,9 @@ def main() -> None:
     ap.add_argument("--duration", type=float, default=60.0, help="seconds per rate")
     ap.add_argument("--rates", default="1000,2000,5000", help="loop rates [Hz]")
     ap.add_argument("--realtime", default="auto", help="auto | fifo | spin | off (docs/hil.md)")
+    ap.add_argument(
+        "--isolate", action="store_true", help="move other tasks off the loop's core meanwhile"
+    )
     ap.add_argument("--rig", default="simulated", choices=("simulated", "udp"))
     ap.add_argument("--watchdog", type=float, default=None, help="rig watchdog [s] (0.05)")
     ap.add_argument(
@@ -102,7 +107,10 @@ def _bench(args: argparse.Namespace, port: int) -> None:
     for rate in (float(r) for r in args.rates.split(",")):
         floor = ""
         if args.floor:  # the machine alone, right before the loop, same rate and mode
-            f = measure_latency(rate, args.duration, args.realtime, work=args.floor_work_us * 1e-6)
+            f = measure_latency(
+                rate, args.duration, args.realtime, work=args.floor_work_us * 1e-6,
+                isolate=args.isolate,
+            )  # fmt: skip
             f_others = f.others / f.wall if f.wall > 0 else float("nan")
             floor = (
                 f" | {100 * f.stats.in_deadline:8.3f} {f.stalls:6d} {f.steal:6.2f} {f_others:6.2f}"
@@ -113,8 +121,9 @@ def _bench(args: argparse.Namespace, port: int) -> None:
         rig: Rig = UdpRig("127.0.0.1", port) if port else SimulatedRig(sim.damper)
         limits = SafetyLimits() if args.watchdog is None else SafetyLimits(watchdog=args.watchdog)
         result = run_hil(
-            sim, rig, duration=args.duration, rate=rate, realtime=args.realtime, limits=limits
-        )
+            sim, rig, duration=args.duration, rate=rate, realtime=args.realtime, limits=limits,
+            isolate=args.isolate,
+        )  # fmt: skip
         wall = time.perf_counter() - wall
         busy1, steal1 = cpu_times()
         others = max(0.0, (busy1 - busy0) - (time.process_time() - cpu0)) / wall

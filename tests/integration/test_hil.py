@@ -144,3 +144,7 @@ def test_cli_hil_run_realtime_option() -> None:
         res = runner.invoke(app, ["run", str(SCENARIO), "--realtime", bad])
         assert res.exit_code == 2, res.output
         assert fragment in res.stderr
+    for args in ([], ["--monitor"]):
+        res = runner.invoke(app, ["run", str(SCENARIO), "--realtime", "off", "--isolate", *args])
+        assert res.exit_code == 2, res.output
+        assert "--isolate needs a pinned loop: use --realtime auto, fifo or spin" in res.stderr

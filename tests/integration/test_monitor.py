@@ -175,6 +175,7 @@ def test_hil_run_monitor_exits_0_when_the_attached_run_completes() -> None:
         (["hil", "run", str(SCENARIO), "--monitor", "--rate", "10"], "rate"),
         (["monitor", "--realtime", "unpaced"], "runs in real time"),
         (["monitor", "--realtime", "spinn"], "spin"),
+        (["monitor", "--realtime", "off", "--isolate"], "isolate needs a pinned loop"),
         (["hil", "run", str(SCENARIO), "--monitor", "--realtime", "fast"], "realtime"),
     ],
 )

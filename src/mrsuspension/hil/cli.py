@@ -94,6 +94,14 @@ def hil_run_command(
     realtime: Annotated[
         str, typer.Option(help="scheduling: auto | fifo | spin | off (docs/hil.md)")
     ] = "auto",
+    isolate: Annotated[
+        bool,
+        typer.Option(
+            "--isolate",
+            help="move every other movable task off the loop's core meanwhile, and back "
+            "afterwards (needs --realtime auto, fifo or spin; docs/hil.md)",
+        ),
+    ] = False,
     monitor: Annotated[
         bool,
         typer.Option(
@@ -126,6 +134,10 @@ def hil_run_command(
             raise ValidationError(
                 f"--realtime {realtime!r}: `hil run` runs in real time; valid: auto, fifo, spin, off"
             )
+        if isolate and normalise_mode(realtime) == "off":
+            raise ValidationError(
+                "--isolate needs a pinned loop: use --realtime auto, fifo or spin (got 'off')"
+            )
         sim = _simulation_of(scenario)
         if monitor:
             from mrsuspension.monitor.app import AttachedRun
@@ -145,7 +157,7 @@ def hil_run_command(
 
             serve(
                 host, port, token, rig=rig, workdir=out, url_to_stderr=as_json, realtime=realtime,
-                attach=AttachedRun(sim, rate=rate, duration=duration, on_end=on_end),
+                isolate=isolate, attach=AttachedRun(sim, rate=rate, duration=duration, on_end=on_end),
             )  # fmt: skip
             # as `hil run`: a safety trip (or a failed loop) of the attached run exits 1;
             # the operator's STOP (which takes the same safe path) does not
@@ -162,7 +174,7 @@ def hil_run_command(
         try:
             result = run_hil(
                 sim, the_rig, duration=duration, rate=rate, out=target, process=True,
-                realtime=realtime,
+                realtime=realtime, isolate=isolate,
             )  # fmt: skip
         finally:
             if tmp is not None:
@@ -188,6 +200,14 @@ def hil_latency_command(
     realtime: Annotated[
         str, typer.Option(help="scheduling: auto | fifo | spin | off (as `hil run`)")
     ] = "auto",
+    isolate: Annotated[
+        bool,
+        typer.Option(
+            "--isolate",
+            help="move every other movable task off the measuring core meanwhile, as "
+            "`hil run --isolate` (needs --realtime auto, fifo or spin)",
+        ),
+    ] = False,
     work_us: Annotated[
         float,
         typer.Option(
@@ -221,10 +241,15 @@ def hil_latency_command(
                 f"--realtime {realtime!r} has no deadlines to measure; "
                 f"valid: {', '.join(LATENCY_MODES)}"
             )
+        if isolate and normalise_mode(realtime) == "off":
+            raise ValidationError(
+                "--isolate needs a pinned loop: use --realtime auto, fifo or spin (got 'off')"
+            )
         with _progress(not as_json and sys.stderr.isatty(), "latency") as progress:
             result = measure_latency(
-                rate, duration, realtime, work=work_us / 1e6, progress=progress, process=True
-            )
+                rate, duration, realtime, work=work_us / 1e6, progress=progress, process=True,
+                isolate=isolate,
+            )  # fmt: skip
     if as_json:
         typer.echo(json.dumps(_clean(result.describe())))
     else:

@@ -31,7 +31,7 @@ import numpy as np
 
 from mrsuspension.errors import MRSuspensionError, ValidationError, check_range
 from mrsuspension.hil.loop import TickStats, _quiet_interpreter, _spin_window, _wait_until
-from mrsuspension.hil.realtime import normalise_mode, realtime_session
+from mrsuspension.hil.realtime import check_isolate, normalise_mode, realtime_session
 
 __all__ = ["LATENCY_MODES", "LatencyResult", "count_stalls", "cpu_times", "measure_latency"]
 
@@ -186,7 +186,9 @@ class LatencyResult:
         )
 
 
-def _check(rate: float, duration: float, realtime: bool | str, work: float) -> tuple[str, int]:
+def _check(
+    rate: float, duration: float, realtime: bool | str, work: float, isolate: bool = False
+) -> tuple[str, int]:
     """Validate the inputs; returns (mode, ticks)."""
     rate = float(check_range("rate", rate, 0.0, 100000.0, unit="Hz", low_inclusive=False))
     duration = float(check_range("duration", duration, 0.0, 1e6, unit="s", low_inclusive=False))
@@ -197,6 +199,7 @@ def _check(rate: float, duration: float, realtime: bool | str, work: float) -> t
         raise ValidationError(
             f"realtime {realtime!r} has no deadlines to measure; valid: {', '.join(LATENCY_MODES)}"
         )
+    check_isolate(mode, isolate)
     n = max(1, round(duration * rate))
     if n > MAX_TICKS:
         raise ValidationError(
@@ -214,6 +217,7 @@ def measure_latency(
     progress: Progress | None = None,
     *,
     process: bool = False,
+    isolate: bool = False,
 ) -> LatencyResult:
     """Pace empty ticks as the HiL loop does and measure their deadlines.
 
@@ -236,6 +240,10 @@ def measure_latency(
         ticks nothing).
     process : bool
         Measure in a separate process (``spawn``), as ``mrsus hil run`` runs its loop.
+    isolate : bool
+        Move every other movable task off the measuring thread's core meanwhile, as
+        ``run_hil(..., isolate=True)`` does (:func:`~mrsuspension.hil.realtime.isolate_cpu`);
+        needs ``"auto"``, ``"fifo"`` or ``"spin"``.
 
     Returns
     -------
@@ -245,7 +253,8 @@ def measure_latency(
     Raises
     ------
     ValidationError
-        For a rate, duration or work out of range or an unknown or unpaced mode.
+        For a rate, duration or work out of range or an unknown or unpaced mode, or
+        ``isolate`` with ``"off"``.
     MRSuspensionError
         With ``"fifo"`` when SCHED_FIFO is not permitted, or when the measuring process
         dies.
@@ -256,16 +265,16 @@ def measure_latency(
     >>> r.stats.ticks, r.stats.compute_p50 >= 1e-4
     (100, True)
     """
-    mode, n = _check(rate, duration, realtime, work)
+    mode, n = _check(rate, duration, realtime, work, isolate)
     rate, duration, work = float(rate), float(duration), float(work)
     if process:
-        return _measure_in_process(rate, duration, mode, work, n, progress)
+        return _measure_in_process(rate, duration, mode, work, n, progress, isolate)
     period = 1.0 / rate
     compute = np.zeros(n)
     lateness = np.zeros(n)
     every = max(1, round(_PROGRESS_EVERY * rate))
     perf = time.perf_counter
-    with realtime_session(mode, compute, lateness) as rt:
+    with realtime_session(mode, compute, lateness, isolate=isolate) as rt:
         spin = _spin_window(period, rt.spin)
         with _quiet_interpreter() as t0:
             busy0, steal0 = cpu_times()  # the machine's counters over the ticks only
@@ -304,12 +313,14 @@ def measure_latency(
 
 
 # -- own process ----------------------------------------------------------------------------
-def _child(conn: Any, counter: Any, rate: float, duration: float, mode: str, work: float) -> None:
+def _child(
+    conn: Any, counter: Any, rate: float, duration: float, mode: str, work: float, isolate: bool
+) -> None:
     def report(done: int, total: int) -> None:
         counter.value = done
 
     try:
-        result = measure_latency(rate, duration, mode, work, report)
+        result = measure_latency(rate, duration, mode, work, report, isolate=isolate)
     except MRSuspensionError as exc:
         conn.send(("error", str(exc)))
     else:
@@ -319,14 +330,20 @@ def _child(conn: Any, counter: Any, rate: float, duration: float, mode: str, wor
 
 
 def _measure_in_process(
-    rate: float, duration: float, mode: str, work: float, n: int, progress: Progress | None
+    rate: float,
+    duration: float,
+    mode: str,
+    work: float,
+    n: int,
+    progress: Progress | None,
+    isolate: bool = False,
 ) -> LatencyResult:
     ctx = multiprocessing.get_context("spawn")
     counter = ctx.Value("q", 0, lock=False)
     recv, send = ctx.Pipe(duplex=False)
     proc = ctx.Process(
         target=_child,
-        args=(send, counter, rate, duration, mode, work),
+        args=(send, counter, rate, duration, mode, work, isolate),
         name="mrsus-hil-latency",
     )
     proc.start()

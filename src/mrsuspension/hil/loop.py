@@ -61,6 +61,7 @@ from mrsuspension.hil.live import (
     tick_step,
 )
 from mrsuspension.hil.realtime import (
+    check_isolate,
     normalise_mode,
     realtime_session,
     yield_loop_cpu,
@@ -375,6 +376,7 @@ def run_hil(
     startup: StartUp | None = None,
     driver: PICurrentDriver | None = None,
     realtime: bool | str = True,
+    isolate: bool = False,
     cap_current: bool = True,
     process: bool = False,
     on_stop: Callable[[HilResult], None] | None = None,
@@ -413,6 +415,13 @@ def run_hil(
         requires SCHED_FIFO; ``"off"`` paces without touching the scheduling;
         ``"unpaced"`` (or False) runs the ticks back to back, as fast as possible (only
         for a :class:`~mrsuspension.hil.rig.SimulatedRig`: validation and tests).
+    isolate : bool
+        Move every other movable task of the machine off the loop's core for the run
+        and back afterwards (:func:`~mrsuspension.hil.realtime.isolate_cpu`; the loop's
+        own process stays as it is); what was moved is in the statistics' scheduling.
+        Needs ``realtime`` ``"auto"``, ``"fifo"`` or ``"spin"``. Moving other users'
+        tasks needs root or ``CAP_SYS_NICE``; a loop killed with SIGKILL leaves the
+        moved tasks off the core (docs/hil.md, "Isolating the loop's core").
     cap_current : bool
         Lower the simulation's ``max_current`` to the safety current limit (default), so
         that the controller cannot demand an over-current.
@@ -429,14 +438,16 @@ def run_hil(
         The recording, the tick statistics and why the run stopped.
     """
     if process:
+        check_isolate(realtime, isolate)  # refused here, not in the child
         if out is None:
             raise ValidationError("run_hil(process=True) needs an output directory (out=...)")
         return _run_in_process(
             target, rig, duration, rate, Path(out), model_dt=model_dt, limits=limits,
-            startup=startup, driver=driver, realtime=realtime, cap_current=cap_current,
-            hooks=hooks,
+            startup=startup, driver=driver, realtime=realtime, isolate=isolate,
+            cap_current=cap_current, hooks=hooks,
         )  # fmt: skip
     mode = normalise_mode(realtime)
+    check_isolate(mode, isolate)
     realtime = mode != "unpaced"
     sim = _simulation_of(target)
     limits = limits or SafetyLimits()
@@ -489,6 +500,7 @@ def run_hil(
         "model_dt": dt,
         "substeps": n_sub,
         "realtime": mode,
+        "isolate": bool(isolate),
         "paced": realtime,
         "scenario": sim.describe(),
         "rig": rig.describe(),
@@ -510,7 +522,8 @@ def run_hil(
     try:
         if hooks is not None:  # a first message before the clock starts (a queue's feeder)
             hooks.send("started", {"rate": rate, "ticks": n_ticks})
-        with realtime_session(mode, compute, lateness) as rt:  # scheduling (hil/realtime.py)
+        # scheduling hook (hil/realtime.py)
+        with realtime_session(mode, compute, lateness, isolate=isolate) as rt:
             if rt.spin and hasattr(rig, "spin"):
                 rig.spin = True  # a network rig polls for its replies too
             reason, ticks = _loop(

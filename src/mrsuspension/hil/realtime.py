@@ -7,15 +7,18 @@ prepares the calling thread (the loop) before the clock starts and undoes it aft
 - ``SCHED_FIFO`` at a fixed priority (:func:`os.sched_setscheduler`; needs root or
   ``CAP_SYS_NICE`` / an ``RLIMIT_RTPRIO``): the loop preempts every ordinary process
   and is not preempted by them; the kernel's RT throttling (95 % per second by default)
-  still keeps the machine alive. The process's other Python threads (the recorder's
-  writer) get SCHED_FIFO one priority lower: one of them preempted while holding the
-  GIL would otherwise stall the loop (priority inversion);
-- pinned to one core (:func:`os.sched_setaffinity`, the last allowed one); the
-  recorder's writer thread, started before, keeps every core, and
-  :func:`pick_cpu` gives other processes (the rig emulator) a different one;
+  still keeps the machine alive. The process's other Python threads (the monitor's
+  message-queue feeder, if any; the recorder writes from a process of its own) get
+  SCHED_FIFO one priority lower: one of them preempted while holding the GIL would
+  otherwise stall the loop (priority inversion);
+- pinned to one core (:func:`os.sched_setaffinity`, the last allowed one);
+  :func:`pick_cpu` gives other processes (the rig emulator, the recorder's writer) a
+  different one;
 - ``gc.collect()`` + ``gc.freeze()`` (the loop disables the collector itself);
 - the process memory locked (``mlockall`` through :mod:`ctypes`) and the given buffers
-  touched, so that the hot path takes no page faults.
+  touched, so that the hot path takes no page faults;
+- optionally (``isolate=True``, :func:`isolate_cpu`) every other movable task of the
+  machine moved off the loop's core, and moved back afterwards.
 
 Each step that the system refuses is skipped and noted (``RealtimeSession.notes``); the
 notes go into the tick statistics (``TickStats.scheduling``) and the recording.
@@ -42,14 +45,16 @@ from __future__ import annotations
 import contextlib
 import ctypes
 import ctypes.util
+import dataclasses
 import gc
 import os
 import resource
 import sys
 import threading
-from collections.abc import Iterator
+import time
+from collections.abc import Iterable, Iterator
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 
@@ -57,9 +62,13 @@ from mrsuspension.errors import MRSuspensionError, ValidationError, did_you_mean
 
 __all__ = [
     "DEFAULT_PRIORITY",
+    "PINNED_MODES",
     "REALTIME_MODES",
+    "IsolationReport",
     "RealtimeSession",
+    "check_isolate",
     "is_paced",
+    "isolate_cpu",
     "normalise_mode",
     "pick_cpu",
     "realtime_session",
@@ -71,7 +80,13 @@ __all__ = [
 REALTIME_MODES = ("auto", "fifo", "spin", "off", "unpaced")
 #: SCHED_FIFO priority of the loop (1..99; the kernel's own threads run at 50 and 99)
 DEFAULT_PRIORITY = 40
+#: modes that pin the loop to a core (the ones ``isolate=True`` works with)
+PINNED_MODES = ("auto", "fifo", "spin")
 _MCL_CURRENT, _MCL_FUTURE = 1, 2
+#: ``PF_KTHREAD`` in the flags of ``/proc/PID/stat``
+_PF_KTHREAD = 0x00200000
+#: scans of ``/proc`` per isolation: later ones catch tasks started during the first
+_ISOLATE_PASSES = 3
 
 
 def normalise_mode(realtime: bool | str) -> str:
@@ -175,6 +190,302 @@ def yield_loop_cpu() -> Iterator[set[int] | None]:
         setaff(0, before)
 
 
+def check_isolate(realtime: bool | str, isolate: bool) -> None:
+    """Refuse ``isolate=True`` with a mode that does not pin the loop.
+
+    Raises
+    ------
+    ValidationError
+        When ``isolate`` is true and the mode is ``"off"`` or ``"unpaced"``.
+
+    Examples
+    --------
+    >>> check_isolate("spin", True)
+    >>> check_isolate("off", False)
+    """
+    if not isolate:
+        return
+    mode = normalise_mode(realtime)
+    if mode not in PINNED_MODES:
+        raise ValidationError(
+            f"isolate needs a pinned loop: use realtime auto, fifo or spin (got {mode!r})"
+        )
+
+
+@dataclass(frozen=True)
+class IsolationReport:
+    """What :func:`isolate_cpu` did.
+
+    Attributes
+    ----------
+    cpu : int
+        The core isolated.
+    moved : int
+        Tasks (threads) moved off the core, kernel threads included.
+    kernel_threads : int
+        How many of the ``moved`` tasks are kernel threads.
+    fixed : int
+        Tasks left on the core because they may run on it alone or the kernel refused
+        to move them (per-CPU kernel threads: ``EINVAL``).
+    denied : int
+        Tasks left on the core for want of permission (other users' tasks).
+    note : str or None
+        Why nothing was done (another platform, one CPU); None when the core was
+        isolated.
+    """
+
+    cpu: int
+    moved: int = 0
+    kernel_threads: int = 0
+    fixed: int = 0
+    denied: int = 0
+    note: str | None = None
+
+    def label(self) -> str:
+        """One line for the statistics.
+
+        Examples
+        --------
+        >>> IsolationReport(1, moved=143, kernel_threads=12, fixed=9).label()
+        'isolated cpu 1 (moved 143 tasks, 12 of them kernel threads; 9 bound to the core)'
+        >>> IsolationReport(1, note="one CPU").label()
+        'cpu 1 not isolated (one CPU)'
+        """
+        if self.note is not None:
+            return f"cpu {self.cpu} not isolated ({self.note})"
+        text = f"isolated cpu {self.cpu} (moved {self.moved} task{'s' if self.moved != 1 else ''}"
+        if self.kernel_threads:
+            text += f", {self.kernel_threads} of them kernel thread"
+            text += "s" if self.kernel_threads != 1 else ""
+        if self.fixed:
+            text += f"; {self.fixed} bound to the core"
+        if self.denied:
+            text += f"; {self.denied} not permitted"
+        return text + ")"
+
+    def describe(self) -> dict[str, Any]:
+        """Plain data."""
+        return dataclasses.asdict(self)
+
+
+@dataclass(frozen=True)
+class _Moved:
+    old: frozenset[int]
+    new: frozenset[int]
+    start: int | None
+
+
+class _TaskInfo(NamedTuple):
+    kernel: bool  # a kernel thread
+    ppid: int  # parent process
+    start: int  # start time [clock ticks after boot]
+
+
+def _stat(tid: int) -> _TaskInfo | None:
+    """A task's line of ``/proc/TID/stat``, in part; None if unreadable (ended)."""
+    try:
+        with open(f"/proc/{tid}/stat", encoding="ascii", errors="replace") as f:
+            text = f.read()
+    except OSError:
+        return None
+    fields = text[text.rfind(")") + 2 :].split()  # after "pid (comm) "; comm may hold ")"
+    try:
+        ppid, flags, start = int(fields[1]), int(fields[6]), int(fields[19])
+    except (IndexError, ValueError):
+        return None
+    kernel = bool(flags & _PF_KTHREAD) or tid == 2 or ppid == 2
+    return _TaskInfo(kernel, ppid, start)
+
+
+def _boot_ticks() -> int:
+    """Now, in the clock ticks after boot of ``/proc/PID/stat``'s start times."""
+    return int(time.clock_gettime(time.CLOCK_BOOTTIME) * os.sysconf("SC_CLK_TCK"))
+
+
+def _all_tasks() -> list[tuple[int, int]]:
+    """Every task of the machine as (process id, thread id): ``/proc/[0-9]*/task/[0-9]*``."""
+    tasks: list[tuple[int, int]] = []
+    try:
+        pids = [int(e.name) for e in os.scandir("/proc") if e.name.isdigit()]
+    except OSError:
+        return tasks
+    for pid in pids:
+        try:
+            tasks.extend(
+                (pid, int(e.name)) for e in os.scandir(f"/proc/{pid}/task") if e.name.isdigit()
+            )
+        except OSError:  # ended meanwhile
+            continue
+    return tasks
+
+
+def _all_tids() -> list[int]:
+    """Every task (thread) of the machine."""
+    return [tid for _, tid in _all_tasks()]
+
+
+def _own_tids() -> set[int]:
+    """The threads of this process."""
+    try:
+        return {int(e.name) for e in os.scandir("/proc/self/task") if e.name.isdigit()}
+    except OSError:
+        return {threading.get_native_id()}
+
+
+@contextlib.contextmanager
+def isolate_cpu(
+    cpu: int, *, keep: Iterable[int] | None = None, tasks: Iterable[int] | None = None
+) -> Iterator[IsolationReport]:
+    """Move every movable task off ``cpu`` for the block; move them back afterwards.
+
+    What ``tuna --isolate`` does: each task (thread) whose affinity contains ``cpu`` gets
+    its affinity minus ``cpu`` (:func:`os.sched_setaffinity` on its thread id), kernel
+    threads that may move (``kdamond``, ``rcu_preempt``, unbound workers) included. Left
+    alone: tasks that may run on ``cpu`` only, those the kernel refuses to move (per-CPU
+    kernel threads such as ``ksoftirqd/N``, ``migration/N``, ``kworker/N:*``: counted as
+    ``fixed``) and, without root or ``CAP_SYS_NICE``, other users' tasks (``denied``).
+    Tasks started during the scan are caught by up to two further scans; tasks started
+    later inherit their creator's affinity: off the core when started by a moved task,
+    possibly on it when started by one that was not moved.
+
+    At the end each moved task gets its old affinity back, unless its affinity is no
+    longer the one set here (someone changed it meanwhile: left as it is). Tasks that
+    ended are ignored, and so is a thread id reused by a new task. Tasks started inside
+    the block by a moved task (or by such a task's descendants) get the old affinity of
+    that moved ancestor, on the same condition (they still have the affinity they
+    inherited). A process killed inside the block (SIGKILL) cannot restore anything:
+    the moved tasks stay off the core until moved back (``taskset -p``).
+
+    Parameters
+    ----------
+    cpu : int
+        The core to clear.
+    keep : iterable of int, optional
+        Thread ids not to touch (default: the calling thread, normally the loop pinned
+        to ``cpu``).
+    tasks : iterable of int, optional
+        Thread ids to consider instead of every task of the machine.
+
+    Yields
+    ------
+    IsolationReport
+        Counts of moved and unmovable tasks; with a ``note`` and nothing done on a
+        platform without affinity control or a machine with one CPU.
+
+    Examples
+    --------
+    >>> with isolate_cpu(0, tasks=[]) as report:  # consider no task: nothing moves
+    ...     report.moved
+    0
+    """
+    cpu = int(cpu)
+    getaff = getattr(os, "sched_getaffinity", None)
+    setaff = getattr(os, "sched_setaffinity", None)
+    if getaff is None or setaff is None or not sys.platform.startswith("linux"):
+        yield IsolationReport(cpu, note="no CPU affinity control on this platform")
+        return
+    if (os.cpu_count() or 1) < 2:
+        yield IsolationReport(cpu, note="one CPU: nowhere to move the other tasks")
+        return
+    skip = {threading.get_native_id()} if keep is None else {int(t) for t in keep}
+    chosen = None if tasks is None else [int(t) for t in tasks]
+    moved: dict[int, _Moved] = {}
+    counts = {"kernel": 0, "fixed": 0, "denied": 0}
+    since = _boot_ticks()
+    try:
+        seen: set[int] = set(skip)
+        for _ in range(_ISOLATE_PASSES if chosen is None else 1):
+            fresh = [t for t in (_all_tids() if chosen is None else chosen) if t not in seen]
+            if not fresh:
+                break
+            seen.update(fresh)
+            for tid in fresh:
+                _move(tid, cpu, moved, counts)
+        yield IsolationReport(
+            cpu,
+            moved=len(moved),
+            kernel_threads=counts["kernel"],
+            fixed=counts["fixed"],
+            denied=counts["denied"],
+        )
+    finally:
+        _restore(moved, since)
+
+
+def _move(tid: int, cpu: int, moved: dict[int, _Moved], counts: dict[str, int]) -> None:
+    """Take ``cpu`` out of one task's affinity (counted in ``moved`` or ``counts``)."""
+    try:
+        old = frozenset(os.sched_getaffinity(tid))
+    except OSError:  # ended (ProcessLookupError) or unreadable
+        return
+    if cpu not in old:
+        return
+    new = old - {cpu}
+    if not new:
+        counts["fixed"] += 1  # may run on this core only
+        return
+    info = _stat(tid)
+    try:
+        os.sched_setaffinity(tid, new)
+    except ProcessLookupError:  # ended
+        return
+    except PermissionError:
+        counts["denied"] += 1
+        return
+    except OSError:  # EINVAL: a per-CPU kernel thread (PF_NO_SETAFFINITY)
+        counts["fixed"] += 1
+        return
+    try:
+        now = frozenset(os.sched_getaffinity(tid))  # as the kernel stores it
+    except OSError:
+        return  # ended right after the move
+    moved[tid] = _Moved(old, now, None if info is None else info.start)
+    if info is not None and info.kernel:
+        counts["kernel"] += 1
+
+
+def _set_back(tid: int, m: _Moved) -> None:
+    """The old affinity of ``m`` for ``tid`` if it still has ``m``'s new one."""
+    try:
+        if frozenset(os.sched_getaffinity(tid)) == m.new:  # else changed by someone else
+            os.sched_setaffinity(tid, m.old)
+    except OSError:  # ended, or the old set is no longer allowed
+        pass
+
+
+def _restore(moved: dict[int, _Moved], since: int) -> None:
+    """Give the moved tasks, and the tasks they started, their old affinity back."""
+    if not moved:
+        return
+    infos = {tid: (pid, _stat(tid)) for pid, tid in _all_tasks()}
+
+    def same(tid: int, m: _Moved) -> bool:  # not a new task with a reused id
+        info = infos.get(tid, (0, None))[1]
+        return m.start is None or (info is not None and info.start == m.start)
+
+    def origin(tid: int) -> _Moved | None:
+        """The moved task a task descends from, for a task started inside the block."""
+        for _ in range(64):  # a chain of tasks started inside the block, never a loop
+            if tid in moved and same(tid, moved[tid]):
+                return moved[tid]
+            pid, info = infos.get(tid, (0, None))
+            if info is None or info.start < since:
+                return None
+            tid = pid if tid != pid else info.ppid  # a thread's process, a process's parent
+        return None
+
+    for tid, (pid, info) in infos.items():
+        if tid in moved or info is None or info.start < since:
+            continue
+        m = origin(pid if tid != pid else info.ppid)
+        if m is not None:
+            _set_back(tid, m)
+    for tid, m in moved.items():
+        if tid in infos and same(tid, m):
+            _set_back(tid, m)
+    moved.clear()
+
+
 def widen_affinity(cpus: set[int] | None) -> None:
     """Allow the calling process the ``cpus`` again; None: no change.
 
@@ -215,6 +526,9 @@ class RealtimeSession:
         Steps refused by the system (and why).
     spin : bool
         The loop busy-waits for the whole period (``"spin"``).
+    isolated : str or None
+        With ``isolate=True``: what :func:`isolate_cpu` did to the pinned core
+        (:meth:`IsolationReport.label`); None otherwise.
     """
 
     mode: str
@@ -224,6 +538,7 @@ class RealtimeSession:
     memory_locked: bool = False
     gc_frozen: bool = False
     notes: list[str] = field(default_factory=list)
+    isolated: str | None = None
     _undo: list[Any] = field(default_factory=list, repr=False)
 
     @property
@@ -253,6 +568,8 @@ class RealtimeSession:
         if self.gc_frozen:
             parts.append("gc frozen")
         text = f"{self.mode} ({', '.join(parts)})"
+        if self.isolated:
+            text += "; " + self.isolated
         if self.notes:
             text += "; " + "; ".join(self.notes)
         return text
@@ -267,6 +584,7 @@ class RealtimeSession:
             "cpu": self.cpu,
             "memory_locked": self.memory_locked,
             "gc_frozen": self.gc_frozen,
+            "isolated": self.isolated,
             "notes": list(self.notes),
         }
 
@@ -302,7 +620,7 @@ def _set_fifo(session: RealtimeSession, priority: int, required: bool) -> None:
         return
     session.policy = f"SCHED_FIFO:{prio}"
     session._undo.append(lambda: setsched(0, old_policy, old_param))
-    # the process's other Python threads (the recorder's writer...) one step below: a
+    # the process's other Python threads (a message-queue feeder...) one step below: a
     # thread preempted by an ordinary process while it holds the GIL would block the loop
     me = threading.get_native_id()
     helpers = 0
@@ -342,6 +660,23 @@ def _pin(session: RealtimeSession, cpu: int | None) -> None:
     session._undo.append(lambda: setaff(0, old))
 
 
+def _isolate(session: RealtimeSession) -> None:
+    if session.cpu is None:
+        session.notes.append("not isolated: the loop is not pinned to a core")
+        return
+    # the loop's own process stays as it is: its other threads (a message-queue feeder)
+    # share the interpreter lock with the loop, and a thread that must take the lock from
+    # a busy core delays the loop's handoff (docs/monitor.md: moving the former writer
+    # thread off the loop's core made the deadlines worse)
+    isolation = isolate_cpu(session.cpu, keep=_own_tids())
+    report = isolation.__enter__()
+    session._undo.append(lambda: isolation.__exit__(None, None, None))
+    if report.note is not None:
+        session.notes.append(report.label())
+    else:
+        session.isolated = report.label()
+
+
 def _lock_memory(session: RealtimeSession) -> None:
     if not sys.platform.startswith("linux"):
         session.notes.append("mlockall not available on this platform")
@@ -371,6 +706,7 @@ def realtime_session(
     *buffers: np.ndarray,
     priority: int = DEFAULT_PRIORITY,
     cpu: int | None = None,
+    isolate: bool = False,
 ) -> Iterator[RealtimeSession]:
     """Prepare the calling thread for the real-time loop; undo it on exit.
 
@@ -385,6 +721,11 @@ def realtime_session(
         SCHED_FIFO priority (clamped to the system's range).
     cpu : int, optional
         Core to pin the thread to (default: :func:`pick_cpu`).
+    isolate : bool
+        Move every other movable task of the machine off the pinned core for the
+        session (:func:`isolate_cpu`; the threads of this process stay as they are),
+        and back at the end. Needs a pinning mode (``"auto"``, ``"fifo"``, ``"spin"``);
+        when the thread could not be pinned, noted and skipped.
 
     Yields
     ------
@@ -394,7 +735,7 @@ def realtime_session(
     Raises
     ------
     ValidationError
-        For an unknown mode.
+        For an unknown mode, or ``isolate`` with ``"off"`` or ``"unpaced"``.
     MRSuspensionError
         With ``"fifo"`` when SCHED_FIFO is not permitted.
 
@@ -405,6 +746,7 @@ def realtime_session(
     (True, 'unchanged')
     """
     mode = normalise_mode(realtime)
+    check_isolate(mode, isolate)
     session = RealtimeSession(mode)
     for buf in buffers:
         buf.fill(0.0)  # write every page before the clock starts
@@ -416,6 +758,8 @@ def realtime_session(
             session._undo.append(gc.unfreeze)
             _lock_memory(session)
             _pin(session, cpu)
+            if isolate:
+                _isolate(session)
             session.spin = mode == "spin"
             if not session.spin:
                 _set_fifo(session, priority, required=mode == "fifo")

@@ -38,7 +38,7 @@ from starlette.websockets import WebSocket, WebSocketDisconnect
 from mrsuspension.engine.simulate import Simulation
 from mrsuspension.errors import MRSuspensionError, ValidationError
 from mrsuspension.hil.loop import CHANNELS, LiveChange, load_result
-from mrsuspension.hil.realtime import normalise_mode
+from mrsuspension.hil.realtime import check_isolate, normalise_mode
 from mrsuspension.hil.recorder import META_FILE, load_recording
 from mrsuspension.measures.steady import T_as, T_au, T_dr, T_ds, T_du, dlc
 from mrsuspension.monitor.acquisition import Acquisition, acquisition_from_settings
@@ -170,6 +170,10 @@ class MonitorState:
     realtime : str
         How the loop processes are scheduled: ``auto`` (default), ``fifo``, ``spin`` or
         ``off`` (:mod:`mrsuspension.hil.realtime`; ``spin`` does best on a virtual machine).
+    isolate : bool
+        Move the machine's other movable tasks off the loop's core during each run
+        (:func:`~mrsuspension.hil.realtime.isolate_cpu`; needs ``auto``, ``fifo`` or
+        ``spin``).
     """
 
     def __init__(
@@ -178,8 +182,11 @@ class MonitorState:
         rig: str = "simulated",
         road_dir: Path | None = None,
         realtime: str = "auto",
+        isolate: bool = False,
     ) -> None:
         self.realtime = monitor_realtime(realtime)
+        check_isolate(self.realtime, isolate)
+        self.isolate = bool(isolate)
         #: CPUs the loop processes may use when the server keeps off the loop's core
         self.loop_cpus: set[int] | None = None
         self.workdir = Path(workdir or tempfile.mkdtemp(prefix="mrsus-monitor-"))
@@ -276,7 +283,7 @@ class MonitorState:
         }  # fmt: skip
         self.handle = LoopHandle(
             sim, self.rig, rate, duration, out, ramp_time=ramp_time, realtime=self.realtime,
-            cpus=self.loop_cpus,
+            cpus=self.loop_cpus, isolate=self.isolate,
         )  # fmt: skip
         return {"run": self.run_id, "rig": self.rig, "fields": self.status["fields"]}
 
@@ -500,6 +507,7 @@ def create_app(
     attach: AttachedRun | None = None,
     road_dir: Path | None = None,
     realtime: str = "auto",
+    isolate: bool = False,
 ) -> Starlette:
     """Build the monitor application.
 
@@ -518,13 +526,16 @@ def create_app(
         Directory the page may take road files from (None: presets only).
     realtime : str
         How the loop processes are scheduled (``auto``, ``fifo``, ``spin``, ``off``).
+    isolate : bool
+        Move the machine's other movable tasks off the loop's core during each run
+        (``run_hil(..., isolate=True)``; refused with ``realtime="off"``).
 
     Returns
     -------
     Starlette
         The ASGI app; ``app.state.monitor`` is its :class:`MonitorState`.
     """
-    state = MonitorState(workdir, rig=rig, road_dir=road_dir, realtime=realtime)
+    state = MonitorState(workdir, rig=rig, road_dir=road_dir, realtime=realtime, isolate=isolate)
     clients: set[WebSocket] = set()
 
     async def index(request: Request) -> HTMLResponse:

@@ -72,6 +72,7 @@ def serve(
     workdir: Path | None = None,
     url_to_stderr: bool = False,
     realtime: str = "auto",
+    isolate: bool = False,
 ) -> None:
     """Serve the monitor with uvicorn until Ctrl-C (checks the bind and the rig first).
 
@@ -88,7 +89,7 @@ def serve(
 
     app = create_app(
         token=token, workdir=workdir, rig=rig, attach=attach, road_dir=road_dir,
-        realtime=realtime,
+        realtime=realtime, isolate=isolate,
     )  # fmt: skip
     shown = "localhost" if is_loopback(host) else host
     url = f"http://{shown}:{port}/" + (f"?token={token}" if token else "")
@@ -131,6 +132,14 @@ def monitor_command(
             "(busy-wait on a pinned core; best on a virtual machine) | off"
         ),
     ] = "auto",
+    isolate: Annotated[
+        bool,
+        typer.Option(
+            "--isolate",
+            help="move every other movable task off the loop's core during each run, and "
+            "back afterwards (needs --realtime auto, fifo or spin; docs/hil.md)",
+        ),
+    ] = False,
 ) -> None:
     """Serve the HiL browser monitor (live plots, measures, STOP, recording).
 
@@ -142,5 +151,5 @@ def monitor_command(
     with _user_errors():
         serve(
             host, port, token, rig=rig, road_dir=road_dir, open_browser=open_browser,
-            workdir=workdir, realtime=realtime,
+            workdir=workdir, realtime=realtime, isolate=isolate,
         )  # fmt: skip

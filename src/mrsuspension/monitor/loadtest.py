@@ -42,7 +42,12 @@ def _free_port() -> int:
 
 
 def unmonitored_run(
-    duration: float, rate: float, rig: str, workdir: Path, realtime: str = "auto"
+    duration: float,
+    rate: float,
+    rig: str,
+    workdir: Path,
+    realtime: str = "auto",
+    isolate: bool = False,
 ) -> dict[str, Any]:
     """The scenario through ``run_hil`` in its own process; its deadline figures."""
     from mrsuspension.hil.cli import make_rig
@@ -53,7 +58,7 @@ def unmonitored_run(
     out = Path(tempfile.mkdtemp(prefix="plain-", dir=workdir))
     result = run_hil(
         sim, make_rig(rig, sim.damper), duration=duration, rate=rate, out=out, process=True,
-        realtime=realtime,
+        realtime=realtime, isolate=isolate,
     )  # fmt: skip
     s = result.stats
     return {"ticks": s.ticks, "misses": s.misses, "in_deadline": s.in_deadline}
@@ -163,12 +168,15 @@ def measure(
     pairs: int = 1,
     browser: str | None = None,
     realtime: str = "auto",
+    isolate: bool = False,
 ) -> dict[str, Any]:
     """Alternate ``pairs`` unmonitored and monitored runs; their figures and ratios.
 
     ``browser``: path of a chromium to attach the real page with (Playwright, headless)
     instead of a bare WebSocket client. ``realtime``: how both kinds of run are
-    scheduled (``auto``, ``fifo``, ``spin``, ``off``).
+    scheduled (``auto``, ``fifo``, ``spin``, ``off``); ``isolate``: both kinds of run move
+    the machine's other movable tasks off the loop's core
+    (:func:`~mrsuspension.hil.realtime.isolate_cpu`).
 
     Returns
     -------
@@ -187,7 +195,7 @@ def measure(
 
     work = Path(tempfile.mkdtemp(prefix="mrsus-loadtest-"))
     port = _free_port()
-    app = create_app(workdir=work, rig=rig, realtime=realtime)
+    app = create_app(workdir=work, rig=rig, realtime=realtime, isolate=isolate)
     server = uvicorn.Server(uvicorn.Config(app, host="127.0.0.1", port=port, log_level="warning"))
 
     def serve() -> None:
@@ -224,7 +232,7 @@ def measure(
             order = ("plain", "monitored") if k % 2 == 0 else ("monitored", "plain")
             for kind in order:
                 if kind == "plain":  # (this thread only waits for the loop process)
-                    plain.append(unmonitored_run(duration, rate, rig, work, realtime))
+                    plain.append(unmonitored_run(duration, rate, rig, work, realtime, isolate))
                     continue
                 # this thread polls the status (and drives the page) during the run: off
                 # the loop's core, as the server and the browser are
@@ -248,6 +256,7 @@ def measure(
         "frame_rate_min": min(r["frame_rate"] for r in monitored),
         "client": "browser" if browser else "websocket",
         "realtime": realtime,
+        "isolate": isolate,
         "loadavg": [load0[0], os.getloadavg()[0]],
     }
 
@@ -267,10 +276,16 @@ def main(argv: list[str] | None = None) -> None:
     parser.add_argument(
         "--realtime", default="auto", help="loop scheduling: auto | fifo | spin | off"
     )
+    parser.add_argument(
+        "--isolate",
+        action="store_true",
+        help="move every other movable task off the loop's core during each run",
+    )
     args = parser.parse_args(argv)
     result = measure(
-        args.duration, args.rate, args.rig, args.pairs, args.browser, realtime=args.realtime
-    )
+        args.duration, args.rate, args.rig, args.pairs, args.browser, realtime=args.realtime,
+        isolate=args.isolate,
+    )  # fmt: skip
     print(json.dumps(result, indent=2))
 
 

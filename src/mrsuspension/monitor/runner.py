@@ -56,6 +56,7 @@ def loop_main(
     ring: Any = None,
     realtime: str = "auto",
     cpus: set[int] | None = None,
+    isolate: bool = False,
 ) -> None:
     """Body of the loop process: build the rig and run :func:`run_hil` with the hooks.
 
@@ -81,6 +82,9 @@ def loop_main(
     cpus : set of int, optional
         CPUs the loop may use, when the server that started it keeps off the loop's core
         (:func:`~mrsuspension.hil.realtime.yield_loop_cpu`).
+    isolate : bool
+        Move the machine's other movable tasks off the loop's core for the run
+        (:func:`~mrsuspension.hil.loop.run_hil`'s ``isolate``).
     """
     from mrsuspension.hil.cli import make_rig
     from mrsuspension.hil.loop import LoopHooks, run_hil
@@ -107,8 +111,9 @@ def loop_main(
             ramp_time=ramp_time,
         )
         result = run_hil(
-            sim, rig, duration=duration, rate=rate, out=out, hooks=hooks, realtime=realtime
-        )
+            sim, rig, duration=duration, rate=rate, out=out, hooks=hooks, realtime=realtime,
+            isolate=isolate,
+        )  # fmt: skip
     except Exception as exc:  # reported to the page, never raised in the server
         end({"state": "error", "reason": f"{type(exc).__name__}: {exc}", "safe": True})
         return
@@ -152,6 +157,8 @@ class LoopHandle:
         How the loop process is scheduled (``auto``, ``fifo``, ``spin`` or ``off``).
     cpus : set of int, optional
         CPUs the loop process may use (the server may keep off the loop's core).
+    isolate : bool
+        Move the machine's other movable tasks off the loop's core for the run.
     """
 
     def __init__(
@@ -165,6 +172,7 @@ class LoopHandle:
         queue_size: int = 64,
         realtime: str = "auto",
         cpus: set[int] | None = None,
+        isolate: bool = False,
     ) -> None:
         ctx = multiprocessing.get_context("spawn")
         self.out = Path(out)
@@ -180,6 +188,7 @@ class LoopHandle:
             args=(
                 sim, rig, float(rate), float(duration), str(self.out), float(ramp_time),
                 self.queue, self.stop_event, self.settings, self.ring, realtime, cpus,
+                isolate,
             ),
             name="mrsus-monitor-loop",
             daemon=True,

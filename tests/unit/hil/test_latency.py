@@ -127,9 +127,25 @@ def test_cli_json() -> None:
     assert info["scheduling"]["mode"] == "off"
 
 
+def test_cli_isolate_json() -> None:
+    """``hil latency --isolate``: the floor measured with the loop's core isolated."""
+    res = CliRunner().invoke(app, ["hil", "latency", "--duration", "0.2", "--isolate", "--json"])
+    assert res.exit_code == 0, res.output
+    info = json.loads(res.stdout)
+    assert info["stats"]["ticks"] == 200
+    sched = info["scheduling"]
+    if sched["cpu"] is not None:  # pinned (two cores or more): isolated
+        assert sched["isolated"].startswith(f"isolated cpu {sched['cpu']} (moved ")
+        assert sched["isolated"] in info["stats"]["scheduling"]
+    else:
+        assert sched["isolated"] is None
+        assert any("not isolated" in n for n in sched["notes"])
+
+
 @pytest.mark.parametrize(
     ("args", "fragment"),
     [
+        (["--realtime", "off", "--isolate"], "--isolate needs a pinned loop"),
         (["--work-us", "1000"], "--work-us must be in [0, 1000) us"),
         (["--rate", "0"], "--rate"),
         (["--duration", "0"], "--duration"),

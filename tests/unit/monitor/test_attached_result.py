@@ -85,6 +85,21 @@ def test_the_monitor_refuses_a_scheduling_it_cannot_run(
     raises_validation(lambda: MonitorState(tmp_path, realtime=mode), *fragments)
 
 
+def test_the_monitor_isolates_its_loops_core_when_asked(tmp_path: Path) -> None:
+    raises_validation(
+        lambda: MonitorState(tmp_path, realtime="off", isolate=True), "isolate needs a pinned loop"
+    )
+    state = MonitorState(tmp_path, rig="ideal", realtime="spin", isolate=True)
+    got: list[dict[str, Any]] = []
+    sim = Simulation(Harmonic(1.5, 0.01), controller=HiLo(1, mode="ACM"), max_current=0.3)
+    state.attach(AttachedRun(sim, rate=1000.0, duration=0.2, on_end=got.append))
+    _wait_for(state, got)
+    assert got
+    assert got[0]["reason"] == "completed"
+    scheduling = got[0]["stats"]["scheduling"]
+    assert "isolated cpu" in scheduling or "not isolated" in scheduling  # one core: noted
+
+
 def test_a_server_off_the_loop_core_still_gives_its_loop_that_core(tmp_path: Path) -> None:
     from mrsuspension.hil.realtime import pick_cpu, yield_loop_cpu
 
