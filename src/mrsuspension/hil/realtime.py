@@ -47,8 +47,11 @@ import ctypes
 import ctypes.util
 import dataclasses
 import gc
+import json
 import os
 import resource
+import signal
+import subprocess
 import sys
 import threading
 import time
@@ -353,8 +356,9 @@ def isolate_cpu(
     ended are ignored, and so is a thread id reused by a new task. Tasks started inside
     the block by a moved task (or by such a task's descendants) get the old affinity of
     that moved ancestor, on the same condition (they still have the affinity they
-    inherited). A process killed inside the block (SIGKILL) cannot restore anything:
-    the moved tasks stay off the core until moved back (``taskset -p``).
+    inherited). A **guard process** (in a session of its own, off ``cpu``) holds the list
+    of moved tasks: if the process that isolated the core dies inside the block (a
+    SIGKILL, a crash), the guard restores them in its place.
 
     Parameters
     ----------
@@ -389,6 +393,7 @@ def isolate_cpu(
         return
     skip = {threading.get_native_id()} if keep is None else {int(t) for t in keep}
     chosen = None if tasks is None else [int(t) for t in tasks]
+    guard: subprocess.Popen[str] | None = None
     moved: dict[int, _Moved] = {}
     counts = {"kernel": 0, "fixed": 0, "denied": 0}
     since = _boot_ticks()
@@ -401,6 +406,7 @@ def isolate_cpu(
             seen.update(fresh)
             for tid in fresh:
                 _move(tid, cpu, moved, counts)
+        guard = _start_guard(moved, since, cpu)
         yield IsolationReport(
             cpu,
             moved=len(moved),
@@ -410,6 +416,68 @@ def isolate_cpu(
         )
     finally:
         _restore(moved, since)
+        if guard is not None:
+            _stop_guard(guard)
+
+
+def _start_guard(moved: dict[int, _Moved], since: int, cpu: int) -> subprocess.Popen[str] | None:
+    """A process that restores ``moved`` if this one dies first (None: nothing moved)."""
+    if not moved:
+        return None
+    code = "from mrsuspension.hil.realtime import _guard_main; _guard_main()"
+    try:
+        proc = subprocess.Popen(
+            [sys.executable, "-c", code],
+            stdin=subprocess.PIPE,
+            stdout=subprocess.DEVNULL,
+            text=True,
+            start_new_session=True,  # outlives a kill of this process group
+        )
+    except OSError:
+        return None
+    with contextlib.suppress(OSError):  # (it inherits the loop's pinned core)
+        os.sched_setaffinity(proc.pid, set(range(os.cpu_count() or 1)) - {cpu})
+    rows = [[tid, sorted(m.old), sorted(m.new), m.start] for tid, m in moved.items()]
+    assert proc.stdin is not None
+    try:
+        proc.stdin.write(json.dumps({"since": since, "moved": rows}) + "\n")
+        proc.stdin.flush()
+    except OSError:  # the guard could not start: the block still restores normally
+        return None
+    return proc
+
+
+def _stop_guard(proc: subprocess.Popen[str]) -> None:
+    """Tell the guard the tasks are restored, and let it end."""
+    assert proc.stdin is not None
+    with contextlib.suppress(OSError):
+        proc.stdin.write(json.dumps({"done": True}) + "\n")
+        proc.stdin.close()
+    try:
+        proc.wait(30)
+    except subprocess.TimeoutExpired:
+        proc.kill()
+        proc.wait()
+
+
+def _guard_main() -> None:
+    """The guard process of :func:`isolate_cpu` (reads its standard input).
+
+    First line: the moved tasks; then either ``{"done": true}`` (restored by the
+    isolating process: nothing to do) or the end of the input (that process died:
+    restore them here).
+    """
+    signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is for the loop
+    moved: dict[int, _Moved] = {}
+    since = 0
+    for line in sys.stdin:
+        msg = json.loads(line)
+        if msg.get("done"):
+            return
+        since = int(msg["since"])
+        for tid, old, new, start in msg["moved"]:
+            moved[int(tid)] = _Moved(frozenset(old), frozenset(new), start)
+    _restore(moved, since)
 
 
 def _move(tid: int, cpu: int, moved: dict[int, _Moved], counts: dict[str, int]) -> None:

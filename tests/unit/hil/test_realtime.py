@@ -8,7 +8,9 @@ import os
 import signal
 import subprocess
 import sys
+import textwrap
 import threading
+import time
 from collections.abc import Iterator
 
 import numpy as np
@@ -217,6 +219,31 @@ def test_isolate_moves_a_process_off_the_core_and_back(sleeper: subprocess.Popen
     assert report.label() == f"isolated cpu {cpu} (moved {len(tids)} task" + (
         "s)" if len(tids) > 1 else ")"
     )
+
+
+@pytest.mark.skipif(not MULTI_CPU, reason="needs Linux and two CPUs")
+def test_a_killed_isolating_process_is_restored_by_its_guard(
+    sleeper: subprocess.Popen[bytes],
+) -> None:
+    cpus = os.sched_getaffinity(0)
+    cpu = max(cpus)
+    tids = _tids(sleeper.pid)
+    script = textwrap.dedent(
+        f"""
+        import os, signal
+        from mrsuspension.hil.realtime import isolate_cpu
+        with isolate_cpu({cpu}, tasks={tids!r}) as report:
+            assert report.moved == {len(tids)}
+            assert all(os.sched_getaffinity(t) == {cpus - {cpu}!r} for t in {tids!r})
+            os.kill(os.getpid(), signal.SIGKILL)  # no chance to restore anything
+        """
+    )
+    proc = subprocess.run([sys.executable, "-c", script], timeout=120)
+    assert proc.returncode == -signal.SIGKILL
+    deadline = time.monotonic() + 60  # the guard imports the package, then restores
+    while time.monotonic() < deadline and any(os.sched_getaffinity(t) != cpus for t in tids):
+        time.sleep(0.1)
+    assert all(os.sched_getaffinity(t) == cpus for t in tids)
 
 
 @pytest.mark.skipif(not MULTI_CPU, reason="needs Linux and two CPUs")
