@@ -13,8 +13,9 @@ measured force closes the loop through the engine's compiled step. Pieces:
   (``measure_latency``, ``mrsus hil latency``);
 - :mod:`~mrsuspension.hil.live`: its live hooks (:class:`LoopHooks`,
   :class:`LiveChange`; the monitor's);
-- :mod:`~mrsuspension.hil.tap`: :class:`TapRing` and :class:`StopFlag`, the shared-memory
-  (lock-free) tap ring and STOP flag;
+- :mod:`~mrsuspension.hil.tap`: :class:`TapRing`, :class:`StopFlag` and
+  :class:`ChangeQueue`, the shared-memory tap ring, STOP flag and settings queue that
+  the loop uses without locks or system calls;
 - :mod:`~mrsuspension.hil.network`: the UDP rig protocol, :class:`UdpRig` and
   :func:`serve_rig`;
 - :mod:`~mrsuspension.hil.validate`: HiL against offline (``validate.validate``).
@@ -28,10 +29,11 @@ from mrsuspension.hil.network import UdpRig, serve_rig
 from mrsuspension.hil.recorder import Recorder, Recording, load_recording
 from mrsuspension.hil.rig import Rig, RigSample, SimulatedRig, ideal_rig
 from mrsuspension.hil.safety import SafetyLimits, SafetySupervisor, StartUp
-from mrsuspension.hil.tap import StopFlag, TapRing
+from mrsuspension.hil.tap import ChangeQueue, StopFlag, TapRing
 
 __all__ = [
     "CHANNELS",
+    "ChangeQueue",
     "HilResult",
     "LiveChange",
     "LoopHooks",

@@ -11,13 +11,15 @@ waits. A small status block (numbers only) is overwritten in place.
 from __future__ import annotations
 
 import multiprocessing
+import queue
+import threading
 from typing import Any
 
 import numpy as np
 
 from mrsuspension.errors import ValidationError
 
-__all__ = ["STATUS_FIELDS", "StopFlag", "TapRing"]
+__all__ = ["STATUS_FIELDS", "ChangeQueue", "StopFlag", "TapRing"]
 
 #: numeric status fields of the ring, in slot order
 STATUS_FIELDS: tuple[str, ...] = (
@@ -152,3 +154,65 @@ class StopFlag:
     def is_set(self) -> bool:
         """Whether the flag is raised (never waits)."""
         return bool(self._value.value)
+
+
+class ChangeQueue:
+    """A bounded queue of changes for the loop, polled without a system call.
+
+    The changes (pickled) go through a :class:`multiprocessing.Queue`; a shared count of
+    the changes put tells the loop whether one is waiting, so that the loop's poll
+    (every few ticks) is one read of shared memory instead of the queue's lock and pipe
+    poll (an empty ``get_nowait`` measured p50 9 us, p99.9 79 us and up to 5.5 ms on the
+    2-vCPU test VM). While a change is on its way through the pipe the loop keeps
+    polling until it arrives.
+
+    Parameters
+    ----------
+    maxsize : int
+        Capacity (``put_nowait`` raises :class:`queue.Full` beyond it).
+    context : multiprocessing context, optional
+        Default: ``spawn``. The queue is passed to the loop process as a ``Process``
+        argument.
+
+    Examples
+    --------
+    >>> q = ChangeQueue(2)
+    >>> q.get_nowait()
+    Traceback (most recent call last):
+    ...
+    _queue.Empty
+    >>> q.put_nowait("new law")
+    >>> import time; time.sleep(0.1)  # (the queue's feeder thread puts it in the pipe)
+    >>> q.get_nowait()
+    'new law'
+    """
+
+    def __init__(self, maxsize: int = 4, context: Any = None) -> None:
+        ctx = context or multiprocessing.get_context("spawn")
+        self._queue = ctx.Queue(maxsize=maxsize)
+        self._sent = ctx.RawValue("q", 0)  # changes put (written by the putting process)
+        self._taken = 0  # changes taken (in the taking process)
+        self._lock = threading.Lock()  # the putting process's threads, one at a time
+
+    def __getstate__(self) -> dict[str, Any]:
+        return {"queue": self._queue, "sent": self._sent}
+
+    def __setstate__(self, state: dict[str, Any]) -> None:
+        self._queue = state["queue"]
+        self._sent = state["sent"]
+        self._taken = 0
+        self._lock = threading.Lock()
+
+    def put_nowait(self, item: Any) -> None:
+        """Queue a change (raises :class:`queue.Full` when the loop has not taken enough)."""
+        with self._lock:
+            self._queue.put_nowait(item)
+            self._sent.value += 1
+
+    def get_nowait(self) -> Any:
+        """The next change; :class:`queue.Empty` at once when none was put."""
+        if self._sent.value == self._taken:
+            raise queue.Empty
+        item = self._queue.get_nowait()  # queue.Empty while it is still in the pipe
+        self._taken += 1
+        return item

@@ -31,7 +31,7 @@ from pathlib import Path
 from typing import Any
 
 from mrsuspension.hil.loop import CHANNELS
-from mrsuspension.hil.tap import StopFlag, TapRing
+from mrsuspension.hil.tap import ChangeQueue, StopFlag, TapRing
 
 __all__ = ["TAP_RATE", "LoopHandle", "loop_main"]
 
@@ -178,7 +178,7 @@ class LoopHandle:
         self.out = Path(out)
         self.rate = float(rate)
         self.queue: Any = ctx.Queue(maxsize=queue_size)
-        self.settings: Any = ctx.Queue(maxsize=4)
+        self.settings = ChangeQueue(4, ctx)  # the loop polls it without a system call
         self.stop_event = StopFlag(ctx)  # lock-free: the loop never waits on it
         self.ring = TapRing(len(CHANNELS), capacity=4096, context=ctx)
         self.lost = 0

@@ -3,11 +3,14 @@
 from __future__ import annotations
 
 import multiprocessing
+import queue
+import time
 
 import numpy as np
+import pytest
 
 from _helpers import raises_validation
-from mrsuspension.hil.tap import STATUS_FIELDS, StopFlag, TapRing
+from mrsuspension.hil.tap import STATUS_FIELDS, ChangeQueue, StopFlag, TapRing
 
 
 def test_rows_in_order_and_lost_counted() -> None:
@@ -77,3 +80,64 @@ def test_stop_flag_across_processes() -> None:
     assert flag.is_set()
     flag.clear()
     assert not flag.is_set()
+
+
+class _Untouchable:
+    def get_nowait(self) -> None:
+        raise AssertionError("the queue was polled although nothing was put")
+
+
+def test_change_queue_poll_of_an_empty_queue_never_touches_the_queue() -> None:
+    q = ChangeQueue(2)
+    q._queue = _Untouchable()  # type: ignore[assignment]
+    for _ in range(3):
+        with pytest.raises(queue.Empty):
+            q.get_nowait()
+
+
+def _wait_get(q: ChangeQueue, timeout: float = 10.0) -> object:
+    deadline = time.monotonic() + timeout
+    while True:
+        try:
+            return q.get_nowait()
+        except queue.Empty:
+            assert time.monotonic() < deadline, "the change never arrived"
+            time.sleep(0.001)
+
+
+def test_change_queue_keeps_polling_while_a_change_is_in_transit() -> None:
+    q = ChangeQueue(2)
+    q._sent.value += 1  # counted, but not in the pipe yet (the feeder is slow)
+    with pytest.raises(queue.Empty):
+        q.get_nowait()
+    q._queue.put("late")
+    assert _wait_get(q) == "late"
+    with pytest.raises(queue.Empty):  # taken: nothing more pending
+        q.get_nowait()
+
+
+def test_change_queue_full_is_not_counted() -> None:
+    q = ChangeQueue(1)
+    q.put_nowait("a")
+    with pytest.raises(queue.Full):
+        q.put_nowait("b")
+    assert q._sent.value == 1
+    assert _wait_get(q) == "a"
+
+
+def _take(q: ChangeQueue, out: multiprocessing.queues.Queue, n: int) -> None:  # type: ignore[type-arg]
+    out.put([_wait_get(q) for _ in range(n)])
+
+
+def test_change_queue_across_processes() -> None:
+    ctx = multiprocessing.get_context("spawn")
+    q = ChangeQueue(4, ctx)
+    q.put_nowait("before start")  # put before the taking process has its copy
+    out = ctx.Queue()
+    proc = ctx.Process(target=_take, args=(q, out, 3))
+    proc.start()
+    q.put_nowait("second")
+    q.put_nowait({"third": 3})
+    assert out.get(timeout=60) == ["before start", "second", {"third": 3}]
+    proc.join(60)
+    assert proc.exitcode == 0
