@@ -185,6 +185,8 @@ class RoadProfile(Excitation):
     fade_in: float = 0.0
     source: str = "user data"
     _spline: CubicSpline = field(init=False, repr=False, compare=False)
+    #: the spline's breakpoints and coefficients, contiguous (for :meth:`sample_grid`)
+    _pp: tuple[FloatArray, FloatArray] = field(init=False, repr=False, compare=False)
 
     name: ClassVar[str] = "road"
 
@@ -206,7 +208,10 @@ class RoadProfile(Excitation):
         object.__setattr__(self, "fade_in", non_negative("fade_in", self.fade_in, "m", high=length))
         if not isinstance(self.source, str):
             raise ValidationError(f"source must be a string; got {self.source!r}")
-        object.__setattr__(self, "_spline", CubicSpline(distance, elevation))
+        spline = CubicSpline(distance, elevation)
+        object.__setattr__(self, "_spline", spline)
+        pp = (np.ascontiguousarray(spline.x), np.ascontiguousarray(spline.c))
+        object.__setattr__(self, "_pp", pp)
 
     # -- construction ---------------------------------------------------------------
     @classmethod
@@ -430,8 +435,8 @@ class RoadProfile(Excitation):
         z = np.empty(n)
         v = np.empty(n)
         _spline_grid(
-            np.ascontiguousarray(self._spline.x),
-            np.ascontiguousarray(self._spline.c),
+            self._pp[0],
+            self._pp[1],
             self.speed,
             self.fade_in,
             step,

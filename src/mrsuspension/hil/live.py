@@ -375,7 +375,7 @@ class _Road:
         else:
             zr, zrd = grid(n, self.step, t0 - offset)
         z, zd = np.ascontiguousarray(zr, dtype=float), np.ascontiguousarray(zrd, dtype=float)
-        if z.shape != (n,) or zd.shape != (n,) or np.ndim(zr) != 1 or np.ndim(zrd) != 1:
+        if z.shape != (n,) or zd.shape != (n,):  # (n > 1: a scalar is refused too)
             raise ValidationError(
                 f"the excitation gave road values of shape {np.shape(zr)} and "
                 f"{np.shape(zrd)} for {n} times"
