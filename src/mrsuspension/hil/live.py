@@ -306,8 +306,8 @@ class _Road:
     loop's: 1) it is ``fast_chunk`` while every excitation in use has a compiled grid
     and ``slow_chunk`` otherwise; the loop asks for a new block every ``chunk`` ticks.
     In the loop, where every call runs with cold caches, one compiled tick of road costs
-    about 10-15 us every tick, a block of 5 such ticks 40-50 us, and a pointwise block
-    about 100 us however short.
+    about 10-30 us every tick, a block of 5 such ticks 40-50 us every 5th, and a
+    pointwise block about 100 us however short (docs/hil.md).
     """
 
     def __init__(
@@ -356,9 +356,9 @@ class _Road:
         compiled grids a live change may switch to and the cross-fade: loading one
         inside a tick would take milliseconds.
         """
-        from mrsuspension.excitation import Harmonic, RoadProfile
+        from mrsuspension.excitation import Harmonic, RoadProfile, RoundedPulse
 
-        grids = [self.grid, Harmonic(1.0, 0.01).sample_grid]
+        grids = [self.grid, Harmonic(1.0, 0.01).sample_grid, RoundedPulse(0.01, 1.0).sample_grid]
         grids.append(RoadProfile(np.arange(4.0), np.zeros(4)).sample_grid)
         for grid in grids:
             if grid is not None:

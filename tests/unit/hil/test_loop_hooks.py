@@ -534,3 +534,17 @@ def test_a_live_change_between_compiled_and_pointwise_roads() -> None:
     w1, w2 = s1 * s1 * (3 - 2 * s1), s2 * s2 * (3 - 2 * s2)
     expected = (1 - w2) * ((1 - w1) * z1 + w1 * z2) + w2 * z3
     np.testing.assert_allclose(rec["z_r"][:1000], expected, atol=1e-12)
+
+
+def test_live_road_kernels_are_loaded_before_the_clock() -> None:
+    """Loading a kernel inside a tick takes milliseconds: warm_up loads them all."""
+    from mrsuspension.excitation import deterministic, road
+    from mrsuspension.hil import live
+
+    _road(ZeroRoad()).warm_up()
+    kernels = (
+        deterministic._harmonic_grid, deterministic._pulse_grid, road._spline_grid,
+        live._cross_fade,
+    )  # fmt: skip
+    for kernel in kernels:
+        assert kernel.signatures, kernel
