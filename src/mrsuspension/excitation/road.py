@@ -24,10 +24,11 @@ from numba import njit
 from scipy.interpolate import CubicSpline
 from scipy.signal import welch
 
-from mrsuspension.errors import ValidationError, check_finite, check_range, unknown_name
+from mrsuspension.errors import ValidationError, check_finite, unknown_name
 from mrsuspension.excitation.base import (
     Excitation,
     FloatArray,
+    grid_args,
     non_negative,
     positive,
     time_array,
@@ -96,22 +97,33 @@ def _spline_grid(
     speed: float,
     fade_in: float,
     step: float,
+    t0: float,
     z: np.ndarray,
     v: np.ndarray,
 ) -> None:
-    """``z = w h(x)``, ``v = V (w' h + w h')`` on ``x = x0 + V k step`` (:meth:`RoadProfile.sample_grid`).
+    """``z = w h(x)``, ``v = V (w' h + w h')`` on ``x = x0 + V (t0 + k step)`` (:meth:`RoadProfile.sample_grid`).
 
     ``breaks``/``coefs``: the spline's piecewise-polynomial form (``coefs[j, i]`` multiplies
-    ``(x - breaks[i])**(3 - j)``); beyond the profile the end elevation and zero velocity.
+    ``(x - breaks[i])**(3 - j)``); outside the profile the end elevations and zero
+    velocity. The first point's interval is found by bisection, the others by walking.
     """
     x0 = breaks[0]
     xend = breaks[-1]
     last = breaks.shape[0] - 2
-    i = 0
+    xs = min(max(x0 + speed * t0, x0), xend)
+    lo = 0
+    hi = last
+    while lo < hi:  # the last breakpoint <= xs (the interval a walk from 0 would reach)
+        mid = (lo + hi + 1) // 2
+        if breaks[mid] <= xs:
+            lo = mid
+        else:
+            hi = mid - 1
+    i = lo
     for k in range(z.shape[0]):
-        x = x0 + speed * (k * step)
-        inside = x <= xend
-        xc = x if inside else xend
+        x = x0 + speed * (t0 + k * step)
+        inside = x0 <= x <= xend
+        xc = min(max(x, x0), xend)
         while i < last and xc >= breaks[i + 1]:
             i += 1
         s = xc - breaks[i]
@@ -173,6 +185,8 @@ class RoadProfile(Excitation):
     fade_in: float = 0.0
     source: str = "user data"
     _spline: CubicSpline = field(init=False, repr=False, compare=False)
+    #: the spline's breakpoints and coefficients, contiguous (for :meth:`sample_grid`)
+    _pp: tuple[FloatArray, FloatArray] = field(init=False, repr=False, compare=False)
 
     name: ClassVar[str] = "road"
 
@@ -194,7 +208,10 @@ class RoadProfile(Excitation):
         object.__setattr__(self, "fade_in", non_negative("fade_in", self.fade_in, "m", high=length))
         if not isinstance(self.source, str):
             raise ValidationError(f"source must be a string; got {self.source!r}")
-        object.__setattr__(self, "_spline", CubicSpline(distance, elevation))
+        spline = CubicSpline(distance, elevation)
+        object.__setattr__(self, "_spline", spline)
+        pp = (np.ascontiguousarray(spline.x), np.ascontiguousarray(spline.c))
+        object.__setattr__(self, "_pp", pp)
 
     # -- construction ---------------------------------------------------------------
     @classmethod
@@ -392,13 +409,14 @@ class RoadProfile(Excitation):
         """``z_r(t) = h(x_0 + V t)`` [m] (the end elevations outside the profile)."""
         return self._derivatives(t, 0)
 
-    def sample_grid(self, n: int, step: float) -> tuple[FloatArray, FloatArray]:
-        """``(z_r, dz_r/dt)`` at ``k * step``, ``k < n``, in one compiled pass (~10x faster).
+    def sample_grid(self, n: int, step: float, start: float = 0.0) -> tuple[FloatArray, FloatArray]:
+        """``(z_r, dz_r/dt)`` at ``start + k * step``, ``k < n``, in one compiled pass (~10x faster).
 
         The grid's distances increase, so the spline's interval is found by walking the
-        breakpoints instead of a search per point, and the elevation, its slope and the
-        fade-in ramp come out of the same pass. Agrees with :meth:`displacement` and
-        :meth:`velocity` to round-off (the cubic is evaluated in Horner form).
+        breakpoints (after a bisection for the first point) instead of a search per
+        point, and the elevation, its slope and the fade-in ramp come out of the same
+        pass. Agrees with :meth:`displacement` and :meth:`velocity` to round-off (the
+        cubic is evaluated in Horner form).
 
         Examples
         --------
@@ -409,17 +427,20 @@ class RoadProfile(Excitation):
         True
         >>> bool(np.allclose(vr, road.velocity(t), rtol=1e-12, atol=1e-15))
         True
+        >>> zr, vr = road.sample_grid(21, 5e-5, start=20.0)  # a HiL tick at 20 s
+        >>> bool(np.allclose(zr, road.displacement(20.0 + np.arange(21) * 5e-5), rtol=0, atol=1e-15))
+        True
         """
-        n = int(check_range("n", n, 1, None))
-        step = float(check_range("step", step, 0.0, None, unit="s", low_inclusive=False))
+        n, step, start = grid_args(n, step, start)
         z = np.empty(n)
         v = np.empty(n)
         _spline_grid(
-            np.ascontiguousarray(self._spline.x),
-            np.ascontiguousarray(self._spline.c),
+            self._pp[0],
+            self._pp[1],
             self.speed,
             self.fade_in,
             step,
+            start,
             z,
             v,
         )

@@ -58,6 +58,7 @@ from mrsuspension.hil.live import (
     _apply_settings,
     _live_status,
     _Road,
+    live_chunk,
     tick_step,
 )
 from mrsuspension.hil.realtime import (
@@ -468,12 +469,15 @@ def run_hil(
     n_sub = round(period / dt)
     stepper = sim.stepper(dt, external_force=True)
     n_ticks = max(1, round(duration * rate))
-    # the whole run's road at once; with live hooks, blocks of 50 ms (the excitation can
-    # change between ticks)
-    road_src = _Road(
-        sim.excitation, n_sub, dt, n_ticks if hooks is None else max(1, round(0.05 * rate))
-    )
+    # the whole run's road at once; with live hooks (the excitation can change between
+    # ticks) one tick at a time, or a few for an excitation without a compiled grid
+    if hooks is None:
+        road_src = _Road(sim.excitation, n_sub, dt, n_ticks)
+    else:
+        road_src = _Road(sim.excitation, n_sub, dt, live_chunk(n_sub), fast_chunk=1)
     road, road_v = road_src.block(0)
+    if hooks is not None:
+        road_src.warm_up()
     max_return = limits.stroke / limits.return_rate + 2 * _SETTLE
     n_max = n_ticks + math.ceil(max_return * rate) + 1
 
@@ -621,7 +625,6 @@ def _loop(
     hk = hooks if hooks is not None else LoopHooks()
     stop_set = hk.stop.is_set if hk.stop is not None else None
     k_road = 0
-    chunk = road_src.chunk
     ramp_left = 0
     ramp_step_i = 0.0
     last_demand = 0.0
@@ -639,7 +642,7 @@ def _loop(
                 if ramp:
                     ramp_left = ramp
                     ramp_step_i = lim.current * period / hk.ramp_now
-                    k_road = -chunk  # the new road from this tick on
+                    k_road = -road_src.chunk  # the new road from this tick on
             sample = read()
             active = state <= STATE_RUN
             if active and k >= n_ticks:
@@ -655,7 +658,7 @@ def _loop(
                         tripped = check_sample(
                             t, sample.force, sample.displacement, sample.current, sample.timestamp
                         )
-                    if not tripped and k - k_road >= chunk:
+                    if not tripped and k - k_road >= road_src.chunk:
                         k_road = k
                         road, road_v = road_src.block(k)
                     if not tripped:

@@ -21,6 +21,7 @@ import numpy.typing as npt
 from mrsuspension.engine.simulate import Simulation
 from mrsuspension.errors import ValidationError
 from mrsuspension.excitation import PRESET_ROADS, Excitation
+from mrsuspension.excitation.base import grid_args
 from mrsuspension.scenario import Scenario
 from mrsuspension.vehicle import QuarterCar
 
@@ -75,6 +76,17 @@ class ZeroRoad(Excitation):
     def acceleration(self, t: npt.ArrayLike) -> np.ndarray:
         """0 m/s^2 at every time."""
         return np.zeros(np.shape(t))
+
+    def sample_grid(self, n: int, step: float, start: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
+        """Zeros on any grid (the live HiL road takes it one tick at a time).
+
+        Examples
+        --------
+        >>> ZeroRoad().sample_grid(3, 1e-4, start=2.0)[1].tolist()
+        [0.0, 0.0, 0.0]
+        """
+        n, step, start = grid_args(n, step, start)
+        return np.zeros(n), np.zeros(n)
 
     @property
     def duration(self) -> float:

@@ -275,12 +275,86 @@ def test_harmonic_grid_matches_pointwise_evaluation(frequency: float, n: int) ->
     np.testing.assert_allclose(vr, z.velocity(t), rtol=0, atol=atol * 0.03 * w)
 
 
+class _Parabola(Excitation):
+    """An excitation with the default (pointwise) grid: ``z_r = t^2``."""
+
+    name = "parabola"
+
+    def displacement(self, t):
+        return np.asarray(t, dtype=float) ** 2
+
+    def velocity(self, t):
+        return 2.0 * np.asarray(t, dtype=float)
+
+    def acceleration(self, t):
+        return np.full(np.shape(t), 2.0)
+
+    @property
+    def duration(self) -> float:
+        return 1.0
+
+    def describe(self):
+        return {"kind": self.name}
+
+
 def test_default_grid_is_pointwise_evaluation() -> None:
-    bump = RoundedPulse(amplitude=0.05, severity=2)
-    zr, vr = bump.sample_grid(101, 0.01)
+    exc = _Parabola()
+    zr, vr = exc.sample_grid(101, 0.01)
     t = np.arange(101) * 0.01
-    np.testing.assert_array_equal(zr, bump.displacement(t))
-    np.testing.assert_array_equal(vr, bump.velocity(t))
+    np.testing.assert_array_equal(zr, exc.displacement(t))
+    np.testing.assert_array_equal(vr, exc.velocity(t))
+
+
+@pytest.mark.parametrize("start", [0.0, 0.3, 0.5, 12.25])
+@pytest.mark.parametrize("severity", [1.0, 3.0])
+def test_pulse_grid_matches_pointwise_evaluation(start: float, severity: float) -> None:
+    bump = RoundedPulse(amplitude=-0.05, severity=severity, speed_kmh=100.0, delay=0.5)
+    n = 20001
+    zr, vr = bump.sample_grid(n, 5e-5, start=start)
+    t = start + np.arange(n) * 5e-5
+    z0, v0 = bump.displacement(t), bump.velocity(t)
+    # the same operations; only numba's exp may differ from numpy's (by an ulp)
+    np.testing.assert_allclose(zr, z0, rtol=4 * np.finfo(float).eps, atol=0)
+    np.testing.assert_allclose(vr, v0, rtol=4 * np.finfo(float).eps, atol=1e-20)
+    if start < bump.delay:
+        assert np.all(zr[t < bump.delay] == 0.0)
+        assert np.all(vr[t < bump.delay] == 0.0)
+
+
+@pytest.mark.parametrize("frequency", [1.5, 80.0])
+@pytest.mark.parametrize("start", [0.0, 1e-3, 12.345, 3599.9995, -0.25])
+@pytest.mark.parametrize("n", [1, 21, 130])
+def test_harmonic_grid_from_a_start_time(frequency: float, start: float, n: int) -> None:
+    """A grid from ``start`` (a HiL tick's half steps) is the pointwise road there."""
+    z = Harmonic(frequency, 0.03)
+    zr, vr = z.sample_grid(n, 5e-5, start=start)
+    t = start + np.arange(n) * 5e-5
+    w = z.angular_frequency
+    atol = 8 * np.finfo(float).eps * max(1.0, w * np.max(np.abs(t)))
+    np.testing.assert_allclose(zr, z.displacement(t), rtol=0, atol=atol * 0.03)
+    np.testing.assert_allclose(vr, z.velocity(t), rtol=0, atol=atol * 0.03 * w)
+    # and it is the same signal as the grid from 0, shifted (not the grid from 0)
+    if start > 0.0 and n > 1:
+        assert np.max(np.abs(zr - z.sample_grid(n, 5e-5)[0])) > 1e-6
+
+
+def test_default_grid_from_a_start_time_is_pointwise_evaluation() -> None:
+    exc = _Parabola()
+    zr, vr = exc.sample_grid(101, 0.01, start=-0.3)
+    t = -0.3 + np.arange(101) * 0.01
+    np.testing.assert_array_equal(zr, exc.displacement(t))
+    np.testing.assert_array_equal(vr, exc.velocity(t))
+    assert zr[0] == pytest.approx(0.09)
+
+
+def test_grid_refuses_a_bad_start() -> None:
+    for start in (math.nan, math.inf, [0.0, 1.0]):
+        _raises(lambda s=start: Harmonic(1.0, 0.01).sample_grid(5, 1e-3, start=s), "start")
+        _raises(lambda s=start: RoundedPulse(0.05, 2).sample_grid(5, 1e-3, start=s), "start")
+        _raises(lambda s=start: _Parabola().sample_grid(5, 1e-3, start=s), "start")
+    # numbers that are not plain floats take the checked path and still work
+    z0, _ = Harmonic(1.0, 0.01).sample_grid(np.int64(5), np.float32(0.25), start=np.float64(1))
+    np.testing.assert_allclose(z0, Harmonic(1.0, 0.01).displacement(1.0 + np.arange(5) * 0.25))
 
 
 @pytest.mark.parametrize(
@@ -290,3 +364,4 @@ def test_default_grid_is_pointwise_evaluation() -> None:
 def test_grid_refuses_bad_sizes(n: int, step: float, fragments: tuple[str, ...]) -> None:
     _raises(lambda: Harmonic(1.0, 0.01).sample_grid(n, step), *fragments)
     _raises(lambda: RoundedPulse(amplitude=0.05, severity=2).sample_grid(n, step), *fragments)
+    _raises(lambda: _Parabola().sample_grid(n, step), *fragments)

@@ -326,7 +326,28 @@ def test_road_grid_matches_pointwise_evaluation(road: RoadProfile) -> None:
     assert zr[-1] == pytest.approx(road.elevation[-1], abs=1e-15)  # the end elevation
 
 
+@pytest.mark.parametrize("fade_in", [0.0, 5.0])
+@pytest.mark.parametrize("start", [-0.05, 0.0, 1e-3, 0.37, 17.0, 35.99, 36.5])
+def test_road_grid_from_a_start_time(fade_in: float, start: float) -> None:
+    """From any start (before, inside, across the end of the profile): the pointwise road."""
+    road = preset_road("rough", fade_in=fade_in)  # 500 m at 50 km/h: 36 s
+    step = 5e-5
+    n = 2001  # 0.1 s: across the end for the starts near 36 s
+    zr, vr = road.sample_grid(n, step, start=start)
+    t = start + np.arange(n) * step
+    z0, v0 = road.displacement(t), road.velocity(t)
+    scale_v = np.max(np.abs(road.velocity(road.duration * np.linspace(0, 1, 5001))))
+    np.testing.assert_allclose(zr, z0, rtol=0, atol=1e-13 * road.peak_elevation)
+    np.testing.assert_allclose(vr, v0, rtol=0, atol=1e-12 * scale_v)
+    if start < 0.0:
+        assert np.all(vr[t < 0.0] == 0.0)
+        assert np.all(zr[t < 0.0] == road.displacement(0.0))
+    if start > road.duration:
+        assert np.all(vr == 0.0)
+
+
 def test_road_grid_refuses_bad_sizes() -> None:
     road = preset_road("smooth")
     _raises(lambda: road.sample_grid(0, 1e-4), "n", "0")
     _raises(lambda: road.sample_grid(10, -1e-4), "step")
+    _raises(lambda: road.sample_grid(10, 1e-4, start=math.nan), "start")
