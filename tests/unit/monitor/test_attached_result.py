@@ -66,13 +66,18 @@ def test_a_stopped_attached_run_reports_too(tmp_path: Path) -> None:
 def test_the_monitor_runs_its_loop_with_the_chosen_scheduling(tmp_path: Path, mode: str) -> None:
     state = MonitorState(tmp_path, rig="ideal", realtime=mode.upper())
     assert state.realtime == mode
+    assert _short_run(state)["stats"]["scheduling"].startswith(mode)
+
+
+def _short_run(state: MonitorState) -> dict[str, Any]:
+    """A 0.2 s skyhook run attached to ``state``; its result (checked completed)."""
     got: list[dict[str, Any]] = []
     sim = Simulation(Harmonic(1.5, 0.01), controller=HiLo(1, mode="ACM"), max_current=0.3)
     state.attach(AttachedRun(sim, rate=1000.0, duration=0.2, on_end=got.append))
     _wait_for(state, got)
     assert got
     assert got[0]["reason"] == "completed"
-    assert got[0]["stats"]["scheduling"].startswith(mode)
+    return got[0]
 
 
 @pytest.mark.parametrize(
@@ -90,13 +95,7 @@ def test_the_monitor_isolates_its_loops_core_when_asked(tmp_path: Path) -> None:
         lambda: MonitorState(tmp_path, realtime="off", isolate=True), "isolate needs a pinned loop"
     )
     state = MonitorState(tmp_path, rig="ideal", realtime="spin", isolate=True)
-    got: list[dict[str, Any]] = []
-    sim = Simulation(Harmonic(1.5, 0.01), controller=HiLo(1, mode="ACM"), max_current=0.3)
-    state.attach(AttachedRun(sim, rate=1000.0, duration=0.2, on_end=got.append))
-    _wait_for(state, got)
-    assert got
-    assert got[0]["reason"] == "completed"
-    scheduling = got[0]["stats"]["scheduling"]
+    scheduling = _short_run(state)["stats"]["scheduling"]
     assert "isolated cpu" in scheduling or "not isolated" in scheduling  # one core: noted
 
 
