@@ -240,7 +240,7 @@ def test_a_killed_isolating_process_is_restored_by_its_guard(
     )
     proc = subprocess.run([sys.executable, "-c", script], timeout=120)
     assert proc.returncode == -signal.SIGKILL
-    deadline = time.monotonic() + 60  # the guard imports the package, then restores
+    deadline = time.monotonic() + 60  # the guard restores them
     while time.monotonic() < deadline and any(os.sched_getaffinity(t) != cpus for t in tids):
         time.sleep(0.1)
     assert all(os.sched_getaffinity(t) == cpus for t in tids)
