@@ -421,8 +421,8 @@ def run_hil(
         and back afterwards (:func:`~mrsuspension.hil.realtime.isolate_cpu`; the loop's
         own process stays as it is); what was moved is in the statistics' scheduling.
         Needs ``realtime`` ``"auto"``, ``"fifo"`` or ``"spin"``. Moving other users'
-        tasks needs root or ``CAP_SYS_NICE``; a loop killed with SIGKILL leaves the
-        moved tasks off the core (docs/hil.md, "Isolating the loop's core").
+        tasks needs root or ``CAP_SYS_NICE``; if the loop is killed (SIGKILL), a guard
+        process moves them back (docs/hil.md, "Isolating the loop's core").
     cap_current : bool
         Lower the simulation's ``max_current`` to the safety current limit (default), so
         that the controller cannot demand an over-current.
