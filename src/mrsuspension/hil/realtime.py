@@ -57,13 +57,7 @@ from typing import Any
 import numpy as np
 
 from mrsuspension.errors import MRSuspensionError, ValidationError, did_you_mean
-from mrsuspension.hil._isolation import (  # noqa: F401 (_all_tids, _stat: for the tests)
-    IsolationReport,
-    _all_tids,
-    _own_tids,
-    _stat,
-    isolate_cpu,
-)
+from mrsuspension.hil._isolation import IsolationReport, _own_tids, isolate_cpu
 
 __all__ = [
     "DEFAULT_PRIORITY",

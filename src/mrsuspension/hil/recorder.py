@@ -189,11 +189,6 @@ class Recorder:
         """Rows appended so far."""
         return self._n
 
-    @property
-    def ring(self) -> np.ndarray:
-        """The shared ring (``buffer_rows`` x channels)."""
-        return self._data
-
     # -- loop side ----------------------------------------------------------------------
     def append(self, values: Sequence[float]) -> None:
         """Add one row (the loop's hot path: a copy into shared memory, then publish)."""

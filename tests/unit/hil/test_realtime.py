@@ -22,13 +22,12 @@ from mrsuspension.engine.simulate import Simulation
 from mrsuspension.errors import MRSuspensionError, ValidationError
 from mrsuspension.excitation import Harmonic
 from mrsuspension.hil import SimulatedRig, StartUp, run_hil
+from mrsuspension.hil._isolation import _all_tids, _stat
 from mrsuspension.hil.latency import measure_latency
 from mrsuspension.hil.loop import TickStats
 from mrsuspension.hil.network import UdpRig
 from mrsuspension.hil.realtime import (
     IsolationReport,
-    _all_tids,
-    _stat,
     isolate_cpu,
     normalise_mode,
     pick_cpu,
