@@ -119,13 +119,17 @@ def _names(into: dict[int, str], stop: threading.Event) -> None:
 
 @contextlib.contextmanager
 def tracing(cpu: int, buffer_kb: int = 65536) -> Iterator[Path]:
-    """``sched_switch`` tracing on ``cpu`` for the block; yields the trace file."""
+    """``sched_switch`` tracing on ``cpu`` for the block; yields the trace file.
+
+    The CPU mask and buffer size are set back to what they were afterwards.
+    """
     if not (TRACEFS / "trace").exists():
         subprocess.run(["mount", "-t", "tracefs", "nodev", str(TRACEFS)], check=False)
     if not (TRACEFS / "trace").exists():
         raise SystemExit(f"no tracefs at {TRACEFS} (run as root on Linux)")
-    cpus = os.cpu_count() or 1
     w = lambda name, value: (TRACEFS / name).write_text(value)  # noqa: E731
+    names = ("tracing_cpumask", "buffer_size_kb")  # ("7 (expanded: 1408)": the first word)
+    before = {n: (TRACEFS / n).read_text().split()[0] for n in names}
     try:
         w("tracing_on", "0")
         w("trace", "")
@@ -140,7 +144,8 @@ def tracing(cpu: int, buffer_kb: int = 65536) -> Iterator[Path]:
     finally:
         w("tracing_on", "0")
         w("events/sched/sched_switch/enable", "0")
-        w("tracing_cpumask", f"{(1 << cpus) - 1:x}")
+        for name, value in before.items():  # as they were
+            w(name, value)
 
 
 def main(argv: list[str] | None = None) -> int:
