@@ -405,7 +405,11 @@ class RoundedPulse(Excitation):
     ``z_r = 0.25 a e^2 (mu w0 tau)^2 exp(-mu w0 tau)`` for ``tau = t - delay >= 0`` and
     zero before. The peak, ``z_r = a``, is at ``tau = 2/(mu w0)``; the pulse lasts about
     ``3 pi/(mu w0)``. The road acceleration jumps from 0 to ``2 (0.25 a e^2)(mu w0)^2``
-    at the onset, which is also its largest magnitude.
+    at the onset, which is also its largest magnitude (:attr:`peak_acceleration`); after
+    that jump its largest magnitude is ``0.41201 (0.25 a e^2)(mu w0)^2``
+    (:attr:`after_onset_peak_acceleration`), 4.854 times smaller. The shock measures
+    ``SAR_s`` and ``SAR_u`` divide by one or the other (``road_peak`` in
+    :func:`mrsuspension.measures.shock_ratios`).
 
     Parameters
     ----------
@@ -431,6 +435,8 @@ class RoundedPulse(Excitation):
     0.05
     >>> round(bump.pulse_duration, 4)  # 3 pi / (mu w0)
     0.2266
+    >>> round(bump.peak_acceleration / bump.after_onset_peak_acceleration, 3)
+    4.854
     """
 
     amplitude: float
@@ -479,8 +485,40 @@ class RoundedPulse(Excitation):
 
     @property
     def peak_acceleration(self) -> float:
-        """Largest ``|d2z_r/dt2|``, reached at the onset: ``0.5 |a| e^2 (mu w0)^2`` [m/s^2]."""
+        """Largest ``|d2z_r/dt2|``, reached at the onset: ``0.5 |a| e^2 (mu w0)^2`` [m/s^2].
+
+        This is ``2 c (mu w0)^2`` with ``c = 0.25 |a| e^2``: ``d2/dx2 (x^2 e^-x) =
+        (x^2 - 4x + 2) e^-x`` is 2 at ``x = 0``.
+        """
         return 0.5 * abs(self.amplitude) * math.e**2 * self.rate**2
+
+    @property
+    def after_onset_time(self) -> float:
+        """Time of the after-onset acceleration peak, ``delay + (3 - sqrt 3)/(mu w0)`` [s]."""
+        return self.delay + (3.0 - math.sqrt(3.0)) / self.rate
+
+    @property
+    def after_onset_peak_acceleration(self) -> float:
+        """Largest ``|d2z_r/dt2|`` after the onset jump [m/s^2]: ``0.41201 c (mu w0)^2``.
+
+        With ``x = mu w0 tau`` and ``c = 0.25 |a| e^2``, ``z_r'' = c (mu w0)^2 (x^2 - 4x
+        + 2) e^-x`` falls from ``2 c (mu w0)^2`` at the onset through zero at ``x = 2 -
+        sqrt 2``; its derivative ``-(x^2 - 6x + 6) e^-x`` vanishes at ``x = 3 -+ sqrt 3``,
+        where ``x^2 - 4x + 2 = 2x - 4``. The larger magnitude is at ``x = 3 - sqrt 3``:
+        ``(2 sqrt 3 - 2) e^(sqrt 3 - 3) = 0.41201`` (the other, ``x = 3 + sqrt 3``, gives
+        0.0482). The onset value :attr:`peak_acceleration` is 4.854 times larger.
+
+        Examples
+        --------
+        >>> bump = RoundedPulse(amplitude=0.035, severity=3.0)
+        >>> c = 0.25 * 0.035 * math.e**2
+        >>> round(bump.after_onset_peak_acceleration / (c * bump.rate**2), 5)
+        0.41201
+        >>> round(float(bump.acceleration(bump.after_onset_time)), 3)  # the extremum, negative
+        -25.931
+        """
+        factor = (2.0 * math.sqrt(3.0) - 2.0) * math.exp(math.sqrt(3.0) - 3.0)  # -(2x - 4) e^-x
+        return 0.25 * abs(self.amplitude) * math.e**2 * self.rate**2 * factor
 
     @property
     def duration(self) -> float:
@@ -543,5 +581,6 @@ class RoundedPulse(Excitation):
             "peak_time": self.peak_time,
             "pulse_duration": self.pulse_duration,
             "peak_acceleration": self.peak_acceleration,
+            "after_onset_peak_acceleration": self.after_onset_peak_acceleration,
             "duration": self.duration,
         }

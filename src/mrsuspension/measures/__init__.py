@@ -9,7 +9,9 @@ harmonic, steady state      :func:`steady_window`, :func:`rms`,
                             :func:`T_dr`, :func:`T_ds`, :func:`T_du`, :func:`dlc`,
                             :func:`asymmetry_ratio`, :func:`current_statistics`,
                             :func:`force_tracking_error`, :func:`harmonic_measures`
-shock (rounded pulse)       :func:`shock_ratios`, :func:`dtr`, :func:`peak`
+shock (rounded pulse)       :func:`shock_ratios`, :func:`road_acceleration_peak`
+                            (``road_peak``: after-onset or onset), :func:`dtr`,
+                            :func:`peak`
 random road                 :func:`psd` (Welch, 512 Hz, 8192, Hann, 50 %),
                             :func:`dlc` (mean load), :func:`rms`
 ISO 2631-1 (beyond seed)    :func:`wk_weighting`, :func:`wk_filter`,
@@ -38,7 +40,16 @@ from mrsuspension.measures.iso2631 import (
     wk_sos,
     wk_weighting,
 )
-from mrsuspension.measures.shock import dtr, peak, shock_ratios
+from mrsuspension.measures.shock import (
+    DEFAULT_ROAD_PEAK,
+    ROAD_PEAKS,
+    RoadPeak,
+    check_road_peak,
+    dtr,
+    peak,
+    road_acceleration_peak,
+    shock_ratios,
+)
 from mrsuspension.measures.spectral import (
     PSD_FS,
     PSD_NPERSEG,
@@ -64,11 +75,14 @@ from mrsuspension.measures.steady import (
 )
 
 __all__ = [
+    "DEFAULT_ROAD_PEAK",
     "PSD_FS",
     "PSD_NPERSEG",
+    "ROAD_PEAKS",
     "WK_CONSTANTS",
     "G",
     "PowerSpectrum",
+    "RoadPeak",
     "ShortRecordWarning",
     "T_as",
     "T_au",
@@ -77,6 +91,7 @@ __all__ = [
     "T_du",
     "Window",
     "asymmetry_ratio",
+    "check_road_peak",
     "current_statistics",
     "dlc",
     "dtr",
@@ -85,6 +100,7 @@ __all__ = [
     "peak",
     "psd",
     "rms",
+    "road_acceleration_peak",
     "shock_ratios",
     "steady_window",
     "transmissibility",

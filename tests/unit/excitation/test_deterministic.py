@@ -236,6 +236,34 @@ class TestRoundedPulse:
         assert np.max(np.abs(p.acceleration(t))) == pytest.approx(p.peak_acceleration, rel=1e-12)
         assert float(p.acceleration(p.delay)) == pytest.approx(p.peak_acceleration)
 
+    @pytest.mark.parametrize("mu", [1.0, 2.0, 3.0])
+    @pytest.mark.parametrize("speed", [50.0, 100.0, 72.0])
+    @pytest.mark.parametrize("a", [0.02, 0.035, 0.05, -0.03])
+    def test_after_onset_peak_closed_form(self, mu: float, speed: float, a: float):
+        # d2/dx2 (x^2 e^-x) = (x^2 - 4x + 2) e^-x: 2 at x = 0; extrema of the rest at
+        # x^2 - 6x + 6 = 0, the larger |.| at x = 3 - sqrt 3: (2 sqrt 3 - 2) e^(sqrt 3 - 3)
+        p = RoundedPulse(a, mu, speed_kmh=speed)
+        c = 0.25 * abs(a) * math.e**2
+        w = mu * 10.4 * speed / 50.0
+        factor = (2 * math.sqrt(3) - 2) * math.exp(math.sqrt(3) - 3)
+        assert factor == pytest.approx(0.412010, abs=1e-6)
+        assert p.after_onset_peak_acceleration == pytest.approx(factor * c * w * w, rel=1e-12)
+        assert p.peak_acceleration == pytest.approx(2 * c * w * w, rel=1e-12)
+        assert p.peak_acceleration / p.after_onset_peak_acceleration == pytest.approx(
+            4.854250, rel=1e-6
+        )
+        # independent check: the largest |z_r''| after the acceleration's zero crossing,
+        # on a fine grid (the crossing is at x = 2 - sqrt 2)
+        t0 = p.delay + (2 - math.sqrt(2)) / w
+        t = np.linspace(t0, p.delay + 12.0 / w, 400001)
+        assert np.max(np.abs(p.acceleration(t))) == pytest.approx(
+            p.after_onset_peak_acceleration, rel=1e-9
+        )
+        assert abs(float(p.acceleration(p.after_onset_time))) == pytest.approx(
+            p.after_onset_peak_acceleration, rel=1e-12
+        )
+        assert "after_onset_peak_acceleration" in p.describe()
+
     def test_negative_amplitude_is_a_pothole(self):
         p = RoundedPulse(-0.02, 1.0)
         assert float(p.displacement(p.peak_time)) == pytest.approx(-0.02)
