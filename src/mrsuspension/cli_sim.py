@@ -28,6 +28,7 @@ from mrsuspension.excitation import (
     SteppedSweep,
     log_frequencies,
 )
+from mrsuspension.measures.shock import DEFAULT_ROAD_PEAK, check_road_peak
 from mrsuspension.scenario import Scenario
 
 __all__ = ["parse_frequencies", "simulate_command", "sweep_command"]
@@ -207,14 +208,25 @@ def simulate_command(
         float | None,
         typer.Option("--duration", help="simulated time of each run [s] (overrides the file)"),
     ] = None,
+    road_peak: Annotated[
+        str,
+        typer.Option(
+            "--road-peak",
+            help="pulse runs: the road acceleration peak that divides SAR_s and SAR_u: "
+            "'after-onset' (after the pulse's onset jump; matches the dissertation's tables) "
+            "or 'onset' (the largest over the record: the onset jump, 4.854x larger)",
+        ),
+    ] = DEFAULT_ROAD_PEAK,
 ) -> None:
     """Run a scenario file and print its spec section 9 measures.
 
     A harmonic, pulse or road scenario prints one set of measures (``--json``: one
     object); a swept scenario prints one row per frequency (``--json``: a list of
-    objects with ``frequency`` and ``amplitude`` added).
+    objects with ``frequency`` and ``amplitude`` added). A pulse run's measures include
+    ``road_peak``, the definition ``--road-peak`` chose for the SAR denominators.
     """
     with _user_errors():
+        how = check_road_peak(road_peak)
         scn = Scenario.load(scenario)
         with _progress(scn.is_sweep and not as_json, "simulating") as progress:
             results = scn.run(duration=duration, workers=None, progress=progress)
@@ -232,7 +244,7 @@ def simulate_command(
                 _write(out, lambda d: (d / "measures.json").write_text(json.dumps(rows, indent=2)))
                 files.append(out / "measures.json")
         else:
-            payload = _clean(results[0].measures())
+            payload = _clean(results[0].measures(road_peak=how))
             if out is not None:
                 _write(out, lambda d: files.extend(_write_single(d, results[0], payload)))
     if as_json:

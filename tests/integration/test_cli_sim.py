@@ -57,6 +57,21 @@ def test_simulate_pulse_and_road_json() -> None:
     m = json.loads(out)
     assert set(m) >= PULSE_KEYS
     assert m["peak_tire_force"] > 0
+    assert m["road_peak"] == "after-onset"  # the default, stated beside the ratios
+    code, out, err = _invoke(
+        "simulate", str(SCENARIOS / "policy-iv-pulse.toml"), "--json", "--road-peak", "onset"
+    )
+    assert code == 0, err
+    onset = json.loads(out)
+    assert onset["road_peak"] == "onset"
+    assert onset["SDR_s"] == m["SDR_s"]
+    assert m["SAR_s"] / onset["SAR_s"] == pytest.approx(4.854, rel=2e-3)
+    code, out, err = _invoke(
+        "simulate", str(SCENARIOS / "policy-iv-pulse.toml"), "--road-peak", "first"
+    )
+    assert code == 2
+    assert not out
+    assert err.strip() == "error: road_peak must be one of 'after-onset', 'onset'; got 'first'."
     code, out, err = _invoke(
         "simulate", str(SCENARIOS / "ideal-skyhook-road.toml"), "--json", "--duration", "3"
     )

@@ -18,6 +18,8 @@ if TYPE_CHECKING:
     import xarray as xr
     from matplotlib.figure import Figure
 
+    from mrsuspension.measures import RoadPeak
+
 __all__ = ["SIGNALS", "SimulationResult"]
 
 #: Recorded signals: name -> (unit, description).
@@ -89,18 +91,39 @@ class SimulationResult(Mapping[str, np.ndarray]):
         )
 
     # -- measures (spec section 9) ------------------------------------------------------
-    def measures(self) -> dict[str, Any]:
+    def measures(self, *, road_peak: RoadPeak = "after-onset") -> dict[str, Any]:
         """The spec section 9 measures suited to the excitation, by their spec names.
 
         * harmonic: ``T_as``, ``T_au``, ``T_dr``, ``T_ds``, ``T_du``, ``DLC``, ``gamma``,
           ``mean_current``, ``mean_square_current`` (steady window of spec section 9);
-        * pulse: ``SDR_s``, ``SAR_s``, ``SDR_u``, ``SAR_u``, ``RDR``, ``peak_tire_force``;
+        * pulse: ``SDR_s``, ``SAR_s``, ``SDR_u``, ``SAR_u``, ``RDR``, ``peak_tire_force``,
+          and ``road_peak``, the definition of the road acceleration peak that divides
+          ``SAR_s`` and ``SAR_u``;
         * road: ``DLC`` (std/mean tire force), ``rms_body_acceleration``,
           ``wk_rms_body_acceleration`` (ISO 2631-1), ``vdv``, ``rms_stroke``,
           ``mean_current``.
+
+        Parameters
+        ----------
+        road_peak : {"after-onset", "onset"}, optional
+            Pulse runs: divide ``SAR_s`` and ``SAR_u`` by the largest ``|z_r''|`` after
+            the onset lobe (default; it matches the dissertation's tables) or over the
+            whole record, the jump at the pulse's onset (4.854 times larger); see
+            :func:`mrsuspension.measures.road_acceleration_peak`. Checked for every
+            excitation, used by pulse runs only.
+
+        Examples
+        --------
+        >>> from mrsuspension.engine.simulate import Simulation
+        >>> from mrsuspension.excitation import RoundedPulse
+        >>> res = Simulation(RoundedPulse(0.035, 3.0)).run(1.5, dt=5e-4)
+        >>> m = res.measures()
+        >>> m["road_peak"], round(m["SAR_s"] / res.measures(road_peak="onset")["SAR_s"], 2)
+        ('after-onset', 4.85)
         """
         from mrsuspension import measures as M
 
+        how = M.check_road_peak(road_peak)
         exc = self.scenario.get("excitation", {})
         kind = exc.get("kind")
         veh = self.scenario.get("vehicle", {})
@@ -131,9 +154,11 @@ class SimulationResult(Mapping[str, np.ndarray]):
                     self.z_u_ddot,
                     self.z_r_ddot,
                     self.x_d,
+                    road_peak=how,
                 )
             )
             out["peak_tire_force"] = float(np.max(self.F_T))
+            out["road_peak"] = how
             return out
         if kind == "road":
             fs = 1.0 / float(self.time[1] - self.time[0])

@@ -1,6 +1,6 @@
 """Running a study: a local process pool or a Dask cluster, cached by content hash.
 
-Every run is reduced to its measures in the worker (:func:`~mrsuspension.engine.simulate.measures_of`),
+Every run is reduced to its measures in the worker (``result.measures(road_peak=...)``),
 so only a few numbers travel back. Results are a :class:`StudyResult` wrapping an
 :class:`xarray.Dataset` (dimensions = the study's grid fields, cases and ``frequency``;
 variables = measures), saved as NetCDF (``.nc``) or CSV.
@@ -8,6 +8,7 @@ variables = measures), saved as NetCDF (``.nc``) or CSV.
 
 from __future__ import annotations
 
+import functools
 import json
 import os
 import time
@@ -19,8 +20,10 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from mrsuspension.engine.simulate import Simulation, measures_of, run_many
+from mrsuspension.engine.result import SimulationResult
+from mrsuspension.engine.simulate import Simulation, run_many
 from mrsuspension.errors import ValidationError
+from mrsuspension.measures.shock import DEFAULT_ROAD_PEAK, RoadPeak
 from mrsuspension.studies.study import Study
 
 if TYPE_CHECKING:
@@ -98,16 +101,24 @@ class StudyResult:
 
 
 # -- executors ----------------------------------------------------------------------------
-def _run_point(job: tuple[Simulation, float | None, float, float]) -> dict[str, Any]:
+def _measures(result: SimulationResult, road_peak: RoadPeak) -> dict[str, Any]:
+    """``result.measures(road_peak=...)``, the reducer (module level, so it pickles)."""
+    return result.measures(road_peak=road_peak)
+
+
+def _run_point(
+    job: tuple[Simulation, float | None, float, float], road_peak: RoadPeak = DEFAULT_ROAD_PEAK
+) -> dict[str, Any]:
     """One run reduced to its measures (module level, so workers can unpickle it)."""
     sim, duration, dt, rate = job
-    return measures_of(sim.run(duration, dt=dt, output_rate=rate))
+    return _measures(sim.run(duration, dt=dt, output_rate=rate), road_peak)
 
 
 def _run_local(
     jobs: Sequence[tuple[Simulation, float | None, float, float]],
     workers: int | None,
     progress: Progress | None,
+    road_peak: RoadPeak = DEFAULT_ROAD_PEAK,
 ) -> list[dict[str, Any]]:
     """The engine's batch runner, once per group of equal run settings."""
     groups: dict[tuple[float | None, float, float], list[int]] = {}
@@ -130,7 +141,7 @@ def _run_local(
             output_rate=rate,
             workers=workers,
             progress=tick,
-            reduce=measures_of,
+            reduce=functools.partial(_measures, road_peak=road_peak),
         )
         for k, r in zip(idx, results, strict=True):
             out[k] = r
@@ -142,6 +153,7 @@ def _run_dask(
     jobs: Sequence[tuple[Simulation, float | None, float, float]],
     executor: Any,
     progress: Progress | None,
+    road_peak: RoadPeak = DEFAULT_ROAD_PEAK,
 ) -> list[dict[str, Any]]:
     """The same reducer on a Dask cluster (an address or a ``distributed.Client``)."""
     try:
@@ -154,7 +166,9 @@ def _run_dask(
     own = not isinstance(executor, Client)
     client = Client(executor) if own else executor
     try:
-        futures = client.map(_run_point, list(jobs), pure=False)
+        futures = client.map(
+            functools.partial(_run_point, road_peak=road_peak), list(jobs), pure=False
+        )
         index = {f.key: k for k, f in enumerate(futures)}
         out: list[dict[str, Any]] = [{} for _ in jobs]
         for n, fut in enumerate(as_completed(futures), start=1):
@@ -222,6 +236,8 @@ def _dataset(study: Study, rows: Sequence[dict[str, Any]], run_time: float) -> x
     ds.attrs["study"] = json.dumps(study.describe(), default=str)
     ds.attrs["content_hash"] = study.content_hash()
     ds.attrs["run_time_s"] = float(run_time)
+    if study.has_pulses:
+        ds.attrs["road_peak"] = study.road_peak  # the SAR_s / SAR_u denominators
     from mrsuspension import __version__
 
     ds.attrs["mrsuspension_version"] = __version__
@@ -295,9 +311,9 @@ def run_study(
     start = time.perf_counter()
     with _bar(progress, f"study {study.name} ({len(jobs)} runs)") as tick:
         if (isinstance(executor, str) and executor == "local") or executor is None:
-            rows = _run_local(jobs, workers, tick)
+            rows = _run_local(jobs, workers, tick, study.road_peak)
         else:
-            rows = _run_dask(jobs, executor, tick)
+            rows = _run_dask(jobs, executor, tick, study.road_peak)
     elapsed = time.perf_counter() - start
     ds = _dataset(study, rows, elapsed)
     if cache_file is not None:

@@ -5,8 +5,11 @@ A study file is a scenario file (the same ``[vehicle]``, ``[damper]``, ``[contro
 
 ``[study]``
     ``name``, ``description``, ``measures`` (list of measure names; default: all of the
-    excitation kind's) and optionally ``scenario`` (a scenario file used as the base; the
-    study's own tables override it key by key).
+    excitation kind's), optionally ``scenario`` (a scenario file used as the base; the
+    study's own tables override it key by key) and ``road_peak``, the road acceleration
+    peak that divides ``SAR_s`` and ``SAR_u`` of pulse runs: ``"after-onset"`` (default,
+    it matches the dissertation's tables) or ``"onset"`` (see
+    :func:`mrsuspension.measures.road_acceleration_peak`).
 ``[grid]``
     Dotted scenario fields and the values to try, e.g.
     ``"vehicle.sprung_mass" = [422.0, 563.0, 703.0]``. Every combination is run
@@ -57,6 +60,7 @@ import numpy as np
 
 from mrsuspension.errors import ValidationError, did_you_mean, read_toml
 from mrsuspension.excitation import log_frequencies
+from mrsuspension.measures.shock import DEFAULT_ROAD_PEAK, RoadPeak, check_road_peak
 from mrsuspension.scenario import SCENARIO_KEYS, Scenario
 
 __all__ = ["MEASURES", "Axis", "Study", "expand_frequencies"]
@@ -86,7 +90,7 @@ MEASURES: dict[str, tuple[str, ...]] = {
 }
 MEASURES["swept"] = MEASURES["harmonic"]
 
-_STUDY_KEYS = ("name", "description", "measures", "scenario")
+_STUDY_KEYS = ("name", "description", "measures", "scenario", "road_peak")
 _TOP_LEVEL = ("study", "grid", "cases", *SCENARIO_KEYS)
 _SPEC = re.compile(r"^\s*(log|lin)\s*:\s*(\d+)\s*:\s*([^:]+)\s*:\s*([^:]+)\s*$")
 #: every dotted field a grid may vary
@@ -279,6 +283,10 @@ class Study:
         Free text.
     base_dir : Path
         Folder for relative paths.
+    road_peak : {"after-onset", "onset"}
+        The road acceleration peak dividing ``SAR_s`` and ``SAR_u`` of pulse runs
+        (``[study] road_peak``; see :meth:`SimulationResult.measures
+        <mrsuspension.engine.result.SimulationResult.measures>`).
     """
 
     name: str
@@ -289,6 +297,7 @@ class Study:
     frequencies: tuple[float, ...] | None = None
     description: str = ""
     base_dir: Path = field(default_factory=Path.cwd)
+    road_peak: RoadPeak = DEFAULT_ROAD_PEAK
 
     # -- loading ------------------------------------------------------------------------
     @classmethod
@@ -406,6 +415,10 @@ class Study:
                         f"Valid: {', '.join(valid)}."
                     )
             measures = tuple(dict.fromkeys(requested))
+        try:
+            road_peak = check_road_peak(meta.get("road_peak", DEFAULT_ROAD_PEAK))
+        except ValidationError as err:
+            raise ValidationError(f"[study] {err}") from None
         name = str(meta.get("name", "study"))
         return cls(
             name=name,
@@ -416,9 +429,15 @@ class Study:
             frequencies=frequencies,
             description=str(meta.get("description", "")),
             base_dir=base_path,
+            road_peak=road_peak,
         )
 
     # -- shape --------------------------------------------------------------------------
+    @property
+    def has_pulses(self) -> bool:
+        """True when some grid point runs a rounded pulse (``road_peak`` applies)."""
+        return any(s.data["excitation"]["kind"] == "pulse" for s in self.scenarios)
+
     @property
     def dims(self) -> tuple[str, ...]:
         """Dimension names of the results (axes, then ``frequency`` for a sweep)."""
@@ -464,12 +483,15 @@ class Study:
                     if digest:
                         files[f"{section}.{key}"] = digest
             points.append({"scenario": d, "files": files})
-        return {
+        out: dict[str, Any] = {
             "dims": list(self.dims),
             "coords": {k: [_label(v) for v in vs] for k, vs in self.coords.items()},
             "measures": list(self.measures),
             "points": points,
         }
+        if self.has_pulses:  # the SAR denominators: results cached before it was a choice differ
+            out["road_peak"] = self.road_peak
+        return out
 
     def content_hash(self) -> str:
         """sha256 of the canonical JSON of :meth:`canonical` and the package version."""
@@ -497,6 +519,7 @@ class Study:
                 if not (len(a.patches[0]) == 1 and a.name in a.patches[0])
             },
             "measures": list(self.measures),
+            **({"road_peak": self.road_peak} if self.has_pulses else {}),
             "runs": len(self.run_settings()),
         }
 

@@ -306,6 +306,22 @@ def test_result_exports(tmp_path) -> None:  # type: ignore[no-untyped-def]
         res.save(tmp_path / "run.xlsx")
 
 
+def test_pulse_measures_state_their_road_peak() -> None:
+    res = Simulation(RoundedPulse(0.035, 3.0), controller=HiLo(1, mode="ACM")).run(2.0)
+    after, onset = res.measures(), res.measures(road_peak="onset")
+    assert after["road_peak"] == "after-onset"  # the default (spec section 9)
+    assert onset["road_peak"] == "onset"
+    for k in ("SDR_s", "SDR_u", "RDR", "peak_tire_force"):
+        assert after[k] == onset[k]
+    for k in ("SAR_s", "SAR_u"):  # the 1 kHz record holds the onset instant (0.5 s)
+        assert after[k] / onset[k] == pytest.approx(4.854, rel=2e-3)
+    with pytest.raises(ValidationError, match="road_peak must be one of 'after-onset', 'onset'"):
+        res.measures(road_peak="peak")  # type: ignore[arg-type]
+    harmonic = Simulation(HARMONIC).run(0.5)
+    with pytest.raises(ValidationError, match="road_peak"):
+        harmonic.measures(road_peak="peak")  # type: ignore[arg-type]
+
+
 def test_road_static_load_and_mean_tire_force() -> None:
     res = Simulation(preset_road("medium-rough", 50.0), controller=HiLo(1)).run(10.0)
     assert res.F_T.mean() == pytest.approx(QuarterCar().total_mass * GRAVITY, rel=0.01)

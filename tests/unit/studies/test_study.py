@@ -162,3 +162,32 @@ def test_pulse_study_without_frequency_dim() -> None:
     res = run_study(study, workers=1, progress=False, cache_dir=False)
     assert res["SAR_s"].dims == ("excitation.speed",)
     assert res["SAR_s"].notnull().all()
+
+
+def test_pulse_study_road_peak() -> None:
+    tables = {
+        "excitation": {"kind": "pulse", "amplitude": 0.035, "severity": 3},
+        "simulation": {"dt": 5e-4, "duration": 2.0},
+        "grid": {"vehicle.sprung_mass": [563.0]},
+        "study": {"measures": ["SDR_s", "SAR_s", "SAR_u"]},
+    }
+    after = Study.from_dict(tables)
+    assert after.road_peak == "after-onset"  # the dissertation-matching default
+    onset = Study.from_dict({**tables, "study": {**tables["study"], "road_peak": "onset"}})
+    assert onset.content_hash() != after.content_hash()  # cached results stay apart
+    assert after.describe()["road_peak"] == "after-onset"
+    a = run_study(after, workers=1, progress=False, cache_dir=False)
+    o = run_study(onset, workers=1, progress=False, cache_dir=False)
+    assert a.dataset.attrs["road_peak"] == "after-onset"
+    assert o.dataset.attrs["road_peak"] == "onset"
+    assert float(a["SDR_s"][0]) == float(o["SDR_s"][0])
+    for k in ("SAR_s", "SAR_u"):
+        assert float(a[k][0]) / float(o[k][0]) == pytest.approx(4.854, rel=2e-3)
+    with pytest.raises(ValidationError, match=r"\[study\] road_peak must be one of"):
+        Study.from_dict({**tables, "study": {"road_peak": "first"}})
+    # not a pulse study: no road_peak in its identity or description
+    harmonic = Study.from_dict(
+        {"excitation": {"kind": "harmonic", "frequency": 5.0, "amplitude": 0.01}}
+    )
+    assert "road_peak" not in harmonic.canonical()
+    assert "road_peak" not in harmonic.describe()
