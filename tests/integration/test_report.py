@@ -125,7 +125,11 @@ def test_shock_tables_of_chapters_5_and_6_carry_the_dissertation(report: Path) -
         assert mid["DTR model"] == 0.0
         # a heavier body: smaller sprung-mass acceleration ratio, in both our model and theirs
         assert rows[2]["SAR_s model"] < rows[0]["SAR_s model"]
-        assert "differs (>25 %)" in mid
+        assert mid["SDR_s ratio"] == pytest.approx(
+            mid["SDR_s model"] / mid["SDR_s dissertation"], abs=2e-3
+        )
+        assert mid["SAR_s agreement"] in ("green", "amber", "red")
+        assert mid["DTR difference"] == -mid["DTR dissertation"]
         speeds = tables[f"{chapter}.2"]["rows"]
         assert [r["V (km/h)"] for r in speeds] == [50.0, 100.0]
         assert speeds[1]["DTR model"] > 0.0
@@ -256,3 +260,14 @@ def test_chapter_4_shock_tables(report: Path) -> None:
     # the nominal row is the DTR reference
     nominal = [r for r in tables["4.1"]["rows"] if r["m_s (kg)"] == 563.0]
     assert nominal[0]["DTR model"] == 0.0
+    # per cell: ours | dissertation | ratio, coloured by agreement, with a legend and a
+    # summary line; the SAR denominator is stated
+    for table in tables.values():
+        assert table["road_peak"] == "after-onset"
+        assert "after-onset" in table["caption"]
+        assert set(table["summary"]) == {"SDR_s", "SAR_s", "SDR_u", "SAR_u", "RDR", "DTR"}
+        for s in table["summary"].values():
+            assert s["cells"] == len(table["rows"])
+    assert "within 10 %</span>" in index
+    assert "Cells within 25 % (DTR: within 0.05): SDR_s" in index
+    assert '<td class="green">' in index

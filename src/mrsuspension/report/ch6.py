@@ -308,9 +308,7 @@ GIVEN: tuple[dict[float, tuple[float, ...]], ...] = (
     },
 )
 _WHY = (
-    "'differs (>25 %)' flags the measures more than 25 % from the dissertation's (DTR: more "
-    "than 0.05). "
-    + "A ratio range that is narrow but far from 1 means the trend agrees and the level does "
+    "A ratio range that is narrow but far from 1 means the trend agrees and the level does "
     "not: our SAR_s, SAR_u and RDR are lower than the dissertation's in every row, with no "
     "established cause (the (3.41) ratios are computed as the spec prints them). "
     "Known causes: at 100 km/h the pulse keeps omega_0 proportional to speed (erratum 9); "

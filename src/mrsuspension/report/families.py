@@ -68,15 +68,20 @@ import numpy as np
 from mrsuspension.errors import ValidationError
 
 __all__ = [
+    "AGREEMENT_BANDS",
     "HARMONIC_AMPS",
     "KINDS",
     "MASSES",
     "PULSE_AMPS",
     "ROADS",
     "SPEEDS",
+    "TABLE_MEASURES",
+    "Agreement",
     "FigureSpec",
     "ShockTable",
     "Unit",
+    "agreement",
+    "agreement_summary",
     "build_all",
     "check_finite",
     "in_worker",
@@ -412,8 +417,9 @@ def run_unit(unit: Unit) -> dict[str, Any]:
     elif unit.kind == "pulse":
         r = _simulate(unit, PULSE_DURATION)
         out = _history_payload(r, (0.0, PULSE_DURATION), 2)
-        m = r.measures()
+        m = r.measures()  # SAR_s, SAR_u over the after-onset road acceleration peak
         out.update({k: float(m[k]) for k in (*SHOCK, "peak_tire_force")})
+        out["road_peak"] = m["road_peak"]
     elif unit.kind == "psd":
         from mrsuspension.measures import psd
 
@@ -519,6 +525,7 @@ def _render_histories(
         else:
             for k in (*SHOCK, "peak_tire_force"):
                 data[f"{k} {label}"] = p[k]
+            data["road_peak (SAR_s, SAR_u denominator)"] = p.get("road_peak", "after-onset")
     for ax in flat[len(spec.signals) :]:
         ax.set_visible(False)
     for ax in flat[: len(spec.signals)]:
@@ -721,14 +728,117 @@ class ShockTable:
         }
 
 
+#: The measures of a shock table, in column order (DTR last: it needs the nominal row)
+TABLE_MEASURES: tuple[str, ...] = (*SHOCK, "DTR")
+#: Agreement bands of a shock-table cell, best first: (name, limit on
+#: ``|model/dissertation - 1|``, limit on ``|model - dissertation|`` for DTR, which the
+#: dissertation often gives as 0). The report colours the cells green, amber and red.
+AGREEMENT_BANDS: tuple[tuple[str, float, float], ...] = (
+    ("green", 0.10, 0.025),
+    ("amber", 0.25, 0.05),
+    ("red", math.inf, math.inf),
+)
+
+
+class Agreement(NamedTuple):
+    """One shock-table cell compared with the dissertation.
+
+    ``ratio`` is model/dissertation (None where the dissertation gives 0),
+    ``difference`` model - dissertation, ``band`` a name of :data:`AGREEMENT_BANDS`.
+    """
+
+    ratio: float | None
+    difference: float
+    band: str
+
+
+def agreement(measure: str, model: float, dissertation: float) -> Agreement:
+    """Compare one cell: the ratio, the difference and the agreement band.
+
+    The band is the first of :data:`AGREEMENT_BANDS` whose limit holds: on the relative
+    deviation ``|model/dissertation - 1|`` (green within 10 %, amber within 25 %, red
+    beyond), or for ``measure == "DTR"`` on the absolute difference (green within 0.025,
+    amber within 0.05), since the dissertation's DTR is 0 in every nominal row. A zero
+    dissertation value of another measure agrees only with a zero.
+
+    Parameters
+    ----------
+    measure : str
+        ``"SDR_s"``, ``"SAR_s"``, ``"SDR_u"``, ``"SAR_u"``, ``"RDR"`` or ``"DTR"``.
+    model, dissertation : float
+        Our value and the dissertation's.
+
+    Returns
+    -------
+    Agreement
+
+    Examples
+    --------
+    >>> agreement("SDR_s", 0.70, 0.71)
+    Agreement(ratio=0.986, difference=-0.01, band='green')
+    >>> agreement("SAR_s", 0.23, 0.19).band, agreement("RDR", 0.75, 1.13).band
+    ('amber', 'red')
+    >>> agreement("DTR", 0.03, 0.0)
+    Agreement(ratio=None, difference=0.03, band='amber')
+    """
+    if measure not in TABLE_MEASURES:
+        raise ValidationError(
+            f"measure {measure!r} is not a shock-table measure; valid: {', '.join(TABLE_MEASURES)}"
+        )
+    ours, theirs = float(model), float(dissertation)
+    ratio = None if theirs == 0.0 else round(ours / theirs, 3)
+    if measure == "DTR":
+        off = abs(ours - theirs)
+    else:
+        off = abs(ours / theirs - 1.0) if theirs != 0.0 else (0.0 if ours == 0.0 else math.inf)
+    band = next(
+        name
+        for name, relative, absolute in AGREEMENT_BANDS
+        if off <= (absolute if measure == "DTR" else relative) + 1e-12
+    )
+    return Agreement(ratio, round(ours - theirs, 3), band)
+
+
+def agreement_summary(rows: Sequence[Mapping[str, Any]]) -> dict[str, dict[str, Any]]:
+    """Per measure: how many of a table's cells agree within 25 % (DTR: within 0.05).
+
+    Parameters
+    ----------
+    rows : sequence of mapping
+        :func:`shock_table` rows (``"<measure> agreement"`` keys).
+
+    Returns
+    -------
+    dict
+        Measure -> ``{"within": n, "cells": m, "share": n/m}`` (green and amber cells
+        agree).
+
+    Examples
+    --------
+    >>> rows = [{"SDR_s agreement": "green"}, {"SDR_s agreement": "red"}]
+    >>> agreement_summary(rows)["SDR_s"]
+    {'within': 1, 'cells': 2, 'share': 0.5}
+    """
+    out: dict[str, dict[str, Any]] = {}
+    for k in TABLE_MEASURES:
+        bands = [r[f"{k} agreement"] for r in rows if f"{k} agreement" in r]
+        if bands:
+            n = sum(b != "red" for b in bands)
+            out[k] = {"within": n, "cells": len(bands), "share": round(n / len(bands), 3)}
+    return out
+
+
 def shock_table(
     table: ShockTable, payloads: Mapping[float, dict[str, Any]], quick: bool
 ) -> dict[str, Any]:
-    """Rows of our shock measures beside the dissertation's, with DTR against the nominal.
+    """Rows of our shock measures beside the dissertation's, with per-cell ratios.
 
     DTR = |F_T,peak(nominal) - F_T,peak| / ((m_s0 + m_u) g), (3.44), nominal = the row
-    without overrides. A row's ``differs (>25 %)`` column lists the measures whose model
-    value differs from the dissertation's by more than 25 % (DTR: by more than 0.05).
+    without overrides. Each measure ``k`` of a row has ``k model``, ``k dissertation``,
+    ``k ratio`` (model/dissertation; for DTR ``DTR difference``, model - dissertation)
+    and ``k agreement``, the :func:`agreement` band. ``SAR_s`` and ``SAR_u`` divide by the
+    road acceleration peak of the payloads' ``road_peak`` (``"after-onset"`` from
+    :func:`run_unit`). The result's ``summary`` is :func:`agreement_summary` of the rows.
     """
     from mrsuspension.measures import dtr
     from mrsuspension.vehicle import QuarterCar
@@ -737,37 +847,58 @@ def shock_table(
     total = car.sprung_mass + car.unsprung_mass
     nominal = next(v for v, o in table.variants.items() if not o)
     reference = payloads[nominal]["peak_tire_force"]
+    road_peaks = {payloads[v].get("road_peak", "after-onset") for v in table.variants}
+    if len(road_peaks) != 1:
+        raise ValidationError(
+            f"table {table.number}: the rows use different road peaks {sorted(road_peaks)}"
+        )
+    (road_peak,) = road_peaks
     rows = []
     for value in table.variants:
         p = payloads[value]
         row: dict[str, Any] = {table.column: value}
         model = [*(p[k] for k in SHOCK), dtr(reference, p["peak_tire_force"], total)]
-        differs = []
-        for k, ours, theirs in zip((*SHOCK, "DTR"), model, table.given[value], strict=True):
+        for k, ours, theirs in zip(TABLE_MEASURES, model, table.given[value], strict=True):
+            ag = agreement(k, ours, theirs)
             row[f"{k} model"] = round(float(ours), 3)
             row[f"{k} dissertation"] = float(theirs)
-            off = abs(ours - theirs) > 0.05 if k == "DTR" else abs(ours / theirs - 1.0) > 0.25
-            if off:
-                differs.append(k)
+            if k == "DTR":
+                row["DTR difference"] = ag.difference
+            else:
+                row[f"{k} ratio"] = ag.ratio
+            row[f"{k} agreement"] = ag.band
         row["peak F_T model [N]"] = round(float(p["peak_tire_force"]), 1)
-        row["differs (>25 %)"] = " ".join(differs) or "-"
         rows.append(row)
     ratios = []
     for k in SHOCK:
-        r = [row[f"{k} model"] / row[f"{k} dissertation"] for row in rows]
+        r = [row[f"{k} ratio"] for row in rows]
         ratios.append(f"{k} {min(r):.2f}-{max(r):.2f}")
     step = _step(table.base, quick) * 1e3
+    sar = (
+        "SAR_s and SAR_u divide by the road acceleration peak after the pulse's onset jump "
+        "(road_peak 'after-onset': 0.412 c (mu omega_0)^2, c = 0.25 a_m e^2; the dissertation "
+        "does not define it and this reading matches its tables; the onset jump, 'onset', "
+        "is 4.85x larger)"
+        if road_peak == "after-onset"
+        else "SAR_s and SAR_u divide by the largest road acceleration, the jump at the "
+        "pulse's onset (road_peak 'onset': 2 c (mu omega_0)^2, 4.85x the after-onset peak)"
+    )
     return {
         "number": table.number,
         "title": table.title,
         "caption": (
             f"Rounded pulse (mu = 3, a_m = 3.5 cm, 50 km/h, omega_0 = 10.4 rad/s unless varied), "
             f"varying {table.column}; ratios of peaks over a {PULSE_DURATION:g} s record, step "
-            f"{step:g} ms. Scenario: {json.dumps(_normalise(table.base), sort_keys=True)}. DTR "
-            f"against the nominal row, normalised by (m_s0 + m_u) g = {total * 9.81:.0f} N. "
-            f"Model/dissertation ratio over the rows: {', '.join(ratios)}. " + table.why
+            f"{step:g} ms. Scenario: {json.dumps(_normalise(table.base), sort_keys=True)}. "
+            f"{sar}. DTR against the nominal row, normalised by (m_s0 + m_u) g = "
+            f"{total * 9.81:.0f} N. Each cell: ours, the dissertation's and their ratio (DTR: "
+            "the difference), coloured green within 10 %, amber within 25 %, red beyond (DTR: "
+            "within 0.025, 0.05). Model/dissertation ratio over the rows: "
+            f"{', '.join(ratios)}. " + table.why
         ),
+        "road_peak": road_peak,
         "rows": rows,
+        "summary": agreement_summary(rows),
     }
 
 

@@ -13,7 +13,7 @@ from typing import Any
 
 from mrsuspension.errors import ValidationError
 
-__all__ = ["FigureRecord", "build_report"]
+__all__ = ["FigureRecord", "build_report", "shock_table_html"]
 
 
 @dataclass
@@ -55,7 +55,18 @@ figure{margin:1.5em 0;border:1px solid #eee;padding:.5em} figure img{max-width:1
 figcaption{font-size:.9em;color:#444} table{border-collapse:collapse;font-size:.85em;margin:.5em 0}
 td,th{border:1px solid #ccc;padding:.2em .5em;text-align:right} th{background:#f4f4f4}
 td.l,th.l{text-align:left} code{background:#f4f4f4;padding:0 .2em} .meta{color:#666;font-size:.85em}
+td.green{background:#d4edda} td.amber{background:#ffe8b3} td.red{background:#f8d0d0}
+span.green,span.amber,span.red{padding:0 .4em;border:1px solid #ccc}
+span.green{background:#d4edda} span.amber{background:#ffe8b3} span.red{background:#f8d0d0}
 """
+
+#: The legend of the shock tables' cell colours (families.AGREEMENT_BANDS)
+_LEGEND = (
+    "<p class='meta'>Each measure: ours | the dissertation's | ours/theirs (DTR: ours - "
+    "theirs). <span class='green'>within 10 %</span> <span class='amber'>within 25 %"
+    "</span> <span class='red'>beyond 25 %</span>; DTR by the absolute difference: within "
+    "0.025, within 0.05, beyond.</p>"
+)
 
 
 def _table(rows: Sequence[dict[str, Any]], fmt: str = "{:.4g}") -> str:
@@ -192,10 +203,73 @@ def _figure_sections(
     return sections, records
 
 
+def _cell(value: Any, fmt: str = "{:.3g}") -> str:
+    if value is None:
+        return "-"
+    return fmt.format(value) if isinstance(value, float) else str(value)
+
+
+def shock_table_html(tab: dict[str, Any]) -> str:
+    """A shock table (:func:`~mrsuspension.report.families.shock_table`) as HTML.
+
+    One group of three columns per measure, ours | dissertation | ratio (DTR: the
+    difference), each group's cells coloured by its ``agreement`` band, then the peak
+    tire force; a summary line below gives each measure's share of cells within 25 %
+    (DTR: within 0.05).
+
+    Examples
+    --------
+    >>> row = {"m_s (kg)": 563.0, "SDR_s model": 0.7, "SDR_s dissertation": 0.71,
+    ...        "SDR_s ratio": 0.986, "SDR_s agreement": "green"}
+    >>> tab = {"rows": [row], "summary": {"SDR_s": {"within": 1, "cells": 1, "share": 1.0}}}
+    >>> html_text = shock_table_html(tab)
+    >>> '<td class="green">0.986</td>' in html_text, "SDR_s 1/1" in html_text
+    (True, True)
+    """
+    from mrsuspension.report.families import TABLE_MEASURES
+
+    rows = tab["rows"]
+    if not rows:
+        return ""
+    column = next(iter(rows[0]))
+    measures = [k for k in TABLE_MEASURES if f"{k} model" in rows[0]]
+    last = "DTR difference"
+    extra = [
+        k
+        for k in rows[0]
+        if k != column and not any(k.startswith(f"{m} ") for m in measures) and k != last
+    ]
+    top = f"<th rowspan='2' class='l'>{html.escape(column)}</th>" + "".join(
+        f"<th colspan='3'>{html.escape(m)}</th>" for m in measures
+    )
+    top += "".join(f"<th rowspan='2'>{html.escape(k)}</th>" for k in extra)
+    sub = "".join(
+        "<th>ours</th><th>diss.</th><th>" + ("diff." if m == "DTR" else "ratio") + "</th>"
+        for m in measures
+    )
+    body = []
+    for r in rows:
+        cells = [f"<td class='l'>{html.escape(_cell(r[column], '{:g}'))}</td>"]
+        for m in measures:
+            band = html.escape(str(r.get(f"{m} agreement", "")))
+            third = r.get("DTR difference") if m == "DTR" else r.get(f"{m} ratio")
+            for v in (r[f"{m} model"], r[f"{m} dissertation"], third):
+                cells.append(f'<td class="{band}">{html.escape(_cell(v))}</td>')
+        cells += [f"<td>{html.escape(_cell(r[k], '{:.4g}'))}</td>" for k in extra]
+        body.append("<tr>" + "".join(cells) + "</tr>")
+    summary = tab.get("summary", {})
+    line = ", ".join(
+        f"{m} {s['within']}/{s['cells']} ({100 * s['share']:.0f} %)" for m, s in summary.items()
+    )
+    return f"<table><tr>{top}</tr><tr>{sub}</tr>{''.join(body)}</table>" + (
+        f"<p class='meta'>Cells within 25 % (DTR: within 0.05): {line}.</p>" if line else ""
+    )
+
+
 def _table_sections(
     chapter: int, tables: Sequence[dict[str, Any]], folder: Path
 ) -> tuple[str, list[dict[str, Any]]]:
-    """Write each table as CSV; the HTML of all of them and their manifest entries."""
+    """Write each shock table as CSV; the HTML of all of them and their manifest entries."""
     import csv
 
     out = []
@@ -210,9 +284,9 @@ def _table_sections(
         parts.append(
             f"<h3 id='{slug}'>Table {html.escape(tab['number'])}: {html.escape(tab['title'])}"
             f"</h3><p>{html.escape(tab['caption'])} <a href='chapter{chapter}/{slug}.csv'>"
-            f"{slug}.csv</a></p>" + _table(tab["rows"], "{:.3g}")
+            f"{slug}.csv</a></p>" + shock_table_html(tab)
         )
-    return "".join(parts), out
+    return (_LEGEND if parts else "") + "".join(parts), out
 
 
 def _jobs_3(quick: bool) -> dict[str, Any]:

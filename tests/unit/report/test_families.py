@@ -10,9 +10,13 @@ import pytest
 from _helpers import raises_validation
 from mrsuspension.report import ch4, ch5, ch6
 from mrsuspension.report.families import (
+    AGREEMENT_BANDS,
     KINDS,
+    Agreement,
     FigureSpec,
     ShockTable,
+    agreement,
+    agreement_summary,
     build_all,
     check_finite,
     make_unit,
@@ -142,6 +146,20 @@ def test_run_render_and_table_on_two_pulse_runs(tmp_path: Path) -> None:
     # a heavier body moves less after the same pulse
     assert heavy["SAR_s model"] < nominal["SAR_s model"]
     assert heavy["SDR_s dissertation"] == 0.71
+    # per cell: the ratio and its band; DTR: the difference
+    for row in out["rows"]:
+        for k in ("SDR_s", "SAR_s", "SDR_u", "SAR_u", "RDR"):
+            ratio = row[f"{k} model"] / row[f"{k} dissertation"]
+            assert row[f"{k} ratio"] == pytest.approx(ratio, abs=2e-3)
+            assert row[f"{k} agreement"] in ("green", "amber", "red")
+        assert row["DTR difference"] == pytest.approx(
+            row["DTR model"] - row["DTR dissertation"], abs=1e-3
+        )
+        assert "DTR ratio" not in row
+    assert out["road_peak"] == "after-onset"
+    assert "after-onset" in out["caption"]
+    assert out["summary"]["SDR_s"]["cells"] == 2
+    assert "differs (>25 %)" not in nominal
     spec = _spec(
         kind="pulse", variants={"563 kg": {}, "703 kg": {"vehicle": {"sprung_mass": 703.0}}}
     )
@@ -175,3 +193,89 @@ def test_docs_report_page_is_generated_from_the_specs() -> None:
 
     page = Path(__file__).resolve().parents[3] / "docs" / "report.md"
     assert page.read_text() == report_page(), "run: python tools/report_docs.py"
+
+
+@pytest.mark.parametrize(
+    ("measure", "model", "given", "ratio", "band"),
+    [
+        ("SDR_s", 0.71, 0.71, 1.0, "green"),
+        ("SDR_s", 0.781, 0.71, 1.1, "green"),  # exactly +10 %: still green
+        ("SDR_s", 0.639, 0.71, 0.9, "green"),
+        ("SAR_s", 0.21, 0.19, 1.105, "amber"),
+        ("SAR_s", 0.2375, 0.19, 1.25, "amber"),  # exactly +25 %: still amber
+        ("SAR_s", 0.14, 0.19, 0.737, "red"),
+        ("RDR", 0.75, 1.13, 0.664, "red"),
+        ("SAR_u", 3.0, 1.92, 1.562, "red"),
+        ("DTR", 0.0, 0.0, None, "green"),  # the nominal row
+        ("DTR", 0.02, 0.0, None, "green"),
+        ("DTR", 0.04, 0.0, None, "amber"),
+        ("DTR", 0.217, 0.26, 0.835, "amber"),  # by the difference (-0.043), not the ratio
+        ("DTR", 0.37, 0.29, 1.276, "red"),
+    ],
+)
+def test_agreement_bands(
+    measure: str, model: float, given: float, ratio: float | None, band: str
+) -> None:
+    ag = agreement(measure, model, given)
+    assert isinstance(ag, Agreement)
+    assert ag.ratio == (None if ratio is None else pytest.approx(ratio, abs=1e-3))
+    assert ag.difference == pytest.approx(model - given, abs=1e-3)
+    assert ag.band == band
+
+
+def test_agreement_edge_cases_and_summary() -> None:
+    assert [b[0] for b in AGREEMENT_BANDS] == ["green", "amber", "red"]
+    assert agreement("SAR_s", 0.0, 0.0).band == "green"  # a zero agrees only with a zero
+    assert agreement("SAR_s", 0.1, 0.0) == Agreement(None, 0.1, "red")
+    raises_validation(lambda: agreement("SAR", 1.0, 1.0), "'SAR'", "SDR_s, SAR_s")
+    rows = [
+        {"SDR_s agreement": "green", "DTR agreement": "green"},
+        {"SDR_s agreement": "amber", "DTR agreement": "red"},
+        {"SDR_s agreement": "red", "DTR agreement": "red"},
+        {"SDR_s agreement": "amber", "DTR agreement": "amber"},
+    ]
+    summary = agreement_summary(rows)
+    assert summary == {
+        "SDR_s": {"within": 3, "cells": 4, "share": 0.75},
+        "DTR": {"within": 2, "cells": 4, "share": 0.5},
+    }
+
+
+def test_shock_table_html_colours_cells_and_sums_up() -> None:
+    from mrsuspension.report.html import shock_table_html
+
+    table = ShockTable(
+        "9.1",
+        "mass",
+        "m_s (kg)",
+        ACM,
+        {563.0: {}, 703.0: {"vehicle": {"sprung_mass": 703.0}}},
+        {563.0: (0.71, 0.19, 1.17, 1.92, 1.13, 0.0), 703.0: (0.71, 0.15, 1.17, 1.92, 1.13, 0.29)},
+    )
+    payloads = {
+        563.0: {"SDR_s": 0.70, "SAR_s": 0.22, "SDR_u": 1.5, "SAR_u": 1.92, "RDR": 0.75,
+                "peak_tire_force": 11000.0, "road_peak": "after-onset"},
+        703.0: {"SDR_s": 0.62, "SAR_s": 0.15, "SDR_u": 1.2, "SAR_u": 1.5, "RDR": 0.8,
+                "peak_tire_force": 11000.0 - 0.25 * 653 * 9.81, "road_peak": "after-onset"},
+    }  # fmt: skip
+    tab = shock_table(table, payloads, quick=True)
+    nominal, heavy = tab["rows"]
+    assert [nominal[f"{k} agreement"] for k in ("SDR_s", "SAR_s", "SDR_u", "SAR_u", "RDR")] == [
+        "green", "amber", "red", "green", "red",
+    ]  # fmt: skip
+    assert nominal["SAR_s ratio"] == 1.158
+    assert heavy["DTR model"] == 0.25
+    assert heavy["DTR difference"] == -0.04
+    assert heavy["DTR agreement"] == "amber"
+    assert tab["summary"]["SDR_s"] == {"within": 2, "cells": 2, "share": 1.0}
+    assert tab["summary"]["RDR"] == {"within": 0, "cells": 2, "share": 0.0}
+    text = shock_table_html(tab)
+    assert text.count("<tr>") == 4  # two header rows, two rows
+    assert "<th colspan='3'>SAR_s</th>" in text
+    assert '<td class="amber">1.16</td>' in text  # the SAR_s ratio of the nominal row
+    assert '<td class="amber">-0.04</td>' in text  # DTR: the difference
+    assert "<th>diff.</th>" in text
+    assert "SDR_s 2/2 (100 %)" in text
+    assert "RDR 0/2 (0 %)" in text
+    mixed = {**payloads, 703.0: {**payloads[703.0], "road_peak": "onset"}}
+    raises_validation(lambda: shock_table(table, mixed, quick=True), "different road peaks")
