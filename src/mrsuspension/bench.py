@@ -214,6 +214,7 @@ def run_benchmarks(
     """
     from mrsuspension.control import HiLo, Passive, SlidingMode
     from mrsuspension.dampers import WangSymmetric
+    from mrsuspension.dampers.wang import VEHICLE_VH_VARIANT
     from mrsuspension.engine import Simulation, measures_of, run_many
     from mrsuspension.engine.simulate import road_grid
     from mrsuspension.excitation import Harmonic, log_frequencies, two_stage_amplitude
@@ -269,7 +270,9 @@ def run_benchmarks(
         Simulation(
             Harmonic(f, float(two_stage_amplitude(f, 0.025))),
             controller=c,
-            damper=WangSymmetric(force_gain=2.5 if c.needs_inverse else 1.0),
+            damper=WangSymmetric(
+                force_gain=2.5 if c.needs_inverse else 1.0, vh_variant=VEHICLE_VH_VARIANT
+            ),
         )
         for c in controllers
         for f in fs
