@@ -21,7 +21,7 @@ from typing import Any
 
 import numpy as np
 
-from mrsuspension.control import HiLo
+from mrsuspension.control import HiLo, make_controller
 from mrsuspension.dampers import WangSymmetric
 from mrsuspension.engine import Simulation
 from mrsuspension.engine.result import SimulationResult, VelocityClampWarning
@@ -97,6 +97,19 @@ def report(estimator: str, vh: str, dt: float) -> None:
         f"Fig 4.6: gamma ACM {acm['gamma']:.2f} (about 2.4), mean i_d ACM/SCM "
         f"{acm['mean_current'] / scm['mean_current']:.2f} (about 0.5), "
         f"T_as SCM {scm['T_as']:.2f} ACM {acm['T_as']:.2f}"
+    )
+    modes = [
+        Simulation(
+            Harmonic(1.5, 0.025),
+            damper=WangSymmetric(**damper),
+            controller=make_controller("inverse-hilo", mode=mode),
+        )
+        for mode in ("SCM", "ACM")
+    ]
+    scm, acm = run_many(modes, dt=dt, reduce=reduce, workers=1)
+    print(
+        f"Fig 5.4 (inverse-model hi-lo, k_d = 1): gamma ACM {acm['gamma']:.2f} (about 2.5), "
+        f"mean i_d ACM/SCM {acm['mean_current'] / scm['mean_current']:.2f} (about 0.5)"
     )
     pulse = RoundedPulse(0.035, 3.0, speed_kmh=50.0)
     r = Simulation(pulse, damper=WangSymmetric(**damper), controller=HiLo(1, mode="ACM")).run(4.0)
