@@ -231,7 +231,7 @@ def simulate_command(
         typer.Option(
             "--road-peak",
             help="pulse runs: the road acceleration peak that divides SAR_s and SAR_u: "
-            "'after-onset' (after the pulse's onset jump; matches the dissertation's tables) "
+            "'after-onset' (after the pulse's onset jump; matches the dissertation's SAR_s) "
             "or 'onset' (the largest over the record: the onset jump, 4.854x larger)",
         ),
     ] = DEFAULT_ROAD_PEAK,

@@ -147,7 +147,7 @@ class SimulationResult(Mapping[str, np.ndarray]):
         ----------
         road_peak : {"after-onset", "onset"}, optional
             Pulse runs: divide ``SAR_s`` and ``SAR_u`` by the largest ``|z_r''|`` after
-            the onset lobe (default; it matches the dissertation's tables) or over the
+            the onset lobe (default; it matches the dissertation's SAR_s) or over the
             whole record, the jump at the pulse's onset (4.854 times larger); see
             :func:`mrsuspension.measures.road_acceleration_peak`. Checked for every
             excitation, used by pulse runs only.

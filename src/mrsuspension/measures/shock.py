@@ -11,7 +11,7 @@ acceleration peak that divides ``SAR_s`` and ``SAR_u``: it has two readings, cho
     through zero at ``x = 2 - sqrt(2)`` and reaches its extremum where ``x^2 - 6x + 6 =
     0``, at ``x = 3 - sqrt(3)``: ``|z_r''| = (2 sqrt(3) - 2) e^(sqrt(3) - 3) c (mu w0)^2
     = 0.41201 c (mu w0)^2`` (:data:`AFTER_ONSET_FACTOR`). This reading matches the
-    dissertation's Tables 4.1-6.3.
+    dissertation's SAR_s in Tables 4.1-6.3 (``docs/errata.md``).
 ``"onset"``
     ``max |z_r''|`` over the whole record: for the pulse the jump from 0 to
     ``2 c (mu w0)^2`` at ``tau = 0``, 4.854 times (:data:`ONSET_TO_AFTER_ONSET`) the
@@ -189,7 +189,7 @@ def shock_ratios(
         Suspension stroke ``z_u - z_s`` [m].
     road_peak : {"after-onset", "onset"}, optional
         The road acceleration peak dividing ``SAR_s`` and ``SAR_u``: after the onset
-        lobe (default; it matches the dissertation's tables) or over the whole record,
+        lobe (default; it matches the dissertation's SAR_s) or over the whole record,
         the jump at the pulse's onset (4.854 times larger for the rounded pulse).
 
     Returns

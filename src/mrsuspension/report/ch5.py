@@ -477,12 +477,8 @@ FIGURES: tuple[FigureSpec, ...] = (
 )  # fmt: skip
 
 _WHY = (
-    "A ratio range that is narrow but far from 1 means the trend agrees and the level does "
-    "not: our SAR_s, SAR_u and RDR are lower than the dissertation's in every row, with no "
-    "established cause (the (3.41) ratios are computed as the spec prints them). "
     "Known causes: at 100 km/h the pulse keeps omega_0 proportional to speed (erratum 9); "
-    "the inverse model is the corrected (2.17) of erratum 6 with the window peak-velocity "
-    "estimator (erratum 7)."
+    "the inverse model is the corrected (2.17) of erratum 6."
 )
 
 

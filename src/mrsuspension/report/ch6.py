@@ -308,9 +308,6 @@ GIVEN: tuple[dict[float, tuple[float, ...]], ...] = (
     },
 )
 _WHY = (
-    "A ratio range that is narrow but far from 1 means the trend agrees and the level does "
-    "not: our SAR_s, SAR_u and RDR are lower than the dissertation's in every row, with no "
-    "established cause (the (3.41) ratios are computed as the spec prints them). "
     "Known causes: at 100 km/h the pulse keeps omega_0 proportional to speed (erratum 9); "
     "the sliding-mode switching sign is corrected (erratum 4) and the inverse model is the "
     "corrected (2.17) of erratum 6. The dissertation's nominal rows disagree between its "

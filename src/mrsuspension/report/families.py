@@ -877,7 +877,7 @@ def shock_table(
     sar = (
         "SAR_s and SAR_u divide by the road acceleration peak after the pulse's onset jump "
         "(road_peak 'after-onset': 0.412 c (mu omega_0)^2, c = 0.25 a_m e^2; the dissertation "
-        "does not define it and this reading matches its tables; the onset jump, 'onset', "
+        "does not define it and this reading matches its SAR_s; the onset jump, 'onset', "
         "is 4.85x larger)"
         if road_peak == "after-onset"
         else "SAR_s and SAR_u divide by the largest road acceleration, the jump at the "
@@ -894,7 +894,8 @@ def shock_table(
             f"{total * 9.81:.0f} N. Each cell: ours, the dissertation's and their ratio (DTR: "
             "the difference), coloured green within 10 %, amber within 25 %, red beyond (DTR: "
             "within 0.025, 0.05). Model/dissertation ratio over the rows: "
-            f"{', '.join(ratios)}. " + table.why
+            f"{', '.join(ratios)} (a range that is narrow but far from 1: the trend agrees, "
+            "the level does not). " + table.why
         ),
         "road_peak": road_peak,
         "rows": rows,

@@ -8,7 +8,7 @@ A study file is a scenario file (the same ``[vehicle]``, ``[damper]``, ``[contro
     excitation kind's), optionally ``scenario`` (a scenario file used as the base; the
     study's own tables override it key by key) and ``road_peak``, the road acceleration
     peak that divides ``SAR_s`` and ``SAR_u`` of pulse runs: ``"after-onset"`` (default,
-    it matches the dissertation's tables) or ``"onset"`` (see
+    it matches the dissertation's SAR_s) or ``"onset"`` (see
     :func:`mrsuspension.measures.road_acceleration_peak`).
 ``[grid]``
     Dotted scenario fields and the values to try, e.g.
