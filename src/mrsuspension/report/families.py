@@ -82,6 +82,7 @@ __all__ = [
     "in_worker",
     "make_unit",
     "markdown_index",
+    "merge_tables",
     "passive",
     "render",
     "run_unit",
@@ -146,8 +147,17 @@ def in_worker() -> bool:
     return multiprocessing.parent_process() is not None
 
 
-def _merge(base: Mapping[str, Any], variant: Mapping[str, Any]) -> dict[str, Any]:
-    """Base tables updated section by section; a variant controller with a law replaces."""
+def merge_tables(base: Mapping[str, Any], variant: Mapping[str, Any]) -> dict[str, Any]:
+    """Base tables updated section by section; a variant controller with a law replaces.
+
+    Examples
+    --------
+    >>> base = {"controller": {"law": "skyhook-hilo", "mode": "ACM"}}
+    >>> merge_tables(base, {"controller": {"gain": 1.5}})["controller"]
+    {'law': 'skyhook-hilo', 'mode': 'ACM', 'gain': 1.5}
+    >>> merge_tables(base, {"controller": {"law": "passive"}})["controller"]
+    {'law': 'passive'}
+    """
     out = copy.deepcopy(dict(base))
     for section, table in variant.items():
         if not isinstance(table, Mapping):
@@ -159,6 +169,9 @@ def _merge(base: Mapping[str, Any], variant: Mapping[str, Any]) -> dict[str, Any
         else:
             out[section] = {**out.get(section, {}), **table}
     return out
+
+
+_merge = merge_tables
 
 
 class Unit(NamedTuple):
