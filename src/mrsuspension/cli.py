@@ -85,7 +85,10 @@ VhOpt = Annotated[
 GainOpt = Annotated[float | None, typer.Option("--force-gain", help="force gain k_d (default 1)")]
 EstOpt = Annotated[
     str | None,
-    typer.Option("--estimator", help="peak-velocity estimator: window | instantaneous | known"),
+    typer.Option(
+        "--estimator",
+        help="peak-velocity estimator: cycle-rms (default) | window | instantaneous | known",
+    ),
 ]
 JsonOpt = Annotated[bool, typer.Option("--json", help="print the result as one JSON object")]
 
