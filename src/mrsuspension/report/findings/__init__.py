@@ -186,13 +186,15 @@ class Scorecard:
 
 def _status(claim: Claim, verdict: Verdict) -> tuple[str, str]:
     if claim.inconsistent:
-        note = f"dissertation inconsistent: {claim.inconsistent}"
+        note = f"Dissertation inconsistent: {claim.inconsistent}"
         if not verdict.holds:
             note += f" Not held: {verdict.why}."
+            if claim.known:
+                note += f" Suspected cause: {claim.known}."
         return "dissertation inconsistent", note
     if verdict.holds:
         return "held", ""
-    cause = claim.known or "not analysed yet"
+    cause = claim.known or "none recorded: a new failure (not in claims.KNOWN)"
     return "not held", f"{verdict.why}. Suspected cause: {cause}"
 
 

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
+from dataclasses import replace
 from typing import Any
 
 import numpy as np
@@ -68,7 +69,7 @@ from mrsuspension.report.findings.checks import (
     within,
 )
 
-__all__ = ["CLAIMS", "SKIPPED"]
+__all__ = ["CLAIMS", "KNOWN", "SKIPPED"]
 
 
 # -- the runs, named once -----------------------------------------------------------------
@@ -91,14 +92,11 @@ def _sub(runs: Mapping[str, Run], *labels: str) -> dict[str, Run]:
     return {k: runs[k] for k in labels}
 
 
-#: constant 1.5 cm amplitude over 0.5-15 Hz (Fig 4.7: "constant amplitude excitation")
-_CONSTANT_15 = {"amplitude": 0.015, "transition_frequency": 15.0}
-
 POL_T = _policies("4.4")
 POL_F = _policies("4.5")
 SKY_T = figs("4.6")  # SCM, ACM (k_c = 3, n = 2)
 SKY_H = figs("4.6", kind="history")
-SKY_F15 = figs("4.7", excitation=_CONSTANT_15)
+SKY_F15 = figs("4.7")  # constant 1.5 cm over 0.5-15 Hz (the figure's own base)
 P4_T = figs("4.8")  # passive 0 A, passive 0.1 A, skyhook hi-lo ACM
 P4_F = figs("4.9")
 P4_P = figs("4.10")
@@ -296,7 +294,7 @@ def _dtr_at_most(runs: Mapping[str, Run], nominal: str, limit: float) -> Check:
 
 
 # ---------------------------------------------------------------------------------------
-CLAIMS: tuple[Claim, ...] = (
+_CLAIMS: tuple[Claim, ...] = (
     # ---------------------------------------------------------------- 4.2 nonlinearities
     Claim(
         "4.2-hysteresis-passive",
@@ -436,9 +434,6 @@ CLAIMS: tuple[Claim, ...] = (
         "lower resonant acceleration responses",
         "Fig 4.5 (SCM): peak T_as of policy I is at most 0.85 times that of II, III and IV.",
         compare(fpeak("T_as"), _sub(POL_F, "I"), _sub(POL_F, "II", "III", "IV"), "<", CONSIDERABLY),
-        known="policy I runs away near 2.3 Hz with the window peak-velocity estimator "
-        "(v_m past the identified range feeds F_t = F0 (1 + exp(a1 v_m))): T_as about 6-7 "
-        "there; the cycle-rms estimator on main should remove it",
     ),
     Claim(
         "4.3.1-policy-i-high-frequency",
@@ -455,8 +450,6 @@ CLAIMS: tuple[Claim, ...] = (
         "highest resonant response",
         "Fig 4.5: policy IV has the highest peak T_as (0.5-4 Hz) of the four policies.",
         compare(fpeak("T_as"), _sub(POL_F, "IV"), _sub(POL_F, "I", "II", "III"), ">"),
-        known="policy I's runaway near 2.3 Hz (window estimator) lifts its T_as above IV's; "
-        "with v_m clamped to the identified range (Fig 4.5b) IV is highest",
     ),
     Claim(
         "4.3.1-dlc-i-iv",
@@ -484,11 +477,11 @@ CLAIMS: tuple[Claim, ...] = (
         "4.3.1",
         'the modulation scheme I based upon the "skyhook" damping concept [87] yields '
         "relative smooth variations in the drive current and damping force",
-        "Fig 4.4 (2.5 cm, 1.5 Hz): policy I has the smallest rms di_d/dt and rms dF_d/dt "
+        "Fig 4.4 (2.5 cm, 1.5 Hz): policy I has the smallest share of i_d and of F_d above 5 Hz "
         "of the four policies.",
         all_of(
             *(
-                compare(rms_rate(s), _sub(POL_T, "I"), _sub(POL_T, "II", "III", "IV"), "<")
+                compare(hf_fraction(s), _sub(POL_T, "I"), _sub(POL_T, "II", "III", "IV"), "<")
                 for s in ("i_d", "F_d")
             )
         ),
@@ -499,8 +492,13 @@ CLAIMS: tuple[Claim, ...] = (
         "The control scheme IV based upon modulation of current in proportion to relative "
         "deflection response causes large variations in F_d and i_d near the switching "
         "instants.",
-        "Fig 4.4: policy IV has the largest max |di_d/dt| of the four policies.",
-        compare(max_rate("i_d"), _sub(POL_T, "IV"), _sub(POL_T, "I", "II", "III"), ">"),
+        "Fig 4.4: policy IV has the largest max |di_d/dt| and max |dF_d/dt| of the four policies.",
+        all_of(
+            *(
+                compare(max_rate(s), _sub(POL_T, "IV"), _sub(POL_T, "I", "II", "III"), ">")
+                for s in ("i_d", "F_d")
+            )
+        ),
     ),
     Claim(
         "4.3.1-ii-iii-oscillation",
@@ -583,7 +581,7 @@ CLAIMS: tuple[Claim, ...] = (
     Claim(
         "4.3.2-acm-resonance-1.5cm",
         "4.3.2",
-        "the ACM damping variations cause slightly larger resonant responses in a_s and x_r, "
+        "the ACM damping variations cause slightly larger resonant responses in a_s and x_r , "
         "when compared to the SCM",
         "Fig 4.7 (constant 1.5 cm, 0.5-15 Hz): peak T_as and T_dr (0.5-4 Hz) in ACM exceed "
         "SCM's by at most 25 %.",
@@ -622,6 +620,17 @@ CLAIMS: tuple[Claim, ...] = (
                 compare(peak(s), _sub(P4_T, "passive 0 A"), _sub(P4_T, "passive 0.1 A"), ">")
                 for s in ("a_s", "a_u", "x_s", "x_r", "F_T")
             )
+        ),
+    ),
+    Claim(
+        "4.3.2-passive-current-peak",
+        "4.3.2",
+        "An increase in the passive mode damping by selecting $i_d=0.1$ A tends to reduce the "
+        "peak magnitudes considerably.",
+        "Fig 4.9: the peak T_as (0.5-4 Hz) of the passive damper at 0.1 A is at most 0.85 "
+        "times that at 0 A.",
+        compare(
+            fpeak("T_as"), _sub(P4_F, "passive 0.1 A"), _sub(P4_F, "passive 0 A"), "<", CONSIDERABLY
         ),
     ),
     Claim(
@@ -718,7 +727,7 @@ CLAIMS: tuple[Claim, ...] = (
         "Light passive damping ($i_d=0$), on the other hand, yields lower peak value of a_s , "
         "but higher peak values of x_s and considerably lower rate of decay.",
         "Fig 4.10 (5 cm pulse): passive 0 A has lower peak |a_s|, higher peak |x_s| and an "
-        "rms x_s after 1.5 s over 1/0.85 times that of passive 0.1 A.",
+        "rms x_s after 1 s over 1/0.85 times that of passive 0.1 A.",
         all_of(
             compare(peak("a_s"), _sub(P4_P, "passive 0 A"), _sub(P4_P, "passive 0.1 A"), "<"),
             compare(peak("x_s"), _sub(P4_P, "passive 0 A"), _sub(P4_P, "passive 0.1 A"), ">"),
@@ -737,7 +746,7 @@ CLAIMS: tuple[Claim, ...] = (
         "ACM damping variations can help realize the benefits of both the lower and higher "
         "passive mode damping, in limiting the peak responses and rate of decay",
         "Fig 4.10 (5 cm pulse): ACM's peak |a_s| is below passive 0.1 A's, its peak |x_s| and "
-        "rms x_s after 1.5 s below passive 0 A's.",
+        "rms x_s after 1 s below passive 0 A's.",
         all_of(
             compare(peak("a_s"), _sub(P4_P, "skyhook hi-lo ACM"), _sub(P4_P, "passive 0.1 A"), "<"),
             compare(peak("x_s"), _sub(P4_P, "skyhook hi-lo ACM"), _sub(P4_P, "passive 0 A"), "<"),
@@ -862,18 +871,16 @@ CLAIMS: tuple[Claim, ...] = (
             at_least=1.0,
             strictly_more=False,
         ),
-        known="below the body resonance the heavier car has the larger tire-force "
-        "variation in our model (DLC at 1.1 Hz 0.122 / 0.147 / 0.174 in the old tests); the "
-        "dissertation's statement may hold only from about 2 Hz up",
     ),
     Claim(
         "4.4.1-pulse-current",
         "4.4.1",
         "A lower sprung mass causes higher drive current in rebound due to higher sprung mass "
-        "velocity",
+        "velocity, as evident from the sprung mass acceleration response shown in Figure 4.14. "
+        "The peak damping force, however, varies only slightly",
         "Fig 4.14 (3.5 cm pulse): the peak drive current falls as m_s rises; the peak |F_d| "
-        "varies by at most 10 %.",
-        all_of(monotone(peak("i_d"), M4_P, "decreasing"), spread(peak("F_d"), M4_P)),
+        "varies by at most 25 % ('only slightly').",
+        all_of(monotone(peak("i_d"), M4_P, "decreasing"), spread(peak("F_d"), M4_P, SLIGHT)),
     ),
     Claim(
         "4.4.1-table-sar-s",
@@ -1091,9 +1098,6 @@ CLAIMS: tuple[Claim, ...] = (
             )
         ),
         depends_on=(ROAD,),
-        known="the presets share one spectral shape and differ only in level, so their PSDs "
-        "differ by the same factor at every frequency; the dissertation's measured roads "
-        "differ in shape",
     ),
     Claim(
         "4.4-road-dlc-levels",
@@ -1111,8 +1115,6 @@ CLAIMS: tuple[Claim, ...] = (
         ),
         depends_on=(ROAD,),
         also=("4.4.3",),
-        known="the preset roads are too smooth (near ISO class A): DLCs about 0.3 times the "
-        "dissertation's; being redefined by PSD level",
     ),
     # ---------------------------------------------------------------- 4.5.1 gain
     Claim(
@@ -1134,8 +1136,8 @@ CLAIMS: tuple[Claim, ...] = (
         "the different values of controller gain yielded only slight variations in the "
         "resonant response magnitude. This is evident from comparable magnitudes of x_s , a_s "
         ", x_r and F_T .",
-        "Fig 4.22: the spread of peak |x_s|, |a_s|, |x_r| and |F_T| over k_c is at most 10 %.",
-        all_of(*(spread(peak(s), K4_T) for s in ("x_s", "a_s", "x_r", "F_T"))),
+        "Fig 4.22: the spread of peak |x_s|, |a_s|, |x_r| and |F_T| over k_c is at most 25 % ('only slight').",
+        all_of(*(spread(peak(s), K4_T, SLIGHT) for s in ("x_s", "a_s", "x_r", "F_T"))),
         also=("4.6", "8.2"),
     ),
     Claim(
@@ -1206,10 +1208,10 @@ CLAIMS: tuple[Claim, ...] = (
         "4.5.2-order-peaks",
         "4.5.2",
         "The peak responses, however, do not show a significant influence of the controller order.",
-        "Fig 4.26: the spread of peak |x_s|, |a_s|, |x_r| and |F_T| over n is at most 10 %; "
+        "Fig 4.26: the spread of peak |x_s|, |a_s|, |x_r| and |F_T| over n is at most 25 % (no 'significant influence'); "
         "n = 3 gives peaks of |x_s|, |a_s| and |x_r| at least those of n = 2.",
         all_of(
-            *(spread(peak(s), N4_T) for s in ("x_s", "a_s", "x_r", "F_T")),
+            *(spread(peak(s), N4_T, SLIGHT) for s in ("x_s", "a_s", "x_r", "F_T")),
             *(
                 compare(peak(s), _sub(N4_T, "n = 3"), _sub(N4_T, "n = 2"), ">=")
                 for s in ("x_s", "a_s", "x_r")
@@ -1489,15 +1491,15 @@ CLAIMS: tuple[Claim, ...] = (
         'The "inverse model"-based upon mean damping force characteristics coupled with the '
         "mean force MR-damper model would yield smooth responses, but these deviate "
         "significantly from the practically realizable responses.",
-        "Fig 5.5 (ACM, k_d = 1): the mean pair's rms di_d/dt is below half the hysteretic "
+        "Fig 5.5 (ACM, k_d = 1): the mean pair's share of i_d above 5 Hz is at most 0.85 times the hysteretic "
         "pair's, and its peak |v_r| differs from theirs by more than 15 %.",
         all_of(
             compare(
-                rms_rate("i_d"),
+                hf_fraction("i_d"),
                 _sub(INV_MIX, "mean damper + mean inverse"),
                 _sub(INV_MIX, "hysteretic damper + hysteretic inverse"),
                 "<",
-                0.5,
+                CONSIDERABLY,
             ),
             compare(
                 peak("v_r"),
@@ -1672,7 +1674,7 @@ CLAIMS: tuple[Claim, ...] = (
         "and higher passive damping ($i_d=0.1$ A) yield rapid rate of decay and effectively "
         "reduce the peak amplitudes of x_s and x_r",
         "Fig 5.10 (5 cm pulse): inverse hi-lo ACM and passive 0.1 A have lower peak |x_s|, "
-        "|x_r| and rms x_s after 1.5 s than passive 0 A.",
+        "|x_r| and rms x_s after 1 s than passive 0 A.",
         all_of(
             *(
                 compare(
@@ -2066,8 +2068,6 @@ CLAIMS: tuple[Claim, ...] = (
         ),
         depends_on=(ROAD,),
         also=("5.5.3", "6.3", "6.4.3"),
-        known="the preset roads are too smooth (near ISO class A): DLCs about 0.3 times the "
-        "dissertation's; being redefined by PSD level",
     ),
     # ---------------------------------------------------------------- 6.2 sliding mode
     Claim(
@@ -2105,10 +2105,12 @@ CLAIMS: tuple[Claim, ...] = (
         "6.2",
         "The results show more smooth variations and lower magnitude transient oscillations "
         "in the drive current",
-        "Sliding mode SCM: rms di_d/dt and the peak drive current are lower at k_d = 2.5 "
+        "Sliding mode SCM: the share of i_d above 5 Hz and the peak drive current are lower at k_d = 2.5 "
         "than at k_d = 1 (peak current at most 0.85 times).",
         all_of(
-            compare(rms_rate("i_d"), _sub(SM_G, "SCM k_d = 2.5"), _sub(SM_G, "SCM k_d = 1"), "<"),
+            compare(
+                hf_fraction("i_d"), _sub(SM_G, "SCM k_d = 2.5"), _sub(SM_G, "SCM k_d = 1"), "<"
+            ),
             compare(
                 peak("i_d"),
                 _sub(SM_G, "SCM k_d = 2.5"),
@@ -2152,14 +2154,13 @@ CLAIMS: tuple[Claim, ...] = (
         "6.2",
         "The ACM control yields improved force-tracking and transient response suppression "
         "than the SCM",
-        "Sliding mode (k_d = 2.5): ACM's tracking error and rms di_d/dt are below SCM's.",
+        "Sliding mode (k_d = 2.5): ACM's tracking error and share of i_d above 5 Hz are below SCM's.",
         all_of(
             compare(TRACKING, _sub(SM_G, "ACM k_d = 2.5"), _sub(SM_G, "SCM k_d = 2.5"), "<"),
-            compare(rms_rate("i_d"), _sub(SM_G, "ACM k_d = 2.5"), _sub(SM_G, "SCM k_d = 2.5"), "<"),
+            compare(
+                hf_fraction("i_d"), _sub(SM_G, "ACM k_d = 2.5"), _sub(SM_G, "SCM k_d = 2.5"), "<"
+            ),
         ),
-        known="in the old findings tests ACM tracked worse than SCM at k_d = 2.5 (772 N "
-        "against 664 N); ACM leaves the current low in compression (p = 0), so the target is "
-        "missed there by design",
     ),
     Claim(
         "6.2-sm-vs-hilo",
@@ -2173,7 +2174,7 @@ CLAIMS: tuple[Claim, ...] = (
     Claim(
         "6.2-acm-vs-nominal-scm",
         "6.2",
-        "Peak magnitudes of x_s, x_r and a_u for ACM control ($k_d=2.5$) are considerably lower "
+        "Peak magnitudes of x_s , x_r and a_u for ACM control ($k_d=2.5$) are considerably lower "
         "than those obtained for the nominal force SCM control ($k_d=1$).",
         "Fig 6.5: peak |x_s|, |x_r| and |a_u| of ACM k_d = 2.5 at most 0.85 times those of "
         "SCM k_d = 1.",
@@ -2303,7 +2304,7 @@ CLAIMS: tuple[Claim, ...] = (
         "and higher passive damping ($i_d=0.1$ A) yield rapid rate of decay and effectively "
         "reduce the peak amplitudes of x_s and x_r",
         "Fig 6.9 (5 cm pulse): sliding mode ACM and passive 0.1 A have lower peak |x_s|, "
-        "|x_r| and rms x_s after 1.5 s than passive 0 A.",
+        "|x_r| and rms x_s after 1 s than passive 0 A.",
         all_of(
             *(
                 compare(
@@ -2335,8 +2336,8 @@ CLAIMS: tuple[Claim, ...] = (
     Claim(
         "6.4.1-harmonic-mass",
         "6.4.1",
-        "The magnitudes of the drive current ($i_d$) and the resulting sprung and unsprung "
-        "mass accelerations ($a_s$ , $a_u$) and sprung mass displacement ($x_s$), decrease "
+        "The magnitudes of the drive current (i_d) and the resulting sprung and unsprung "
+        "mass accelerations (a_s , a_u) and sprung mass displacement (x_s), decrease "
         "with increasing sprung mass.",
         "Fig 6.11 (sliding mode ACM): peak |F_d|, |x_r| and |F_T| rise with m_s; peak drive "
         "current, |a_s|, |a_u| and |x_s| fall.",
@@ -2635,8 +2636,6 @@ CLAIMS: tuple[Claim, ...] = (
         ),
         depends_on=(ROAD,),
         also=("4.4.1", "5.5.1", "6.4.1"),
-        known="DLC = std(F_T) / static load divides by the heavier car's larger weight; on "
-        "the preset roads the tire-force variation does not grow 1.5-fold with the mass",
     ),
     Claim(
         "6.5-speed-robust",
@@ -2814,3 +2813,171 @@ SKIPPED: tuple[tuple[str, str, str], ...] = (
     ),
     ("8.3", "recommendations for future work", "not a result"),
 )
+
+
+_ROAD_LEVEL = (
+    "road presets: the preset roads are too smooth (near ISO class A, DLCs about 0.3-0.5 "
+    "times the dissertation's); they are being redefined by PSD level (MODEL_SPEC 8)"
+)
+_ROAD_SLOPE = (
+    "road presets: the presets keep one n^-2 spectral shape, so a faster run or the rougher "
+    "road scales every band alike and the 100 km/h runs gain wheel-hop content; the "
+    "dissertation's ratios imply an n^-1 slope (MODEL_SPEC 8, being redefined)"
+)
+_SM_GAIN = (
+    "sliding mode demands more force than the dissertation's: the switching gain K of (3.33) "
+    "with beta = 1.25 (not given in the seed; K gains 0.25 (|F_d0| + k_s |z_s| + k_s |z_u|), "
+    "about 1 kN) saturates the current at 0.5 A where the dissertation shows 0.15 A"
+)
+_DTR_STATIC = (
+    "our DTR over the sprung mass is the static-load change alone (141 kg g / 6406 N = "
+    "0.216) for every controller: the dynamic peak tire force hardly changes with m_s in our "
+    "model, while the dissertation's differ by controller (0.13-0.29)"
+)
+
+#: Claims known not to hold in our model (the integration test expects them to fail): id ->
+#: suspected cause. Evaluated on main after the cycle-rms estimator and the (2.13) v_h
+#: default (b7802c2), quick settings. "reading:" marks a result near our reading's
+#: threshold; "road presets:" the random-road claims awaiting the new presets.
+KNOWN: dict[str, str] = {
+    "4.2-semi-active-hysteresis": "model: with the smooth CM/ADFG hi-lo modulation (xi_c = "
+    "10, n = 2) the hysteretic model adds no transients (the share of a_s and a_u above 5 Hz "
+    "is even lower); with on-off switching it does (4.2-onoff-hysteresis holds)",
+    "4.3.1-policy-i-resonance": "model: policies II and III damp the body mode as well as I "
+    "(peak T_as about 1.7-1.8 for I, II, III); the k_c = 10 relative-velocity laws reach "
+    "0.29-0.36 A, close to policy I's 0.37 A",
+    "4.3.1-dlc-i-iv": "model: policy IV's DLC is below II's and III's at only about a third "
+    "of the frequencies (I's holds); IV's current stays low (0.22 A peak)",
+    "4.3.1-policy-i-smooth": "model: policy I's current has the largest high-frequency share "
+    "(0.22 against 0.10-0.17): with k_c |z_s'|^2 the current follows the body velocity, "
+    "which carries the wheel-hop ripple",
+    "4.3.1-policy-iv-switching": "model: policy IV's F_d has the largest jumps (max dF_d/dt 8e5 "
+    "N/s) but not its current (3.1 A/s against I's 4.0 A/s); IV peaks at only 0.22 A",
+    "4.3.1-ii-iii-oscillation": "model: the relative-velocity laws II and III give the "
+    "smoothest wheel acceleration (share above 5 Hz 0.13 against I's 0.35)",
+    "4.3.1-peak-current": "model: with k_c = 3, 10, 10, 300 the peak currents at 2.5 cm / "
+    "1.5 Hz are 0.37, 0.36, 0.29, 0.22 A, not about 0.5 A; the gains were tuned for the "
+    "dissertation's response levels",
+    "4.3.2-current": "model: ACM draws 0.72 times SCM's mean current, not about half: at "
+    "v_d = 0 the ADFG multiplier is 0.5 and with xi = 4.5 it falls slowly, so compression "
+    "keeps a sizeable current",
+    "4.3.2-compression-peaks": "reading: ACM's compression peaks exceed SCM's as stated, but "
+    "by 10-44 % (x_r 44 %), more than 'slightly' (25 %)",
+    "4.3.2-acm-xs-ft": "model: ACM beats passive 0 A but not passive 0.1 A (x_s 56.9 against "
+    "54.4 mm, F_T within 1 %)",
+    "4.3.2-acm-majority": "reading: ACM's DLC is below passive 0.1 A's at exactly half of the "
+    "grid, short of a majority",
+    "4.3.2-pulse-passive": "model: the light passive damper does not decay more slowly after "
+    "the 5 cm pulse (rms x_s after 1 s 1.65 mm at 0 A, 1.94 mm at 0.1 A: the 0.1 A damper's "
+    "yield force leaves a slow creep); its peak |x_s| is only 3 % higher",
+    "4.4.1-harmonic-insensitive": "reading: peak |a_s| varies by 12 % over m_s, just above "
+    "'almost insensitive' (10 %); peak |x_s| by 9 %",
+    "4.4.1-dlc-lighter-everywhere": "model: below the body resonance the heavier car has the "
+    "larger DLC (the lighter car's is higher at about two thirds of the grid, from about 2 "
+    "Hz up)",
+    "4.4.2-road-dlc": _ROAD_SLOPE,
+    "4.4.2-road-current": _ROAD_SLOPE,
+    "4.4.3-tas-slight": "model: the peak T_as falls with the amplitude (2.41, 2.13, 1.99 for "
+    "1.5, 2.5, 3.5 cm; the MR damper's friction-like force is relatively larger at small "
+    "amplitude), where the dissertation sees a slight rise",
+    "4.4.3-tau-dlc-tdr": "model: peak T_au and DLC rise with the amplitude as stated; peak "
+    "T_dr does not (1.89, 1.60, 1.95)",
+    "4.4.3-pulse-height": "model: the peak body displacement saturates (21.4 mm at 3.5 cm, "
+    "21.2 mm at 5 cm); current, a_s and F_T rise as stated",
+    "4.4.3-road-roughness": _ROAD_SLOPE,
+    "4.4.3-road-ride-comparable": "road presets: the presets share one spectral shape and "
+    "differ only in level, so their PSDs differ by the same factor at every frequency; the "
+    "dissertation's measured roads differ in shape",
+    "4.4-road-dlc-levels": _ROAD_LEVEL,
+    "4.5.1-pulse-rebound": "model: the rebound peak force over the pulse rises with k_c "
+    "(1.5, 1.9, 2.3 kN for k_c = 0.5, 1.5, 3): the damper is not saturated in rebound at "
+    "the 3.5 cm pulse",
+    "4.5.2-order-peaks": "model: peak |x_r| grows with n by 27 % (35.6, 42.9, 46.9 mm), more "
+    "than 'no significant influence' (25 %); x_s, a_s, F_T within 17 %",
+    "4.5.2-order-3-comparable": "reading: n = 3's peak T_as is 11 % above n = 2's, just past "
+    "'comparable' (10 %); T_au, T_dr, DLC within 7 %",
+    "4.5.2-road-order": "road presets / reading: n = 1 raises the 2-20 Hz body-acceleration "
+    "PSD by 17 %, more than 'negligible' (10 %); re-check on the new presets",
+    "4.6-skyhook-best-policy": "model: policy I has the lowest mean T_as and DLC but the "
+    "policies II and III the lowest mean T_dr (0.77 against I's 0.90): I's wheel-hop stroke "
+    "is larger (4.3.1-tdr-i-iv-wheel-hop)",
+    "4.6-cm-smooths": "model: CM and ADFG cut the current's rate 20-fold, but in ACM the "
+    "share of a_u above 5 Hz is the same with xi = 4.5 and xi = 1000 (0.639 / 0.638)",
+    "5.2-relative-velocity": "reading: peak |v_r| 0.62 m/s (mean models) and 0.70 m/s "
+    "(hysteretic), each near the dissertation's 0.6 / 0.75, but 0.90 times apart, not "
+    "'considerably' (0.85)",
+    "5.2-tracking-speed": "model: the relative tracking error of inverse hi-lo at low speed "
+    "(0.75) is under twice that at high speed (0.39); the high-speed error is larger than the "
+    "dissertation suggests (saturation at i_max)",
+    "5.2-acm-compression-current": "model: the peak compression current in ACM is 0.11 A, "
+    "just above 0.1 A: the ADFG multiplier is 0.5 at v_d = 0 (xi = 10)",
+    "5.2-acm-unsprung": "model: ACM does not lower the peak wheel acceleration of inverse "
+    "hi-lo (17.2 against SCM's 16.0 m/s^2)",
+    "5.2-hysteretic-current": "model: the hysteretic models' peak rebound current is only 4 % "
+    "above the mean models' (0.448 against 0.429 A; both near i_max)",
+    "5.2-mean-models-smooth": "model: with the mean damper and inverse the current is hardly "
+    "smoother (share above 5 Hz 0.64 against 0.66) and v_r only 11 % lower",
+    "5.4-current-levels": "model: the compression current reaches 0.11 A (ADFG multiplier 0.5 "
+    "at v_d = 0); the rebound current (0.43 A) is as stated",
+    "5.4-pulse": "model: after the 5 cm pulse the controlled and 0.1 A cases do not decay "
+    "faster than passive 0 A (rms x_s after 1 s 1.96 / 1.94 against 1.65 mm); the peaks "
+    "agree",
+    "5.4-pulse-current": _SM_GAIN + " (sliding mode spends 0.61 s above 0.1 A)",
+    "5.4-road-dlc": _ROAD_LEVEL + "; on them the k_d = 2.5 laws raise the DLC above passive "
+    "0 A's (ratio 1.43 against 0.81)",
+    "5.5.1-frequency-mass": "model: the body-resonance DLC falls with m_s (0.52, 0.44, 0.37; "
+    "DLC divides by the weight) where the dissertation sees a slight rise; T_au rises as "
+    "stated",
+    "5.5.1-table-dtr": _DTR_STATIC,
+    "5.5.2-road-dlc": _ROAD_SLOPE,
+    "5.5.3-frequency-amplitude": "model: peak T_au grows 23 % with the amplitude (not "
+    "unaltered) and peak T_as is flat (1.90, 2.00, 1.98) rather than rising",
+    "5.5.3-table": "model: SDR_s falls with the pulse height (0.86, 0.80, 0.69) where Table "
+    "5.3 has it rising, and SAR_u / RDR vary by 28 % / 16 %, not under 3 %",
+    "5.5.3-road-roughness": _ROAD_SLOPE,
+    "5.4-road-dlc-levels": _ROAD_LEVEL,
+    "6.2-kd-smoother": _SM_GAIN + "; at k_d = 2.5 the current is no smoother (share above 5 "
+    "Hz 0.62 against 0.45)",
+    "6.2-acm-tracking": "model: ACM leaves the compression current low (p = 0) where the "
+    "sliding-mode target asks for force, so its tracking error (991 N) exceeds SCM's (642 N)",
+    "6.2-acm-vs-nominal-scm": "model: sliding mode SCM at k_d = 1 already has smaller peaks "
+    "(x_s 34.9 mm, a_u 8.1 m/s^2) than ACM at k_d = 2.5 (45.2 mm, 12.6 m/s^2)",
+    "6.2-frequency-kd": "model: in SCM, k_d = 2.5 lowers peak T_as by 7 % only, leaves T_dr "
+    "and raises T_au (3.33 against 2.44); the mid-range rise holds",
+    "6.3-current-levels": _SM_GAIN,
+    "6.3-ride-rattle": "model: sliding mode's peak T_dr is 0.85 times passive 0.1 A's only "
+    "narrowly missed (1.30 against 1.53 x 0.85 = 1.30)",
+    "6.3-pulse": "model: as 5.4-pulse: no faster decay than passive 0 A after the 5 cm pulse "
+    "(rms x_s after 1 s 1.85 / 1.94 against 1.65 mm)",
+    "6.3-road-dlc": _ROAD_LEVEL + "; on them both k_d = 2.5 laws exceed passive 0 A's DLC",
+    "6.4.1-harmonic-mass": _SM_GAIN + "; the current stays at the limit for every mass, so "
+    "a_s, a_u, x_s do not fall with m_s",
+    "6.4.1-frequency-mass": "model: peak T_as and T_dr are flat over m_s (spread 1-4 %), not "
+    "rising, and peak T_au is flat; DLC falls as stated",
+    "6.4.1-table": _DTR_STATIC,
+    "6.4.1-more-robust-than-hilo": "model: the peak body accelerations over the pulse are "
+    "reached in the passive compression phase, identical for both inverse-model laws, so "
+    "their SAR_s spreads tie (0.451)",
+    "6.4.3-table": "model: SDR_s falls with the pulse height (0.69, 0.60, 0.55) where Table "
+    "6.3 has it rising",
+    "6.4-nominal-rows": "the dissertation prints three different rows for one case; ours "
+    "also differ in level: SAR_s / SAR_u use the t = 0 jump of the pulse acceleration (4.85x "
+    "the after-onset peak; the SAR denominator is being changed)",
+    "6.5-rattle-space": "model: skyhook hi-lo ACM's peak T_dr (1.58) exceeds passive 0.1 A's "
+    "(1.53); the inverse-model laws' are lower",
+    "6.5-mass-dtr": _DTR_STATIC,
+    "6.5-road-dlc-mass": _ROAD_LEVEL + "; DLC = std(F_T) / static load falls with the mass "
+    "on them (ratios 0.60-0.64 against 1.54-1.61)",
+    "6.5-speed-robust": "model: inverse hi-lo, not sliding mode, has the smallest SDR_s change "
+    "(29 % against 36 %); the 100 km/h DTRs of the two inverse-model laws tie (0.348)",
+    "6.6-load-sensitivity": "model: the SAR_s spreads of the two inverse-model laws tie "
+    "(0.451, peak in the passive compression phase), skyhook's is 0.465",
+    "8.2-skyhook-vs-inverse": "model: skyhook hi-lo ACM has the lowest mean DLC, but sliding "
+    "mode a marginally lower mean T_as (0.798 against 0.804) and both inverse-model laws a "
+    "lower mean T_dr (0.62-0.64 against 0.96: skyhook's wheel-hop stroke)",
+}
+
+_unknown = sorted(set(KNOWN) - {c.id for c in _CLAIMS})
+if _unknown:  # pragma: no cover - caught by the unit tests at once
+    raise ValueError(f"KNOWN names claims that do not exist: {', '.join(_unknown)}")
+CLAIMS: tuple[Claim, ...] = tuple(replace(c, known=KNOWN.get(c.id, "")) for c in _CLAIMS)
