@@ -1343,7 +1343,7 @@ _CLAIMS: tuple[Claim, ...] = (
         also=("8.2",),
     ),
     Claim(
-        "4.6-adfg-tunable",
+        "8.2-adfg-tunable",
         "8.2",
         "The ADFG function can be easily tuned to attain desired asymmetry factor for the "
         "MR-damper force.",
