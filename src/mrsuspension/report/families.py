@@ -805,6 +805,7 @@ def build_all(
     *,
     specials: Sequence[tuple[str, Callable[..., Any], bool | None]] = (),
     calls: Mapping[str, tuple[Callable[..., Any], tuple[Any, ...]]] | None = None,
+    units: Sequence[Unit] = (),
     workers: int | None = None,
     progress: Callable[[str], None] | None = None,
 ) -> Built:
@@ -825,6 +826,9 @@ def build_all(
         themselves (``builder()`` when the third item is None).
     calls : mapping, optional
         Name -> ``(function, args)`` run in the pool too (their results under ``calls``).
+    units : sequence of Unit, optional
+        Further units to run (e.g. the findings scorecard's); their payloads join
+        ``Built.payloads``, shared with the figures' equal units.
     workers : int, optional
         Pool size (default: the CPU count); 1 runs everything in this process.
     progress : callable, optional
@@ -854,12 +858,15 @@ def build_all(
     ]
     need: dict[str, dict[str, Unit]] = {f"{sub}/{s.number}": s.units(quick) for sub, s in todo}
     table_units = {t.number: t.units(quick) for t in tables}
-    units: list[Unit] = []
+    distinct: list[Unit] = []
     for u in [u for g in need.values() for u in g.values()] + [
         u for g in table_units.values() for u in g.values()
     ]:
-        if u not in units:
-            units.append(u)
+        if u not in distinct:
+            distinct.append(u)
+    seen = set(distinct)
+    distinct += [u for u in dict.fromkeys(units) if u not in seen]
+    units = distinct
     # the longest first: frequency sweeps, then roads
     order = {"freq": 0, "psd": 1, "time": 2, "pulse": 3}
     units.sort(key=lambda u: order[u.kind])

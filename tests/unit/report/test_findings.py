@@ -190,3 +190,19 @@ def test_evaluate_reuses_given_payloads_and_reports_errors() -> None:
     assert "KeyError" in broken[claim.id].explanation
     row = card.rows()[0]
     assert (row["holds"], row["section"]) == ("yes", claim.sections)
+
+
+def test_chapters_option_accepts_findings() -> None:
+    from mrsuspension.cli import _chapters
+
+    assert _chapters("4, findings,beyond") == [4, "findings", "beyond"]
+    with pytest.raises(ValidationError, match="'findings'"):
+        _chapters("scorecard")
+
+
+def test_claims_markdown_lists_every_claim() -> None:
+    from mrsuspension.report.findings import claims_markdown
+
+    page = claims_markdown()
+    for c in CLAIMS:
+        assert f"| {c.id} | {c.sections} |" in page

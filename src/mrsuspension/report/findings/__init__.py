@@ -51,8 +51,9 @@ True
 from __future__ import annotations
 
 import time
-from collections.abc import Iterable, Mapping, Sequence
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass
+from pathlib import Path
 from typing import Any
 
 from mrsuspension.report.families import Unit
@@ -77,6 +78,7 @@ __all__ = [
     "CLAIMS",
     "CLAIMS_BY_ID",
     "CONSIDERABLY",
+    "CSV_COLUMNS",
     "INSENSITIVE",
     "ROAD",
     "SAR",
@@ -89,9 +91,13 @@ __all__ = [
     "Run",
     "Scorecard",
     "Verdict",
+    "build",
+    "claims_markdown",
     "evaluate",
+    "html_section",
     "run_payloads",
     "units",
+    "write_csv",
 ]
 
 #: Claim statuses, in table order
@@ -150,7 +156,7 @@ class Scorecard:
             "held": status.count("held"),
             "not held": status.count("not held"),
             "dissertation inconsistent": status.count("dissertation inconsistent"),
-            "inconsistent, tested reading held": sum(
+            "of which the tested reading held": sum(
                 r.status == "dissertation inconsistent" and r.holds for r in self.results
             ),
             "error": status.count("error"),
@@ -274,3 +280,160 @@ def evaluate(
         cpu_time=cpu,
         wall_time=time.perf_counter() - start,
     )
+
+
+# ---------------------------------------------------------------------------------------
+# The report section
+
+_CSS = {
+    "held": "#e3f4e1",
+    "not held": "#fbe0dd",
+    "dissertation inconsistent": "#fff1c2",
+    "error": "#e4e4e4",
+}
+#: Columns of findings.csv (and of each claim in manifest.json)
+CSV_COLUMNS: tuple[str, ...] = (
+    "id",
+    "section",
+    "claim",
+    "quote",
+    "holds",
+    "status",
+    "our numbers",
+    "explanation",
+    "depends on",
+)
+
+
+def write_csv(card: Scorecard, path: Path) -> Path:
+    """Write one row per claim (:data:`CSV_COLUMNS`) to ``path``."""
+    import csv
+
+    with path.open("w", newline="", encoding="utf-8") as fh:
+        w = csv.DictWriter(fh, fieldnames=list(CSV_COLUMNS))
+        w.writeheader()
+        w.writerows(card.rows())
+    return path
+
+
+def html_section(card: Scorecard, csv_name: str = "findings.csv") -> str:
+    """The "Findings scorecard" section: counts, then claim | section | holds? | numbers.
+
+    Examples
+    --------
+    >>> card = Scorecard([], quick=True)
+    >>> "Findings scorecard" in html_section(card)
+    True
+    """
+    import html
+
+    counts = card.counts()
+    summary = ", ".join(f"<b>{v}</b> {html.escape(k)}" for k, v in counts.items())
+    rows = []
+    for r in card.results:
+        c = r.claim
+        tags = f" <span class='meta'>[depends on {', '.join(c.depends_on)}]</span>" * bool(
+            c.depends_on
+        )
+        note = f"<br><span class='meta'>{html.escape(r.explanation)}</span>" * bool(r.explanation)
+        rows.append(
+            f"<tr style='background:{_CSS[r.status]}'>"
+            f"<td class='l'><b>{html.escape(c.id)}</b><br>{html.escape(c.claim)}<br>"
+            f"<i>&ldquo;{html.escape(c.quote)}&rdquo;</i>{tags}</td>"
+            f"<td class='l'>{html.escape(c.sections)}</td>"
+            f"<td class='l'>{'yes' if r.holds else 'no'}<br>{html.escape(r.status)}</td>"
+            f"<td class='l'>{html.escape(r.numbers)}{note}</td></tr>"
+        )
+    skipped = "".join(
+        f"<li>{html.escape(s)}: {html.escape(what)} ({html.escape(why)})</li>"
+        for s, what, why in SKIPPED
+    )
+    timing = card.timing()
+    legend = "".join(
+        f"<span style='background:{colour};padding:0 .4em'>{html.escape(status)}</span> "
+        for status, colour in _CSS.items()
+    )
+    return (
+        "<h2 id='findings'>Findings scorecard</h2>"
+        f"<p>{summary}.</p>"
+        "<p>Every qualitative claim of the dissertation's Chapters 4-6 (texts and summaries) "
+        "and of the Chapter 8 conclusions that a quarter-car simulation can test, checked "
+        "on the model (mrsuspension.report.findings; docs/report.md gives the readings of "
+        "'slightly', 'insensitive', 'considerably'). 'Dissertation inconsistent': the "
+        "dissertation contradicts itself on the claim; the row names the evidence and the "
+        "reading tested. Claims marked 'depends on road' use the preset random roads, "
+        "'sar' the shock-acceleration denominator: both are being redefined. "
+        f"{timing['distinct runs']} distinct runs ({timing['reused from the report']} shared "
+        f"with the figures), {timing['run cpu time [s]']} s of CPU for the rest. "
+        f"<a href='{html.escape(csv_name)}'>{html.escape(csv_name)}</a></p>"
+        f"<p>{legend}</p>"
+        "<table><tr><th class='l'>claim</th><th class='l'>section</th>"
+        "<th class='l'>holds?</th><th class='l'>our numbers</th></tr>"
+        + "".join(rows)
+        + "</table><h3>Not tested (no quarter-car simulation can)</h3><ul>"
+        + skipped
+        + "</ul>"
+    )
+
+
+def build(
+    folder: Path,
+    quick: bool,
+    progress: Callable[[str], None] | None = None,
+    payloads: Mapping[Unit, Payload] | None = None,
+) -> tuple[str, dict[str, Any]]:
+    """Evaluate the scorecard (reusing ``payloads``), write ``findings.csv`` into ``folder``.
+
+    Returns
+    -------
+    tuple
+        The HTML section and its manifest entry (counts, timing, every claim's row).
+    """
+    import os
+
+    say = progress or (lambda _m: None)
+    say("findings: evaluating the dissertation's claims")
+    from mrsuspension.report.families import in_worker
+
+    workers = 1 if in_worker() else (os.cpu_count() or 1)
+    card = evaluate(quick, payloads=payloads, workers=workers)
+    folder.mkdir(parents=True, exist_ok=True)
+    write_csv(card, folder / "findings.csv")
+    manifest = {
+        "file": "findings.csv",
+        "counts": card.counts(),
+        "timing": card.timing(),
+        "claims": card.rows(),
+        "skipped": [{"section": s, "claim": w, "why": y} for s, w, y in SKIPPED],
+    }
+    return html_section(card), manifest
+
+
+def claims_markdown() -> str:
+    """The claims as a Markdown table (id, sections, what is tested, depends on) and the
+    skipped ones, for ``docs/report.md`` (results change with the model: see the report).
+
+    Examples
+    --------
+    >>> "| 4.3.2-gamma | 4.3.2, 4.6 |" in claims_markdown()
+    True
+    """
+
+    def cell(text: str) -> str:
+        return text.replace("|", "\\|")
+
+    lines = [
+        f"### The {len(CLAIMS)} claims",
+        "",
+        "| Claim | Sections | Tested | Depends on |",
+        "|---|---|---|---|",
+    ]
+    lines += [
+        f"| {c.id} | {c.sections} | {cell(c.claim)}"
+        f"{' *Dissertation inconsistent.*' if c.inconsistent else ''} "
+        f"| {' '.join(c.depends_on) or '-'} |"
+        for c in CLAIMS
+    ]
+    lines += ["", f"### Not tested ({len(SKIPPED)})", ""]
+    lines += [f"- {s}: {what} ({why})." for s, what, why in SKIPPED]
+    return "\n".join(lines) + "\n"
