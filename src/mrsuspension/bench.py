@@ -1,15 +1,16 @@
 """Engine benchmarks (``mrsus bench``): figures as ratios against baselines run in the same process.
 
 Model of every timed run: the nominal quarter car with the dissertation's hysteretic
-damper (Table 2.2 low set, v_h of (2.12), 1 s window estimator) under skyhook hi-lo
+damper (Table 2.2 low set, v_h of (2.13), the 1 s ``cycle-rms`` estimator clamped to
+[1e-3, 0.75] m/s: the vehicle defaults) under skyhook hi-lo
 policy I (SCM, k_c = 3, n = 2, p_c = 0, xi_c = 10), road ``0.025 sin(2 pi 1.5 t)``.
 
 Baselines are written here in plain Python, independent of the package's kernels:
 
 * ``scipy``: :func:`scipy.integrate.solve_ivp` (RK45, rtol 1e-6, atol 1e-9) on a right-hand
-  side that evaluates the controller continuously, with ``v_m`` a 1 s window over the
-  right-hand-side calls and ``sgn(a_d)`` from the previous call (what a researcher would
-  write); ``LSODA`` likewise;
+  side that evaluates the controller continuously, with ``v_m = sqrt(2 mean(v_d^2))`` over
+  the right-hand-side calls of the last 1 s and ``sgn(a_d)`` from the previous call (what
+  a researcher would write); ``LSODA`` likewise;
 * ``python_rk4``: the engine's own algorithm (fixed-step RK4, zero-order hold of the
   controller, previous-step ``a_d``) in plain Python; it must agree with the engine to
   round-off, which the benchmark checks.
@@ -54,11 +55,10 @@ class _Plain:
     def force(self, v: float, sgn_a: float, i: float, vm: float) -> float:
         p = self.p
         ci = 1 + p["k2"] * (1 / (1 + math.exp(-p["a2"] * (i + p["I0"]))) - self.sa2)
-        h = 1 + p["k3"] * (1 / (1 + math.exp(-p["a3"] * (i + p["I1"]))) - self.sa3)
         ft = p["F0"] * (1 + math.exp(p["a1"] * vm))
         alpha = p["a0"] / (1 + p["k0"] * vm)
         kv = p["k1"] * math.exp(-p["a4"] * vm)
-        vh = sgn_a * p["k4"] * vm * h
+        vh = sgn_a * p["k4"] * vm  # (2.13), the vehicle default
         return ci * ft * math.tanh(0.5 * alpha * (v + vh)) * (1 + kv * abs(v))
 
     @staticmethod
@@ -84,25 +84,38 @@ class _Plain:
         ]
 
 
-class _Window:
+#: clamp of the estimate [m/s]: 1e-3 and the set's identified 0.75
+V_MIN, V_MAX = 1e-3, 0.75
+
+
+class _CycleRms:
+    """sqrt(2 mean(v^2)) over the last n samples, clamped (re-summed at each wrap)."""
+
     def __init__(self, n: int) -> None:
-        self.n, self.buf, self.k = n, deque[tuple[int, float]](), 0
+        self.n, self.ring, self.head, self.count, self.sum = n, [0.0] * n, 0, 0, 0.0
 
     def update(self, v: float) -> float:
-        w = abs(v)
-        while self.buf and self.buf[-1][1] <= w:
-            self.buf.pop()
-        self.buf.append((self.k, w))
-        while self.buf[0][0] <= self.k - self.n:
-            self.buf.popleft()
-        self.k += 1
-        return min(max(self.buf[0][1], 1e-3), 1.0)
+        w = v * v
+        total = self.sum + w
+        if self.count >= self.n:
+            total -= self.ring[self.head]
+        else:
+            self.count += 1
+        self.ring[self.head] = w
+        self.head += 1
+        if self.head == self.n:
+            self.head = 0
+            total = 0.0
+            for u in self.ring:
+                total += u
+        self.sum = total
+        return min(max(math.sqrt(2.0 * max(total, 0.0) / self.count), V_MIN), V_MAX)
 
 
 def python_rk4(duration: float, dt: float = 1e-4) -> np.ndarray:
     """The engine's algorithm in plain Python; returns z_s at every step."""
     m = _Plain()
-    win = _Window(round(1.0 / dt))
+    win = _CycleRms(round(1.0 / dt))
     y = [0.0, 0.0, 0.0, 0.0]
     r0 = m.rates(y, 0.0, 0.0, 1e-3, 0.0)
     ad = r0[3] - r0[1]
@@ -131,18 +144,21 @@ def scipy_baseline(duration: float, method: str = "RK45") -> tuple[np.ndarray, n
     from scipy.integrate import solve_ivp
 
     m = _Plain()
-    hist: deque[tuple[float, float]] = deque()
-    last = {"ad": 0.0}
+    hist: deque[float] = deque()
+    last = {"ad": 0.0, "sum": 0.0, "tick": -1}
 
     def rhs(t: float, y: np.ndarray) -> list[float]:
         vs, vd = y[1], y[3] - y[1]
-        w = abs(vd)
-        while hist and hist[-1][1] <= w:
-            hist.pop()
-        hist.append((t, w))
-        while hist[0][0] < t - 1.0:
-            hist.popleft()
-        vm = min(max(hist[0][1], 1e-3), 1.0)
+        # mean of v_d^2 over the last 1 s on a 0.1 ms clock: each new tick of the clock
+        # takes the latest value (calls that step back in time add nothing)
+        tick = int(t / 1e-4)
+        while last["tick"] < tick or not hist:
+            last["tick"] += 1
+            hist.append(vd * vd)
+            last["sum"] += vd * vd
+            if len(hist) > 10_000:
+                last["sum"] -= hist.popleft()
+        vm = min(max(math.sqrt(2.0 * max(last["sum"], 0.0) / len(hist)), V_MIN), V_MAX)
         ad = last["ad"]
         sgn = 1.0 if ad > 0 else (-1.0 if ad < 0 else 0.0)
         r = m.rates(list(y), t, m.current(vs, vd), vm, sgn)
@@ -214,6 +230,7 @@ def run_benchmarks(
     """
     from mrsuspension.control import HiLo, Passive, SlidingMode
     from mrsuspension.dampers import WangSymmetric
+    from mrsuspension.dampers.wang import VEHICLE_VH_VARIANT
     from mrsuspension.engine import Simulation, measures_of, run_many
     from mrsuspension.engine.simulate import road_grid
     from mrsuspension.excitation import Harmonic, log_frequencies, two_stage_amplitude
@@ -269,7 +286,9 @@ def run_benchmarks(
         Simulation(
             Harmonic(f, float(two_stage_amplitude(f, 0.025))),
             controller=c,
-            damper=WangSymmetric(force_gain=2.5 if c.needs_inverse else 1.0),
+            damper=WangSymmetric(
+                force_gain=2.5 if c.needs_inverse else 1.0, vh_variant=VEHICLE_VH_VARIANT
+            ),
         )
         for c in controllers
         for f in fs

@@ -69,8 +69,11 @@ ERRATA: tuple[Erratum, ...] = (
         7,
         "eq. (2.14)",
         "peak-velocity estimate sqrt(v^2 - a x) used in closed loop",
-        "runs away in closed loop; default estimator is the windowed peak of |v_d| over 1 s, clamped to [1e-3, 1] m/s",
-        "mrsuspension.dampers.peak_velocity.WindowPeak",
+        "runs away in closed loop, and so does a windowed peak of |v_d| (1.2-2.4x too high, "
+        "positive feedback through F_t); the default is the cycle average of (2.14), "
+        "sqrt(2 mean(v_d^2)) over 1 s ('cycle-rms'), clamped to the set's identified range "
+        "(1e-3 to 0.75 m/s)",
+        "mrsuspension.dampers.peak_velocity.CycleRms",
     ),
     Erratum(
         8,

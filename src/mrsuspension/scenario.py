@@ -46,6 +46,7 @@ from typing import Any
 import mrsuspension.engine  # noqa: F401  (first: importing control first is circular)
 from mrsuspension.control import CONTROLLERS, Controller, HiLo, make_controller
 from mrsuspension.dampers import DAMPERS, ESTIMATORS, DamperModel, make_damper
+from mrsuspension.dampers.wang import VEHICLE_VH_VARIANT
 from mrsuspension.engine.result import SimulationResult
 from mrsuspension.engine.simulate import DEFAULT_DT, Simulation, run_many
 from mrsuspension.errors import ValidationError, check_range, did_you_mean, read_toml
@@ -482,6 +483,8 @@ def _build_damper(table: dict[str, Any], base: Path) -> tuple[DamperModel, float
                 f"its keys: {', '.join(allowed)}"
             )
     options = {k: v for k, v in table.items() if k not in ("model", "parameters", "max_current")}
+    if model.startswith("wang-") and "vh_variant" not in options:
+        options["vh_variant"] = VEHICLE_VH_VARIANT  # the vehicle default (docs/errata.md)
     if "estimator" in options:
         _choice("damper", "estimator", options["estimator"], ESTIMATORS)
     parameters: str | Path | None = None

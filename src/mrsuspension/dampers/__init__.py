@@ -23,6 +23,7 @@ from typing import Any
 from mrsuspension.dampers.base import DamperKernel, DamperModel, DamperResponse, ParameterSpec
 from mrsuspension.dampers.peak_velocity import (
     ESTIMATORS,
+    CycleRms,
     InstantaneousPeak,
     KnownPeak,
     PeakVelocityEstimator,
@@ -37,6 +38,7 @@ __all__ = [
     "DAMPERS",
     "ESTIMATORS",
     "Bingham",
+    "CycleRms",
     "DamperKernel",
     "DamperModel",
     "DamperResponse",

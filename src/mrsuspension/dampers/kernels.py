@@ -89,6 +89,9 @@ EST_KNOWN = 0  # ep = [v_m]
 EST_INSTANT = 1  # ep = [v_min, v_max]; eq. (2.14), clamped
 EST_WINDOW = 2  # ep = [v_min, v_max, n_window]; peak |v_d| over the last n samples, clamped
 # window buffer layout: es = [head, count, step, values(n+1)..., step indices(n+1)...]
+EST_CYCLE_RMS = 3  # ep = [v_min, v_max, n_window]; sqrt(2 mean(v_d^2)) over the last n samples
+# cycle-rms buffer layout: es = [next slot, samples seen (<= n), running sum, v_d^2 ring(n)...]
+CR_HEAD, CR_COUNT, CR_SUM, CR_RING = 0, 1, 2, 3
 
 
 @njit(cache=True, inline="always")
@@ -460,9 +463,43 @@ def estimator_pointwise(ek: int, ep: np.ndarray, x: float, v: float, a: float) -
     """v_m of a freshly reset estimator that has seen one sample."""
     if ek == EST_KNOWN:
         return ep[0]
-    if ek == EST_INSTANT:
-        return _clamp(math.sqrt(max(v * v - a * x, 0.0)), ep[0], ep[1])  # (2.14)
-    return _clamp(abs(v), ep[0], ep[1])
+    if ek == EST_WINDOW:
+        return _clamp(abs(v), ep[0], ep[1])
+    # instantaneous: (2.14); cycle-rms: one sample of the radicand whose cycle mean it takes
+    return _clamp(math.sqrt(max(v * v - a * x, 0.0)), ep[0], ep[1])
+
+
+@njit(cache=True, inline="always")
+def _cycle_rms_update(ep: np.ndarray, es: np.ndarray, v: float) -> float:
+    """sqrt(2 mean(v_d^2)) over the last n samples (fewer at the start), clamped.
+
+    The cycle mean of (2.14)'s radicand ``v^2 - a x`` equals ``2 mean(v^2)`` for any
+    periodic motion (integrate ``a x`` by parts over a cycle), so this is the cycle average
+    of (2.14): exact for a sinusoid whatever its phase when the window is a whole number of
+    half periods, free of ``a_d`` (no loop through the damper force) and insensitive to
+    spikes. O(1) per sample: a running sum over a ring of the last n squares, summed afresh
+    each time the ring wraps (so round-off cannot accumulate).
+    """
+    n = int(ep[2])
+    head = int(es[CR_HEAD])
+    count = es[CR_COUNT]
+    w = v * v
+    total = es[CR_SUM] + w
+    if count >= n:
+        total -= es[CR_RING + head]
+    else:
+        count += 1.0
+    es[CR_RING + head] = w
+    head += 1
+    if head == n:
+        head = 0
+        total = 0.0
+        for m in range(n):
+            total += es[CR_RING + m]
+    es[CR_HEAD] = head
+    es[CR_COUNT] = count
+    es[CR_SUM] = total
+    return _clamp(math.sqrt(2.0 * max(total, 0.0) / count), ep[0], ep[1])
 
 
 @njit(cache=True, inline="always")
@@ -470,6 +507,8 @@ def estimator_update(
     ek: int, ep: np.ndarray, es: np.ndarray, x: float, v: float, a: float
 ) -> float:
     """Feed one sample to the estimator and return the new v_m."""
+    if ek == EST_CYCLE_RMS:
+        return _cycle_rms_update(ep, es, v)
     if ek != EST_WINDOW:
         return estimator_pointwise(ek, ep, x, v, a)
     # exact sliding maximum of |v| over the last n samples (monotonic deque in a ring

@@ -18,7 +18,22 @@ if TYPE_CHECKING:
     import xarray as xr
     from matplotlib.figure import Figure
 
-__all__ = ["SIGNALS", "SimulationResult"]
+__all__ = [
+    "CLAMP_WARN_FRACTION",
+    "SIGNALS",
+    "SimulationResult",
+    "VelocityClampWarning",
+    "warn_if_clamped",
+]
+
+#: Share of a record with v_m at its upper clamp above which a run warns: beyond it the
+#: force model is pinned at the edge of its identified range (spec section 2.4).
+CLAMP_WARN_FRACTION = 0.05
+
+
+class VelocityClampWarning(UserWarning):
+    """A run spent a large share of its time with v_m at the estimator's upper clamp."""
+
 
 #: Recorded signals: name -> (unit, description).
 SIGNALS: dict[str, tuple[str, str]] = {
@@ -88,6 +103,28 @@ class SimulationResult(Mapping[str, np.ndarray]):
             f"SimulationResult({self.time.size} samples, {self.time[-1]:.3g} s, controller={law!r})"
         )
 
+    # -- peak-velocity clamp (spec section 2.4) -----------------------------------------
+    @property
+    def velocity_clamp_fraction(self) -> float:
+        """Share of the record [-] with ``v_m`` at the estimator's upper clamp ``v_max``.
+
+        0 when the estimator has no clamp (``known``) or ``v_m`` was not recorded. A large
+        share means the damper model ran at the edge of its identified velocity range
+        (spec section 2.4); :meth:`Simulation.run` warns above :data:`CLAMP_WARN_FRACTION`.
+        """
+        limit = self.scenario.get("peak_velocity_limit")
+        vm = self.signals.get("v_m")
+        if limit is None or vm is None or vm.size == 0:
+            return 0.0
+        return float(np.mean(vm >= float(limit) * (1.0 - 1e-12)))
+
+    @property
+    def velocity_clamp_time(self) -> float:
+        """Time [s] the record spent with ``v_m`` at the estimator's upper clamp."""
+        if self.time.size < 2:
+            return 0.0
+        return self.velocity_clamp_fraction * float(self.time[-1] - self.time[0])
+
     # -- measures (spec section 9) ------------------------------------------------------
     def measures(self) -> dict[str, Any]:
         """The spec section 9 measures suited to the excitation, by their spec names.
@@ -97,14 +134,25 @@ class SimulationResult(Mapping[str, np.ndarray]):
         * pulse: ``SDR_s``, ``SAR_s``, ``SDR_u``, ``SAR_u``, ``RDR``, ``peak_tire_force``;
         * road: ``DLC`` (std/mean tire force), ``rms_body_acceleration``,
           ``wk_rms_body_acceleration`` (ISO 2631-1), ``vdv``, ``rms_stroke``,
-          ``mean_current``.
+          ``mean_current``;
+
+        and, for every kind, ``vm_clamp_fraction``: the share of the record with the
+        peak-velocity estimate at its upper clamp (:attr:`velocity_clamp_fraction`).
         """
-        from mrsuspension import measures as M
 
         exc = self.scenario.get("excitation", {})
         kind = exc.get("kind")
         veh = self.scenario.get("vehicle", {})
         static_load = (veh.get("sprung_mass", 563.0) + veh.get("unsprung_mass", 90.0)) * 9.81
+        out: dict[str, Any] = self._kind_measures(kind, exc, static_load)
+        out["vm_clamp_fraction"] = self.velocity_clamp_fraction
+        return out
+
+    def _kind_measures(
+        self, kind: Any, exc: Mapping[str, Any], static_load: float
+    ) -> dict[str, Any]:
+        from mrsuspension import measures as M
+
         if kind == "harmonic":
             return M.harmonic_measures(
                 self.time,
@@ -211,3 +259,20 @@ class SimulationResult(Mapping[str, np.ndarray]):
         np.atleast_1d(axes)[-1].set_xlabel("time [s]")
         fig.tight_layout()
         return fig
+
+
+def warn_if_clamped(result: SimulationResult) -> None:
+    """Warn (:class:`VelocityClampWarning`) when ``v_m`` sat at its clamp for long."""
+    share = result.velocity_clamp_fraction
+    if share > CLAMP_WARN_FRACTION:
+        import warnings
+
+        limit = result.scenario.get("peak_velocity_limit")
+        warnings.warn(
+            f"the peak-velocity estimate v_m was at its upper clamp ({limit:g} m/s) for "
+            f"{100 * share:.1f} % of the run ({result.velocity_clamp_time:.2f} s): the damper "
+            "model ran at the edge of its identified velocity range (spec section 2.4); its "
+            "forces there are an extrapolation",
+            VelocityClampWarning,
+            stacklevel=3,
+        )

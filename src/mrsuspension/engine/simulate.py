@@ -13,10 +13,11 @@ import numpy as np
 import numpy.typing as npt
 
 from mrsuspension.control import Controller, Passive
-from mrsuspension.dampers import DamperModel, PeakVelocityEstimator, WangSymmetric, WindowPeak
+from mrsuspension.dampers import CycleRms, DamperModel, PeakVelocityEstimator, WangSymmetric
 from mrsuspension.dampers import kernels as DK
+from mrsuspension.dampers.wang import VEHICLE_VH_VARIANT
 from mrsuspension.engine import kernel as EK
-from mrsuspension.engine.result import SimulationResult
+from mrsuspension.engine.result import SimulationResult, warn_if_clamped
 from mrsuspension.errors import MRSuspensionError, ValidationError, check_range
 from mrsuspension.vehicle import QuarterCar
 
@@ -86,14 +87,16 @@ class Simulation:
     vehicle : QuarterCar
         Vehicle parameters (nominal by default).
     damper : DamperModel
-        Damper model (default: the dissertation's symmetric hysteretic model).
+        Damper model (default: the dissertation's symmetric hysteretic model with the
+        vehicle default ``vh_variant="2.13"``, see
+        :data:`~mrsuspension.dampers.wang.VEHICLE_VH_VARIANT`).
     controller : Controller
         Control law (default: passive at 0 A).
     max_current : float
         Drive-current limit i_max [A] (0.5 A in simulations, 0.3 A in HiL).
     estimator : PeakVelocityEstimator, optional
         The controller's peak-velocity estimator (for the ADFG multiplier and the inverse
-        model); default: the damper's own, else the 1 s window.
+        model); default: the damper's own, else the 1 s ``cycle-rms`` (spec section 2.4).
 
     Examples
     --------
@@ -107,7 +110,9 @@ class Simulation:
 
     excitation: RoadInput
     vehicle: QuarterCar = field(default_factory=QuarterCar)
-    damper: DamperModel = field(default_factory=WangSymmetric)
+    damper: DamperModel = field(
+        default_factory=lambda: WangSymmetric(vh_variant=VEHICLE_VH_VARIANT)
+    )
     controller: Controller = field(default_factory=Passive)
     max_current: float = 0.5
     estimator: PeakVelocityEstimator | None = None
@@ -129,7 +134,7 @@ class Simulation:
         """The estimator giving the controller its v_m."""
         if self.estimator is not None:
             return self.estimator
-        return getattr(self.damper, "estimator", None) or WindowPeak()
+        return getattr(self.damper, "estimator", None) or CycleRms()
 
     def stiffness_rate(self) -> float:
         """Largest decay rate of the linearised model [1/s] (for the step-size check)."""
@@ -170,6 +175,7 @@ class Simulation:
             "excitation": self.excitation.describe(),
             "max_current": self.max_current,
             "estimator": repr(self.controller_estimator),
+            "peak_velocity_limit": getattr(self.controller_estimator, "v_max", None),
         }
 
     def kernel_arrays(self, dt: float) -> dict[str, Any]:
@@ -249,7 +255,9 @@ class Simulation:
         if status != EK.D_OK:
             raise self._diverged(status, k * dt, idx, value, dt)
         time = np.arange(rows) * (decimate * dt)
-        return self._result(time, rec, dt)
+        result = self._result(time, rec, dt)
+        warn_if_clamped(result)
+        return result
 
     def _plan(
         self, duration: float | None, dt: float, output_rate: float, check_stability: bool
@@ -291,7 +299,7 @@ class Simulation:
         return SimulationDiverged(
             f"simulation diverged at t = {t:.4f} s: {name} = {value:.3g} {unit} {what}. "
             f"Check dt (= {dt:g} s; stable limit {self.max_stable_dt():.3g} s), the damper's "
-            "peak-velocity estimator (the 'window' default cannot run away) and the inputs.",
+            "peak-velocity estimator (the 'cycle-rms' default cannot run away) and the inputs.",
             t,
             name,
             value,

@@ -441,6 +441,7 @@ def rig_emulator_command(
     import signal
 
     from mrsuspension.dampers import make_damper
+    from mrsuspension.dampers.wang import VEHICLE_VH_VARIANT
     from mrsuspension.hil.network import serve_rig
 
     def interrupt(_signum: int, _frame: Any) -> None:
@@ -457,7 +458,9 @@ def rig_emulator_command(
             raise ValidationError(
                 f"unknown --rig {rig!r} for the emulator; valid: simulated, ideal"
             )
-        model = make_damper(damper)
+        model = make_damper(
+            damper, **({"vh_variant": VEHICLE_VH_VARIANT} if damper.startswith("wang-") else {})
+        )
         served = make_rig(spec, model)
 
         def ready(bound: int) -> None:

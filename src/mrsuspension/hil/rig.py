@@ -23,6 +23,7 @@ from typing import Any, NamedTuple
 import numpy as np
 
 from mrsuspension.dampers import DamperModel, WangSymmetric
+from mrsuspension.dampers.wang import VEHICLE_VH_VARIANT
 from mrsuspension.errors import ValidationError, check_range
 from mrsuspension.hil import _kernels as RK
 
@@ -165,7 +166,7 @@ class SimulatedRig(Rig):
 
     def __post_init__(self) -> None:
         if self.damper is None:
-            self.damper = WangSymmetric()
+            self.damper = WangSymmetric(vh_variant=VEHICLE_VH_VARIANT)
         check_range("bandwidth", self.bandwidth, 0.0, None, unit="Hz")
         if self.order not in (1, 2):
             raise ValidationError(f"order must be 1 or 2; got {self.order!r}")

@@ -57,6 +57,10 @@ class ParameterSet:
         Excitation frequency range [Hz] over which the set was identified.
     max_current : float
         Highest drive current [A] the damper accepts (default 0.5 A, the damper's limit).
+    velocity_range : tuple of float, optional
+        Peak piston velocities ``v_m`` [m/s] covered by the tests the set was identified
+        from. Models that extrapolate badly in ``v_m`` (the dissertation's, through
+        ``exp(a1 v_m)``) clamp their peak-velocity estimate to its upper end.
 
     Examples
     --------
@@ -77,6 +81,7 @@ class ParameterSet:
     description: str = ""
     frequency_range: tuple[float, float] | None = None
     max_current: float = 0.5
+    velocity_range: tuple[float, float] | None = None
 
     def __post_init__(self) -> None:
         if not isinstance(self.name, str) or not self.name:
@@ -105,6 +110,19 @@ class ParameterSet:
                 f"parameter set {self.name!r}: max_current must be in (0, 10] A; "
                 f"got {self.max_current!r}"
             )
+        if self.velocity_range is not None:
+            vr = self.velocity_range
+            if (
+                not isinstance(vr, list | tuple)
+                or len(vr) != 2
+                or not all(isinstance(v, int | float) and math.isfinite(v) for v in vr)
+                or not 0 < vr[0] < vr[1]
+            ):
+                raise ValidationError(
+                    f"parameter set {self.name!r}: velocity_range must be [low, high] in m/s "
+                    f"with 0 < low < high; got {vr!r}"
+                )
+            object.__setattr__(self, "velocity_range", (float(vr[0]), float(vr[1])))
         object.__setattr__(self, "values", MappingProxyType(clean))
         object.__setattr__(self, "units", MappingProxyType(dict(self.units)))
         object.__setattr__(self, "descriptions", MappingProxyType(dict(self.descriptions)))
@@ -143,7 +161,7 @@ class ParameterSet:
             (
                 self.name, self.model, dict(self.values), dict(self.units),
                 dict(self.descriptions), self.source, self.table, self.description,
-                self.frequency_range, self.max_current,
+                self.frequency_range, self.max_current, self.velocity_range,
             ),
         )  # fmt: skip
 
@@ -165,6 +183,7 @@ class ParameterSet:
             description=self.description,
             frequency_range=self.frequency_range,
             max_current=self.max_current,
+            velocity_range=self.velocity_range,
         )
 
     def to_dict(self) -> dict[str, Any]:
@@ -179,6 +198,8 @@ class ParameterSet:
         }
         if self.frequency_range is not None:
             out["frequency_range"] = list(self.frequency_range)
+        if self.velocity_range is not None:
+            out["velocity_range"] = list(self.velocity_range)
         out["parameters"] = {
             k: {
                 "value": v,
@@ -211,7 +232,7 @@ def _from_mapping(data: Mapping[str, Any], origin: str) -> ParameterSet:
         raise ValidationError(f"{origin}: expected a table of keys at the top level")
     allowed = {
         "name", "model", "source", "table", "description", "frequency_range",
-        "max_current", "parameters",
+        "max_current", "velocity_range", "parameters",
     }  # fmt: skip
     unknown = set(data) - allowed
     if unknown:
@@ -263,6 +284,7 @@ def _from_mapping(data: Mapping[str, Any], origin: str) -> ParameterSet:
             description=str(data.get("description", "")),
             frequency_range=frange,
             max_current=data.get("max_current", 0.5),
+            velocity_range=data.get("velocity_range"),
         )
     except ValidationError as exc:
         raise ValidationError(f"{origin}: {exc}") from None
@@ -273,7 +295,8 @@ def load(path: str | Path) -> ParameterSet:
 
     The file holds ``model`` and a ``parameters`` table (``name = value`` or
     ``name = { value = ..., unit = "...", description = "..." }``), and optionally
-    ``name``, ``source``, ``table``, ``description``, ``frequency_range``, ``max_current``.
+    ``name``, ``source``, ``table``, ``description``, ``frequency_range``, ``max_current``,
+    ``velocity_range``.
 
     Examples
     --------

@@ -73,8 +73,9 @@ MEASURES: dict[str, tuple[str, ...]] = {
         "gamma",
         "mean_current",
         "mean_square_current",
+        "vm_clamp_fraction",
     ),
-    "pulse": ("SDR_s", "SAR_s", "SDR_u", "SAR_u", "RDR", "peak_tire_force"),
+    "pulse": ("SDR_s", "SAR_s", "SDR_u", "SAR_u", "RDR", "peak_tire_force", "vm_clamp_fraction"),
     "road": (
         "DLC",
         "rms_body_acceleration",
@@ -82,6 +83,7 @@ MEASURES: dict[str, tuple[str, ...]] = {
         "vdv",
         "rms_stroke",
         "mean_current",
+        "vm_clamp_fraction",
     ),
 }
 MEASURES["swept"] = MEASURES["harmonic"]

@@ -10,6 +10,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from mrsuspension.dampers import (
+    CycleRms,
     InstantaneousPeak,
     KnownPeak,
     WangSymmetric,
@@ -68,11 +69,10 @@ def test_instantaneous_is_clamped():
 
 
 # ----------------------------------------------------------------------------------
-# window (the default)
-def test_window_is_the_default():
-    model = WangSymmetric()
-    assert isinstance(model.estimator, WindowPeak)
-    assert model.estimator == WindowPeak(window=1.0, v_min=1e-3, v_max=1.0)
+# window (the old default, kept for comparison)
+def test_window_is_selectable_by_name():
+    model = WangSymmetric(estimator="window")
+    assert model.estimator == WindowPeak(window=1.0, v_min=1e-3, v_max=0.75)
 
 
 @settings(max_examples=150, deadline=None)
@@ -89,7 +89,7 @@ def test_window_is_the_default():
 )
 def test_window_kernel_is_the_sliding_maximum(values, n):
     dt = 0.01
-    kern = WangSymmetric(window=n * dt).kernel(dt)
+    kern = WangSymmetric(estimator="window", window=n * dt, v_max=1.0).kernel(dt)
     assert int(kern.estimator_params[2]) == n
     expected = brute_force_window(values, n, 1e-3, 1.0)
     got = [
@@ -110,7 +110,7 @@ def test_window_through_response_matches_brute_force(n, seed):
     v = rng.uniform(-1.3, 1.3, size) * rng.uniform(0, 1, size) ** 3  # many small values
     v[rng.integers(0, size, 50)] = 0.25  # ties
     t = np.arange(size) * dt
-    model = WangSymmetric(window=n * dt, v_min=0.02, v_max=0.9)
+    model = WangSymmetric(estimator="window", window=n * dt, v_min=0.02, v_max=0.9)
     r = model.response(t, np.zeros(size), v, np.zeros(size), 0.1)
     np.testing.assert_array_equal(r.peak_velocity, brute_force_window(v, n, 0.02, 0.9))
     # and the force uses that v_m
@@ -125,7 +125,7 @@ def test_window_through_response_matches_brute_force(n, seed):
 def test_window_longer_than_record_is_running_maximum():
     v = np.array([0.1, -0.4, 0.2, 0.3, -0.1, 0.05])
     t = np.arange(v.size) * 0.01
-    r = WangSymmetric(window=10.0).response(t, 0.0, v, 0.0, 0.0)
+    r = WangSymmetric(estimator="window", window=10.0).response(t, 0.0, v, 0.0, 0.0)
     np.testing.assert_array_equal(r.peak_velocity, [0.1, 0.4, 0.4, 0.4, 0.4, 0.4])
 
 
@@ -134,7 +134,7 @@ def test_window_forgets_after_the_window():
     v = np.zeros(300)
     v[10] = 0.8
     t = np.arange(v.size) * dt
-    r = WangSymmetric(window=1.0).response(t, 0.0, v, 0.0, 0.0)  # 100 samples
+    r = WangSymmetric(estimator="window", window=1.0, v_max=1.0).response(t, 0.0, v, 0.0, 0.0)
     assert np.all(r.peak_velocity[10:110] == 0.8)
     assert np.all(r.peak_velocity[110:] == 1e-3)  # forgotten, lower clamp
     assert np.all(r.peak_velocity[:10] == 1e-3)
@@ -147,7 +147,7 @@ def test_window_pointwise_force_uses_clamped_speed():
     assert est.pointwise(0.0, 0.0, 0.0) == 0.05
 
 
-@pytest.mark.parametrize("estimator", ["window", "instantaneous"])
+@pytest.mark.parametrize("estimator", ["window", "instantaneous", "cycle-rms"])
 def test_force_without_peak_velocity_asks_a_fresh_estimator(estimator):
     # force() without peak_velocity = force() with the one-sample estimate, clamped
     rng = np.random.default_rng(2)
@@ -256,15 +256,19 @@ def force_bound(ref, v_max: float, i_max: float) -> float:
 def test_runaway_is_impossible_with_the_default_estimator(current, wang_reference):
     ref = wang_reference("wang-symmetric-low")
     model = WangSymmetric()
-    bound = force_bound(ref, 1.0, 0.5)
+    v_max = model.estimator.v_max  # type: ignore[attr-defined]
+    bound = force_bound(ref, v_max, 0.5)
     # the bound is (up to tanh(alpha v/2) ~ 1) the force at v = v_m = v_max, i = i_max
-    at_limit = float(model.force(0.0, 1.0, 0.0, 0.5, peak_velocity=1.0))
+    at_limit = float(model.force(0.0, v_max, 0.0, 0.5, peak_velocity=v_max))
     assert at_limit == pytest.approx(bound, rel=2e-3)
     forces, peaks, speeds = wheel_on_damper(model, current, duration=0.3)
     assert np.all(np.isfinite(forces))
-    assert peaks.max() <= 1.0
-    assert speeds.max() <= 1.0  # so |v_d| <= v_m: the bound applies
-    assert np.abs(forces).max() <= bound
+    assert peaks.max() <= v_max
+    # |F_d| <= C_i F_t(v_m) (1 + k_v |v_d|) with v_m <= v_max and k_v <= k1
+    limit = float(ref.current_gain(0.5) * ref.transition_force(v_max)) * (
+        1.0 + model.values["k1"] * speeds.max()
+    )
+    assert np.abs(forces).max() <= limit
     assert np.abs(forces).max() > 1000.0  # the damper did work against the step
 
 
@@ -277,3 +281,123 @@ def test_unclamped_instantaneous_estimate_runs_away(wang_reference):
     assert peaks.max() == 5.0
     finite = forces[np.isfinite(forces)]
     assert (not np.all(np.isfinite(forces))) or np.abs(finite).max() > 1e3 * bound
+
+
+# ----------------------------------------------------------------------------------
+# cycle-rms (the default, spec section 2.4 revised 2026-11-24)
+def brute_force_cycle_rms(v, n: int, v_min: float, v_max: float) -> np.ndarray:
+    """sqrt(2 mean(v^2)) over the last n samples (fewer at the start), clamped."""
+    out = []
+    for k in range(len(v)):
+        w = np.asarray(v[max(0, k - n + 1) : k + 1], dtype=float)
+        out.append(min(max(math.sqrt(2.0 * float(np.mean(w * w))), v_min), v_max))
+    return np.array(out)
+
+
+def test_cycle_rms_is_the_default_with_the_sets_identified_range():
+    model = WangSymmetric()
+    assert isinstance(model.estimator, CycleRms)
+    assert model.parameters.velocity_range == (0.008, 0.75)
+    assert model.estimator == CycleRms(window=1.0, v_min=1e-3, v_max=0.75)
+    # a user's v_max wins; the high-frequency set carries its own range
+    assert WangSymmetric(v_max=0.9).estimator.v_max == 0.9  # type: ignore[attr-defined]
+    assert WangSymmetric("wang-symmetric-high").estimator.v_max == 0.75  # type: ignore[attr-defined]
+    assert make_estimator() == CycleRms()
+
+
+def test_a_set_without_a_velocity_range_gets_the_default_clamp():
+    from mrsuspension import parameters
+
+    pset = parameters.get("wang-symmetric-low")
+    bare = parameters.ParameterSet(name="bare", model=pset.model, values=dict(pset.values))
+    assert bare.velocity_range is None
+    assert WangSymmetric(bare).estimator.v_max == 0.75  # type: ignore[attr-defined]
+    with pytest.raises(ValidationError, match=r"velocity_range must be \[low, high\]"):
+        parameters.ParameterSet(
+            name="bad", model=pset.model, values=dict(pset.values), velocity_range=(0.5, 0.1)
+        )
+
+
+@settings(max_examples=120, deadline=None)
+@given(
+    values=st.lists(st.floats(-2.0, 2.0), min_size=1, max_size=200),
+    n=st.integers(1, 40),
+)
+def test_cycle_rms_kernel_is_the_windowed_mean_square(values, n):
+    est = CycleRms(window=n * 0.01, v_min=1e-3, v_max=1.0)
+    ep, es = est.params_for(0.01), est.buffer(0.01)
+    assert int(ep[2]) == n
+    got = [K.estimator_update(est.code, ep, es, 0.0, v, 0.0) for v in values]
+    np.testing.assert_allclose(got, brute_force_cycle_rms(values, n, 1e-3, 1.0), rtol=1e-12)
+
+
+def test_cycle_rms_does_not_drift_over_long_records():
+    # 2e5 samples of a decaying then growing signal: the running sum is re-summed each
+    # time the ring wraps, so round-off cannot accumulate
+    rng = np.random.default_rng(4)
+    n = 97
+    v = rng.normal(size=200_000) * np.geomspace(1.0, 1e-3, 200_000)
+    est = CycleRms(window=n * 1e-3, v_min=1e-9, v_max=5.0)
+    ep, es = est.params_for(1e-3), est.buffer(1e-3)
+    for u in v:
+        got = K.estimator_update(est.code, ep, es, 0.0, u, 0.0)
+    tail = v[-n:]
+    assert got == pytest.approx(math.sqrt(2.0 * float(np.mean(tail * tail))), rel=1e-9)
+
+
+@pytest.mark.parametrize("frequency", [0.5, 1.0, 1.5, 2.5, 7.0])
+@pytest.mark.parametrize("phase", [0.0, 0.7])
+def test_cycle_rms_is_exact_for_a_sinusoid_over_whole_half_periods(frequency, phase):
+    # a 1 s window holds a whole number of half periods at any multiple of 0.5 Hz
+    dt, amplitude = 1e-4, 0.01
+    t = np.arange(round(3.0 / dt)) * dt
+    v = 2 * math.pi * frequency * amplitude * np.cos(2 * math.pi * frequency * t + phase)
+    r = WangSymmetric().response(t, 0.0, v, 0.0, 0.1)
+    expected = 2 * math.pi * frequency * amplitude  # the dissertation's v_m = 2 pi f a_m
+    np.testing.assert_allclose(r.peak_velocity[t >= 1.0], expected, rtol=1e-9)
+
+
+@pytest.mark.parametrize("frequency", [0.75, 1.25, 2.9, 4.1])
+def test_cycle_rms_ripple_is_within_its_bound_between_half_periods(frequency):
+    dt, amplitude, window = 1e-4, 0.02, 1.0
+    t = np.arange(round(4.0 / dt)) * dt
+    v = 2 * math.pi * frequency * amplitude * np.sin(2 * math.pi * frequency * t)
+    r = WangSymmetric().response(t, 0.0, v, 0.0, 0.1)
+    expected = 2 * math.pi * frequency * amplitude
+    wt = 2 * math.pi * frequency * window
+    # mean of sin^2 over the window: 1/2 (1 +- |sin(wT)|/(wT)); v_m is its square root
+    bound = 1.0 - math.sqrt(1.0 - abs(math.sin(wt)) / wt)
+    err = np.abs(r.peak_velocity[t >= window] / expected - 1.0)
+    assert err.max() <= bound + 1e-6
+    assert err.max() > 0.2 * bound  # the bound is the real size of the ripple
+
+
+def test_cycle_mean_of_the_2_14_radicand_is_twice_the_mean_square_velocity():
+    # the identity behind cycle-rms, on a periodic motion with harmonics (wheel hop)
+    t = np.linspace(0.0, 1.0, 200_001)[:-1]  # one period of 1 Hz, exactly sampled
+    w = 2 * math.pi
+    x = 0.03 * np.sin(w * t) + 0.004 * np.sin(10 * w * t + 0.3) + 0.002 * np.cos(3 * w * t)
+    v = (
+        0.03 * w * np.cos(w * t)
+        + 0.04 * w * np.cos(10 * w * t + 0.3)
+        - 0.006 * w * np.sin(3 * w * t)
+    )
+    a = (
+        -0.03 * w * w * np.sin(w * t)
+        - 0.4 * w * w * np.sin(10 * w * t + 0.3)
+        - 0.018 * w * w * np.cos(3 * w * t)
+    )
+    assert float(np.mean(v * v - a * x)) == pytest.approx(2.0 * float(np.mean(v * v)), rel=1e-9)
+
+
+def test_cycle_rms_is_insensitive_to_a_spike_where_the_window_peak_is_not():
+    dt = 1e-3
+    t = np.arange(3000) * dt
+    v = 0.3 * np.sin(2 * math.pi * 1.5 * t)
+    v[2500] = 2.0  # one switching spike
+    rms = WangSymmetric().response(t, 0.0, v, 0.0, 0.1).peak_velocity
+    peak = WangSymmetric(estimator="window").response(t, 0.0, v, 0.0, 0.1).peak_velocity
+    # the spike adds its energy share of the 1000-sample window: 2 * 2.0^2 / 1000 to v_m^2
+    assert rms[2600] ** 2 == pytest.approx(0.3**2 + 2 * 2.0**2 / 1000, rel=0.02)
+    assert rms[2600] < 0.315  # +5 %
+    assert peak[2600] == 0.75  # pinned at the clamp for a whole window

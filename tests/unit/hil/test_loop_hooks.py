@@ -194,13 +194,17 @@ def test_excitation_change_cross_fades_the_road() -> None:
 
 def test_a_live_pulse_comes_after_the_change() -> None:
     sim = _sim()
-    pulse = dataclasses.replace(sim, excitation=RoundedPulse(0.05, 1.0, 50.0, delay=0.2))
+    # 3 cm (a 5 cm bump on top of the 2 cm harmonic drives the stroke past the supervisor's
+    # 1.5 m/s limit with the vehicle defaults: cycle-rms, v_h of (2.13))
+    pulse = dataclasses.replace(sim, excitation=RoundedPulse(0.03, 1.0, 50.0, delay=0.2))
     hooks = LoopHooks(settings=LateQueue(pulse, after=101), poll_every=10, ramp_time=0.1)
-    rec = _run(sim, hooks, duration=2.5).recording
+    result = _run(sim, hooks, duration=2.5)
+    assert not result.tripped, result.reason
+    rec = result.recording
     zr, t = rec["z_r"], rec["time"]
     peak = t[int(np.argmax(zr))]
     assert 1.2 < peak < 1.2 + pulse.excitation.pulse_duration  # change at 1.0 s + delay
-    assert zr.max() == pytest.approx(0.05, rel=0.05)
+    assert zr.max() == pytest.approx(0.03, rel=0.05)
 
 
 def test_bad_change_is_rejected_and_the_run_goes_on() -> None:
