@@ -23,7 +23,7 @@ Examples
 >>> float(z.acceleration(0.5))  # -a (2 pi f)^2 sin(1.5 pi)
 2.2206609...
 >>> make_excitation("road", profile="rough", speed=100.0, scale=0.5).spectrum.level
-9.75e-06
+6.75e-06
 """
 
 from __future__ import annotations

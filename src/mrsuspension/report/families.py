@@ -106,7 +106,7 @@ def road_note(name: str = "rough") -> str:
     Examples
     --------
     >>> road_note()
-    "stand-in for the dissertation's Canadian road, defined by its PSD G_d(n) = 3.9e-05 (n/0.1)^-1 m^3 over 0.011-2 cycle/m"
+    "stand-in for the dissertation's Canadian road, defined by its PSD G_d(n) = 2.7e-05 (n/0.1)^-1 m^3 over 0.011-2 cycle/m"
     """
     from mrsuspension.excitation import PRESET_ROADS
 
