@@ -85,7 +85,10 @@ VhOpt = Annotated[
 GainOpt = Annotated[float | None, typer.Option("--force-gain", help="force gain k_d (default 1)")]
 EstOpt = Annotated[
     str | None,
-    typer.Option("--estimator", help="peak-velocity estimator: window | instantaneous | known"),
+    typer.Option(
+        "--estimator",
+        help="peak-velocity estimator: cycle-rms (default) | window | instantaneous | known",
+    ),
 ]
 JsonOpt = Annotated[bool, typer.Option("--json", help="print the result as one JSON object")]
 
@@ -123,23 +126,26 @@ def _model(
 
 
 def _chapters(text: str) -> list[int | str]:
-    """``--chapters``: chapter numbers and the ``beyond`` section, comma-separated."""
+    """``--chapters``: chapter numbers and the ``findings`` / ``beyond`` sections,
+    comma-separated."""
     out: list[int | str] = []
     for item in (c.strip() for c in text.split(",")):
         if not item:
             continue
-        if item.lower() == "beyond":
-            out.append("beyond")
+        if item.lower() in ("beyond", "findings"):
+            out.append(item.lower())
             continue
         try:
             out.append(int(item))
         except ValueError:
             raise ValidationError(
-                f"--chapters: unknown chapter {item!r}; give chapter numbers (2-6) and/or "
-                "'beyond', comma-separated"
+                f"--chapters: unknown chapter {item!r}; give chapter numbers (2-6), "
+                "'findings' and/or 'beyond', comma-separated"
             ) from None
     if not out:
-        raise ValidationError("--chapters needs at least one chapter number or 'beyond'")
+        raise ValidationError(
+            "--chapters needs at least one chapter number, 'findings' or 'beyond'"
+        )
     return out
 
 
@@ -148,7 +154,7 @@ def reproduce(
     out: Annotated[Path, typer.Option("--out", "-o", help="output folder")] = Path("results"),
     chapters: Annotated[
         str | None,
-        typer.Option(help="comma-separated chapters and sections, e.g. 2,4,beyond"),
+        typer.Option(help="comma-separated chapters and sections, e.g. 2,4,findings,beyond"),
     ] = None,
     quick: Annotated[bool, typer.Option("--quick", help="coarse grids, for a fast check")] = False,
 ) -> None:

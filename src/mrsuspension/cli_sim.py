@@ -186,6 +186,24 @@ def _echo_measures(measures: Mapping[str, Any]) -> None:
         typer.echo(f"{key:>26} = {text}")
 
 
+def _clamp_note(fractions: Sequence[float | None]) -> None:
+    """Say on stderr when runs sat at the peak-velocity clamp (spec section 2.4)."""
+    from mrsuspension.engine.result import CLAMP_WARN_FRACTION
+
+    shares = [f for f in fractions if f is not None]
+    hit = [f for f in shares if f > CLAMP_WARN_FRACTION]
+    if not hit:
+        return
+    runs = "the run" if len(shares) == 1 else f"{len(hit)} of {len(shares)} runs"
+    typer.echo(
+        f"note: in {runs} the peak-velocity estimate v_m sat at its upper clamp for "
+        f"{100 * max(hit):.0f} % of the time{'' if len(shares) == 1 else ' at most'} "
+        "(vm_clamp_fraction): the damper model ran beyond its identified velocity range and "
+        "its forces there are an extrapolation (docs/damper-models.md)",
+        err=True,
+    )
+
+
 def _echo_rows(rows: Sequence[Mapping[str, Any]]) -> None:
     keys = [k for k in rows[0] if k != "amplitude"]
     typer.echo(" ".join(f"{k:>12}" for k in keys))
@@ -235,6 +253,7 @@ def simulate_command(
             payload = _clean(results[0].measures())
             if out is not None:
                 _write(out, lambda d: files.extend(_write_single(d, results[0], payload)))
+    _clamp_note([r.velocity_clamp_fraction for r in results])
     if as_json:
         typer.echo(json.dumps(payload))
         return
@@ -298,6 +317,7 @@ def sweep_command(
         files: list[Path] = []
         if out is not None:
             _write(out, lambda d: files.extend(_write_sweep(d, rows)))
+    _clamp_note([m.get("vm_clamp_fraction") for m in results])
     if as_json:
         typer.echo(json.dumps(rows))
         return

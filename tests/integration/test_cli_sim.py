@@ -181,3 +181,28 @@ def test_diverging_run_is_a_user_error(monkeypatch: pytest.MonkeyPatch) -> None:
     assert code == 2
     assert not out
     assert err.strip() == "error: simulation diverged at t = 0.6000 s: F_d = 2e+06 N"
+
+
+def test_a_run_at_the_velocity_clamp_says_so(tmp_path: Path) -> None:
+    # policy I ACM at a constant 3.5 cm and 2.3 Hz drives the damper past 0.75 m/s
+    scenario = _scenario(
+        tmp_path,
+        '[controller]\nlaw = "skyhook-hilo"\nmode = "ACM"\n'
+        '[excitation]\nkind = "harmonic"\nfrequency = 2.3\namplitude = 0.035\n'
+        "[simulation]\ndt = 2e-4\n",
+    )
+    code, out, err = _invoke("simulate", scenario, "--json")
+    assert code == 0, err
+    share = json.loads(out)["vm_clamp_fraction"]
+    assert share > 0.05
+    assert f"upper clamp for {100 * share:.0f} % of the time" in err
+    assert "Warning" not in err  # a note, not a Python warning with a file name
+    code, out, err = _invoke("sweep", scenario, "-f", "1.5,2.3", "-a", "0.045", "--json", "-j", "1")
+    assert code == 0, err
+    rows = json.loads(out)
+    assert rows[0]["vm_clamp_fraction"] == 0.0
+    assert "in 1 of 2 runs" in err
+    # within the identified range: no note
+    code, out, err = _invoke("simulate", str(SCENARIOS / "skyhook-hilo-acm-harmonic.toml"))
+    assert code == 0, err
+    assert "clamp" not in err

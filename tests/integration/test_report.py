@@ -258,3 +258,27 @@ def test_chapter_4_shock_tables(report: Path) -> None:
     # the nominal row is the DTR reference
     nominal = [r for r in tables["4.1"]["rows"] if r["m_s (kg)"] == 563.0]
     assert nominal[0]["DTR model"] == 0.0
+
+
+def test_findings_scorecard_section(report: Path) -> None:
+    """The scorecard heads the report, with its counts, a CSV and the manifest entry, and
+    reuses the figures' runs."""
+    import csv
+
+    from mrsuspension.report.findings import CLAIMS
+
+    index = (report / "index.html").read_text()
+    assert "<h2 id='findings'>Findings scorecard</h2>" in index
+    assert index.index("id='findings'") < index.index("id='ch2'")
+    info = json.loads((report / "manifest.json").read_text())["findings"]
+    counts = info["counts"]
+    assert counts["tested"] == len(CLAIMS)
+    assert counts["error"] == 0
+    assert counts["held"] + counts["not held"] + counts["dissertation inconsistent"] == len(CLAIMS)
+    assert f"<b>{counts['held']}</b> held" in index
+    assert info["timing"]["reused from the report"] > info["timing"]["distinct runs"] / 2
+    with (report / info["file"]).open(newline="") as fh:
+        rows = list(csv.DictReader(fh))
+    assert [r["id"] for r in rows] == [c.id for c in CLAIMS]
+    assert all(r["our numbers"] for r in rows)
+    assert all(r["holds"] in ("yes", "no") for r in rows)

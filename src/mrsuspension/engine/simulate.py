@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import math
 import os
+import warnings
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from typing import Any, Protocol
@@ -17,7 +18,7 @@ from mrsuspension.dampers import CycleRms, DamperModel, PeakVelocityEstimator, W
 from mrsuspension.dampers import kernels as DK
 from mrsuspension.dampers.wang import VEHICLE_VH_VARIANT
 from mrsuspension.engine import kernel as EK
-from mrsuspension.engine.result import SimulationResult, warn_if_clamped
+from mrsuspension.engine.result import SimulationResult, VelocityClampWarning, warn_if_clamped
 from mrsuspension.errors import MRSuspensionError, ValidationError, check_range
 from mrsuspension.vehicle import QuarterCar
 
@@ -475,7 +476,9 @@ def _run_one(
     args: tuple[Simulation, float | None, float, float, Callable[[SimulationResult], Any] | None],
 ) -> Any:
     sim, duration, dt, rate, reduce = args
-    result = sim.run(duration, dt=dt, output_rate=rate)
+    with warnings.catch_warnings():  # the result carries its time at the clamp
+        warnings.simplefilter("ignore", VelocityClampWarning)
+        result = sim.run(duration, dt=dt, output_rate=rate)
     return result if reduce is None else reduce(result)
 
 
@@ -531,6 +534,8 @@ def run_many(
     finish. ``workers=1`` runs in this process. ``reduce`` (a module-level function, so
     it can be sent to the workers) maps each result before it is returned, e.g.
     :func:`measures_of` for sweeps, which keeps the traffic between processes small.
+    Runs do not warn about time at the peak-velocity clamp; each result (and its
+    measures) carries it as ``vm_clamp_fraction`` for the caller to report.
 
     With ``lanes=True``, runs that differ only in their excitation (a sweep) and use the
     dissertation's damper model are stepped together in vector instructions

@@ -82,6 +82,7 @@ __all__ = [
     "in_worker",
     "make_unit",
     "markdown_index",
+    "merge_tables",
     "passive",
     "render",
     "road_note",
@@ -166,8 +167,17 @@ def in_worker() -> bool:
     return multiprocessing.parent_process() is not None
 
 
-def _merge(base: Mapping[str, Any], variant: Mapping[str, Any]) -> dict[str, Any]:
-    """Base tables updated section by section; a variant controller with a law replaces."""
+def merge_tables(base: Mapping[str, Any], variant: Mapping[str, Any]) -> dict[str, Any]:
+    """Base tables updated section by section; a variant controller with a law replaces.
+
+    Examples
+    --------
+    >>> base = {"controller": {"law": "skyhook-hilo", "mode": "ACM"}}
+    >>> merge_tables(base, {"controller": {"gain": 1.5}})["controller"]
+    {'law': 'skyhook-hilo', 'mode': 'ACM', 'gain': 1.5}
+    >>> merge_tables(base, {"controller": {"law": "passive"}})["controller"]
+    {'law': 'passive'}
+    """
     out = copy.deepcopy(dict(base))
     for section, table in variant.items():
         if not isinstance(table, Mapping):
@@ -179,6 +189,9 @@ def _merge(base: Mapping[str, Any], variant: Mapping[str, Any]) -> dict[str, Any
         else:
             out[section] = {**out.get(section, {}), **table}
     return out
+
+
+_merge = merge_tables
 
 
 class Unit(NamedTuple):
@@ -812,6 +825,7 @@ def build_all(
     *,
     specials: Sequence[tuple[str, Callable[..., Any], bool | None]] = (),
     calls: Mapping[str, tuple[Callable[..., Any], tuple[Any, ...]]] | None = None,
+    units: Sequence[Unit] = (),
     workers: int | None = None,
     progress: Callable[[str], None] | None = None,
 ) -> Built:
@@ -832,6 +846,9 @@ def build_all(
         themselves (``builder()`` when the third item is None).
     calls : mapping, optional
         Name -> ``(function, args)`` run in the pool too (their results under ``calls``).
+    units : sequence of Unit, optional
+        Further units to run (e.g. the findings scorecard's); their payloads join
+        ``Built.payloads``, shared with the figures' equal units.
     workers : int, optional
         Pool size (default: the CPU count); 1 runs everything in this process.
     progress : callable, optional
@@ -861,12 +878,15 @@ def build_all(
     ]
     need: dict[str, dict[str, Unit]] = {f"{sub}/{s.number}": s.units(quick) for sub, s in todo}
     table_units = {t.number: t.units(quick) for t in tables}
-    units: list[Unit] = []
+    distinct: list[Unit] = []
     for u in [u for g in need.values() for u in g.values()] + [
         u for g in table_units.values() for u in g.values()
     ]:
-        if u not in units:
-            units.append(u)
+        if u not in distinct:
+            distinct.append(u)
+    seen = set(distinct)
+    distinct += [u for u in dict.fromkeys(units) if u not in seen]
+    units = distinct
     # the longest first: frequency sweeps, then roads
     order = {"freq": 0, "psd": 1, "time": 2, "pulse": 3}
     units.sort(key=lambda u: order[u.kind])

@@ -358,8 +358,15 @@ _JOBS: dict[int, Callable[[bool], dict[str, Any]]] = {
 _BUILT: dict[tuple[str, bool], tuple[frozenset[int], Any]] = {}
 
 
-def _build(chapters: Iterable[int], out: Path, quick: bool, progress: Callable[[str], None]) -> Any:
-    """Run the jobs of ``chapters`` in one process pool (see families.build_all)."""
+def _build(
+    chapters: Iterable[int],
+    out: Path,
+    quick: bool,
+    progress: Callable[[str], None],
+    findings: bool = False,
+) -> Any:
+    """Run the jobs of ``chapters`` (and the findings scorecard's runs) in one process pool
+    (see families.build_all)."""
     from mrsuspension.report.families import build_all
 
     figures: dict[str, Any] = {}
@@ -375,8 +382,20 @@ def _build(chapters: Iterable[int], out: Path, quick: bool, progress: Callable[[
         calls.update(job.get("calls", {}))
     for sub in {*figures, *(s[0] for s in specials)}:
         (out / sub).mkdir(parents=True, exist_ok=True)
+    extra = []
+    if findings:
+        from mrsuspension.report import findings as scorecard
+
+        extra = scorecard.units(quick)
     built = build_all(
-        figures, tables, quick, out, specials=specials, calls=calls, progress=progress
+        figures,
+        tables,
+        quick,
+        out,
+        specials=specials,
+        calls=calls,
+        units=extra,
+        progress=progress,
     )
     _BUILT[(str(out), quick)] = (frozenset(chosen), built)
     return built
@@ -412,9 +431,10 @@ def build_report(
     ----------
     out : path
         Output folder (created). Figures go to ``out/chapterN/``.
-    chapters : iterable of int or "beyond", optional
-        Chapters to build (default: chapters 2-6 and the "beyond the
-        dissertation" section, :mod:`mrsuspension.report.beyond`).
+    chapters : iterable of int, "findings" or "beyond", optional
+        Chapters to build (default: chapters 2-6, the findings scorecard,
+        :mod:`mrsuspension.report.findings`, and the "beyond the dissertation" section,
+        :mod:`mrsuspension.report.beyond`).
     quick : bool
         Coarser grids for a fast check, PNG only (else PNG and SVG).
     progress : callable, optional
@@ -429,16 +449,19 @@ def build_report(
 
     requested = None if chapters is None else set(chapters)
     beyond = requested is None or "beyond" in requested
+    findings = requested is None or "findings" in requested
     chosen: list[int] = (
-        sorted(_CHAPTERS) if requested is None else sorted(int(c) for c in requested - {"beyond"})
+        sorted(_CHAPTERS)
+        if requested is None
+        else sorted(int(c) for c in requested - {"beyond", "findings"})
     )
     for c in chosen:
         if c not in _CHAPTERS:
             raise ValidationError(
                 f"chapter {c} is not available; available: "
-                f"{', '.join(map(str, sorted(_CHAPTERS)))}, beyond"
+                f"{', '.join(map(str, sorted(_CHAPTERS)))}, findings, beyond"
             )
-    if not chosen and not beyond:
+    if not chosen and not beyond and not findings:
         raise ValidationError("no chapters selected")
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
@@ -446,8 +469,14 @@ def build_report(
     start = time.perf_counter()
     bodies: list[str] = []
     manifest: dict[str, Any] = {"version": __version__, "chapters": {}}
-    built = _build(chosen, out, quick, say)
+    built = _build(chosen, out, quick, say, findings=findings)
     manifest["pool"] = built.timing
+    if findings:
+        from mrsuspension.report import findings as scorecard
+
+        body, info = scorecard.build(out, quick, say, payloads=built.payloads)
+        bodies.append(body)
+        manifest["findings"] = info
     for c in chosen:
         body, info = _CHAPTERS[c](out / f"chapter{c}", quick, say)
         bodies.append(body)
@@ -462,7 +491,8 @@ def build_report(
     manifest["run_time_s"] = round(elapsed, 2)
     _BUILT.pop((str(out), quick), None)
     (out / "manifest.json").write_text(json.dumps(manifest, indent=2, default=float) + "\n")
-    toc = "".join(f"<li><a href='#ch{c}'>Chapter {c}</a></li>" for c in chosen)
+    toc = "<li><a href='#findings'>Findings scorecard</a></li>" if findings else ""
+    toc += "".join(f"<li><a href='#ch{c}'>Chapter {c}</a></li>" for c in chosen)
     toc += "<li><a href='#beyond'>Beyond the dissertation</a></li>" if beyond else ""
     page = (
         "<!doctype html><html><head><meta charset='utf-8'>"

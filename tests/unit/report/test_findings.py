@@ -1,0 +1,208 @@
+"""The findings scorecard's data and checks, without simulations (synthetic payloads)."""
+
+from __future__ import annotations
+
+import os
+import re
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from mrsuspension import ValidationError
+from mrsuspension.report.findings import (
+    CLAIMS,
+    CLAIMS_BY_ID,
+    ROAD,
+    SAR,
+    SKIPPED,
+    Scorecard,
+    evaluate,
+    units,
+)
+from mrsuspension.report.findings import checks as F
+from mrsuspension.report.findings.claims import KNOWN
+
+#: the dissertation's text: MRSUS_DISSERTATION, or shared/seed/ beside the checkout
+_SEED = Path(
+    os.environ.get(
+        "MRSUS_DISSERTATION",
+        Path(__file__).resolve().parents[4] / "shared" / "seed" / "dissertation.txt",
+    )
+)
+
+
+def _norm(text: str) -> str:
+    quotes = {"\u201c": '"', "\u201d": '"', "\u2018": "'", "\u2019": "'"}
+    for a, b in quotes.items():
+        text = text.replace(a, b)
+    return re.sub(r"\s+", " ", text)
+
+
+@pytest.mark.skipif(not _SEED.exists(), reason=f"dissertation text not found at {_SEED}")
+def test_every_quote_is_verbatim() -> None:
+    text = _norm(_SEED.read_text(encoding="utf-8"))
+    missing = [c.id for c in CLAIMS if _norm(c.quote) not in text]
+    assert not missing, missing
+
+
+def test_claims_are_well_formed() -> None:
+    ids = [c.id for c in CLAIMS]
+    assert len(ids) == len(set(ids))
+    assert len(CLAIMS) >= 30
+    for c in CLAIMS:
+        assert c.id.startswith(c.section.split(".")[0]), c.id
+        for section in (c.section, *c.also):
+            assert re.fullmatch(r"[4-8](\.\d+){1,2}", section), (c.id, section)
+        assert c.check.runs, c.id
+        assert set(c.depends_on) <= {ROAD, SAR}, c.id
+        assert len(c.quote) >= 20, c.id
+        assert c.claim.endswith("."), c.id
+
+
+def test_road_claims_say_so() -> None:
+    """Every claim on a random road depends on the road presets, and only those do."""
+    for c in CLAIMS:
+        on_road = any(r.kind == "psd" for r in c.check.runs.values())
+        assert on_road == (ROAD in c.depends_on), c.id
+
+
+def test_known_failures_name_existing_claims_and_a_cause() -> None:
+    assert set(KNOWN) <= set(CLAIMS_BY_ID)
+    for claim_id, cause in KNOWN.items():
+        assert CLAIMS_BY_ID[claim_id].known == cause
+        assert len(cause) > 20, claim_id
+    assert all(len(s) == 3 and all(s) for s in SKIPPED)
+
+
+def test_runs_reuse_the_report_figures() -> None:
+    run = F.fig("4.12", "m_s = 422 kg")
+    assert run.kind == "time"
+    assert run.scenario["vehicle"] == {"sprung_mass": 422.0}
+    assert F.fig("4.5", "policy I (k_c = 3)").scenario["excitation"]["frequencies"][0] == 0.5
+    assert F.table("5.1", 703.0).scenario["controller"]["law"] == "inverse-hilo"
+    with pytest.raises(ValidationError, match="no figure"):
+        F.fig("4.5", "policy V")
+    with pytest.raises(ValidationError, match="no shock table"):
+        F.table("4.1", 500.0)
+    with pytest.raises(ValidationError, match="run kind"):
+        F.Run.of("movie", {})
+    # quick units of the claims: shared, far fewer than the references to them
+    assert len(units(quick=True)) < sum(len(c.check.runs) for c in CLAIMS) / 2
+
+
+# -- checks on synthetic payloads ---------------------------------------------------------
+_A, _B, _C = (F.Run.of("pulse", {"vehicle": {"sprung_mass": m}}) for m in (422.0, 563.0, 703.0))
+
+
+def test_compare_and_monotone() -> None:
+    m = F.SHOCK["SDR_s"]
+    check = F.compare(m, {"a": _A}, {"b": _B, "c": _C}, "<", 0.9)
+    assert check({"a": {"SDR_s": 0.5}, "b": {"SDR_s": 0.6}, "c": {"SDR_s": 0.7}}).holds
+    v = check({"a": {"SDR_s": 0.55}, "b": {"SDR_s": 0.6}, "c": {"SDR_s": 0.7}})
+    assert not v.holds
+    assert "b" in v.why
+    inc = F.monotone(m, {"a": _A, "b": _B, "c": _C})
+    assert inc({"a": {"SDR_s": 1}, "b": {"SDR_s": 2}, "c": {"SDR_s": 3}}).holds
+    assert not inc({"a": {"SDR_s": 1}, "b": {"SDR_s": 3}, "c": {"SDR_s": 2}}).holds
+    with pytest.raises(ValidationError, match="direction"):
+        F.monotone(m, {"a": _A}, "sideways")
+
+
+def test_spread_change_and_ratio() -> None:
+    m = F.SHOCK["SAR_s"]
+    runs = {"a": _A, "b": _B}
+    assert F.spread(m, runs, 0.1)({"a": {"SAR_s": 1.0}, "b": {"SAR_s": 1.05}}).holds
+    assert not F.spread(m, runs, 0.1)({"a": {"SAR_s": 1.0}, "b": {"SAR_s": 1.2}}).holds
+    change = F.change(m, ("b", _B), {"a": (_A, 0.32)})
+    assert change({"a": {"SAR_s": 1.3}, "b": {"SAR_s": 1.0}}).holds  # +30 % for +32 %
+    assert not change({"a": {"SAR_s": 0.7}, "b": {"SAR_s": 1.0}}).holds  # wrong sign
+    assert not change({"a": {"SAR_s": 1.1}, "b": {"SAR_s": 1.0}}).holds  # +10 %: too small
+    ratio = F.ratio(m, ("a", _A), ("b", _B), 0.35, 0.65)
+    assert ratio({"a": {"SAR_s": 0.5}, "b": {"SAR_s": 1.0}}).holds
+    assert not ratio({"a": {"SAR_s": 0.7}, "b": {"SAR_s": 1.0}}).holds
+
+
+def test_fraction_of_frequencies() -> None:
+    f = np.linspace(0.5, 15.0, 10)
+    lo = {"frequency": f, "T_as": np.ones(10)}
+    hi = {"frequency": f, "T_as": np.r_[np.zeros(4), 2 * np.ones(6)]}
+    runs = (F.Run.of("freq", {}), F.Run.of("freq", {"controller": {"law": "passive"}}))
+    check = F.fraction("T_as", ("x", runs[0]), {"y": runs[1]}, "<")
+    assert check({"x": lo, "y": hi}).holds  # 60 % > 50 %
+    every = F.fraction("T_as", ("x", runs[0]), {"y": runs[1]}, "<", at_least=1.0,
+                       strictly_more=False)  # fmt: skip
+    assert not every({"x": lo, "y": hi}).holds
+
+
+def test_dtr_and_rank() -> None:
+    nominal = {"peak_tire_force": 10000.0}
+    light = {"peak_tire_force": 10000.0 - 0.26 * 653.0 * 9.81}
+    check = F.dtr_values(("b", _B), {"a": (_A, 0.26)})
+    assert check({"b": nominal, "a": light}).holds
+    assert "0.26" in check({"b": nominal, "a": light}).numbers
+    metric = F.SHOCK["SDR_s"]
+    rank = F.rank(F.relative_spread(metric), "spread", {"x": {"1": _A, "2": _B},
+                  "y": {"1": _A, "2": _C}}, "x")  # fmt: skip
+    pay = {"x: 1": {"SDR_s": 1.0}, "x: 2": {"SDR_s": 1.1}, "y: 1": {"SDR_s": 1.0}}
+    assert rank({**pay, "y: 2": {"SDR_s": 1.5}}).holds
+    tie = rank({**pay, "y: 2": {"SDR_s": 1.1}})
+    assert not tie.holds
+    assert tie.why == "a tie"
+
+
+def test_all_of_rejects_one_label_for_two_runs() -> None:
+    m = F.SHOCK["SDR_s"]
+    with pytest.raises(ValidationError, match="two different runs"):
+        F.all_of(F.compare(m, {"a": _A}, {"b": _B}), F.compare(m, {"a": _C}, {"b": _B}))
+
+
+def test_history_metrics() -> None:
+    t = np.arange(0.0, 4.0, 1e-3)
+    slow = np.sin(2 * np.pi * 1.5 * t)
+    payload = {
+        "time": t,
+        "a_u": slow + 0.5 * np.sin(2 * np.pi * 10.0 * t),
+        "v_r": np.cos(2 * np.pi * 1.5 * t),
+        "F_d": 1000.0 * np.cos(2 * np.pi * 1.5 * t) + 500.0,
+    }
+    share = F.hf_fraction("a_u")(payload)
+    assert share == pytest.approx(0.5 / np.sqrt(1.25), rel=1e-3)
+    ratio = F.band_amplitude("a_u", 8, 12)(payload) / F.band_amplitude("a_u", 1.4, 1.6)(payload)
+    assert ratio == pytest.approx(0.5, rel=1e-2)
+    assert F.phase_peak("F_d", "compression")(payload) == pytest.approx(1500.0, rel=1e-6)
+    assert F.phase_peak("F_d", "rebound")(payload) == pytest.approx(500.0, rel=1e-3)
+
+
+def test_evaluate_reuses_given_payloads_and_reports_errors() -> None:
+    """A claim evaluated on a payload handed in is not run again; a broken check is an
+    error row, not an exception."""
+    claim = CLAIMS_BY_ID["4.3.2-gamma"]
+    payloads = {r.unit(quick=True): {"gamma": 2.4} for r in claim.check.runs.values()}
+    payloads[claim.check.runs["SCM"].unit(quick=True)] = {"gamma": 1.0}
+    card = evaluate(quick=True, claims=[claim], payloads=payloads)
+    assert isinstance(card, Scorecard)
+    assert (card.reused, card.runs, card.cpu_time) == (2, 2, 0.0)
+    assert card[claim.id].holds
+    assert card[claim.id].status == "held"
+    broken = evaluate(quick=True, claims=[claim], payloads={u: {} for u in payloads})
+    assert broken[claim.id].status == "error"
+    assert "KeyError" in broken[claim.id].explanation
+    row = card.rows()[0]
+    assert (row["holds"], row["section"]) == ("yes", claim.sections)
+
+
+def test_chapters_option_accepts_findings() -> None:
+    from mrsuspension.cli import _chapters
+
+    assert _chapters("4, findings,beyond") == [4, "findings", "beyond"]
+    with pytest.raises(ValidationError, match="'findings'"):
+        _chapters("scorecard")
+
+
+def test_claims_markdown_lists_every_claim() -> None:
+    from mrsuspension.report.findings import claims_markdown
+
+    page = claims_markdown()
+    for c in CLAIMS:
+        assert f"| {c.id} | {c.sections} |" in page
