@@ -8,7 +8,8 @@ kind            class                                                           
                 the two-stage amplitude :func:`two_stage_amplitude` (erratum 2)
 ``"pulse"``     :class:`RoundedPulse`, a rounded bump of height ``a``             (3.38)
 ``"road"``      :class:`RoadProfile`: a CSV file, :func:`iso8608` synthesis or a
-                :func:`preset_road` (``"smooth"``, ``"medium-rough"``, ``"rough"``)
+                :func:`preset_road` (``"smooth"``, ``"medium-rough"``, ``"rough"``;
+                each defined by a :class:`RoadSpectrum`, ``Gd(n0) (n/0.1)^-1``)
 ==============  ===============================================================  ==========
 
 Every :class:`Excitation` gives ``displacement(t)``, ``velocity(t)`` and
@@ -21,8 +22,8 @@ Examples
 >>> z = make_excitation("harmonic", frequency=1.5, amplitude=0.025)
 >>> float(z.acceleration(0.5))  # -a (2 pi f)^2 sin(1.5 pi)
 2.2206609...
->>> make_excitation("road", profile="rough", speed=100.0, scale=0.5).peak_elevation
-0.0075
+>>> make_excitation("road", profile="rough", speed=100.0, scale=0.5).spectrum.level
+6.75e-06
 """
 
 from __future__ import annotations
@@ -49,13 +50,17 @@ from mrsuspension.excitation.road import (
     ISO8608_BAND,
     ISO8608_CLASSES,
     ISO8608_N0,
+    PRESET_BAND,
     PRESET_ROADS,
+    PRESET_WAVINESS,
     PresetRoad,
     RoadProfile,
+    RoadSpectrum,
     SpatialPsd,
     iso8608,
     iso8608_psd,
     preset_road,
+    synthesise_road,
 )
 
 __all__ = [
@@ -68,7 +73,9 @@ __all__ = [
     "ISO8608_CLASSES",
     "ISO8608_N0",
     "OMEGA0_REFERENCE",
+    "PRESET_BAND",
     "PRESET_ROADS",
+    "PRESET_WAVINESS",
     "REFERENCE_SPEED_KMH",
     "TRANSITION_FREQUENCY",
     "Excitation",
@@ -76,6 +83,7 @@ __all__ = [
     "Harmonic",
     "PresetRoad",
     "RoadProfile",
+    "RoadSpectrum",
     "RoundedPulse",
     "SpatialPsd",
     "SteppedSweep",
@@ -84,6 +92,7 @@ __all__ = [
     "log_frequencies",
     "make_excitation",
     "preset_road",
+    "synthesise_road",
     "two_stage_amplitude",
 ]
 
@@ -119,7 +128,8 @@ EXCITATION_OPTIONS: dict[str, dict[str, str]] = {
     "road": {
         "profile": "preset name (smooth, medium-rough, rough) or a CSV file path",
         "iso_class": "ISO 8608 class A-H (instead of profile)",
-        "seed": "random-phase seed of the ISO 8608 synthesis, 0 by default",
+        "seed": "random-phase seed of an ISO 8608 class (0 by default) or a preset (its own "
+        "fixed seed by default; any seed gives the same PSD level)",
         "length": "ISO 8608 profile length [m], 500 by default",
         "spacing": "ISO 8608 point spacing [m], 0.3 by default",
         "speed": "vehicle speed [km/h], 50 by default",
@@ -213,7 +223,7 @@ def _make_road(options: Mapping[str, Any], base_dir: str | Path | None) -> RoadP
             "excitation 'road' needs exactly one of 'profile' (a preset name: "
             f"{', '.join(PRESET_ROADS)}; or a CSV file path) and 'iso_class' (ISO 8608 A-H)"
         )
-    iso_only = [k for k in ("seed", "length", "spacing") if k in options]
+    iso_only = [k for k in ("length", "spacing") if k in options]
     csv_only = [k for k in ("distance_unit", "elevation_unit") if k in options]
     if has_profile:
         if iso_only:
@@ -230,8 +240,12 @@ def _make_road(options: Mapping[str, Any], base_dir: str | Path | None) -> RoadP
                 raise ValidationError(
                     f"excitation 'road': {', '.join(map(repr, csv_only))} only applies to a CSV file"
                 )
-            road = preset_road(profile, speed, fade_in=fade_in)
+            road = preset_road(profile, speed, seed=options.get("seed"), fade_in=fade_in)
         else:
+            if "seed" in options:
+                raise ValidationError(
+                    "excitation 'road': 'seed' only applies with 'iso_class' or a preset profile"
+                )
             path = Path(profile)
             if base_dir is not None and not path.is_absolute():
                 path = Path(base_dir) / path

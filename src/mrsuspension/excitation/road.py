@@ -4,8 +4,10 @@ A :class:`RoadProfile` holds an elevation profile ``h(x)`` [m] over distance ``x
 and turns it into a time signal ``z_r(t) = h(x_0 + V t)`` through a C2 cubic spline, so
 the road velocity ``V h'`` and acceleration ``V^2 h''`` are exact derivatives of the
 displacement the vehicle sees. Profiles come from a measured file
-(:meth:`RoadProfile.from_csv`), from ISO 8608 synthesis (:func:`iso8608`) or from the
-three presets (:func:`preset_road`) that stand in for the dissertation's Canadian roads.
+(:meth:`RoadProfile.from_csv`), from synthesis of a power-law PSD
+(:class:`RoadSpectrum`, :func:`synthesise_road`): an ISO 8608 class (:func:`iso8608`)
+or one of the three presets (:func:`preset_road`) that stand in for the dissertation's
+Canadian roads, each defined by its PSD level.
 """
 
 from __future__ import annotations
@@ -39,13 +41,17 @@ __all__ = [
     "ISO8608_BAND",
     "ISO8608_CLASSES",
     "ISO8608_N0",
+    "PRESET_BAND",
     "PRESET_ROADS",
+    "PRESET_WAVINESS",
     "PresetRoad",
     "RoadProfile",
+    "RoadSpectrum",
     "SpatialPsd",
     "iso8608",
     "iso8608_psd",
     "preset_road",
+    "synthesise_road",
 ]
 
 #: ISO 8608 reference spatial frequency n0 [cycle/m]
@@ -159,6 +165,8 @@ class RoadProfile(Excitation):
         step. 0 (no fade, the data as given) by default.
     source : str, optional
         Where the profile comes from (a file name, a preset, an ISO 8608 class...).
+    spectrum : RoadSpectrum, optional
+        The PSD a synthesised profile was drawn from (None for measured data).
 
     Notes
     -----
@@ -184,6 +192,7 @@ class RoadProfile(Excitation):
     speed_kmh: float = REFERENCE_SPEED_KMH
     fade_in: float = 0.0
     source: str = "user data"
+    spectrum: RoadSpectrum | None = None
     _spline: CubicSpline = field(init=False, repr=False, compare=False)
     #: the spline's breakpoints and coefficients, contiguous (for :meth:`sample_grid`)
     _pp: tuple[FloatArray, FloatArray] = field(init=False, repr=False, compare=False)
@@ -208,6 +217,8 @@ class RoadProfile(Excitation):
         object.__setattr__(self, "fade_in", non_negative("fade_in", self.fade_in, "m", high=length))
         if not isinstance(self.source, str):
             raise ValidationError(f"source must be a string; got {self.source!r}")
+        if self.spectrum is not None and not isinstance(self.spectrum, RoadSpectrum):
+            raise ValidationError(f"spectrum must be a RoadSpectrum or None; got {self.spectrum!r}")
         spline = CubicSpline(distance, elevation)
         object.__setattr__(self, "_spline", spline)
         pp = (np.ascontiguousarray(spline.x), np.ascontiguousarray(spline.c))
@@ -323,9 +334,23 @@ class RoadProfile(Excitation):
         """A copy with every elevation multiplied by ``factor`` (> 0).
 
         The HiL tests drive the rough road at 50 %: ``preset_road("rough").scaled(0.5)``.
+        A synthesised profile's ``spectrum`` scales with it (``Gd(n0)`` times
+        ``factor^2``).
+
+        Examples
+        --------
+        >>> half = preset_road("rough").scaled(0.5)
+        >>> half.spectrum.level  # 2.7e-5 / 4
+        6.75e-06
         """
         k = positive("factor", factor, "", high=1e3)
-        return replace(self, elevation=self.elevation * k, source=f"{self.source}, scaled x{k:g}")
+        spectrum = None if self.spectrum is None else self.spectrum.scaled(k)
+        return replace(
+            self,
+            elevation=self.elevation * k,
+            source=f"{self.source}, scaled x{k:g}",
+            spectrum=spectrum,
+        )
 
     def with_speed(self, speed_kmh: float) -> RoadProfile:
         """The same profile driven at another speed [km/h]."""
@@ -373,9 +398,11 @@ class RoadProfile(Excitation):
         return float(np.sqrt(np.mean(self.elevation**2)))
 
     def __repr__(self) -> str:
+        psd = "" if self.spectrum is None else f", {self.spectrum.label()}"
         return (
             f"RoadProfile(source={self.source!r}, length={self.length:g} m, "
-            f"{self.distance.size} points, speed_kmh={self.speed_kmh:g})"
+            f"{self.distance.size} points, speed_kmh={self.speed_kmh:g}{psd}, "
+            f"rms {self.rms_elevation * 1e3:.3g} mm, peak {self.peak_elevation * 1e3:.3g} mm)"
         )
 
     # -- the time signal --------------------------------------------------------------
@@ -495,7 +522,11 @@ class RoadProfile(Excitation):
         return SpatialPsd(np.asarray(n, dtype=float), np.asarray(gd, dtype=float), seg)
 
     def describe(self) -> dict[str, Any]:
-        """Plain data: kind, source, speed, length, spacing, points, peak/rms elevation."""
+        """Plain data: kind, source, speed, length, spacing, points, peak/rms elevation, PSD.
+
+        ``"spectrum"`` is the synthesised profile's :meth:`RoadSpectrum.describe` (its
+        ``Gd(n0)``, waviness and band), None for measured data.
+        """
         return {
             "kind": self.name,
             "source": self.source,
@@ -507,6 +538,7 @@ class RoadProfile(Excitation):
             "rms_elevation": self.rms_elevation,
             "fade_in": self.fade_in,
             "duration": self.duration,
+            "spectrum": None if self.spectrum is None else self.spectrum.describe(),
         }
 
 
@@ -635,6 +667,211 @@ def _unit_scale(option: str, unit: str | None, header: list[str] | None, column:
     return _SCALES[unit]
 
 
+# -- power-law spectra and their synthesis ------------------------------------------------
+def _band(band: object) -> tuple[float, float]:
+    """A checked spatial-frequency band ``(n_min, n_max)`` [cycle/m]."""
+    if isinstance(band, str) or not isinstance(band, Sequence) or len(band) != 2:
+        raise ValidationError(f"band must be a pair (n_min, n_max) [cycle/m]; got {band!r}")
+    n_lo = positive("band[0]", band[0], "cycle/m", high=1e3)
+    n_hi = positive("band[1]", band[1], "cycle/m", high=1e3)
+    if n_hi <= n_lo:
+        raise ValidationError(f"band must have n_max > n_min; got {band!r}")
+    return n_lo, n_hi
+
+
+@dataclass(frozen=True)
+class RoadSpectrum:
+    """A power-law road displacement PSD ``Gd(n) = Gd(n0) (n/n0)^-w`` over a band.
+
+    ISO 8608's form (spec section 8): ISO classes have waviness ``w = 2``; the preset roads
+    have ``w = 1`` (section 8(c)). Outside ``band`` the density is zero.
+
+    Parameters
+    ----------
+    level : float
+        ``Gd(n0)`` [m^3] (m^2 per cycle/m), in (0, 1].
+    waviness : float, optional
+        Exponent ``w`` in [0, 5]; the log-log slope of ``Gd(n)`` is ``-w``. 2 by default.
+    band : (float, float), optional
+        Spatial-frequency band ``(n_min, n_max)`` [cycle/m]; ISO 8608's 0.011-2.83.
+    reference_frequency : float, optional
+        ``n0`` [cycle/m], 0.1 (ISO 8608).
+
+    Examples
+    --------
+    >>> s = RoadSpectrum(2.7e-5, waviness=1.0, band=(0.011, 2.0))
+    >>> s.density([0.1, 1.0, 3.0])  # zero outside the band
+    array([2.7e-05, 2.7e-06, 0.0e+00])
+    >>> round(s.rms_elevation * 1e3, 2)  # sqrt(Gd(n0) n0 ln(2/0.011)) [mm]
+    3.75
+    >>> s.scaled(0.5).level  # elevations x0.5: PSD x0.25
+    6.75e-06
+    """
+
+    level: float
+    waviness: float = 2.0
+    band: tuple[float, float] = ISO8608_BAND
+    reference_frequency: float = ISO8608_N0
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "level", positive("Gd(n0) level", self.level, "m^3", high=1.0))
+        object.__setattr__(self, "waviness", non_negative("waviness", self.waviness, "", high=5.0))
+        object.__setattr__(self, "band", _band(self.band))
+        object.__setattr__(
+            self,
+            "reference_frequency",
+            positive("reference_frequency", self.reference_frequency, "cycle/m", high=1e3),
+        )
+
+    def density(self, spatial_frequency: npt.ArrayLike) -> FloatArray:
+        """``Gd(n)`` [m^3] at spatial frequencies ``n`` > 0 [cycle/m] (zero outside the band)."""
+        n = check_finite("spatial_frequency", spatial_frequency)
+        if np.any(n <= 0):
+            raise ValidationError("spatial_frequency must be > 0 cycle/m")
+        gd = self.level * (n / self.reference_frequency) ** -self.waviness
+        inside = (n >= self.band[0]) & (n <= self.band[1])
+        return np.asarray(np.where(inside, gd, 0.0), dtype=float)
+
+    @property
+    def rms_elevation(self) -> float:
+        """``sqrt(integral of Gd(n) dn over the band)`` [m]: the rms of a road of this PSD."""
+        lo, hi = self.band
+        n0, w = self.reference_frequency, self.waviness
+        if w == 1.0:
+            var = self.level * n0 * math.log(hi / lo)
+        else:
+            var = self.level * n0**w * (hi ** (1.0 - w) - lo ** (1.0 - w)) / (1.0 - w)
+        return math.sqrt(var)
+
+    def scaled(self, factor: float) -> RoadSpectrum:
+        """The spectrum of the elevations times ``factor`` (> 0): ``Gd(n0)`` times ``factor^2``."""
+        k = positive("factor", factor, "", high=1e3)
+        return replace(self, level=self.level * k * k)
+
+    def describe(self) -> dict[str, Any]:
+        """Plain data: ``Gd(n0)`` [m^3], waviness, band [cycle/m], ``n0``, rms [m]."""
+        return {
+            "level": self.level,
+            "waviness": self.waviness,
+            "band": list(self.band),
+            "reference_frequency": self.reference_frequency,
+            "rms_elevation": self.rms_elevation,
+        }
+
+    def label(self) -> str:
+        """Short text: ``"Gd(n0) 2.7e-05 m^3, n^-1, 0.011-2 cycle/m"``."""
+        return (
+            f"Gd(n0) {self.level:.3g} m^3, n^-{self.waviness:g}, "
+            f"{self.band[0]:g}-{self.band[1]:.4g} cycle/m"
+        )
+
+
+def synthesise_road(
+    spectrum: RoadSpectrum,
+    length: float = 500.0,
+    spacing: float = 0.3,
+    seed: int = 0,
+    speed_kmh: float = REFERENCE_SPEED_KMH,
+    *,
+    fade_in: float = 0.0,
+    source: str | None = None,
+) -> RoadProfile:
+    """Synthesise a road of a given PSD as a sum of cosines with random phases.
+
+    ``h(x) = sum_k sqrt(2 Gd(n_k) dn) cos(2 pi n_k x + phi_k)`` over the spatial
+    frequencies ``n_k = k dn``, ``dn = 1/(N spacing)``, inside the spectrum's band and
+    below the Nyquist frequency ``1/(2 spacing)``. The phases are uniform in
+    ``[0, 2 pi)`` from ``numpy.random.default_rng(seed)``, so a seed gives the same road
+    every time. The amplitudes do not depend on the seed: the profile's variance is
+    ``sum_k Gd(n_k) dn`` and its periodogram is ``Gd(n_k)`` exactly for every seed (the
+    profile is periodic over ``N spacing``); only the phases, and so the peaks, change.
+
+    Parameters
+    ----------
+    spectrum : RoadSpectrum
+        The target PSD ``Gd(n)``.
+    length : float, optional
+        Profile length [m] (rounded down to a whole number of ``spacing``), 500 m.
+    spacing : float, optional
+        Distance between points [m], 0.3 m.
+    seed : int, optional
+        Seed of the random phases (>= 0).
+    speed_kmh : float, optional
+        Vehicle speed [km/h].
+    fade_in : float, optional
+        See :class:`RoadProfile`.
+    source : str, optional
+        The profile's label; by default the spectrum and the seed.
+
+    Returns
+    -------
+    RoadProfile
+        With ``spectrum`` set to the spectrum it holds (the band cut at the Nyquist
+        frequency).
+
+    Examples
+    --------
+    >>> road = synthesise_road(RoadSpectrum(1e-5, waviness=1.0), seed=3)
+    >>> road.spectrum.band  # ISO 8608's band, cut at the Nyquist frequency of 0.3 m
+    (0.011, 1.6666666666666667)
+    >>> a, b = road, synthesise_road(RoadSpectrum(1e-5, waviness=1.0), seed=4)
+    >>> bool(np.isclose(a.rms_elevation, b.rms_elevation, rtol=1e-12))  # level: seed-free
+    True
+    """
+    if source is not None and not isinstance(source, str):
+        raise ValidationError(f"source must be a string; got {source!r}")
+
+    def label(held: RoadSpectrum, seed: int) -> str:
+        return source or f"synthesised road, seed {seed}"
+
+    return _synthesise(spectrum, length, spacing, seed, speed_kmh, fade_in, label)
+
+
+def _synthesise(
+    spectrum: RoadSpectrum,
+    length: float,
+    spacing: float,
+    seed: int,
+    speed_kmh: float,
+    fade_in: float,
+    label: Callable[[RoadSpectrum, int], str],
+) -> RoadProfile:
+    """:func:`synthesise_road`; ``label(held spectrum, seed)`` names the profile's source."""
+    if not isinstance(spectrum, RoadSpectrum):
+        raise ValidationError(f"spectrum must be a RoadSpectrum; got {spectrum!r}")
+    L = positive("length", length, "m", high=1e6)
+    dx = positive("spacing", spacing, "m", high=L / (MIN_POINTS - 1))
+    if isinstance(seed, bool) or not isinstance(seed, int | np.integer) or seed < 0:
+        raise ValidationError(f"seed must be an integer >= 0; got {seed!r}")
+    n_lo, n_hi = spectrum.band
+    points = math.floor(L / dx + 1e-9) + 1
+    dn = 1.0 / (points * dx)
+    k = np.arange(1, (points - 1) // 2 + 1)  # strictly below the Nyquist frequency
+    n = k * dn
+    keep = (n >= n_lo) & (n <= n_hi)
+    if not np.any(keep):
+        raise ValidationError(
+            f"no spatial frequency of a {points * dx:g} m profile at {dx:g} m spacing lies in "
+            f"the band {n_lo:g}-{n_hi:g} cycle/m (resolution {dn:g}, Nyquist {0.5 / dx:g})"
+        )
+    amp = np.sqrt(2.0 * spectrum.density(n[keep]) * dn)
+    phase = np.random.default_rng(int(seed)).uniform(0.0, 2.0 * math.pi, size=int(keep.sum()))
+    coefficients = np.zeros(points // 2 + 1, dtype=complex)
+    coefficients[k[keep]] = 0.5 * points * amp * np.exp(1j * phase)
+    # the inverse real FFT is the sum of the cosines at x_j = j dx
+    elevation = np.asarray(np.fft.irfft(coefficients, n=points), dtype=np.float64)
+    distance = np.asarray(dx * np.arange(points), dtype=np.float64)
+    held = replace(spectrum, band=(n_lo, min(n_hi, 0.5 / dx)))
+    return RoadProfile(
+        distance,
+        elevation,
+        speed_kmh,
+        fade_in=fade_in,
+        source=label(held, int(seed)),
+        spectrum=held,
+    )
+
+
 # -- ISO 8608 synthesis ----------------------------------------------------------------
 def iso8608_psd(road_class: str, spatial_frequency: npt.ArrayLike) -> FloatArray:
     """ISO 8608 displacement PSD ``Gd(n) = Gd(n0) (n/n0)^-2`` [m^3] of a class (A-H).
@@ -670,15 +907,12 @@ def iso8608(
     band: tuple[float, float] = ISO8608_BAND,
     fade_in: float = 0.0,
 ) -> RoadProfile:
-    """Synthesise a road of an ISO 8608 class as a sum of cosines with random phases.
+    """Synthesise a road of an ISO 8608 class (:func:`synthesise_road` with ``w = 2``).
 
-    ``h(x) = sum_k sqrt(2 Gd(n_k) dn) cos(2 pi n_k x + phi_k)`` over the spatial
-    frequencies ``n_k = k dn``, ``dn = 1/(N spacing)``, inside ``band`` and below the
-    Nyquist frequency ``1/(2 spacing)``; ``Gd(n) = Gd(n0) (n/n0)^-2`` with ``n0 = 0.1``
-    cycle/m and the class's geometric-mean ``Gd(n0)``. The phases are uniform in
-    ``[0, 2 pi)`` from ``numpy.random.default_rng(seed)``, so a seed gives the same road
-    every time. The profile is periodic over ``N spacing``; its PSD matches ``Gd(n)``
-    in the band.
+    ``Gd(n) = Gd(n0) (n/n0)^-2`` with ``n0 = 0.1`` cycle/m and the class's geometric-mean
+    ``Gd(n0)``, synthesised as a sum of cosines with random phases from ``seed`` (see
+    :func:`synthesise_road`). The profile is periodic over its length; its PSD matches
+    ``Gd(n)`` in the band.
 
     Parameters
     ----------
@@ -704,105 +938,181 @@ def iso8608(
     (1667, 499.8)
     >>> bool(np.array_equal(road.elevation, iso8608("C", seed=7).elevation))
     True
+    >>> road.spectrum.level, road.spectrum.waviness
+    (0.000256, 2.0)
     """
     key = _road_class(road_class)
-    L = positive("length", length, "m", high=1e6)
-    dx = positive("spacing", spacing, "m", high=L / (MIN_POINTS - 1))
-    if isinstance(seed, bool) or not isinstance(seed, int | np.integer) or seed < 0:
-        raise ValidationError(f"seed must be an integer >= 0; got {seed!r}")
-    if isinstance(band, str) or not isinstance(band, Sequence) or len(band) != 2:
-        raise ValidationError(f"band must be a pair (n_min, n_max) [cycle/m]; got {band!r}")
-    n_lo = positive("band[0]", band[0], "cycle/m", high=1e3)
-    n_hi = positive("band[1]", band[1], "cycle/m", high=1e3)
-    if n_hi <= n_lo:
-        raise ValidationError(f"band must have n_max > n_min; got {band!r}")
-    points = math.floor(L / dx + 1e-9) + 1
-    dn = 1.0 / (points * dx)
-    k = np.arange(1, (points - 1) // 2 + 1)  # strictly below the Nyquist frequency
-    n = k * dn
-    keep = (n >= n_lo) & (n <= n_hi)
-    if not np.any(keep):
-        raise ValidationError(
-            f"no spatial frequency of a {points * dx:g} m profile at {dx:g} m spacing lies in "
-            f"the band {n_lo:g}-{n_hi:g} cycle/m (resolution {dn:g}, Nyquist {0.5 / dx:g})"
-        )
-    gd0 = ISO8608_CLASSES[key]
-    amp = np.sqrt(2.0 * gd0 * (n[keep] / ISO8608_N0) ** -2.0 * dn)
-    phase = np.random.default_rng(int(seed)).uniform(0.0, 2.0 * math.pi, size=int(keep.sum()))
-    spectrum = np.zeros(points // 2 + 1, dtype=complex)
-    spectrum[k[keep]] = 0.5 * points * amp * np.exp(1j * phase)
-    # the inverse real FFT is the sum of the cosines at x_j = j dx
-    elevation = np.asarray(np.fft.irfft(spectrum, n=points), dtype=np.float64)
-    distance = np.asarray(dx * np.arange(points), dtype=np.float64)
-    source = (
-        f"ISO 8608 class {key}, seed {int(seed)}, band {n_lo:g}-{min(n_hi, 0.5 / dx):g} cycle/m"
-    )
-    return RoadProfile(distance, elevation, speed_kmh, fade_in=fade_in, source=source)
+    spectrum = RoadSpectrum(ISO8608_CLASSES[key], 2.0, band)
+
+    def label(held: RoadSpectrum, seed: int) -> str:
+        lo, hi = held.band
+        return f"ISO 8608 class {key}, seed {seed}, band {lo:g}-{hi:g} cycle/m"
+
+    return _synthesise(spectrum, length, spacing, seed, speed_kmh, fade_in, label)
 
 
 # -- presets -------------------------------------------------------------------------------
+#: Waviness of the preset roads: the dissertation's DLC at 100 km/h is about 1.03 times
+#: that at 50 km/h (0.142/0.138, 0.114/0.113), which an ``n^-1`` road gives (a temporal
+#: PSD ``G(f) = Gd(f/V)/V`` independent of V); ISO's ``n^-2`` would halve it (spec 8(c)).
+PRESET_WAVINESS = 1.0
+#: The dissertation filtered its road data to 0-2 cycle/m (section 3.5.2); ISO 8608's
+#: lower band limit 0.011 cycle/m keeps the synthesis finite. At 0.3 m spacing the
+#: Nyquist frequency (1.67 cycle/m) lies inside that band and is where the content stops.
+PRESET_BAND = (ISO8608_BAND[0], 2.0)
+#: The dissertation's profiles: about 500 m at 0.3 m intervals (section 3.5.2)
+PRESET_LENGTH = 500.0
+PRESET_SPACING = 0.3
+
+
 @dataclass(frozen=True)
 class PresetRoad:
-    """Recipe of a preset road: ISO 8608 shape, fixed seed, band, scaled to a peak.
+    """Recipe of a preset road: a power-law PSD, its band, a default seed, the geometry.
 
-    The ISO class does not enter: every class has the same ``n^-2`` shape, and the
-    scaling to ``peak_elevation`` sets the level.
+    The level ``Gd(n0)`` defines the road; the seed only draws the phases, so every seed
+    gives a road of the same PSD and rms elevation (its peak varies a little).
+
+    Attributes
+    ----------
+    name : str
+        ``"smooth"``, ``"medium-rough"`` or ``"rough"``.
+    level : float
+        ``Gd(n0)`` [m^3] at ``n0 = 0.1`` cycle/m.
+    seed : int
+        Default seed of the random phases (every call gives the same road).
+    description : str
+        What the preset stands for.
+    waviness : float
+        Exponent ``w`` of ``Gd(n) = Gd(n0) (n/n0)^-w``: 1.
+    band : (float, float)
+        Spatial-frequency band [cycle/m]: 0.011-2.
+    length, spacing : float
+        Profile length and point spacing [m]: 500 and 0.3.
+
+    Examples
+    --------
+    >>> p = PRESET_ROADS["rough"]
+    >>> p.spectrum.label()
+    'Gd(n0) 2.7e-05 m^3, n^-1, 0.011-2 cycle/m'
     """
 
     name: str
-    peak_elevation: float  # m, spec section 8 / section 3.5.2
+    level: float
     seed: int
-    band: tuple[float, float]
     description: str
+    waviness: float = PRESET_WAVINESS
+    band: tuple[float, float] = PRESET_BAND
+    length: float = PRESET_LENGTH
+    spacing: float = PRESET_SPACING
+
+    @property
+    def spectrum(self) -> RoadSpectrum:
+        """The target PSD (:class:`RoadSpectrum`)."""
+        return RoadSpectrum(self.level, self.waviness, self.band)
+
+    def profile(
+        self,
+        speed_kmh: float = REFERENCE_SPEED_KMH,
+        *,
+        seed: int | None = None,
+        fade_in: float = 0.0,
+    ) -> RoadProfile:
+        """The preset's road (see :func:`preset_road`)."""
+        s = self.seed if seed is None else seed
+
+        def label(held: RoadSpectrum, seed: int) -> str:
+            return f"preset {self.name!r} (stand-in for the dissertation's road), seed {seed}"
+
+        return _synthesise(self.spectrum, self.length, self.spacing, s, speed_kmh, fade_in, label)
+
+    @property
+    def rms_elevation(self) -> float:
+        """RMS elevation [m] of the preset road (the same for every seed)."""
+        return self.profile().rms_elevation
+
+    @property
+    def peak_elevation(self) -> float:
+        """Largest ``|elevation|`` [m] of the road drawn with the default seed."""
+        return self.profile().peak_elevation
+
+    def describe(self) -> dict[str, Any]:
+        """Plain data: the recipe, plus the realised rms and peak elevation [m]."""
+        road = self.profile()
+        return {
+            "name": self.name,
+            "level": self.level,
+            "waviness": self.waviness,
+            "band": list(self.band),
+            "seed": self.seed,
+            "length": road.length,
+            "spacing": self.spacing,
+            "rms_elevation": road.rms_elevation,
+            "peak_elevation": road.peak_elevation,
+            "description": self.description,
+        }
 
 
-#: The dissertation filtered its road data to the 0-2 cycle/m band (section 3.5.2);
-#: ISO 8608's lower band limit 0.011 cycle/m keeps the synthesis finite. At 0.3 m
-#: spacing the Nyquist frequency (1.67 cycle/m) already lies inside that band.
-_PRESET_BAND = (ISO8608_BAND[0], 2.0)
-
+#: The presets, by name. ``Gd(n0)`` of "rough" and "medium-rough" tuned against the
+#: dissertation's DLCs (spec section 8; docs/excitations-and-measures.md, "Presets"):
+#: rough 50 km/h, 30 s, cycle-rms estimator: passive 0.1 A 0.114 (0.111), passive 0 A
+#: 0.137 (0.139), skyhook ACM 0.136 (0.138), inverse hi-lo 0.115 (0.113), sliding mode
+#: 0.117 (0.112); medium-rough: skyhook 0.045 (0.045), inverse hi-lo 0.055 (0.056),
+#: sliding mode 0.056 (0.054). The spec's starting values were 3.9e-5 and 9.7e-6 m^3
+#: (DLCs 1.20-1.25x and 1.3-1.6x too high). "smooth" has no DLC to tune against: it keeps
+#: the spec's 2.8e-6 m^3, whose road peaks at 4.0 mm like the dissertation's.
 PRESET_ROADS: dict[str, PresetRoad] = {
     p.name: p
     for p in (
-        PresetRoad("smooth", 0.004, 86081, _PRESET_BAND, "stand-in for the smooth Canadian road"),
-        PresetRoad("medium-rough", 0.0075, 86082, _PRESET_BAND, "stand-in for the medium-rough Canadian road"),
-        PresetRoad("rough", 0.015, 86083, _PRESET_BAND, "stand-in for the rough Canadian road"),
+        PresetRoad("smooth", 2.8e-6, 86081, "stand-in for the smooth Canadian road"),
+        PresetRoad("medium-rough", 4.2e-6, 86082, "stand-in for the medium-rough Canadian road"),
+        PresetRoad("rough", 2.7e-5, 86083, "stand-in for the rough Canadian road"),
     )
 }  # fmt: skip
 
 
 def preset_road(
-    name: str, speed_kmh: float = REFERENCE_SPEED_KMH, *, fade_in: float = 0.0
+    name: str,
+    speed_kmh: float = REFERENCE_SPEED_KMH,
+    *,
+    seed: int | None = None,
+    fade_in: float = 0.0,
 ) -> RoadProfile:
     """One of the three preset roads, ``"smooth"``, ``"medium-rough"`` or ``"rough"``.
 
     **Stand-ins**: the dissertation's measured Canadian road profiles (section 3.5.2) are
-    not available. Each preset is a 500 m profile at 0.3 m spacing synthesised with
-    :func:`iso8608` (fixed seed, the ISO ``n^-2`` spectral shape) in the 0.011-2 cycle/m
-    band, then scaled so that its peak ``|elevation|`` is the dissertation's: 4, 7.5 and
-    15 mm. Only the peak matches the dissertation; the spectra are ISO 8608 shapes, not
-    the measured ones. The resulting levels are ``Gd(n0)`` = 1.9e-6, 6.1e-6 and
-    1.8e-5 m^3 (ISO class A or smoother; rms elevation 1.3, 2.3 and 4.1 mm). Every call
-    returns the same profile bit for bit.
+    not available. Each preset is defined by its PSD, ``Gd(n) = Gd(n0) (n/0.1)^-1`` over
+    0.011-2 cycle/m (spec section 8(c)), and synthesised by :func:`synthesise_road` as a
+    500 m profile at 0.3 m spacing (content up to the 1.67 cycle/m Nyquist frequency).
+    ``Gd(n0)`` is 2.8e-6, 4.2e-6 and 2.7e-5 m^3 (rough and medium-rough tuned against the
+    dissertation's DLCs, see :data:`PRESET_ROADS`); rms elevation 1.19, 1.45 and 3.68 mm
+    for any seed, peak 4.0, 5.1 and 15.7 mm with the default seeds (the dissertation's
+    peaks: about 4, 7.5 and 15 mm).
+
+    Parameters
+    ----------
+    name : str
+        The preset.
+    speed_kmh : float, optional
+        Vehicle speed [km/h], 50 by default.
+    seed : int, optional
+        Seed of the random phases; the preset's own fixed seed by default (every call
+        then returns the same profile bit for bit). Another seed gives another road of
+        the same PSD level.
+    fade_in : float, optional
+        See :class:`RoadProfile`.
 
     Examples
     --------
     >>> road = preset_road("rough")
-    >>> round(road.peak_elevation, 6), road.distance.size, road.spacing
-    (0.015, 1667, 0.3)
+    >>> road.distance.size, road.spacing, road.spectrum.level
+    (1667, 0.3, 2.7e-05)
+    >>> round(road.rms_elevation * 1e3, 2), round(road.peak_elevation * 1e3, 1)  # mm
+    (3.68, 15.7)
+    >>> round(preset_road("rough", seed=1).rms_elevation * 1e3, 2)  # same level
+    3.68
     >>> preset_road("medium-rough", speed_kmh=100.0).duration
     17.9928
     """
     if not isinstance(name, str) or name not in PRESET_ROADS:
         raise unknown_name("preset road", str(name), PRESET_ROADS)
-    p = PRESET_ROADS[name]
-    base = iso8608("A", 500.0, 0.3, p.seed, speed_kmh, band=p.band)  # shape only
-    elevation = base.elevation * (p.peak_elevation / base.peak_elevation)
-    return RoadProfile(
-        base.distance,
-        elevation,
-        speed_kmh,
-        fade_in=fade_in,
-        source=f"preset {name!r} (stand-in: ISO 8608 shape, seed {p.seed}, scaled to a "
-        f"{p.peak_elevation * 1e3:g} mm peak)",
-    )
+    return PRESET_ROADS[name].profile(speed_kmh, seed=seed, fade_in=fade_in)

@@ -15,7 +15,8 @@ shock (rounded pulse)       :func:`shock_ratios`, :func:`road_acceleration_peak`
 random road                 :func:`psd` (Welch, 512 Hz, 8192, Hann, 50 %),
                             :func:`dlc` (mean load), :func:`rms`
 ISO 2631-1 (beyond seed)    :func:`wk_weighting`, :func:`wk_filter`,
-                            :func:`weighted_rms`, :func:`vdv`
+                            :func:`weighted_rms`, :func:`vdv`,
+                            :func:`wk_response`
 ==========================  =====================================================
 
 Examples
@@ -34,9 +35,11 @@ from __future__ import annotations
 from mrsuspension.measures._checks import Window
 from mrsuspension.measures.iso2631 import (
     WK_CONSTANTS,
+    WK_FILTER_RATE,
     vdv,
     weighted_rms,
     wk_filter,
+    wk_response,
     wk_sos,
     wk_weighting,
 )
@@ -80,6 +83,7 @@ __all__ = [
     "PSD_NPERSEG",
     "ROAD_PEAKS",
     "WK_CONSTANTS",
+    "WK_FILTER_RATE",
     "G",
     "PowerSpectrum",
     "RoadPeak",
@@ -107,6 +111,7 @@ __all__ = [
     "vdv",
     "weighted_rms",
     "wk_filter",
+    "wk_response",
     "wk_sos",
     "wk_weighting",
 ]

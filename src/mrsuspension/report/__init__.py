@@ -81,11 +81,12 @@ inconsistent, skipped); the same rows go to `findings.csv` and to `manifest.json
   threshold, *road presets*). `tests/integration/test_findings.py` runs one test per claim:
   a claim that holds must hold, a known failure is a strict xfail (XPASS when a fix makes it
   hold: take it out of `KNOWN`).
-- **Depends on.** `road`: the claim uses the preset random roads (being redefined by PSD
-  level); `sar`: it compares absolute shock acceleration ratios (they depend on the SAR
-  denominator, `road_peak`, after-onset by default; ratios between runs of one pulse shape
-  do not). Re-run those alone with `python -m mrsuspension.report.findings --depends-on
-  road` (options: `--full`, `--id 4.3`, `--not-held`, `--csv PATH`).
+- **Depends on.** `road`: the claim uses the preset random roads (stand-ins defined by
+  their PSD level, tuned to the dissertation's DLCs); `sar`: it compares absolute shock
+  acceleration ratios (they depend on the SAR denominator, `road_peak`, after-onset by
+  default; ratios between runs of one pulse shape do not). Re-run those alone with
+  `python -m mrsuspension.report.findings --depends-on road` (options: `--full`, `--id
+  4.3`, `--not-held`, `--csv PATH`).
 
 """
 

@@ -158,19 +158,23 @@ def fig_3_10(quick: bool = False) -> FigureRecord:
     """Road spectra: spatial PSDs of the presets and temporal PSDs at 50 and 100 km/h."""
     fig, axes = _subplots(1, 3)
     data: dict[str, Any] = {}
-    for name in PRESET_ROADS:
+    nn = np.geomspace(0.011, 2.83, 50)
+    for name, preset in PRESET_ROADS.items():
         road = preset_road(name, 50.0)
         n, gd = road.spatial_psd(nperseg=256 if quick else 512)
         keep = n > 0
-        axes[0, 0].loglog(n[keep], gd[keep], label=name)
+        (line,) = axes[0, 0].loglog(n[keep], gd[keep], label=name)
+        band = nn[(nn >= preset.band[0]) & (nn <= preset.band[1])]
+        axes[0, 0].loglog(band, preset.spectrum.density(band), "--", color=line.get_color(), lw=0.8)
+        data[f"{name} Gd(n0) [m^3]"] = preset.level
         data[f"{name} rms elevation [mm]"] = road.rms_elevation * 1e3
+        data[f"{name} peak elevation [mm]"] = road.peak_elevation * 1e3
         for col, speed in ((1, 50.0), (2, 100.0)):
             v = speed / 3.6
             f, g = n[keep] * v, gd[keep] / v  # G(f) = Gd(n) / V at f = n V
             axes[0, col].loglog(f, g, label=name)
             data[f"{name} {speed:g} km/h PSD max frequency [Hz]"] = float(f.max())
             data[f"{name} {speed:g} km/h variance [mm^2]"] = float(np.sum(g[1:] * np.diff(f)) * 1e6)
-    nn = np.geomspace(0.011, 2.83, 50)
     for cls in ("A", "B"):
         axes[0, 0].loglog(nn, iso8608_psd(cls, nn), "k--" if cls == "A" else "k:", lw=0.8,
                           label=f"ISO 8608 class {cls}")  # fmt: skip
@@ -188,10 +192,12 @@ def fig_3_10(quick: bool = False) -> FigureRecord:
         number="3.10",
         title="Road profile spectra and the influence of vehicle speed",
         caption=(
-            "Preset roads (ISO 8608-shaped stand-ins scaled to the dissertation's peak "
-            "elevations 4, 7.5 and 15 mm; the measured profiles are not available). "
-            "Temporal PSD G(f) = G_d(n)/V at f = nV: doubling the speed moves the spectrum "
-            "to higher frequencies and halves its level."
+            "Preset roads: stand-ins for the dissertation's measured roads (not available), "
+            "each defined by its PSD G_d(n) = G_d(n0) (n/0.1)^-1 over 0.011-2 cycle/m "
+            "(dashed; spec section 8(c)), G_d(n0) tuned against the dissertation's DLCs, "
+            "synthesised with random phases (500 m at 0.3 m: content up to 1.67 cycle/m). "
+            "Temporal PSD G(f) = G_d(n)/V at f = nV: with the n^-1 slope, doubling the "
+            "speed spreads the spectrum over twice the frequencies at the same level."
         ),
         figure=fig,
         data=data,

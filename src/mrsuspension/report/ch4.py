@@ -32,6 +32,7 @@ from mrsuspension.report.families import (
     ShockTable,
     in_worker,
     passive,
+    road_note,
     spec_factory,
     vary,
 )
@@ -351,8 +352,8 @@ _H = "2.5 cm harmonic excitation at 1.5 Hz (steady state 6-7.4 s shown)"
 _SW = "two-stage swept excitation a = 2.5 cm, f_T = 2.1 Hz, 0.5-15 Hz"
 _P = "rounded pulse mu = 3, a_m = 3.5 cm, 50 km/h (omega_0 = 10.4 rad/s), 4 s"
 _R = (
-    "'rough' preset road at 50 km/h (stand-in for the dissertation's Canadian road: ISO 8608 "
-    "shape scaled to its peak elevation); PSDs by mrsuspension.measures.psd (512 Hz, Welch/Hann)"
+    f"'rough' preset road at 50 km/h ({road_note()}); PSDs by mrsuspension.measures.psd "
+    "(512 Hz, Welch/Hann)"
 )
 _C = "Skyhook hi-lo ACM (k_c = 3, n = 2, p = 0, xi = 4.5, p_c = 0, xi_c = 10)"
 

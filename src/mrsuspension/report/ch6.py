@@ -32,6 +32,7 @@ from mrsuspension.report.families import (
     ShockTable,
     in_worker,
     passive,
+    road_note,
     spec_factory,
 )
 from mrsuspension.report.html import FigureRecord
@@ -171,8 +172,8 @@ _H = "2.5 cm harmonic excitation at 1.5 Hz (steady state 6-7.4 s shown)"
 _SW = "two-stage swept excitation a = 2.5 cm, f_T = 2.1 Hz, 0.5-15 Hz"
 _P = "rounded pulse mu = 3, a_m = 3.5 cm, 50 km/h (omega_0 = 10.4 rad/s), 4 s"
 _R = (
-    "'rough' preset road at 50 km/h (stand-in for the dissertation's Canadian road); PSDs by "
-    "mrsuspension.measures.psd (512 Hz, Welch/Hann)"
+    f"'rough' preset road at 50 km/h ({road_note()}); PSDs by mrsuspension.measures.psd "
+    "(512 Hz, Welch/Hann)"
 )
 _C = (
     "Sliding mode ACM (k_d = 2.5, lambda = 0.5, eps = 0.05, phi = 1.6, beta = 1.25, "
@@ -232,7 +233,9 @@ FIGURES: tuple[FigureSpec, ...] = (
     ),
     _spec(
         "6.10", "psd", "Random-road PSDs: passive (0, 0.1 A) and sliding mode ACM",
-        f"Passive damper (dashed) at 0 and 0.1 A and {_C}; {_R}.", _PASSIVE_ACM,
+        f"Passive damper (dashed) at 0 and 0.1 A and {_C}; {_R}. The dissertation gives DLC "
+        "0.112 (sliding mode ACM) and 0.139 (fixed passive damping, section 6.3).",
+        _PASSIVE_ACM, given={"passive 0 A": 0.139, _ACM: 0.112},
     ),
     _spec(
         "6.11", "time", "Sprung-mass variation: harmonic responses",

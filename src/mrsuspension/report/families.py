@@ -90,6 +90,7 @@ __all__ = [
     "merge_tables",
     "passive",
     "render",
+    "road_note",
     "run_unit",
     "shock_table",
     "spec_factory",
@@ -103,6 +104,25 @@ KINDS: tuple[str, ...] = ("time", "freq", "pulse", "psd", "special")
 HARMONIC: dict[str, Any] = {"kind": "harmonic", "frequency": 1.5, "amplitude": 0.025}
 PULSE: dict[str, Any] = {"kind": "pulse", "amplitude": 0.035, "severity": 3.0, "speed": 50.0}
 ROAD: dict[str, Any] = {"kind": "road", "profile": "rough", "speed": 50.0}
+
+
+def road_note(name: str = "rough") -> str:
+    """Caption text for a preset road: a stand-in, and the PSD that defines it.
+
+    Examples
+    --------
+    >>> road_note()
+    "stand-in for the dissertation's Canadian road, defined by its PSD G_d(n) = 2.7e-05 (n/0.1)^-1 m^3 over 0.011-2 cycle/m"
+    """
+    from mrsuspension.excitation import PRESET_ROADS
+
+    p = PRESET_ROADS[name]
+    return (
+        f"stand-in for the dissertation's Canadian road, defined by its PSD G_d(n) = "
+        f"{p.level:.2g} (n/0.1)^-{p.waviness:g} m^3 over {p.band[0]:g}-{p.band[1]:g} cycle/m"
+    )
+
+
 SWEPT: dict[str, Any] = {"kind": "swept", "amplitude": 0.025, "transition_frequency": 2.1}
 #: Run lengths [s]: harmonic, pulse (the road runs its own length)
 HARMONIC_DURATION = 8.0

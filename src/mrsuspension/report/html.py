@@ -319,7 +319,9 @@ _FAMILY_NOTE = (
     "histories: 2.5 cm harmonic at 1.5 Hz (steady state 6-7.4 s); frequency responses: "
     "two-stage swept excitation a = 2.5 cm, f_T = 2.1 Hz, 0.5-15 Hz; transients: rounded "
     "pulse mu = 3, a_m = 3.5 cm, 50 km/h; random responses: the 'rough' preset road at "
-    "50 km/h, a stand-in for the dissertation's Canadian roads (which are not available). "
+    "50 km/h, a stand-in for the dissertation's Canadian roads (which are not available), "
+    "defined by its PSD level (G_d(n) = G_d(n0) (n/0.1)^-1, G_d(n0) tuned against the "
+    "dissertation's DLCs). "
     "Each record in manifest.json holds the scenario of every curve and the numbers behind "
     "it; each table sets our values beside the dissertation's.{quick}</p>"
 )

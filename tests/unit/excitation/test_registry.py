@@ -9,6 +9,7 @@ from _helpers import raises_validation as _raises
 from mrsuspension.excitation import (
     EXCITATION_OPTIONS,
     EXCITATIONS,
+    PRESET_ROADS,
     Excitation,
     Harmonic,
     RoadProfile,
@@ -77,9 +78,22 @@ def test_pulse_speed_option():
 def test_road_preset_scale_and_speed():
     road = make_excitation("road", profile="rough", speed=100.0, scale=0.5)
     assert isinstance(road, RoadProfile)
-    assert road.peak_elevation == pytest.approx(0.0075)
+    assert road.peak_elevation == pytest.approx(0.5 * preset_road("rough").peak_elevation)
+    assert road.spectrum is not None
+    assert road.spectrum.level == pytest.approx(0.25 * PRESET_ROADS["rough"].level)
     assert road.speed_kmh == 100.0
     np.testing.assert_array_equal(road.elevation, preset_road("rough").elevation * 0.5)
+
+
+def test_road_preset_seed():
+    """A preset takes a seed: another road of the same PSD level (rms), other phases."""
+    road = make_excitation("road", profile="rough", seed=5)
+    assert isinstance(road, RoadProfile)
+    assert "seed 5" in road.source
+    np.testing.assert_array_equal(road.elevation, preset_road("rough", seed=5).elevation)
+    default = preset_road("rough")
+    assert road.rms_elevation == pytest.approx(default.rms_elevation, rel=1e-12)
+    assert not np.allclose(road.elevation, default.elevation)
 
 
 def test_road_iso_class():
@@ -111,7 +125,17 @@ def test_road_csv_relative_to_base_dir(tmp_path):
         ("road", {}, ("exactly one of 'profile'",)),
         ("road", {"profile": "rough", "iso_class": "C"}, ("exactly one of",)),
         ("road", {"profile": "ruogh"}, ("unknown road profile 'ruogh'", "Did you mean 'rough'?")),
-        ("road", {"profile": "rough", "seed": 2}, ("'seed' only applies with 'iso_class'",)),
+        (
+            "road",
+            {"profile": "rough", "length": 100.0},
+            ("'length' only applies with 'iso_class'",),
+        ),
+        ("road", {"profile": "rough", "seed": -2}, ("seed must be an integer >= 0", "-2")),
+        (
+            "road",
+            {"profile": "missing/road.csv", "seed": 2},
+            ("'seed' only applies with 'iso_class' or a preset",),
+        ),
         ("road", {"iso_class": "C", "elevation_unit": "mm"}, ("only applies to a CSV",)),
         ("road", {"profile": "rough", "scale": -1.0}, ("scale",)),
         ("road", {"profile": "missing/road.csv"}, ("not found", "road.csv")),

@@ -9,16 +9,21 @@ from typing import ClassVar
 
 import numpy as np
 import pytest
-from scipy.signal import welch
+from scipy.signal import periodogram, welch
 
 from _helpers import raises_validation as _raises
 from mrsuspension.excitation import (
     ISO8608_CLASSES,
+    PRESET_BAND,
     PRESET_ROADS,
+    PRESET_WAVINESS,
+    FloatArray,
     RoadProfile,
+    RoadSpectrum,
     iso8608,
     iso8608_psd,
     preset_road,
+    synthesise_road,
 )
 
 
@@ -93,7 +98,7 @@ class TestProfile:
         road = preset_road("rough")
         half = road.scaled(0.5)
         np.testing.assert_array_equal(half.elevation, 0.5 * road.elevation)
-        assert half.peak_elevation == pytest.approx(0.0075)
+        assert half.peak_elevation == pytest.approx(0.5 * road.peak_elevation)
         assert "scaled x0.5" in half.source
         _raises(lambda: road.scaled(0.0), "factor")
 
@@ -111,7 +116,7 @@ class TestProfile:
         assert d["kind"] == "road"
         assert d["points"] == 1667
         assert d["spacing"] == 0.3
-        assert d["peak_elevation"] == pytest.approx(0.0075)
+        assert d["peak_elevation"] == pytest.approx(road.peak_elevation)
         assert "medium-rough" in d["source"]
         assert "1667 points" in repr(road)
 
@@ -257,30 +262,176 @@ class TestIso8608:
         assert iso8608("c", seed=1).source.startswith("ISO 8608 class C")
 
 
-# -- presets -----------------------------------------------------------------------------------
-class TestPresets:
+# -- power-law spectra ------------------------------------------------------------------------
+class TestRoadSpectrum:
+    def test_density_inside_and_outside_the_band(self):
+        s = RoadSpectrum(2e-5, waviness=1.0, band=(0.02, 1.0))
+        np.testing.assert_allclose(s.density([0.05, 0.1, 0.5]), [4e-5, 2e-5, 4e-6])
+        np.testing.assert_array_equal(s.density([0.01, 1.5]), [0.0, 0.0])
+        _raises(lambda: s.density([0.0]), "spatial_frequency", "> 0")
+
+    @pytest.mark.parametrize("waviness", [1.0, 2.0, 2.5])
+    def test_rms_is_the_integral_of_gd(self, waviness):
+        s = RoadSpectrum(1e-5, waviness=waviness, band=(0.011, 2.0))
+        n = np.geomspace(0.011, 2.0, 200001)
+        var = np.trapezoid(s.density(n), n)
+        assert s.rms_elevation == pytest.approx(math.sqrt(var), rel=1e-6)
+
+    def test_scaled_and_described(self):
+        s = RoadSpectrum(4e-5, waviness=1.0, band=(0.011, 2.0))
+        assert s.scaled(0.5).level == pytest.approx(1e-5)
+        assert s.scaled(0.5).rms_elevation == pytest.approx(0.5 * s.rms_elevation)
+        d = s.describe()
+        assert d["level"] == 4e-5
+        assert d["waviness"] == 1.0
+        assert d["band"] == [0.011, 2.0]
+        assert s.label() == "Gd(n0) 4e-05 m^3, n^-1, 0.011-2 cycle/m"
+
     @pytest.mark.parametrize(
-        ("name", "peak"), [("smooth", 0.004), ("medium-rough", 0.0075), ("rough", 0.015)]
+        ("kwargs", "fragments"),
+        [
+            ({"level": 0.0}, ("Gd(n0) level", "(0, 1] m^3", "got 0")),
+            ({"level": 2.0}, ("Gd(n0) level", "(0, 1] m^3", "got 2")),
+            ({"level": 1e-5, "waviness": -1.0}, ("waviness", "[0, 5]", "got -1")),
+            ({"level": 1e-5, "waviness": 7.0}, ("waviness", "[0, 5]", "got 7")),
+            ({"level": 1e-5, "band": (2.0, 1.0)}, ("band", "n_max > n_min", "(2.0, 1.0)")),
+            ({"level": 1e-5, "band": (0.0, 1.0)}, ("band[0]", "(0, 1000] cycle/m", "got 0")),
+            ({"level": 1e-5, "band": "wide"}, ("band must be a pair", "'wide'")),
+        ],
     )
-    def test_peaks_geometry_and_stand_in_label(self, name, peak):
+    def test_bad_spectra_name_value_and_range(self, kwargs, fragments):
+        _raises(lambda: RoadSpectrum(**kwargs), *fragments)
+
+    def test_synthesis_bad_inputs(self):
+        s = RoadSpectrum(1e-5, waviness=1.0)
+        _raises(lambda: synthesise_road(1e-5), "spectrum must be a RoadSpectrum", "1e-05")
+        _raises(lambda: synthesise_road(s, seed=-3), "seed must be an integer >= 0", "-3")
+        _raises(lambda: synthesise_road(s, spacing=0.0), "spacing", "got 0")
+        _raises(lambda: synthesise_road(s, length=-1.0), "length", "got -1")
+        narrow = RoadSpectrum(1e-5, waviness=1.0, band=(0.011, 0.05))
+        _raises(lambda: synthesise_road(narrow, length=10.0), "no spatial frequency", "0.011-0.05")
+
+    def test_iso8608_is_synthesis_with_waviness_2(self):
+        road = iso8608("C", seed=9)
+        assert road.spectrum == RoadSpectrum(256e-6, 2.0, (0.011, 0.5 / 0.3))
+        other = synthesise_road(RoadSpectrum(256e-6, 2.0), seed=9)
+        np.testing.assert_array_equal(road.elevation, other.elevation)
+
+
+# -- presets -----------------------------------------------------------------------------------
+def _welch_level_ratio(road: RoadProfile) -> FloatArray:
+    """Welch ``Gd(n)`` of ``road`` over its target, in the band 0.02-1.5 cycle/m."""
+    assert road.spectrum is not None
+    n, gd = road.spatial_psd()
+    band = (n >= 0.02) & (n <= 1.5)
+    return np.asarray(gd[band] / road.spectrum.density(n[band]))
+
+
+class TestPresets:
+    @pytest.mark.parametrize("name", ["smooth", "medium-rough", "rough"])
+    def test_geometry_spectrum_and_stand_in_label(self, name):
         road = preset_road(name)
-        assert road.peak_elevation == pytest.approx(peak, rel=1e-12)
+        preset = PRESET_ROADS[name]
         assert road.distance.size == 1667
         assert road.spacing == 0.3
         assert road.length == pytest.approx(499.8)
         assert "stand-in" in road.source
-        assert PRESET_ROADS[name].peak_elevation == peak
+        assert f"seed {preset.seed}" in road.source
+        assert road.spectrum is not None
+        assert road.spectrum.level == preset.level
+        assert road.spectrum.waviness == 1.0 == PRESET_WAVINESS
+        assert preset.band == PRESET_BAND == (0.011, 2.0)
+        assert road.spectrum.band == (0.011, pytest.approx(1 / 0.6))  # cut at Nyquist
+
+    def test_levels_increase_with_roughness(self):
+        levels = [PRESET_ROADS[k].level for k in ("smooth", "medium-rough", "rough")]
+        assert levels == sorted(levels)
+        rms = [preset_road(k).rms_elevation for k in ("smooth", "medium-rough", "rough")]
+        assert rms == sorted(rms)
+
+    @pytest.mark.parametrize("name", ["smooth", "medium-rough", "rough"])
+    def test_periodogram_is_gd_exactly(self, name):
+        # the profile is periodic over its length: the full-length periodogram of the
+        # points is Gd(n_k) at every synthesised n_k, and zero outside the band
+        road = preset_road(name)
+        assert road.spectrum is not None
+        n, p = periodogram(road.elevation, fs=1 / 0.3, window="boxcar", detrend=False)
+        band = (n >= 0.011) & (n <= 2.0)
+        np.testing.assert_allclose(p[band], road.spectrum.density(n[band]), rtol=1e-9)
+        assert np.max(p[~band]) < 1e-20 * np.max(p)
+
+    @pytest.mark.parametrize("name", ["smooth", "medium-rough", "rough"])
+    @pytest.mark.parametrize("seed", [None, 1, 2])
+    def test_welch_psd_matches_gd_over_the_band(self, name, seed):
+        # Welch (Hann, 512 points, 5 segments): band average within 6 %, slope -1
+        road = preset_road(name, seed=seed)
+        ratio = _welch_level_ratio(road)
+        assert float(np.mean(ratio)) == pytest.approx(1.0, abs=0.06)
+        n, gd = road.spatial_psd()
+        band = (n >= 0.02) & (n <= 1.5)
+        slope, intercept = np.polyfit(np.log(n[band] / 0.1), np.log(gd[band]), 1)
+        assert slope == pytest.approx(-1.0, abs=0.05)
+        assert road.spectrum is not None
+        assert math.exp(intercept) == pytest.approx(road.spectrum.level, rel=0.1)
+
+    @pytest.mark.parametrize("name", ["smooth", "medium-rough", "rough"])
+    def test_level_does_not_depend_on_the_seed(self, name):
+        a, b = preset_road(name, seed=11), preset_road(name, seed=12)
+        assert not np.allclose(a.elevation, b.elevation)  # other phases
+        assert a.rms_elevation == pytest.approx(b.rms_elevation, rel=1e-12)  # same level
+        assert a.rms_elevation == pytest.approx(preset_road(name).rms_elevation, rel=1e-12)
+        pa = periodogram(a.elevation, window="boxcar", detrend=False)[1]
+        pb = periodogram(b.elevation, window="boxcar", detrend=False)[1]
+        np.testing.assert_allclose(pa, pb, rtol=1e-9, atol=1e-12 * pa.max())
+        wa, wb = _welch_level_ratio(a), _welch_level_ratio(b)
+        assert float(np.mean(wa)) == pytest.approx(float(np.mean(wb)), abs=0.08)
+        # the rms is the spectrum's integral (to the discrete frequencies: 1 %)
+        assert a.spectrum is not None
+        assert a.rms_elevation == pytest.approx(a.spectrum.rms_elevation, rel=0.01)
 
     def test_spectra_live_below_2_cycles_per_metre(self):
         n, gd = preset_road("rough").spatial_psd()
         assert n[-1] <= 2.0
         assert np.all(np.isfinite(gd))
 
+    def test_scaled_road_keeps_its_spectrum(self):
+        half = preset_road("rough").scaled(0.5)  # the HiL road
+        assert half.spectrum is not None
+        assert half.spectrum.level == pytest.approx(PRESET_ROADS["rough"].level / 4)
+        assert half.rms_elevation == pytest.approx(preset_road("rough").rms_elevation / 2)
+        fast = half.with_speed(100.0)
+        assert fast.spectrum == half.spectrum
+
+    def test_describe_and_repr_report_the_psd_rms_and_peak(self):
+        road = preset_road("rough")
+        d = road.describe()
+        assert d["spectrum"]["level"] == PRESET_ROADS["rough"].level
+        assert d["spectrum"]["waviness"] == 1.0
+        assert d["rms_elevation"] == road.rms_elevation
+        assert d["peak_elevation"] == road.peak_elevation
+        text = repr(road)
+        assert "Gd(n0) " in text
+        assert "n^-1" in text
+        assert f"rms {road.rms_elevation * 1e3:.3g} mm" in text
+        assert f"peak {road.peak_elevation * 1e3:.3g} mm" in text
+        recipe = PRESET_ROADS["rough"].describe()
+        assert recipe["level"] == PRESET_ROADS["rough"].level
+        assert recipe["band"] == [0.011, 2.0]
+        assert recipe["rms_elevation"] == pytest.approx(road.rms_elevation)
+        assert recipe["peak_elevation"] == pytest.approx(road.peak_elevation)
+        assert PRESET_ROADS["rough"].peak_elevation == pytest.approx(road.peak_elevation)
+        assert RoadProfile([0, 1, 2, 3], [0, 0, 0, 0]).describe()["spectrum"] is None
+
     # values recorded when the presets were defined: a changed preset fails here
     RECORDED: ClassVar[dict[str, tuple[float, float, float, int]]] = {
-        "smooth": (-0.00010297414368677706, -0.0009897544312797118, 0.00288765184083412, 1265),
-        "medium-rough": (-0.004707288381204313, 0.002941339580995839, 0.009113212166297574, 1110),
-        "rough": (-0.00028098891270842026, -0.001427321959612952, 0.027455216174763458, 23),
+        "medium-rough": (
+            -0.003200515091596593,
+            0.00017238628450949386,
+            0.0035143639978676513,
+            1281,
+        ),
+        "rough": (-0.001729874296171208, 0.002472144467765601, 0.022592339986292044, 23),
+        "smooth": (-0.00014706573641215867, -1.6018627614261605e-05, 0.002342909331911768, 138),
     }
 
     @pytest.mark.parametrize("name", sorted(RECORDED))
@@ -296,10 +447,13 @@ class TestPresets:
 
     def test_presets_differ(self):
         s, m = preset_road("smooth"), preset_road("medium-rough")
-        assert not np.allclose(s.elevation / s.peak_elevation, m.elevation / m.peak_elevation)
+        assert not np.allclose(s.elevation / s.rms_elevation, m.elevation / m.rms_elevation)
 
-    def test_unknown_preset(self):
+    def test_bad_preset_arguments(self):
         _raises(lambda: preset_road("ruogh"), "unknown preset road", "Did you mean 'rough'?")
+        _raises(lambda: preset_road("rough", seed=-1), "seed must be an integer >= 0", "-1")
+        _raises(lambda: preset_road("rough", seed=1.5), "seed", "1.5")
+        _raises(lambda: preset_road("rough", speed_kmh=0.0), "speed_kmh", "got 0")
 
 
 # -- the uniform grid the engine samples -------------------------------------------------

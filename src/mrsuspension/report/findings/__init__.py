@@ -34,7 +34,7 @@ Statuses
     cause, for the lead developer's bug hunt.
 Depends on
     ``depends_on`` names what a claim is sensitive to beyond the model: ``ROAD`` (the
-    preset roads, being redefined by PSD level: every claim on a random road) and ``SAR``
+    preset roads, stand-ins defined by their PSD level: every claim on a random road) and ``SAR``
     (the shock-acceleration denominator: absolute SAR values only; ratios between runs of
     the same pulse shape do not depend on it). ``python -m mrsuspension.report.findings
     --depends-on road`` re-evaluates only those.
@@ -362,7 +362,7 @@ def html_section(card: Scorecard, csv_name: str = "findings.csv") -> str:
         "'slightly', 'insensitive', 'considerably'). 'Dissertation inconsistent': the "
         "dissertation contradicts itself on the claim; the row names the evidence and the "
         "reading tested. Claims marked 'depends on road' use the preset random roads, "
-        "'sar' the shock-acceleration denominator: both are being redefined. "
+        "'sar' the shock-acceleration denominator (being redefined). "
         f"{timing['distinct runs']} distinct runs, {timing['reused from the report']} of them "
         "made in the report's process pool (the figures' own runs where the scenarios "
         f"coincide), {timing['run cpu time [s]']} s of CPU for the rest. "

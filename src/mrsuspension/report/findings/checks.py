@@ -82,7 +82,7 @@ __all__ = [
 
 Payload = dict[str, Any]
 
-#: depends_on tag: the claim uses the preset random roads (being redefined by PSD level)
+#: depends_on tag: the claim uses the preset random roads (stand-ins defined by PSD level)
 ROAD = "road"
 #: depends_on tag: the claim compares absolute shock acceleration ratios (SAR denominator)
 SAR = "sar"
