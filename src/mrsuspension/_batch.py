@@ -13,7 +13,12 @@ from concurrent.futures import Executor, ProcessPoolExecutor
 from contextlib import contextmanager
 from typing import Any
 
-from mrsuspension.engine.simulate import Simulation, SimulationDiverged, measures_of
+from mrsuspension.engine.simulate import (
+    Simulation,
+    SimulationDiverged,
+    measures_of,
+    run_quietly,
+)
 from mrsuspension.scenario import Scenario
 
 __all__ = ["Job", "job_of", "measure_job", "process_pool", "run_jobs"]
@@ -26,7 +31,7 @@ def measure_job(job: Job) -> dict[str, Any] | None:
     """One run reduced to its measures; None when it diverges (module level: picklable)."""
     sim, duration, dt, rate = job
     try:
-        return measures_of(sim.run(duration, dt=dt, output_rate=rate))
+        return measures_of(run_quietly(sim, duration, dt, rate))
     except SimulationDiverged:
         return None
 

@@ -476,10 +476,18 @@ def _run_one(
     args: tuple[Simulation, float | None, float, float, Callable[[SimulationResult], Any] | None],
 ) -> Any:
     sim, duration, dt, rate, reduce = args
-    with warnings.catch_warnings():  # the result carries its time at the clamp
-        warnings.simplefilter("ignore", VelocityClampWarning)
-        result = sim.run(duration, dt=dt, output_rate=rate)
+    result = run_quietly(sim, duration, dt, rate)
     return result if reduce is None else reduce(result)
+
+
+def run_quietly(
+    sim: Simulation, duration: float | None, dt: float, rate: float
+) -> SimulationResult:
+    """:meth:`Simulation.run` without the clamp warning, for batch runners: the result
+    carries its time at the clamp (``vm_clamp_fraction``) for the caller to report."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", VelocityClampWarning)
+        return sim.run(duration, dt=dt, output_rate=rate)
 
 
 def _run_batch(

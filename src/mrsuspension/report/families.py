@@ -474,7 +474,10 @@ def run_unit(unit: Unit) -> dict[str, Any]:
         from mrsuspension.studies import Study, run_study
 
         data = {
-            "study": {"name": "report", "measures": [k for k, _ in FREQ_PANELS]},
+            "study": {
+                "name": "report",
+                "measures": [*(k for k, _ in FREQ_PANELS), "vm_clamp_fraction"],
+            },
             **unit.scenario,
             "simulation": {"dt": unit.dt},
         }
@@ -492,6 +495,11 @@ def run_unit(unit: Unit) -> dict[str, Any]:
         raise ValidationError(
             f"unit kind {unit.kind!r} is not valid; valid: time, freq, pulse, psd"
         )
+    out[CLAMP_KEY] = 100.0 * (
+        float(np.nanmax(ds["vm_clamp_fraction"].values))
+        if unit.kind == "freq"
+        else r.velocity_clamp_fraction
+    )
     out["run time [s]"] = time.perf_counter() - start
     out["run cpu time [s]"] = time.process_time() - cpu
     return out
@@ -638,6 +646,34 @@ def _render_psd(
 _RENDERERS = {"time": _render_histories, "pulse": _render_histories, "freq": _render_freq}
 
 
+#: payload and figure-data key: the largest share of a run [%] with v_m at its upper clamp
+CLAMP_KEY = "time at v_m clamp [%]"
+
+
+def clamp_note(payloads: Mapping[str, Mapping[str, Any]], data: dict[str, Any]) -> str:
+    """Record each variant's time at the v_m clamp in ``data``; a caption note when large.
+
+    Spec section 2.4: beyond its identified velocity range the damper model is an
+    extrapolation, and a figure that goes there says so.
+    """
+    from mrsuspension.engine.result import CLAMP_WARN_FRACTION
+
+    hit = {}
+    for label, payload in payloads.items():
+        share = float(payload.get(CLAMP_KEY, 0.0))
+        data[f"{CLAMP_KEY} {label}"] = round(share, 2)
+        if share > 100.0 * CLAMP_WARN_FRACTION:
+            hit[label] = share
+    if not hit:
+        return ""
+    where = ", ".join(f"{k} {v:.0f} %" for k, v in hit.items())
+    return (
+        f" Note: the peak-velocity estimate v_m sat at its upper clamp (the identified range, "
+        f"0.75 m/s) for part of a run ({where}; largest share per run): there the damper "
+        "model is an extrapolation."
+    )
+
+
 def render(
     spec: FigureSpec,
     payloads: Mapping[str, dict[str, Any]],
@@ -670,7 +706,9 @@ def render(
     fig, data = draw(spec, payloads)
     for label in spec.variants:
         data[f"scenario {label}"] = json.dumps(spec.scenario(label), sort_keys=True)
-    rec = FigureRecord(spec.number, spec.title, spec.caption, fig, data)
+    rec = FigureRecord(
+        spec.number, spec.title, spec.caption + clamp_note(payloads, data), fig, data
+    )
     rec.save(folder, formats)
     return {
         "number": rec.number,

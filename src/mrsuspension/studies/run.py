@@ -21,7 +21,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from mrsuspension.engine.result import SimulationResult
-from mrsuspension.engine.simulate import Simulation, run_many
+from mrsuspension.engine.simulate import Simulation, run_many, run_quietly
 from mrsuspension.errors import ValidationError
 from mrsuspension.measures.shock import DEFAULT_ROAD_PEAK, RoadPeak
 from mrsuspension.studies.study import Study
@@ -111,7 +111,7 @@ def _run_point(
 ) -> dict[str, Any]:
     """One run reduced to its measures (module level, so workers can unpickle it)."""
     sim, duration, dt, rate = job
-    return _measures(sim.run(duration, dt=dt, output_rate=rate), road_peak)
+    return _measures(run_quietly(sim, duration, dt, rate), road_peak)
 
 
 def _run_local(
