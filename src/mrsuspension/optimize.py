@@ -96,7 +96,9 @@ __all__ = [
 ]
 
 #: Measures an objective may weight (the road measures of ``SimulationResult.measures()``).
-OBJECTIVE_MEASURES: tuple[str, ...] = MEASURES["road"]
+OBJECTIVE_MEASURES: tuple[str, ...] = tuple(
+    m for m in MEASURES["road"] if m != "vm_clamp_fraction"  # a diagnostic, not a goal
+)
 
 _TOP_LEVEL = ("problem", "parameters", "roads", "objective", *SCENARIO_KEYS)
 _PROBLEM_KEYS = (

@@ -230,7 +230,7 @@ class DamperModel(ABC):
             Drive current [A], within ``[0, max_current]``.
         peak_velocity : array_like, optional
             v_m [m/s] for models that use it; by default the model's estimator is asked
-            with only this one sample (for the window estimator: ``|v_d|``, clamped).
+            with only this one sample (``cycle-rms``: (2.14), ``window``: ``|v_d|``; clamped).
 
         Returns
         -------
