@@ -97,7 +97,9 @@ __all__ = [
 
 #: Measures an objective may weight (the road measures of ``SimulationResult.measures()``).
 OBJECTIVE_MEASURES: tuple[str, ...] = tuple(
-    m for m in MEASURES["road"] if m != "vm_clamp_fraction"  # a diagnostic, not a goal
+    m
+    for m in MEASURES["road"]
+    if m != "vm_clamp_fraction"  # a diagnostic, not a goal
 )
 
 _TOP_LEVEL = ("problem", "parameters", "roads", "objective", *SCENARIO_KEYS)
