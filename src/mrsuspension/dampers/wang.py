@@ -49,6 +49,15 @@ _COMMON_RULES = {
 }  # fmt: skip
 
 
+def _estimator_class(
+    estimator: str | PeakVelocityEstimator | None,
+) -> type[PeakVelocityEstimator] | None:
+    """The class a name (or None: the default) selects; None for an instance."""
+    if isinstance(estimator, str | None):
+        return ESTIMATORS.get(estimator or DEFAULT_ESTIMATOR)
+    return None
+
+
 class WangSymmetric(DamperModel):
     """Symmetric hysteretic model, eq. (2.15), with the force gain ``k_d``.
 
@@ -118,11 +127,7 @@ class WangSymmetric(DamperModel):
         self, estimator: str | PeakVelocityEstimator | None, options: dict[str, Any]
     ) -> PeakVelocityEstimator:
         """The named estimator, its ``v_max`` by default the set's identified range."""
-        cls = (
-            ESTIMATORS.get(estimator or DEFAULT_ESTIMATOR)
-            if isinstance(estimator, str | None)
-            else None
-        )
+        cls = _estimator_class(estimator)
         vrange = self.parameters.velocity_range
         if (
             cls is not None
@@ -140,11 +145,7 @@ class WangSymmetric(DamperModel):
         if not options:
             return
         own = ["parameters", "hysteresis", "vh_variant", "force_gain", "estimator", "max_current"]
-        est_cls = (
-            ESTIMATORS.get(estimator or DEFAULT_ESTIMATOR)
-            if isinstance(estimator, str | None)
-            else None
-        )
+        est_cls = _estimator_class(estimator)
         allowed = [f.name for f in dataclasses.fields(est_cls)] if est_cls is not None else []  # type: ignore[arg-type]
         for key in options:
             if key not in allowed:
