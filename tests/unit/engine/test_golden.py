@@ -1,0 +1,63 @@
+"""The engine's results stay bit-identical across refactors, for every controller.
+
+``tests/data/golden_engine.npz`` holds every output signal of a short harmonic run and
+a short rounded-pulse run for each registered controller law, made on ``main`` before
+the controllers moved into ``control/``. A change that alters any sample by any amount
+fails here; regenerate only for an intended change of the physics, with
+``python tests/unit/engine/test_golden.py --write`` and a CHANGELOG entry.
+"""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from mrsuspension.control import CONTROLLERS, make_controller
+from mrsuspension.engine import Simulation
+from mrsuspension.excitation import Harmonic, RoundedPulse
+
+GOLDEN = Path(__file__).resolve().parents[2] / "data" / "golden_engine.npz"
+
+LAWS = sorted(CONTROLLERS)
+CASES = {
+    "harmonic": (lambda: Harmonic(2.0, 0.02), 1.5),
+    "pulse": (lambda: RoundedPulse(0.05, 2.0, delay=0.2), 1.0),
+}
+
+
+def _signals(law: str, case: str) -> dict[str, np.ndarray]:
+    excitation, duration = CASES[case]
+    sim = Simulation(excitation(), controller=make_controller(law))
+    result = sim.run(duration=duration, dt=2e-4, output_rate=250.0)
+    out = {f"{law}/{case}/time": result.time}
+    out.update({f"{law}/{case}/{k}": np.asarray(v) for k, v in result.signals.items()})
+    return out
+
+
+def _all() -> dict[str, np.ndarray]:
+    out: dict[str, np.ndarray] = {}
+    for law in LAWS:
+        for case in CASES:
+            out.update(_signals(law, case))
+    return out
+
+
+@pytest.mark.parametrize("case", sorted(CASES))
+@pytest.mark.parametrize("law", LAWS)
+def test_engine_results_are_bit_identical_to_the_golden_record(law: str, case: str) -> None:
+    golden = np.load(GOLDEN)
+    got = _signals(law, case)
+    prefix = f"{law}/{case}/"
+    expected = {k for k in golden.files if k.startswith(prefix)}
+    assert expected, f"no golden record for {law}/{case}: a new law needs one (--write)"
+    assert set(got) == expected
+    for key in sorted(expected):
+        np.testing.assert_array_equal(got[key], golden[key], err_msg=key)
+
+
+if __name__ == "__main__" and "--write" in sys.argv:
+    np.savez_compressed(GOLDEN, **_all())
+    print(f"wrote {GOLDEN}")
