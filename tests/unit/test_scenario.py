@@ -272,5 +272,5 @@ def test_damper_keys_come_from_the_model_classes(monkeypatch: pytest.MonkeyPatch
     assert s.damper.values["c"] == 1500.0
     msg = _error({"damper": {"model": "toy", "hysteresis": False}, "excitation": HARMONIC})
     assert "[damper] hysteresis does not apply to model 'toy'" in msg
-    with pytest.raises(ValidationError, match="unknown damper model 'nope'.*Valid: .*toy"):
+    with pytest.raises(ValidationError, match=r"unknown damper model 'nope'.*Valid: .*toy"):
         dampers.damper_options("nope")
