@@ -22,6 +22,7 @@ from mrsuspension.dampers import (
     WangSymmetric,
     make_damper,
 )
+from mrsuspension.engine.settings import RunSettings
 from mrsuspension.errors import MRSuspensionError, ValidationError
 
 try:
@@ -34,6 +35,7 @@ __all__ = [
     "DamperModel",
     "LinearViscous",
     "MRSuspensionError",
+    "RunSettings",
     "SpencerBoucWen",
     "ValidationError",
     "WangAsymmetric",

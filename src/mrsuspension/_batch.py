@@ -2,17 +2,20 @@
 
 Shared by :mod:`mrsuspension.optimize` (one batch per generation) and
 :mod:`mrsuspension.tradeoff`: a pool per batch would cost about 0.3 s each time, so the
-caller keeps one :func:`process_pool` open across its batches.
+caller keeps one :func:`process_pool` open across its batches. The pool itself is
+:mod:`mrsuspension._pool`'s, the same one :func:`~mrsuspension.engine.simulate.run_many`
+uses.
 """
 
 from __future__ import annotations
 
-import os
-from collections.abc import Iterator, Sequence
-from concurrent.futures import Executor, ProcessPoolExecutor
-from contextlib import contextmanager
+from collections.abc import Sequence
+from concurrent.futures import Executor
+from dataclasses import dataclass
 from typing import Any
 
+from mrsuspension._pool import pool_map, process_pool
+from mrsuspension.engine.settings import RunSettings
 from mrsuspension.engine.simulate import (
     Simulation,
     SimulationDiverged,
@@ -23,37 +26,36 @@ from mrsuspension.scenario import Scenario
 
 __all__ = ["Job", "job_of", "measure_job", "process_pool", "run_jobs"]
 
-#: one run: the simulation, its duration, step and output rate
-Job = tuple[Simulation, float | None, float, float]
+
+@dataclass(frozen=True)
+class Job:
+    """One run of a batch: the simulation and its run settings (picklable).
+
+    Examples
+    --------
+    >>> from mrsuspension.excitation import RoundedPulse
+    >>> job = Job(Simulation(RoundedPulse(0.02, 1.0)), RunSettings(dt=5e-4, duration=1.0))
+    >>> sorted(measure_job(job))[:2]
+    ['RDR', 'SAR_s']
+    """
+
+    simulation: Simulation
+    settings: RunSettings
 
 
 def measure_job(job: Job) -> dict[str, Any] | None:
     """One run reduced to its measures; None when it diverges (module level: picklable)."""
-    sim, duration, dt, rate = job
     try:
-        return measures_of(run_quietly(sim, duration, dt, rate))
+        return measures_of(run_quietly(job.simulation, job.settings))
     except SimulationDiverged:
         return None
 
 
 def job_of(scenario: Scenario) -> Job:
-    """The run of a (single-run) scenario."""
-    return (scenario.simulations()[0], scenario.duration, scenario.dt, scenario.output_rate)
-
-
-@contextmanager
-def process_pool(workers: int | None, jobs_per_batch: int) -> Iterator[Executor | None]:
-    """A process pool for several batches (None, i.e. this process, for one worker)."""
-    n = min(jobs_per_batch, workers or os.cpu_count() or 1)
-    if n <= 1:
-        yield None
-        return
-    with ProcessPoolExecutor(max_workers=n) as pool:
-        yield pool
+    """The run of a (single-run) scenario, with its ``[simulation]`` settings."""
+    return Job(scenario.simulations()[0], scenario.settings)
 
 
 def run_jobs(jobs: Sequence[Job], pool: Executor | None) -> list[dict[str, Any] | None]:
-    """Measures of each job, in order (None for a diverged run)."""
-    if pool is None:
-        return [measure_job(j) for j in jobs]
-    return list(pool.map(measure_job, jobs))
+    """Measures of each job, in order (None for a diverged run); ``pool`` None: here."""
+    return pool_map(measure_job, jobs, pool=pool, workers=1)

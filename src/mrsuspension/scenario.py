@@ -45,11 +45,12 @@ from typing import Any
 
 import mrsuspension.engine  # noqa: F401  (first: importing control first is circular)
 from mrsuspension.control import CONTROLLERS, Controller, HiLo, make_controller
-from mrsuspension.dampers import DAMPERS, ESTIMATORS, DamperModel, make_damper
+from mrsuspension.dampers import DAMPERS, ESTIMATORS, DamperModel, damper_options, make_damper
 from mrsuspension.dampers.wang import VEHICLE_VH_VARIANT
 from mrsuspension.engine.result import SimulationResult
-from mrsuspension.engine.simulate import DEFAULT_DT, Simulation, run_many
-from mrsuspension.errors import ValidationError, check_range, did_you_mean, read_toml
+from mrsuspension.engine.settings import RunSettings
+from mrsuspension.engine.simulate import Simulation, run_many
+from mrsuspension.errors import ValidationError, did_you_mean, read_toml
 from mrsuspension.excitation import (
     EXCITATION_OPTIONS,
     EXCITATIONS,
@@ -68,31 +69,9 @@ __all__ = ["SCENARIO_KEYS", "Scenario"]
 
 _VEHICLE_KEYS = {f.name: "number" for f in dataclasses.fields(QuarterCar)}
 
-_WANG_OPTIONS = {
-    "hysteresis": "bool",
-    "vh_variant": "text",
-    "force_gain": "number",
-    "estimator": "string",
-    "window": "number",
-    "v_min": "number",
-    "v_max": "number",
-    "value": "number",
-}
-_DAMPER_KEYS: dict[str, str] = {
-    "model": "string",
-    "parameters": "string",
-    "max_current": "number",
-    "damping": "number",
-    **_WANG_OPTIONS,
-}
-#: damper keys by model (``max_current`` is the simulation's drive-current limit i_max)
-_DAMPER_KEYS_BY_MODEL: dict[str, tuple[str, ...]] = {
-    "wang-symmetric": ("model", "parameters", "max_current", *_WANG_OPTIONS),
-    "wang-asymmetric": ("model", "parameters", "max_current", *_WANG_OPTIONS),
-    "bingham": ("model", "parameters", "max_current"),
-    "spencer": ("model", "parameters", "max_current"),
-    "linear": ("model", "parameters", "max_current", "damping"),
-}
+#: every ``[damper]`` key of any model (each model's own: :func:`damper_options`)
+_DAMPER_KEYS: dict[str, str] = {k: v for m in DAMPERS for k, v in damper_options(m).items()}
+
 
 #: controller-table key -> constructor keyword, by law (the spec's symbols)
 _SLIDING_ALIASES = {
@@ -134,21 +113,25 @@ for _law in CONTROLLERS:
     for _key in _law_keys(_law):
         _CONTROLLER_KEYS[_key] = _CONTROLLER_TEXT.get(_key, "number")
 
-_EXCITATION_TYPES = {
-    "kind": "string",
-    "frequencies": "numbers",
-    "profile": "string",
-    "iso_class": "string",
-    "distance_unit": "string",
-    "elevation_unit": "string",
-    "seed": "integer",
-}
-_EXCITATION_KEYS: dict[str, str] = {"kind": "string"}
-for _opts in EXCITATION_OPTIONS.values():
-    for _key in _opts:
-        _EXCITATION_KEYS[_key] = _EXCITATION_TYPES.get(_key, "number")
 
-_SIMULATION_KEYS = {"duration": "number", "dt": "number", "output_rate": "number"}
+def _excitation_keys() -> dict[str, str]:
+    """Every ``[excitation]`` key with its value kind, from the kinds' declared options."""
+    keys = {"kind": "string"}
+    for kind, cls in EXCITATIONS.items():
+        for opt in cls.options:
+            # one key, one value kind across kinds (a new kind's declaration bug otherwise)
+            if keys.setdefault(opt.name, opt.kind) != opt.kind:  # pragma: no cover
+                raise ValidationError(
+                    f"excitation {kind!r} declares option {opt.name!r} as {opt.kind!r}; "
+                    f"another kind has it as {keys[opt.name]!r}"
+                )
+    return keys
+
+
+_EXCITATION_KEYS: dict[str, str] = _excitation_keys()
+
+#: ``[simulation]``: the fields of :class:`~mrsuspension.engine.settings.RunSettings`
+_SIMULATION_KEYS = {f.name: "number" for f in dataclasses.fields(RunSettings)}
 
 #: Every section of a scenario file and the keys it accepts (with their value kind).
 SCENARIO_KEYS: dict[str, dict[str, str]] = {
@@ -162,7 +145,6 @@ SCENARIO_KEYS: dict[str, dict[str, str]] = {
 _DEFAULT_MAX_CURRENT: float = next(
     f.default for f in dataclasses.fields(Simulation) if f.name == "max_current"
 )  # type: ignore[assignment]
-_DEFAULT_OUTPUT_RATE: float = inspect.signature(Simulation.run).parameters["output_rate"].default
 
 
 # -- checking helpers ---------------------------------------------------------------------
@@ -273,13 +255,11 @@ class Scenario:
         The road input (``[excitation]``); a stepped sweep gives one run per frequency.
     max_current : float
         Drive-current limit i_max [A] (``[damper] max_current``).
-    duration : float or None
-        Simulated time [s] of each run (``[simulation] duration``); None: the
-        excitation's own duration (the steady-state rule for harmonic runs).
-    dt : float
-        Fixed RK4 step [s] (``[simulation] dt``).
-    output_rate : float
-        Recorded samples per second (``[simulation] output_rate``).
+    settings : RunSettings
+        ``[simulation]``: the fixed RK4 step ``dt`` [s], the simulated time ``duration``
+        [s] of each run (None: the excitation's own, the steady-state rule for harmonic
+        runs) and the recorded ``output_rate`` [Hz]; also readable as
+        :attr:`dt`, :attr:`duration` and :attr:`output_rate`.
     data : dict
         The scenario as plain tables (see :meth:`to_dict`).
     base_dir : Path
@@ -291,9 +271,7 @@ class Scenario:
     controller: Controller
     excitation: Excitation | SteppedSweep
     max_current: float
-    duration: float | None
-    dt: float
-    output_rate: float
+    settings: RunSettings
     data: dict[str, dict[str, Any]] = field(default_factory=dict, repr=False)
     base_dir: Path = field(default_factory=Path.cwd)
     source: Path | None = None
@@ -347,38 +325,41 @@ class Scenario:
         controller = _build_controller(tables["controller"])
         excitation = _build_excitation(tables["excitation"], base)
 
-        sim_table = tables["simulation"]
-        duration = sim_table.get("duration")
-        dt = sim_table.get("dt", DEFAULT_DT)
         with _in_section("simulation"):
-            if duration is not None:
-                check_range("duration", duration, 0.0, None, unit="s", low_inclusive=False)
-            check_range("dt", dt, 0.0, None, unit="s", low_inclusive=False)
-            if "output_rate" in sim_table:
-                output_rate = sim_table["output_rate"]
-                check_range(
-                    "output_rate", output_rate, 0.0, 1.0 / dt, unit="Hz", low_inclusive=False
-                )
-            else:  # the engine's default, at most one sample per step
-                output_rate = min(_DEFAULT_OUTPUT_RATE, 1.0 / dt)
+            settings = RunSettings(**tables["simulation"])
+            settings.check_for(excitation)
         scenario = cls(
             vehicle=vehicle,
             damper=damper,
             controller=controller,
             excitation=excitation,
             max_current=max_current,
-            duration=duration,
-            dt=dt,
-            output_rate=output_rate,
+            settings=settings,
             data=copy.deepcopy(tables),
             base_dir=base,
         )
         sims = scenario._build_simulations()  # checks the damper/controller combination
         with _in_section("simulation"):
-            sims[0].check_dt(dt)  # stability: the same model in every run
+            sims[0].check_dt(settings.dt)  # stability: the same model in every run
         with _in_section("controller"):
             controller.params(max_current)  # e.g. a passive current above max_current
         return scenario
+
+    # -- run settings -------------------------------------------------------------------
+    @property
+    def duration(self) -> float | None:
+        """``settings.duration``: simulated time [s] of each run (None: the excitation's)."""
+        return self.settings.duration
+
+    @property
+    def dt(self) -> float:
+        """``settings.dt``: the fixed RK4 step [s]."""
+        return self.settings.dt
+
+    @property
+    def output_rate(self) -> float:
+        """``settings.output_rate``: recorded samples per second [Hz]."""
+        return self.settings.output_rate
 
     # -- building -----------------------------------------------------------------------
     @property
@@ -443,11 +424,12 @@ class Scenario:
         SimulationDiverged
             When a run leaves the physical range.
         """
+        settings = self.settings
+        if duration is not None:
+            settings = dataclasses.replace(settings, duration=duration)
         return run_many(
             self.simulations(),
-            duration=self.duration if duration is None else duration,
-            dt=self.dt,
-            output_rate=self.output_rate,
+            settings=settings,
             workers=workers,
             progress=progress,
         )
@@ -465,17 +447,15 @@ class Scenario:
             "max_current": self.max_current,
         }
         out["controller"] = {"law": self.controller.law, **out["controller"]}
-        sim = {"dt": self.dt, "output_rate": self.output_rate}
-        if self.duration is not None:
-            sim["duration"] = self.duration
-        out["simulation"] = sim
+        out["simulation"] = self.settings.to_dict()
         return out
 
 
 # -- section builders ---------------------------------------------------------------------
 def _build_damper(table: dict[str, Any], base: Path) -> tuple[DamperModel, float]:
     model = _choice("damper", "model", table.get("model", "wang-symmetric"), DAMPERS)
-    allowed = _DAMPER_KEYS_BY_MODEL[model]
+    with _in_section("damper"):
+        allowed = tuple(damper_options(model))  # derived from the model class
     for key in table:
         if key not in allowed:
             raise ValidationError(

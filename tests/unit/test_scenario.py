@@ -257,3 +257,20 @@ def test_public_sections() -> None:
         assert key in SCENARIO_KEYS["damper"]
     for key in ("law", "mode", "gain", "order", "current", "lambda", "eps", "phi", "beta"):
         assert key in SCENARIO_KEYS["controller"]
+
+
+def test_damper_keys_come_from_the_model_classes(monkeypatch: pytest.MonkeyPatch) -> None:
+    from mrsuspension import dampers
+
+    class Toy(LinearViscous):
+        name = "toy"
+
+    # a model registered later (no hand-kept key table): its declared options apply
+    monkeypatch.setitem(dampers.DAMPERS, "toy", Toy)
+    s = Scenario.from_dict({"damper": {"model": "toy", "damping": 1500.0}, "excitation": HARMONIC})
+    assert isinstance(s.damper, Toy)
+    assert s.damper.values["c"] == 1500.0
+    msg = _error({"damper": {"model": "toy", "hysteresis": False}, "excitation": HARMONIC})
+    assert "[damper] hysteresis does not apply to model 'toy'" in msg
+    with pytest.raises(ValidationError, match=r"unknown damper model 'nope'.*Valid: .*toy"):
+        dampers.damper_options("nope")

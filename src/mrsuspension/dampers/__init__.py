@@ -36,7 +36,9 @@ from mrsuspension.errors import ValidationError, unknown_name
 
 __all__ = [
     "DAMPERS",
+    "DAMPER_OPTIONS",
     "ESTIMATORS",
+    "SCENARIO_COMMON_OPTIONS",
     "Bingham",
     "CycleRms",
     "DamperKernel",
@@ -50,6 +52,7 @@ __all__ = [
     "WangAsymmetric",
     "WangSymmetric",
     "WindowPeak",
+    "damper_options",
     "make_damper",
     "make_estimator",
 ]
@@ -62,6 +65,45 @@ DAMPERS: dict[str, type[DamperModel]] = {
     "spencer": SpencerBoucWen,
     "linear": LinearViscous,
 }
+
+
+#: ``[damper]`` keys every model accepts: the registry name, the parameter set and the
+#: simulation's drive-current limit i_max
+SCENARIO_COMMON_OPTIONS: dict[str, str] = {
+    "model": "string",
+    "parameters": "string",
+    "max_current": "number",
+}
+
+
+def damper_options(model: str) -> dict[str, str]:
+    """The ``[damper]`` keys a scenario may set for ``model``, with their value kind.
+
+    The common keys (:data:`SCENARIO_COMMON_OPTIONS`) and the model class's own
+    ``scenario_options`` (none when a model declares none).
+
+    Raises
+    ------
+    ValidationError
+        An unregistered model, naming it and the valid ones.
+
+    Examples
+    --------
+    >>> sorted(damper_options("linear"))
+    ['damping', 'max_current', 'model', 'parameters']
+    >>> damper_options("lineer")
+    Traceback (most recent call last):
+    ...
+    mrsuspension.errors.ValidationError: unknown damper model 'lineer'. Did you mean 'linear'? Valid: bingham, linear, spencer, wang-asymmetric, wang-symmetric.
+    """
+    if model not in DAMPERS:
+        raise unknown_name("damper model", str(model), DAMPERS)
+    own: dict[str, str] = getattr(DAMPERS[model], "scenario_options", {})
+    return {**SCENARIO_COMMON_OPTIONS, **own}
+
+
+#: ``[damper]`` keys by model, derived from the classes (see :func:`damper_options`).
+DAMPER_OPTIONS: dict[str, dict[str, str]] = {m: damper_options(m) for m in DAMPERS}
 
 
 def make_damper(model: str, parameters: ParameterSpec = None, **options: Any) -> DamperModel:

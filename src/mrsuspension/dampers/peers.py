@@ -37,6 +37,8 @@ class LinearViscous(DamperModel):
     parameter_rules: ClassVar[dict[str, str]] = {"c": "nonnegative"}
     default_parameters: ClassVar[str] = "linear-2500"
     accepts: ClassVar[tuple[str, ...]] = ("linear",)
+    #: options a scenario's ``[damper]`` table may set, with their value kind
+    scenario_options: ClassVar[dict[str, str]] = {"damping": "number"}
 
     def __init__(
         self,
@@ -89,6 +91,8 @@ class Bingham(DamperModel):
     }  # fmt: skip
     default_parameters: ClassVar[str] = "bingham-wang-low"
     accepts: ClassVar[tuple[str, ...]] = ("bingham",)
+    #: options a scenario's ``[damper]`` table may set, with their value kind
+    scenario_options: ClassVar[dict[str, str]] = {}
 
     def _force_arrays(
         self, x: FloatArray, v: FloatArray, a: FloatArray, i: FloatArray, vm: FloatArray | None
@@ -142,6 +146,8 @@ class SpencerBoucWen(DamperModel):
     }  # fmt: skip
     default_parameters: ClassVar[str] = "spencer-1997"
     accepts: ClassVar[tuple[str, ...]] = ("spencer",)
+    #: options a scenario's ``[damper]`` table may set, with their value kind
+    scenario_options: ClassVar[dict[str, str]] = {}
 
     @property
     def stateful(self) -> bool:

@@ -98,6 +98,13 @@ class WangSymmetric(DamperModel):
     }  # fmt: skip
     default_parameters: ClassVar[str] = "wang-symmetric-low"
     accepts: ClassVar[tuple[str, ...]] = ("wang-symmetric",)
+    #: options a scenario's ``[damper]`` table may set, with their value kind (the
+    #: estimator's ``window``, ``v_min``, ``v_max`` and ``value`` are passed through)
+    scenario_options: ClassVar[dict[str, str]] = {
+        "hysteresis": "bool", "vh_variant": "text", "force_gain": "number",
+        "estimator": "string", "window": "number", "v_min": "number", "v_max": "number",
+        "value": "number",
+    }  # fmt: skip
 
     def __init__(
         self,

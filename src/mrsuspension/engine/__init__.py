@@ -3,7 +3,8 @@ controller outputs, compiled with numba.
 
 * :class:`Simulation` - one run (``Simulation(excitation, ...).run()``);
 * :class:`Stepper` - the same compiled step, tick by tick (real-time / HiL loops);
-* :func:`run_many` - batches across processes (one per core by default).
+* :func:`run_many` - batches across processes (one per core by default);
+* :class:`RunSettings` - ``dt``, ``duration`` and ``output_rate`` of a run.
 
 The names are loaded on first use, so that :mod:`mrsuspension.control` can use the
 kernel constants of :mod:`mrsuspension.engine.kernel` without a circular import.
@@ -16,6 +17,7 @@ from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
     from mrsuspension.engine.result import SIGNALS, SimulationResult
+    from mrsuspension.engine.settings import RunSettings
     from mrsuspension.engine.simulate import (
         DEFAULT_DT,
         RoadInput,
@@ -31,6 +33,7 @@ _WHERE = {
     "SimulationResult": "result",
     "DEFAULT_DT": "simulate",
     "RoadInput": "simulate",
+    "RunSettings": "settings",
     "Simulation": "simulate",
     "SimulationDiverged": "simulate",
     "Stepper": "simulate",
@@ -42,6 +45,7 @@ __all__ = [
     "DEFAULT_DT",
     "SIGNALS",
     "RoadInput",
+    "RunSettings",
     "Simulation",
     "SimulationDiverged",
     "SimulationResult",

@@ -22,6 +22,8 @@ if TYPE_CHECKING:
 
 __all__ = [
     "CLAMP_WARN_FRACTION",
+    "MEASURES_BY_KIND",
+    "MEASURE_NOTES",
     "SIGNALS",
     "SimulationResult",
     "VelocityClampWarning",
@@ -36,6 +38,24 @@ CLAMP_WARN_FRACTION = 0.05
 class VelocityClampWarning(UserWarning):
     """A run spent a large share of its time with v_m at the estimator's upper clamp."""
 
+
+#: The numeric measures :meth:`SimulationResult.measures` returns for each measures kind
+#: (an excitation class's ``measures_kind``), spec section 9; ``vm_clamp_fraction`` is in
+#: every kind's. Studies and the optimiser take their measure lists from here.
+MEASURES_BY_KIND: dict[str, tuple[str, ...]] = {
+    "harmonic": (
+        "T_as", "T_au", "T_dr", "T_ds", "T_du", "DLC", "gamma", "mean_current",
+        "mean_square_current", "vm_clamp_fraction",
+    ),
+    "pulse": ("SDR_s", "SAR_s", "SDR_u", "SAR_u", "RDR", "peak_tire_force", "vm_clamp_fraction"),
+    "road": (
+        "DLC", "rms_body_acceleration", "wk_rms_body_acceleration", "vdv", "rms_stroke",
+        "mean_current", "vm_clamp_fraction",
+    ),
+}  # fmt: skip
+#: Non-numeric entries of :meth:`SimulationResult.measures` by measures kind (how a
+#: measure was computed, not a measure).
+MEASURE_NOTES: dict[str, tuple[str, ...]] = {"pulse": ("road_peak",)}
 
 #: Recorded signals: name -> (unit, description).
 SIGNALS: dict[str, tuple[str, str]] = {
@@ -162,12 +182,12 @@ class SimulationResult(Mapping[str, np.ndarray]):
         ('after-onset', 4.85)
         """
         from mrsuspension.measures import check_road_peak
+        from mrsuspension.vehicle import QuarterCar
 
         how = check_road_peak(road_peak)
         exc = self.scenario.get("excitation", {})
-        kind = exc.get("kind")
-        veh = self.scenario.get("vehicle", {})
-        static_load = (veh.get("sprung_mass", 563.0) + veh.get("unsprung_mass", 90.0)) * 9.81
+        kind = _measures_kind(exc.get("kind"))
+        static_load = QuarterCar(**self.scenario.get("vehicle", {})).static_load
         out: dict[str, Any] = self._kind_measures(kind, exc, static_load, how)
         out["vm_clamp_fraction"] = self.velocity_clamp_fraction
         return out
@@ -285,6 +305,14 @@ class SimulationResult(Mapping[str, np.ndarray]):
         np.atleast_1d(axes)[-1].set_xlabel("time [s]")
         fig.tight_layout()
         return fig
+
+
+def _measures_kind(kind: Any) -> Any:
+    """The measures kind of a registered excitation kind (an unregistered one: itself)."""
+    from mrsuspension.excitation import EXCITATIONS
+
+    cls = EXCITATIONS.get(kind) if isinstance(kind, str) else None
+    return kind if cls is None else cls.measures_kind
 
 
 def warn_if_clamped(result: SimulationResult) -> None:

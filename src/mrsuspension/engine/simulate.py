@@ -4,7 +4,6 @@ and :func:`run_many` (batches across processes)."""
 from __future__ import annotations
 
 import math
-import os
 import warnings
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
@@ -19,6 +18,7 @@ from mrsuspension.dampers import kernels as DK
 from mrsuspension.dampers.wang import VEHICLE_VH_VARIANT
 from mrsuspension.engine import kernel as EK
 from mrsuspension.engine.result import SimulationResult, VelocityClampWarning, warn_if_clamped
+from mrsuspension.engine.settings import DEFAULT_DT, RunSettings, run_settings
 from mrsuspension.errors import MRSuspensionError, ValidationError, check_range
 from mrsuspension.vehicle import QuarterCar
 
@@ -32,8 +32,6 @@ __all__ = [
     "run_many",
 ]
 
-#: Default fixed step [s] (spec section 7).
-DEFAULT_DT = 1e-4
 #: RK4's stability limit on the negative real axis is about 2.785; keep a margin.
 _RK4_LIMIT = 2.5
 #: Divergence limits: |z| [m], |z'| [m/s], |F_d| [N], F_T [N].
@@ -219,8 +217,9 @@ class Simulation:
         self,
         duration: float | None = None,
         *,
-        dt: float = DEFAULT_DT,
-        output_rate: float = 1000.0,
+        dt: float | None = None,
+        output_rate: float | None = None,
+        settings: RunSettings | None = None,
         check_stability: bool = True,
     ) -> SimulationResult:
         """Simulate for ``duration`` seconds (default: the excitation's own duration).
@@ -229,19 +228,36 @@ class Simulation:
         ----------
         duration : float, optional
             Simulated time [s].
-        dt : float
+        dt : float, optional
             Fixed RK4 step [s] (default 1e-4, spec section 7); checked for stability.
-        output_rate : float
+        output_rate : float, optional
             Samples per second kept in the result (default 1 kHz; at most 1/dt).
+        settings : RunSettings, optional
+            ``duration``, ``dt`` and ``output_rate`` in one object (instead of the three
+            keywords above; giving both is an error).
         check_stability : bool
             Refuse a ``dt`` above the RK4 stability limit of the stiffest mode (default).
 
         Raises
         ------
+        ValidationError
+            Settings out of range, ``settings`` given with any of ``duration``, ``dt``,
+            ``output_rate``, or a ``dt`` too large for this model.
         SimulationDiverged
             When a state, the damper force or the tire force leaves the physical range:
             the message says when and which signal.
+
+        Examples
+        --------
+        >>> from mrsuspension.excitation import RoundedPulse
+        >>> sim = Simulation(RoundedPulse(0.02, 1.0))
+        >>> a = sim.run(settings=RunSettings(dt=5e-4, duration=1.0))
+        >>> b = sim.run(1.0, dt=5e-4)
+        >>> bool((a.z_s == b.z_s).all()), a.time.size
+        (True, 1001)
         """
+        settings = run_settings(settings, duration=duration, dt=dt, output_rate=output_rate)
+        duration, dt, output_rate = settings.duration, settings.dt, settings.output_rate
         dt, n, decimate = self._plan(duration, dt, output_rate, check_stability)
         zr, zrd = self._road(n, dt)
         a = self._arrays(dt)
@@ -473,38 +489,42 @@ def measures_of(result: SimulationResult) -> dict[str, Any]:
 
 
 def _run_one(
-    args: tuple[Simulation, float | None, float, float, Callable[[SimulationResult], Any] | None],
+    args: tuple[Simulation, RunSettings, Callable[[SimulationResult], Any] | None],
 ) -> Any:
-    sim, duration, dt, rate, reduce = args
-    result = run_quietly(sim, duration, dt, rate)
+    sim, settings, reduce = args
+    result = run_quietly(sim, settings)
     return result if reduce is None else reduce(result)
 
 
-def run_quietly(
-    sim: Simulation, duration: float | None, dt: float, rate: float
-) -> SimulationResult:
+def run_quietly(sim: Simulation, settings: RunSettings) -> SimulationResult:
     """:meth:`Simulation.run` without the clamp warning, for batch runners: the result
     carries its time at the clamp (``vm_clamp_fraction``) for the caller to report."""
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", VelocityClampWarning)
-        return sim.run(duration, dt=dt, output_rate=rate)
+        return sim.run(settings=settings)
 
 
 def _run_batch(
-    args: tuple[
-        list[Simulation], float | None, float, float, Callable[[SimulationResult], Any] | None
-    ],
+    args: tuple[list[Simulation], RunSettings, Callable[[SimulationResult], Any] | None],
 ) -> list[Any]:
     """A lane batch (:func:`~mrsuspension.engine.lanes.run_lanes`), reduced; raises the
     first divergence, as a run on its own would."""
     from mrsuspension.engine.lanes import run_lanes
 
-    sims, duration, dt, rate, reduce = args
-    results = run_lanes(sims, duration=duration, dt=dt, output_rate=rate)
+    sims, settings, reduce = args
+    results = run_lanes(
+        sims, duration=settings.duration, dt=settings.dt, output_rate=settings.output_rate
+    )
     for r in results:
         if isinstance(r, SimulationDiverged):
             raise r
     return results if reduce is None else [reduce(r) for r in results]  # type: ignore[arg-type]
+
+
+def _run_task(args: tuple[bool, Any]) -> list[Any]:
+    """One task of :func:`run_many`: a single run (as a one-item list) or a lane batch."""
+    lanes, arg = args
+    return _run_batch(arg) if lanes else [_run_one(arg)]
 
 
 _LANES_WARM = False
@@ -529,8 +549,9 @@ def run_many(
     simulations: Sequence[Simulation],
     *,
     duration: float | None = None,
-    dt: float = DEFAULT_DT,
-    output_rate: float = 1000.0,
+    dt: float | None = None,
+    output_rate: float | None = None,
+    settings: RunSettings | None = None,
     workers: int | None = None,
     progress: Callable[[int, int], None] | None = None,
     reduce: Callable[[SimulationResult], Any] | None = None,
@@ -543,7 +564,9 @@ def run_many(
     it can be sent to the workers) maps each result before it is returned, e.g.
     :func:`measures_of` for sweeps, which keeps the traffic between processes small.
     Runs do not warn about time at the peak-velocity clamp; each result (and its
-    measures) carries it as ``vm_clamp_fraction`` for the caller to report.
+    measures) carries it as ``vm_clamp_fraction`` for the caller to report. Every run
+    uses the same ``settings`` (a :class:`~mrsuspension.engine.settings.RunSettings`),
+    or the ``duration``, ``dt`` and ``output_rate`` keywords (not both).
 
     With ``lanes=True``, runs that differ only in their excitation (a sweep) and use the
     dissertation's damper model are stepped together in vector instructions
@@ -560,49 +583,39 @@ def run_many(
     >>> sims = [Simulation(Harmonic(f, 0.01)) for f in (1.0, 2.0)]
     >>> [round(float(r.time[-1]), 1) for r in run_many(sims, duration=0.5, workers=1)]
     [0.5, 0.5]
+    >>> plan = RunSettings(dt=2e-4, duration=0.5, output_rate=100.0)
+    >>> [r.time.size for r in run_many(sims, settings=plan, workers=1)]
+    [51, 51]
     """
+    from mrsuspension._pool import pool_map, worker_count
     from mrsuspension.engine.lanes import plan_batches
 
+    plan = run_settings(settings, duration=duration, dt=dt, output_rate=output_rate)
     sims = list(simulations)
     if not sims:
         return []
-    n_workers = min(len(sims), workers or os.cpu_count() or 1)
+    n_workers = worker_count(workers, len(sims))
     if lanes:
-        batches = plan_batches(sims, dt, duration, n_workers)
+        batches = plan_batches(sims, plan.dt, plan.duration, n_workers)
     else:
         batches = [[j] for j in range(len(sims))]
-
-    def task(batch: list[int]) -> tuple[Callable[[Any], Any], Any]:
-        if len(batch) == 1:
-            return _run_one, (sims[batch[0]], duration, dt, output_rate, reduce)
-        return _run_batch, ([sims[j] for j in batch], duration, dt, output_rate, reduce)
-
+    tasks = [
+        (False, (sims[b[0]], plan, reduce))
+        if len(b) == 1
+        else (True, ([sims[j] for j in b], plan, reduce))
+        for b in batches
+    ]
+    if n_workers > 1 and any(len(b) > 1 for b in batches):
+        _warm_lanes(sims[next(b for b in batches if len(b) > 1)[0]], plan.dt)
+    values = pool_map(
+        _run_task,
+        tasks,
+        workers=n_workers,
+        progress=progress,
+        weights=[len(b) for b in batches],
+    )
     results: list[Any] = [None] * len(sims)
-    done = 0
-
-    def collect(batch: list[int], value: Any) -> None:
-        nonlocal done
-        values = [value] if len(batch) == 1 else value
-        for j, v in zip(batch, values, strict=True):
+    for batch, value in zip(batches, values, strict=True):
+        for j, v in zip(batch, value, strict=True):
             results[j] = v
-        done += len(batch)
-        if progress:
-            progress(done, len(sims))
-
-    if n_workers <= 1:
-        for batch in batches:
-            fn, arg = task(batch)
-            collect(batch, fn(arg))
-        return results
-    if any(len(b) > 1 for b in batches):
-        _warm_lanes(sims[next(b for b in batches if len(b) > 1)[0]], dt)
-    from concurrent.futures import ProcessPoolExecutor, as_completed
-
-    with ProcessPoolExecutor(max_workers=n_workers) as pool:
-        futures = {}
-        for batch in batches:
-            fn, arg = task(batch)
-            futures[pool.submit(fn, arg)] = batch
-        for fut in as_completed(futures):
-            collect(futures[fut], fut.result())
     return results

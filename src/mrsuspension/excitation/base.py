@@ -4,19 +4,146 @@ from __future__ import annotations
 
 import math
 from abc import ABC, abstractmethod
-from typing import Any, ClassVar
+from collections.abc import Mapping
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any, ClassVar, TypeVar
 
 import numpy as np
 import numpy.typing as npt
 
 from mrsuspension.errors import ValidationError, check_finite, check_range
 
-__all__ = ["Excitation", "FloatArray"]
+__all__ = ["Configurable", "Excitation", "FloatArray", "Option"]
 
 FloatArray = npt.NDArray[np.float64]
 
+_C = TypeVar("_C", bound="Configurable")
 
-class Excitation(ABC):
+#: value kinds of an option, as a scenario file checks them
+OPTION_KINDS = ("number", "integer", "string", "numbers")
+
+
+@dataclass(frozen=True)
+class Option:
+    """One option of an excitation kind: a key of a scenario's ``[excitation]`` table.
+
+    Parameters
+    ----------
+    name : str
+        The key (``"frequency"``).
+    kind : {"number", "integer", "string", "numbers"}
+        Its value kind in a scenario file (``"numbers"``: a list of numbers).
+    unit : str
+        Unit of a number (``""`` for none).
+    doc : str
+        What it means, with its default (shown in help and in errors).
+    required : bool
+        The excitation cannot be built without it.
+    default : object, optional
+        Passed to the constructor when the option is not given (None: the
+        constructor's own default).
+    low, high : float, optional
+        Valid range of a number (None: unbounded on that side).
+    low_inclusive : bool
+        Whether ``low`` itself is valid.
+    choices : tuple of str, optional
+        The valid values of a string option (None: free text, e.g. a file path).
+    keyword : str, optional
+        The constructor keyword, when it differs from ``name`` (``speed`` ->
+        ``speed_kmh``).
+
+    Examples
+    --------
+    >>> Option("delay", "number", "s", "time before the pulse [s]", default=0.5, low=0.0).argument
+    'delay'
+    """
+
+    name: str
+    kind: str
+    unit: str
+    doc: str
+    required: bool = False
+    default: Any = None
+    low: float | None = None
+    high: float | None = None
+    low_inclusive: bool = True
+    choices: tuple[str, ...] | None = None
+    keyword: str | None = None
+
+    def __post_init__(self) -> None:
+        if self.kind not in OPTION_KINDS:
+            raise ValidationError(
+                f"option {self.name!r}: kind must be one of {', '.join(OPTION_KINDS)}; "
+                f"got {self.kind!r}"
+            )
+
+    @property
+    def argument(self) -> str:
+        """The constructor keyword the option sets."""
+        return self.keyword or self.name
+
+
+class Configurable:
+    """What a registered excitation kind declares (see :mod:`mrsuspension.excitation`).
+
+    ``name`` is the registry name (``[excitation] kind``), ``options`` the keys its
+    scenario table accepts, ``measures_kind`` the family of measures
+    :meth:`~mrsuspension.engine.result.SimulationResult.measures` computes for its runs
+    (see :data:`~mrsuspension.engine.result.MEASURES_BY_KIND`), ``example_options`` a
+    valid set of options (for the docs and the contract tests) and ``internal_parameters``
+    the constructor parameters that no option sets directly (a road's sampled profile).
+    The registry, the option tables of the scenario files and the studies' measure lists
+    are derived from these declarations.
+    """
+
+    name: ClassVar[str]
+    options: ClassVar[tuple[Option, ...]] = ()
+    measures_kind: ClassVar[str]
+    example_options: ClassVar[dict[str, Any]] = {}
+    internal_parameters: ClassVar[tuple[str, ...]] = ()
+
+    @classmethod
+    def option_table(cls) -> dict[str, Option]:
+        """The declared options by name."""
+        return {o.name: o for o in cls.options}
+
+    @classmethod
+    def from_options(
+        cls: type[_C], options: Mapping[str, Any], *, base_dir: str | Path | None = None
+    ) -> _C:
+        """Build from scenario options (checked names, required ones present).
+
+        Each declared option given sets its constructor keyword; an option not given
+        takes its declared ``default`` (if any), else the constructor's. ``base_dir`` is
+        for kinds that read files. Called by
+        :func:`~mrsuspension.excitation.make_excitation`, which checks the names first.
+        """
+        kwargs: dict[str, Any] = {}
+        for opt in cls.options:
+            if opt.name in options:
+                kwargs[opt.argument] = options[opt.name]
+            elif opt.default is not None:
+                kwargs[opt.argument] = opt.default
+        return cls(**kwargs)
+
+    def to_options(self) -> dict[str, Any] | None:
+        """Scenario options that rebuild this excitation; None when there are none.
+
+        The declared options read back from the attributes their keywords set (those
+        left at None are left out); kinds built from data no option holds (a road
+        profile) return None.
+        """
+        out: dict[str, Any] = {}
+        for opt in self.options:
+            value = getattr(self, opt.argument, None)
+            if value is None:
+                continue
+            out[opt.name] = list(value) if isinstance(value, tuple) else value
+        return out
+
+
+class Excitation(Configurable, ABC):
     """A road displacement input ``z_r(t)`` with exact derivatives.
 
     Every excitation is a function of time [s] that accepts scalars or numpy arrays and
@@ -26,11 +153,9 @@ class Excitation(ABC):
     sensible simulation length [s] and :meth:`measure_window` the part of the record
     the spec section 9 measures are computed over.
 
-    Subclasses are frozen dataclasses that validate their parameters on construction.
+    Subclasses are frozen dataclasses that validate their parameters on construction,
+    and declare their registry name, options and measures (:class:`Configurable`).
     """
-
-    #: registry name of the excitation kind (``"harmonic"``, ``"pulse"``, ``"road"``)
-    name: ClassVar[str]
 
     @abstractmethod
     def displacement(self, t: npt.ArrayLike) -> FloatArray:

@@ -6,8 +6,9 @@ All displacements are road inputs ``z_r`` [m], positive up (MODEL_SPEC sections 
 from __future__ import annotations
 
 import math
-from collections.abc import Iterator, Sequence
+from collections.abc import Iterator, Mapping, Sequence
 from dataclasses import dataclass
+from pathlib import Path
 from typing import Any, ClassVar
 
 import numpy as np
@@ -16,8 +17,10 @@ from numba import njit
 
 from mrsuspension.errors import ValidationError, check_range
 from mrsuspension.excitation.base import (
+    Configurable,
     Excitation,
     FloatArray,
+    Option,
     grid_args,
     non_negative,
     number,
@@ -26,6 +29,7 @@ from mrsuspension.excitation.base import (
 )
 
 __all__ = [
+    "DEFAULT_SWEEP_POINTS",
     "HIL_FREQUENCIES",
     "HIL_TRANSITION_FREQUENCY",
     "MIN_CYCLES",
@@ -65,6 +69,10 @@ OMEGA0_REFERENCE = 10.4
 REFERENCE_SPEED_KMH = 50.0
 #: time [s] left after a pulse for the response to settle (a simulation-length default)
 PULSE_SETTLING_TIME = 2.0
+#: number of log-spaced frequencies (0.5-15 Hz) of a sweep given without ``frequencies``
+DEFAULT_SWEEP_POINTS = 30
+#: the pulse's default delay [s] before it starts
+PULSE_DELAY = 0.5
 
 #: points per block of :func:`_harmonic_grid` (exact sin/cos at each block's start)
 _GRID_BLOCK = 64
@@ -147,6 +155,14 @@ class Harmonic(Excitation):
     amplitude: float
 
     name: ClassVar[str] = "harmonic"
+    measures_kind: ClassVar[str] = "harmonic"
+    options: ClassVar[tuple[Option, ...]] = (
+        Option("frequency", "number", "Hz", "excitation frequency [Hz] (required)",
+               required=True, low=0.0, high=_MAX_FREQUENCY, low_inclusive=False),
+        Option("amplitude", "number", "m", "displacement amplitude [m] (required)",
+               required=True, low=0.0, high=_MAX_AMPLITUDE, low_inclusive=False),
+    )  # fmt: skip
+    example_options: ClassVar[dict[str, Any]] = {"frequency": 1.5, "amplitude": 0.025}
 
     def __post_init__(self) -> None:
         f = positive("frequency", self.frequency, "Hz", high=_MAX_FREQUENCY)
@@ -158,6 +174,11 @@ class Harmonic(Excitation):
     def angular_frequency(self) -> float:
         """``omega = 2 pi f`` [rad/s]."""
         return 2.0 * math.pi * self.frequency
+
+    @property
+    def highest_frequency(self) -> float:
+        """The highest frequency in the input [Hz] (for the record's Nyquist check)."""
+        return self.frequency
 
     @property
     def peak_acceleration(self) -> float:
@@ -295,7 +316,7 @@ def log_frequencies(n: int, f_min: float = 0.5, f_max: float = 15.0) -> FloatArr
 
 
 @dataclass(frozen=True)
-class SteppedSweep:
+class SteppedSweep(Configurable):
     """Two-stage stepped sweep: one steady-state harmonic run per frequency (3.37).
 
     As in the dissertation, a "swept" test is a set of separate harmonic runs, each at
@@ -325,6 +346,18 @@ class SteppedSweep:
     transition_frequency: float = TRANSITION_FREQUENCY
 
     name: ClassVar[str] = "swept"
+    measures_kind: ClassVar[str] = "harmonic"  # one harmonic run per frequency
+    options: ClassVar[tuple[Option, ...]] = (
+        Option("amplitude", "number", "m", "low-frequency displacement amplitude a [m] (required)",
+               required=True, low=0.0, high=_MAX_AMPLITUDE, low_inclusive=False),
+        Option("transition_frequency", "number", "Hz",
+               "f_T [Hz], 2.1 by default (2.0 on the HiL rig)",
+               default=TRANSITION_FREQUENCY, low=0.0, high=_MAX_FREQUENCY, low_inclusive=False),
+        Option("frequencies", "numbers", "Hz",
+               f"list of frequencies [Hz]; {DEFAULT_SWEEP_POINTS} log-spaced in 0.5-15 Hz by default",
+               low=0.0, high=_MAX_FREQUENCY, low_inclusive=False),
+    )  # fmt: skip
+    example_options: ClassVar[dict[str, Any]] = {"amplitude": 0.025, "frequencies": [1.0, 4.2]}
 
     def __post_init__(self) -> None:
         freqs = self.frequencies
@@ -353,6 +386,20 @@ class SteppedSweep:
             "transition_frequency",
             positive("transition_frequency", self.transition_frequency, "Hz", high=_MAX_FREQUENCY),
         )
+
+    @classmethod
+    def from_options(
+        cls, options: Mapping[str, Any], *, base_dir: str | Path | None = None
+    ) -> SteppedSweep:
+        """Build from scenario options; no ``frequencies``: 30 log-spaced in 0.5-15 Hz."""
+        if options.get("frequencies") is None:
+            options = {**options, "frequencies": tuple(log_frequencies(DEFAULT_SWEEP_POINTS))}
+        return super().from_options(options, base_dir=base_dir)
+
+    @property
+    def highest_frequency(self) -> float:
+        """The highest sweep frequency [Hz] (for the record's Nyquist check)."""
+        return max(self.frequencies)
 
     @classmethod
     def hil(cls, amplitude: float) -> SteppedSweep:
@@ -443,9 +490,26 @@ class RoundedPulse(Excitation):
     severity: float
     omega0: float | None = None
     speed_kmh: float = REFERENCE_SPEED_KMH
-    delay: float = 0.5
+    delay: float = PULSE_DELAY
 
     name: ClassVar[str] = "pulse"
+    measures_kind: ClassVar[str] = "pulse"
+    options: ClassVar[tuple[Option, ...]] = (
+        Option("amplitude", "number", "m", "bump height a [m] (required)",
+               required=True, low=-_MAX_AMPLITUDE, high=_MAX_AMPLITUDE),
+        Option("severity", "number", "", "severity mu, e.g. 1, 2, 3 (required)",
+               required=True, low=0.0, high=1e3, low_inclusive=False),
+        Option("speed", "number", "km/h",
+               "vehicle speed [km/h], 50 by default; sets w0 = 10.4 rad/s x speed/50",
+               default=REFERENCE_SPEED_KMH, low=0.0, high=500.0, low_inclusive=False,
+               keyword="speed_kmh"),
+        Option("omega0", "number", "rad/s",
+               "fundamental frequency w0 [rad/s]; overrides the speed scaling",
+               low=0.0, high=1e4, low_inclusive=False),
+        Option("delay", "number", "s", "time before the pulse [s], 0.5 by default",
+               default=PULSE_DELAY, low=0.0, high=1e4),
+    )  # fmt: skip
+    example_options: ClassVar[dict[str, Any]] = {"amplitude": 0.05, "severity": 2.0}
 
     def __post_init__(self) -> None:
         a = number("amplitude", self.amplitude)

@@ -15,7 +15,7 @@ from __future__ import annotations
 import csv
 import math
 import re
-from collections.abc import Callable, Iterator, Sequence
+from collections.abc import Callable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any, ClassVar
@@ -26,10 +26,11 @@ from numba import njit
 from scipy.interpolate import CubicSpline
 from scipy.signal import welch
 
-from mrsuspension.errors import ValidationError, check_finite, unknown_name
+from mrsuspension.errors import ValidationError, check_finite, did_you_mean, unknown_name
 from mrsuspension.excitation.base import (
     Excitation,
     FloatArray,
+    Option,
     grid_args,
     non_negative,
     positive,
@@ -198,6 +199,35 @@ class RoadProfile(Excitation):
     _pp: tuple[FloatArray, FloatArray] = field(init=False, repr=False, compare=False)
 
     name: ClassVar[str] = "road"
+    measures_kind: ClassVar[str] = "road"
+    options: ClassVar[tuple[Option, ...]] = (
+        Option("profile", "string", "",
+               "preset name (smooth, medium-rough, rough) or a CSV file path"),
+        Option("iso_class", "string", "", "ISO 8608 class A-H (instead of profile)",
+               choices=tuple("ABCDEFGH")),
+        Option("seed", "integer", "",
+               "random-phase seed of an ISO 8608 class (0 by default) or a preset (its own "
+               "fixed seed by default; any seed gives the same PSD level)", low=0.0),
+        Option("length", "number", "m", "ISO 8608 profile length [m], 500 by default",
+               low=0.0, high=1e6, low_inclusive=False),
+        Option("spacing", "number", "m", "ISO 8608 point spacing [m], 0.3 by default",
+               low=0.0, low_inclusive=False),
+        Option("speed", "number", "km/h", "vehicle speed [km/h], 50 by default",
+               default=REFERENCE_SPEED_KMH, low=0.0, high=500.0, low_inclusive=False,
+               keyword="speed_kmh"),
+        Option("scale", "number", "",
+               "elevation scale factor, 1 by default (HiL used 0.5 on the rough road)",
+               low=0.0, high=1e3, low_inclusive=False),
+        Option("fade_in", "number", "m",
+               "length [m] over which the profile fades in from zero, 0 by default", low=0.0),
+        Option("distance_unit", "string", "", "unit of the CSV distance column, m or mm",
+               choices=("m", "mm")),
+        Option("elevation_unit", "string", "", "unit of the CSV elevation column, m or mm",
+               choices=("m", "mm")),
+    )  # fmt: skip
+    example_options: ClassVar[dict[str, Any]] = {"profile": "smooth"}
+    #: the sampled profile, its label and PSD come from ``profile`` or ``iso_class``
+    internal_parameters: ClassVar[tuple[str, ...]] = ("distance", "elevation", "source", "spectrum")
 
     def __post_init__(self) -> None:
         distance, elevation = _check_profile(
@@ -225,6 +255,27 @@ class RoadProfile(Excitation):
         object.__setattr__(self, "_pp", pp)
 
     # -- construction ---------------------------------------------------------------
+    @classmethod
+    def from_options(
+        cls, options: Mapping[str, Any], *, base_dir: str | Path | None = None
+    ) -> RoadProfile:
+        """A road from scenario options: a preset, a CSV file or an ISO 8608 class.
+
+        Exactly one of ``profile`` (a preset name or a CSV path, relative paths taken
+        from ``base_dir``) and ``iso_class``; see
+        :data:`~mrsuspension.excitation.EXCITATION_OPTIONS` for the rest.
+
+        Examples
+        --------
+        >>> RoadProfile.from_options({"iso_class": "C", "length": 100.0}).distance.size
+        334
+        """
+        return _road_from_options(options, base_dir)
+
+    def to_options(self) -> dict[str, Any] | None:
+        """None: a road's samples are not held by options (its ``source`` says where from)."""
+        return None
+
     @classmethod
     def from_csv(
         cls,
@@ -1116,3 +1167,75 @@ def preset_road(
     if not isinstance(name, str) or name not in PRESET_ROADS:
         raise unknown_name("preset road", str(name), PRESET_ROADS)
     return PRESET_ROADS[name].profile(speed_kmh, seed=seed, fade_in=fade_in)
+
+
+# -- scenario options ----------------------------------------------------------------------
+def _road_from_options(options: Mapping[str, Any], base_dir: str | Path | None) -> RoadProfile:
+    """:meth:`RoadProfile.from_options`."""
+    speed = options.get("speed", REFERENCE_SPEED_KMH)
+    fade_in = options.get("fade_in", 0.0)
+    has_profile = "profile" in options
+    has_iso = "iso_class" in options
+    if has_profile == has_iso:
+        raise ValidationError(
+            "excitation 'road' needs exactly one of 'profile' (a preset name: "
+            f"{', '.join(PRESET_ROADS)}; or a CSV file path) and 'iso_class' (ISO 8608 A-H)"
+        )
+    iso_only = [k for k in ("length", "spacing") if k in options]
+    csv_only = [k for k in ("distance_unit", "elevation_unit") if k in options]
+    if has_profile:
+        if iso_only:
+            raise ValidationError(
+                f"excitation 'road': {', '.join(map(repr, iso_only))} only applies with 'iso_class'"
+            )
+        profile = options["profile"]
+        if not isinstance(profile, str | Path):
+            raise ValidationError(
+                f"road profile must be a preset name or a file path; got {profile!r}"
+            )
+        if isinstance(profile, str) and profile in PRESET_ROADS:
+            if csv_only:
+                raise ValidationError(
+                    f"excitation 'road': {', '.join(map(repr, csv_only))} only applies to a CSV file"
+                )
+            road = preset_road(profile, speed, seed=options.get("seed"), fade_in=fade_in)
+        else:
+            if "seed" in options:
+                raise ValidationError(
+                    "excitation 'road': 'seed' only applies with 'iso_class' or a preset profile"
+                )
+            path = Path(profile)
+            if base_dir is not None and not path.is_absolute():
+                path = Path(base_dir) / path
+            if not path.exists() and path.suffix == "" and len(path.parts) == 1:
+                # a bare word: most likely a misspelt preset name
+                raise ValidationError(
+                    f"unknown road profile {str(profile)!r}: not a preset and no such file."
+                    f"{did_you_mean(str(profile), PRESET_ROADS)} Presets: {', '.join(PRESET_ROADS)}."
+                )
+            road = RoadProfile.from_csv(
+                path,
+                speed,
+                distance_unit=options.get("distance_unit"),
+                elevation_unit=options.get("elevation_unit"),
+                fade_in=fade_in,
+            )
+    else:
+        if csv_only:
+            raise ValidationError(
+                f"excitation 'road': {', '.join(map(repr, csv_only))} only applies to a CSV file"
+            )
+        iso_class = options["iso_class"]
+        if not isinstance(iso_class, str) or iso_class.strip().upper() not in ISO8608_CLASSES:
+            error = unknown_name("ISO 8608 road class", str(iso_class), ISO8608_CLASSES)
+            raise ValidationError(f"iso_class: {error}")
+        road = iso8608(
+            iso_class,
+            length=options.get("length", 500.0),
+            spacing=options.get("spacing", 0.3),
+            seed=options.get("seed", 0),
+            speed_kmh=speed,
+            fade_in=fade_in,
+        )
+    scale = positive("scale", options.get("scale", 1.0), "", high=1e3)
+    return road if scale == 1.0 else road.scaled(scale)

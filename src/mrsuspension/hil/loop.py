@@ -49,6 +49,7 @@ from typing import Any
 
 import numpy as np
 
+from mrsuspension.engine.settings import RunSettings
 from mrsuspension.engine.simulate import DEFAULT_DT, Simulation, SimulationDiverged
 from mrsuspension.errors import MRSuspensionError, ValidationError, check_range
 from mrsuspension.hil.driver import PICurrentDriver
@@ -382,6 +383,7 @@ def run_hil(
     process: bool = False,
     on_stop: Callable[[HilResult], None] | None = None,
     hooks: LoopHooks | None = None,
+    settings: RunSettings | None = None,
 ) -> HilResult:
     """Run a scenario in the loop with a rig.
 
@@ -432,12 +434,22 @@ def run_hil(
         Called with the result before it is returned.
     hooks : LoopHooks, optional
         Live tap, external stop and settings channel (the monitor's); None: none.
+    settings : RunSettings, optional
+        The run plan instead of ``duration`` and ``rate``: its ``duration`` (None: the
+        excitation's own) and one tick per ``dt`` (``rate = 1/dt``); ``output_rate``
+        does not apply (every tick is recorded). Giving it with a ``duration`` or
+        ``rate`` other than the defaults is an error.
 
     Returns
     -------
     HilResult
         The recording, the tick statistics and why the run stopped.
     """
+    if settings is not None:
+        if (duration, rate) != (10.0, 1000.0):
+            raise ValidationError("run_hil: give either settings or duration/rate, not both")
+        rate = 1.0 / settings.dt
+        duration = settings.duration_for(_simulation_of(target).excitation)
     if process:
         check_isolate(realtime, isolate)  # refused here, not in the child
         if out is None:

@@ -20,8 +20,10 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from mrsuspension._batch import Job
 from mrsuspension.engine.result import SimulationResult
-from mrsuspension.engine.simulate import Simulation, run_many, run_quietly
+from mrsuspension.engine.settings import RunSettings
+from mrsuspension.engine.simulate import run_many, run_quietly
 from mrsuspension.errors import ValidationError
 from mrsuspension.measures.shock import DEFAULT_ROAD_PEAK, RoadPeak
 from mrsuspension.studies.study import Study
@@ -106,28 +108,25 @@ def _measures(result: SimulationResult, road_peak: RoadPeak) -> dict[str, Any]:
     return result.measures(road_peak=road_peak)
 
 
-def _run_point(
-    job: tuple[Simulation, float | None, float, float], road_peak: RoadPeak = DEFAULT_ROAD_PEAK
-) -> dict[str, Any]:
+def _run_point(job: Job, road_peak: RoadPeak = DEFAULT_ROAD_PEAK) -> dict[str, Any]:
     """One run reduced to its measures (module level, so workers can unpickle it)."""
-    sim, duration, dt, rate = job
-    return _measures(run_quietly(sim, duration, dt, rate), road_peak)
+    return _measures(run_quietly(job.simulation, job.settings), road_peak)
 
 
 def _run_local(
-    jobs: Sequence[tuple[Simulation, float | None, float, float]],
+    jobs: Sequence[Job],
     workers: int | None,
     progress: Progress | None,
     road_peak: RoadPeak = DEFAULT_ROAD_PEAK,
 ) -> list[dict[str, Any]]:
     """The engine's batch runner, once per group of equal run settings."""
-    groups: dict[tuple[float | None, float, float], list[int]] = {}
-    for k, (_, duration, dt, rate) in enumerate(jobs):
-        groups.setdefault((duration, dt, rate), []).append(k)
+    groups: dict[RunSettings, list[int]] = {}
+    for k, job in enumerate(jobs):
+        groups.setdefault(job.settings, []).append(k)
     out: list[dict[str, Any]] = [{} for _ in jobs]
     done = 0
     total = len(jobs)
-    for (duration, dt, rate), idx in groups.items():
+    for settings, idx in groups.items():
         offset = done
 
         def tick(n: int, _total: int, offset: int = offset) -> None:
@@ -135,10 +134,8 @@ def _run_local(
                 progress(offset + n, total)
 
         results = run_many(
-            [jobs[k][0] for k in idx],
-            duration=duration,
-            dt=dt,
-            output_rate=rate,
+            [jobs[k].simulation for k in idx],
+            settings=settings,
             workers=workers,
             progress=tick,
             reduce=functools.partial(_measures, road_peak=road_peak),
@@ -150,7 +147,7 @@ def _run_local(
 
 
 def _run_dask(
-    jobs: Sequence[tuple[Simulation, float | None, float, float]],
+    jobs: Sequence[Job],
     executor: Any,
     progress: Progress | None,
     road_peak: RoadPeak = DEFAULT_ROAD_PEAK,
@@ -305,7 +302,7 @@ def run_study(
                 study, ds, digest, from_cache=True, run_time=float(ds.attrs.get("run_time_s", 0))
             )
     jobs = [
-        (sim, *settings)
+        Job(sim, settings)
         for sim, settings in zip(study.simulations(), study.run_settings(), strict=True)
     ]
     start = time.perf_counter()

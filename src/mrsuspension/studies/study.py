@@ -58,39 +58,21 @@ from typing import Any
 
 import numpy as np
 
+from mrsuspension.engine.result import MEASURES_BY_KIND
+from mrsuspension.engine.settings import RunSettings
 from mrsuspension.errors import ValidationError, did_you_mean, read_toml
-from mrsuspension.excitation import log_frequencies
+from mrsuspension.excitation import EXCITATIONS, log_frequencies
 from mrsuspension.measures.shock import DEFAULT_ROAD_PEAK, RoadPeak, check_road_peak
 from mrsuspension.scenario import SCENARIO_KEYS, Scenario
 
 __all__ = ["MEASURES", "Axis", "Study", "expand_frequencies"]
 
-#: Measures of ``SimulationResult.measures()`` by excitation kind (spec section 9).
+#: Measures of ``SimulationResult.measures()`` by excitation kind (spec section 9): each
+#: kind's declared ``measures_kind`` looked up in
+#: :data:`~mrsuspension.engine.result.MEASURES_BY_KIND`.
 MEASURES: dict[str, tuple[str, ...]] = {
-    "harmonic": (
-        "T_as",
-        "T_au",
-        "T_dr",
-        "T_ds",
-        "T_du",
-        "DLC",
-        "gamma",
-        "mean_current",
-        "mean_square_current",
-        "vm_clamp_fraction",
-    ),
-    "pulse": ("SDR_s", "SAR_s", "SDR_u", "SAR_u", "RDR", "peak_tire_force", "vm_clamp_fraction"),
-    "road": (
-        "DLC",
-        "rms_body_acceleration",
-        "wk_rms_body_acceleration",
-        "vdv",
-        "rms_stroke",
-        "mean_current",
-        "vm_clamp_fraction",
-    ),
+    kind: MEASURES_BY_KIND[cls.measures_kind] for kind, cls in EXCITATIONS.items()
 }
-MEASURES["swept"] = MEASURES["harmonic"]
 
 _STUDY_KEYS = ("name", "description", "measures", "scenario", "road_peak")
 _TOP_LEVEL = ("study", "grid", "cases", *SCENARIO_KEYS)
@@ -397,7 +379,7 @@ class Study:
             raise ValidationError("every grid point of a swept study must use the same frequencies")
         frequencies = next(iter(sweeps)) if sweeps else None
 
-        available = MEASURES["harmonic"] + MEASURES["pulse"] + MEASURES["road"]
+        available = tuple(m for names in MEASURES_BY_KIND.values() for m in names)
         valid = sorted({m for k in kinds for m in MEASURES[k]})
         requested = meta.get("measures")
         if requested is None:
@@ -464,9 +446,10 @@ class Study:
         """Every run, in C order of :attr:`dims` (grid points, then frequencies)."""
         return [sim for s in self.scenarios for sim in s.simulations()]
 
-    def run_settings(self) -> list[tuple[float | None, float, float]]:
-        """``(duration, dt, output_rate)`` of every run, aligned with :meth:`simulations`."""
-        return [(s.duration, s.dt, s.output_rate) for s in self.scenarios for _ in s.excitations]
+    def run_settings(self) -> list[RunSettings]:
+        """The :class:`RunSettings` of every run (its grid point's ``[simulation]``),
+        aligned with :meth:`simulations`."""
+        return [s.settings for s in self.scenarios for _ in s.excitations]
 
     # -- identity -----------------------------------------------------------------------
     def canonical(self) -> dict[str, Any]:

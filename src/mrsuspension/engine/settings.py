@@ -1,0 +1,235 @@
+"""Run settings: the fixed step, the simulated time and the recorded rate of a run.
+
+:class:`RunSettings` travels wherever a run is planned (``Simulation.run``,
+``run_many``, scenarios, studies, the optimiser, batches and the HiL loop) instead of the
+positional ``(duration, dt, output_rate)`` triples of earlier versions. It depends on
+nothing but :mod:`mrsuspension.errors`, so any module may import it.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from mrsuspension.errors import ValidationError, check_range
+
+__all__ = [
+    "DEFAULT_DT",
+    "DEFAULT_OUTPUT_RATE",
+    "MAX_DT",
+    "MAX_DURATION",
+    "RunSettings",
+    "run_settings",
+]
+
+#: Default fixed RK4 step [s] (MODEL_SPEC section 7).
+DEFAULT_DT = 1e-4
+#: Default recorded rate [Hz]; decimation is separate from ``dt`` (MODEL_SPEC section 7).
+DEFAULT_OUTPUT_RATE = 1000.0
+#: Largest accepted step [s] (the stability check of a model is usually far tighter).
+MAX_DT = 0.01
+#: Longest accepted simulated time [s] (about 28 h).
+MAX_DURATION = 1e5
+#: Relative slack of the ``output_rate <= 1/dt`` check (``1/dt`` rounds).
+_RATE_SLACK = 1e-9
+
+
+@dataclass(frozen=True, init=False)
+class RunSettings:
+    """How a run is stepped and recorded: ``dt``, ``duration`` and ``output_rate``.
+
+    Parameters
+    ----------
+    dt : float
+        Fixed RK4 step [s], in (0, 0.01]; 1e-4 s by default (MODEL_SPEC section 7).
+        Whether it is stable for a given model is checked by the simulation
+        (:meth:`~mrsuspension.engine.simulate.Simulation.check_dt`).
+    duration : float or None
+        Simulated time [s], in (0, 1e5]; None (default): the excitation's own duration
+        (the steady-state rule of spec section 9 for harmonic runs).
+    output_rate : float or None
+        Recorded samples per second [Hz], in (0, 1/dt]; None (default): 1 kHz, at most
+        one sample per step. Always a number after construction.
+
+    Raises
+    ------
+    ValidationError
+        A value out of range, naming the field, the value and the valid range.
+
+    Examples
+    --------
+    >>> RunSettings()
+    RunSettings(dt=0.0001, duration=None, output_rate=1000.0)
+    >>> RunSettings(dt=2e-3).output_rate  # the 1 kHz default, capped at 1/dt
+    500.0
+    >>> RunSettings(dt=1e-3, output_rate=2000.0)
+    Traceback (most recent call last):
+    ...
+    mrsuspension.errors.ValidationError: output_rate must be in (0, 1000] Hz (at most one sample per step of dt = 0.001 s); got 2000 Hz
+    """
+
+    dt: float
+    duration: float | None
+    output_rate: float
+
+    def __init__(
+        self,
+        dt: float = DEFAULT_DT,
+        duration: float | None = None,
+        output_rate: float | None = None,
+    ) -> None:
+        dt = _number("dt", dt)
+        dt = float(check_range("dt", dt, 0.0, MAX_DT, unit="s", low_inclusive=False))
+        if duration is not None:
+            duration = _number("duration", duration)
+            duration = float(
+                check_range("duration", duration, 0.0, MAX_DURATION, unit="s", low_inclusive=False)
+            )
+        if output_rate is None:
+            rate = min(DEFAULT_OUTPUT_RATE, 1.0 / dt)
+        else:
+            rate = float(
+                check_range(
+                    "output_rate",
+                    _number("output_rate", output_rate),
+                    0.0,
+                    None,
+                    unit="Hz",
+                    low_inclusive=False,
+                )
+            )
+            if rate * dt > 1.0 + _RATE_SLACK:
+                raise ValidationError(
+                    f"output_rate must be in (0, {1.0 / dt:g}] Hz (at most one sample per "
+                    f"step of dt = {dt:g} s); got {rate:g} Hz"
+                )
+        object.__setattr__(self, "dt", dt)
+        object.__setattr__(self, "duration", duration)
+        object.__setattr__(self, "output_rate", rate)
+
+    # -- derived -------------------------------------------------------------------------
+    @property
+    def decimation(self) -> int:
+        """Steps per recorded sample, ``round(1 / (output_rate dt))`` (at least 1).
+
+        Examples
+        --------
+        >>> RunSettings(dt=1e-4, output_rate=1000.0).decimation
+        10
+        """
+        return max(1, round(1.0 / (self.output_rate * self.dt)))
+
+    def duration_for(self, excitation: Any) -> float:
+        """The simulated time [s] of a run on ``excitation``: :attr:`duration`, else its own.
+
+        Examples
+        --------
+        >>> from mrsuspension.excitation import RoundedPulse
+        >>> RunSettings(duration=1.5).duration_for(RoundedPulse(0.02, 1.0))
+        1.5
+        """
+        if self.duration is not None:
+            return self.duration
+        return float(
+            check_range(
+                "duration",
+                float(excitation.duration),
+                0.0,
+                MAX_DURATION,
+                unit="s",
+                low_inclusive=False,
+            )
+        )
+
+    def check_for(self, excitation: Any) -> RunSettings:
+        """Check that the record resolves the excitation: its highest frequency < output_rate/2.
+
+        Excitations that declare a ``highest_frequency`` [Hz] (harmonic runs and sweeps)
+        are checked against the Nyquist frequency of the record; others pass. Returns
+        ``self``, for chaining.
+
+        Raises
+        ------
+        ValidationError
+            When the record would alias the excitation.
+
+        Examples
+        --------
+        >>> from mrsuspension.excitation import Harmonic
+        >>> RunSettings(output_rate=100.0).check_for(Harmonic(10.0, 0.01)).output_rate
+        100.0
+        >>> RunSettings(output_rate=100.0).check_for(Harmonic(60.0, 0.001))
+        Traceback (most recent call last):
+        ...
+        mrsuspension.errors.ValidationError: output_rate = 100 Hz cannot record the excitation's 60 Hz: it needs output_rate > 120 Hz (twice the highest frequency)
+        """
+        top = getattr(excitation, "highest_frequency", None)
+        if top is not None and not float(top) < 0.5 * self.output_rate:
+            raise ValidationError(
+                f"output_rate = {self.output_rate:g} Hz cannot record the excitation's "
+                f"{float(top):g} Hz: it needs output_rate > {2.0 * float(top):g} Hz (twice the "
+                "highest frequency)"
+            )
+        return self
+
+    def to_dict(self) -> dict[str, float]:
+        """The ``[simulation]`` table of a scenario (``duration`` only when set).
+
+        Examples
+        --------
+        >>> RunSettings(dt=5e-5, duration=3.0).to_dict()
+        {'dt': 5e-05, 'output_rate': 1000.0, 'duration': 3.0}
+        """
+        out = {"dt": self.dt, "output_rate": self.output_rate}
+        if self.duration is not None:
+            out["duration"] = self.duration
+        return out
+
+
+def _number(name: str, value: object) -> float:
+    """``value`` as a float; a non-number (or a bool) names the field."""
+    if isinstance(value, bool) or not isinstance(value, int | float | np.integer | np.floating):
+        raise ValidationError(f"{name} must be a number; got {value!r}")
+    return float(value)
+
+
+def run_settings(
+    settings: RunSettings | None = None,
+    *,
+    duration: float | None = None,
+    dt: float | None = None,
+    output_rate: float | None = None,
+) -> RunSettings:
+    """A :class:`RunSettings` from either a settings object or the three keywords.
+
+    For functions that accept both spellings (``Simulation.run``, ``run_many``): a
+    keyword left as None takes the :class:`RunSettings` default.
+
+    Raises
+    ------
+    ValidationError
+        ``settings`` given together with any keyword, or a value out of range.
+
+    Examples
+    --------
+    >>> run_settings(dt=5e-5, duration=3.0) == run_settings(RunSettings(5e-5, 3.0))
+    True
+    >>> run_settings(RunSettings(), dt=1e-4)
+    Traceback (most recent call last):
+    ...
+    mrsuspension.errors.ValidationError: give either settings or dt, not both
+    """
+    given = [
+        n
+        for n, v in (("duration", duration), ("dt", dt), ("output_rate", output_rate))
+        if v is not None
+    ]
+    if settings is not None:
+        if not isinstance(settings, RunSettings):
+            raise ValidationError(f"settings must be a RunSettings; got {settings!r}")
+        if given:
+            raise ValidationError(f"give either settings or {', '.join(given)}, not both")
+        return settings
+    return RunSettings(DEFAULT_DT if dt is None else dt, duration, output_rate)
