@@ -32,7 +32,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 if TYPE_CHECKING:
-    from mrsuspension.identify.campaign import IdentificationResult, TestOutcome
+    from mrsuspension.identify.results import IdentificationResult, TestOutcome
 
 __all__ = ["plot_test", "summary_text", "write_outputs"]
 
