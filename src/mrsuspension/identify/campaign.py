@@ -135,16 +135,28 @@ def _warning(note: str) -> bool:
 
 
 def load_campaign(
-    manifest: Manifest, options: PreprocessOptions | None = None
+    manifest: Manifest,
+    options: PreprocessOptions | None = None,
+    *,
+    current_gain: float | None = None,
 ) -> list[TestOutcome]:
-    """Read and pre-process every test of a manifest; problems stay with their test."""
+    """Read and pre-process every test of a manifest; problems stay with their test.
+
+    ``current_gain`` [A/V] converts current columns recorded as a voltage
+    (:func:`~mrsuspension.identify.readers.read_test`).
+    """
     outcomes = []
     for entry in manifest.entries:
-        outcomes.append(_load_one(entry, manifest, options or PreprocessOptions()))
+        outcomes.append(_load_one(entry, manifest, options or PreprocessOptions(), current_gain))
     return outcomes
 
 
-def _load_one(entry: TestEntry, manifest: Manifest, options: PreprocessOptions) -> TestOutcome:
+def _load_one(
+    entry: TestEntry,
+    manifest: Manifest,
+    options: PreprocessOptions,
+    current_gain: float | None = None,
+) -> TestOutcome:
     out = TestOutcome(
         file=entry.label,
         current=entry.current,
@@ -156,7 +168,7 @@ def _load_one(entry: TestEntry, manifest: Manifest, options: PreprocessOptions) 
         out.message = entry.error
         return out
     try:
-        raw = read_test(entry.file, entry.columns, entry.units)
+        raw = read_test(entry.file, entry.columns, entry.units, current_gain=current_gain)
         if entry.current is None and raw.current is None:
             why = (
                 f"the file name does not match --current-pattern {manifest.current_pattern.pattern!r}"
@@ -215,6 +227,7 @@ def identify(
     poor_fit: float = POOR_FIT,
     name: str | None = None,
     progress: Callable[[str], None] | None = None,
+    current_gain: float | None = None,
 ) -> IdentificationResult:
     """Identify a damper model from a campaign of harmonic tests (spec section 10).
 
@@ -244,6 +257,8 @@ def identify(
         Name of the fitted parameter set (default ``<model>-fitted``).
     progress : callable, optional
         Called with a short message at each stage.
+    current_gain : float, optional
+        Gain of the coil driver [A/V] for current columns recorded in V or mV.
 
     Returns
     -------
@@ -285,7 +300,11 @@ def identify(
     say("reading the manifest")
     man = read_manifest(manifest, columns=columns, units=units, current_pattern=current_pattern)
     say(f"reading and pre-processing {len(man)} tests")
-    tests = load_campaign(man, options)
+    if current_gain is not None and not (
+        isinstance(current_gain, int | float) and math.isfinite(current_gain) and current_gain > 0
+    ):
+        raise ValidationError(f"--gain must be a number > 0 [A/V]; got {current_gain!r}")
+    tests = load_campaign(man, options, current_gain=current_gain)
     usable = [t for t in tests if t.loop is not None]
     if not usable:
         first = "; ".join(f"{t.file}: {t.message}" for t in tests[:3])
@@ -383,6 +402,7 @@ def identify(
             "multistart": multistart,
             "seed": seed,
             "model_options": dict(model_options or {}),
+            "current_gain": current_gain,
         },
     )
     for band, _ in groups:
