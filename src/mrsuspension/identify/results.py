@@ -209,6 +209,7 @@ class IdentificationResult:
                     rms_nrmse=r.rms_nrmse,
                     free=list(r.free),
                     at_bounds=list(r.at_bounds),
+                    evidence=r.evidence,
                 )
             entry["compare"] = {
                 m: (c if isinstance(c, str) else {"parameters": dict(c.parameters.values),
