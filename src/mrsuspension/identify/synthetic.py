@@ -34,6 +34,7 @@ __all__ = [
     "FIELD_PAIRS",
     "FIELD_PARAMETERS",
     "LAYOUTS",
+    "example_campaign",
     "field_campaign",
     "synthetic_campaign",
 ]
@@ -298,3 +299,27 @@ def field_campaign(
         stroke_drift=stroke_drift,
         motion_noise=motion_noise,
     )
+
+
+def example_campaign() -> Path:
+    """The manifest of the example rig campaign shipped with the package.
+
+    Eight short tests of the dissertation's symmetric model (Table 2.2, 0-0.4 A,
+    1.5-5 Hz, 2 % force noise) in the four file layouts the readers take, made by
+    :func:`synthetic_campaign` with a fixed seed (``tools/make_example_campaign.py``).
+    Try ``mrsus identify "$(python -c 'import mrsuspension.identify as i;
+    print(i.example_campaign())')"``.
+
+    Examples
+    --------
+    >>> from mrsuspension.identify import identify
+    >>> path = example_campaign()
+    >>> path.name
+    'manifest.csv'
+    >>> result = identify(path)
+    >>> len(result.tests), result.max_nrmse < 0.02
+    (8, True)
+    """
+    from importlib.resources import files
+
+    return Path(str(files("mrsuspension.identify") / "data" / "example_campaign" / "manifest.csv"))
