@@ -20,6 +20,13 @@ RMS NRMSE, so a faster method that stops early shows it. All three run with
 single-threaded BLAS, as the package's fit does; a last line runs ours with the default
 multi-threaded BLAS, whose cost on a busy machine is why the fit limits it.
 
+A second part times the issue-15 field campaign (:func:`field_campaign`: 30 tests,
+0.1-5 Hz, 2-25 mm, 200 Hz / 1 kHz, offsets, 2 % noise, a damper far from the start):
+``identify()`` end to end with its default 8 starts (median of 3 runs), beside the
+baseline of the issue: a plain ``least_squares`` (finite differences) on one
+mid-record cycle of raw samples per test, ``v_m`` = that cycle's peak ``|v|``, from the
+same scaled start.
+
 Run: ``python benchmarks/bench_identify.py [--tests N] [--starts S] [--json]``.
 """
 
@@ -50,6 +57,71 @@ def campaign(folder: Path, n_tests: int) -> Path:
     )
 
 
+def one_cycle_baseline(manifest: Path, problem: FitProblem) -> dict[str, float]:
+    """Plain least_squares on one mid-record cycle per test (issue 15's comparison)."""
+    from mrsuspension.identify import read_manifest, read_test
+    from mrsuspension.identify.preprocess import detect_frequency
+
+    cycles = []
+    for e in read_manifest(manifest).entries:
+        r = read_test(e.file, e.columns, e.units)
+        assert r.displacement is not None
+        assert r.velocity is not None
+        period = 1.0 / detect_frequency(r.time, r.displacement, hint=e.frequency).frequency
+        mid = 0.5 * (r.time[0] + r.time[-1])
+        sel = (r.time >= mid - period / 2) & (r.time < mid + period / 2)
+        v, f = r.velocity[sel], r.force[sel]
+        cycles.append((r.displacement[sel], v, np.gradient(v, r.time[sel]), f, e.current,
+                       float(np.max(np.abs(v)))))  # fmt: skip
+
+    def resid(theta: np.ndarray) -> np.ndarray:
+        d = problem.spec.build(problem.values(theta), problem.max_current)
+        out = [(d.force(x, v, a, i, peak_velocity=vm) - f) / (np.ptp(f) * math.sqrt(f.size))
+               for x, v, a, f, i, vm in cycles]  # fmt: skip
+        r = np.concatenate(out)
+        return np.where(np.isfinite(r), r, 1e3)
+
+    t0 = time.perf_counter()
+    with blas_threads(1):
+        sol = least_squares(resid, problem.scaled(problem.x_start),
+                            bounds=(problem.lower, problem.upper), x_scale="jac")  # fmt: skip
+    seconds = time.perf_counter() - t0
+    r = resid(sol.x)
+    per, k = [], 0
+    for c in cycles:
+        per.append(math.sqrt(float(np.sum(r[k : k + c[3].size] ** 2))))
+        k += c[3].size
+    return {"seconds": seconds, "nfev": float(sol.nfev), "mean_nrmse": float(np.mean(per)),
+            "max_nrmse": float(np.max(per))}  # fmt: skip
+
+
+def field(repeats: int = 3) -> dict[str, object]:
+    """The issue-15 campaign: identify() median of ``repeats`` runs and the baseline."""
+    from mrsuspension.identify.synthetic import field_campaign
+
+    with tempfile.TemporaryDirectory() as tmp:
+        manifest = field_campaign(Path(tmp))
+        times, result = [], None
+        for _ in range(repeats):
+            t0 = time.perf_counter()
+            result = identify(manifest)
+            times.append(time.perf_counter() - t0)
+        assert result is not None
+        fit = result.fits[0].result
+        assert fit is not None
+        problem = FitProblem([t.loop for t in result.tests if t.loop is not None])
+        base = one_cycle_baseline(manifest, problem)
+    return {
+        "seconds_median": float(np.median(times)),
+        "seconds": times,
+        "mean_nrmse": result.mean_nrmse,
+        "max_nrmse": result.max_nrmse,
+        "evidence": fit.evidence,
+        "baseline_one_cycle": base,
+        "warnings": sum(t.status != "ok" for t in result.tests),
+    }
+
+
 def rms(problem: FitProblem, x: np.ndarray) -> float:
     r = problem.residuals(x)
     return math.sqrt(float(r @ r) / len(problem.data.loops))
@@ -58,9 +130,11 @@ def rms(problem: FitProblem, x: np.ndarray) -> float:
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--tests", type=int, default=30, help="tests in the campaign (<= 30)")
-    ap.add_argument("--starts", type=int, default=4, help="multi-start count")
+    ap.add_argument("--starts", type=int, default=8, help="multi-start count")
     ap.add_argument("--json", action="store_true", help="print one JSON object")
+    ap.add_argument("--no-field", action="store_true", help="skip the issue-15 field campaign")
     args = ap.parse_args()
+    field_out = None if args.no_field else field()
 
     truth = parameters.get("wang-symmetric-low")
     rng = np.random.default_rng(1)
@@ -115,10 +189,21 @@ def main() -> None:
         "max_nrmse": result.max_nrmse,
         "fit": timings,
         "ratios": {k: v["seconds"] / ours for k, v in timings.items() if k != "ours"},
+        "field": field_out,
     }
     if args.json:
         print(json.dumps(out))
         return
+    if field_out is not None:
+        ev, base = field_out["evidence"], field_out["baseline_one_cycle"]
+        print(f"field campaign (issue 15, 30 tests): identify() median of 3 "
+              f"{field_out['seconds_median']:.2f} s ({', '.join(f'{t:.2f}' for t in field_out['seconds'])});"
+              f" NRMSE mean {100 * field_out['mean_nrmse']:.2f} %, max "
+              f"{100 * field_out['max_nrmse']:.2f} %; {ev['starts_within_1pct']} of {ev['starts']} "
+              f"starts within 1 % of the best cost; tests not ok: {field_out['warnings']}")  # fmt: skip
+        print(f"  baseline least_squares on one raw cycle per test: {base['seconds']:.2f} s, "
+              f"{base['nfev']:.0f} evaluations, NRMSE mean {100 * base['mean_nrmse']:.2f} %, "
+              f"max {100 * base['max_nrmse']:.2f} %")  # fmt: skip
     print(f"campaign: {out['tests']} tests, one steady cycle each, {out['points']} points, "
           f"{args.starts} starts")  # fmt: skip
     print(f"end to end (read, pre-process, fit, metrics): {end_to_end:.2f} s; "

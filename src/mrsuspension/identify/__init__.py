@@ -12,7 +12,9 @@ The pipeline of ``mrsus identify``, usable piece by piece:
 * :mod:`~mrsuspension.identify.campaign` - all of it, with per-test outcomes
   (:func:`identify`);
 * :mod:`~mrsuspension.identify.report` - parameter set, tables, plots, HTML;
-* :mod:`~mrsuspension.identify.synthetic` - synthetic campaigns from any model.
+* :mod:`~mrsuspension.identify.results` - the result types (per test, per band, all);
+* :mod:`~mrsuspension.identify.synthetic` - synthetic campaigns from any model, and the
+  example campaign shipped with the package (:func:`example_campaign`).
 
 Examples
 --------
@@ -42,7 +44,7 @@ from mrsuspension.identify.preprocess import (
     smooth_derivative,
 )
 from mrsuspension.identify.readers import RawTest, TestDataError, read_test
-from mrsuspension.identify.synthetic import synthetic_campaign
+from mrsuspension.identify.synthetic import example_campaign, field_campaign, synthetic_campaign
 
 __all__ = [
     "FitError",
@@ -57,6 +59,8 @@ __all__ = [
     "TestEntry",
     "TestOutcome",
     "detect_frequency",
+    "example_campaign",
+    "field_campaign",
     "fit_loops",
     "identify",
     "load_campaign",

@@ -79,6 +79,10 @@ def identify_command(
             help=r"regex for the current in file names, e.g. '_(?P<current>[0-9.]+)A'",
         ),
     ] = None,
+    gain: Annotated[
+        float | None,
+        typer.Option("--gain", help="coil driver gain [A/V] for a current column in V or mV"),
+    ] = None,
     start: Annotated[
         str | None,
         typer.Option("--start", "-p", help="start parameter set: registered name or .toml/.json"),
@@ -152,7 +156,7 @@ def identify_command(
             "max_cycles": max_cycles, "peak_velocity": peak_velocity, "start": start,
             "fixed": _fixed(fix), "model_options": options or None, "bands": bands,
             "compare": compare or (), "multistart": multistart, "seed": seed,
-            "max_nfev": max_nfev, "name": name,
+            "max_nfev": max_nfev, "name": name, "current_gain": gain,
         }  # fmt: skip
         if as_json:
             result = identify(manifest, model, **kwargs)

@@ -67,6 +67,7 @@ class StartRecord:
     nfev: int
     status: int
     message: str
+    origin: str = ""  # "start set" (the published/given set) or "sobol" (global stage)
 
 
 @dataclass(frozen=True)
@@ -99,6 +100,28 @@ class FitResult:
     at_bounds: tuple[str, ...] = ()
     excluded: Mapping[int, str] = field(default_factory=dict)
     jacobian: str = "analytic"
+    starts_within: int = 1
+    correlated: tuple[tuple[str, str, float], ...] = ()
+    condition: float = math.nan
+
+    @property
+    def evidence(self) -> dict[str, Any]:
+        """How trustworthy the optimum is: best of N starts, how many starts reached
+        within 1 % of the best cost, parameters at bounds, strongly correlated pairs
+        (|corr| > 0.98 from the Jacobian at the optimum) and the condition number of the
+        column-scaled J^T J (above 1e10: near singular, some parameters not identifiable).
+        """
+        return {
+            "starts": len(self.starts),
+            "starts_within_1pct": self.starts_within,
+            "best_start": min(self.starts, key=lambda r: r.rms_nrmse).index + 1
+            if self.starts
+            else None,
+            "start_rms_nrmse": [r.rms_nrmse for r in self.starts],
+            "at_bounds": list(self.at_bounds),
+            "correlated": [[a, b, c] for a, b, c in self.correlated],
+            "condition": self.condition,
+        }
 
     def damper(self) -> DamperModel:
         """The fitted damper model (with the fit's model options)."""
@@ -258,18 +281,76 @@ class FitProblem:
             theta[idx] *= s
         return self._inside(theta)
 
-    def starts(self, count: int, seed: int = 0) -> list[FloatArray]:
-        """The scaled start, then ``count - 1`` random perturbations of it (log-normal,
-        30 %; additive for parameters starting at 0), each scaled again."""
-        rng = np.random.default_rng(seed)
+    def _unit_to_theta(self, u: FloatArray) -> FloatArray:
+        """Map points of the unit cube onto the bounds: log-uniform where the bounds are
+        positive and span more than a decade (``a0`` in 1-1e5 s/m), uniform elsewhere."""
+        lo, hi = self.lower, self.upper
+        logs = (lo > 0) & (hi > 10 * lo)
+        theta = lo + u * (hi - lo)
+        if logs.any():
+            llo, lhi = np.log(lo[logs]), np.log(hi[logs])
+            theta[:, logs] = np.exp(llo + u[:, logs] * (lhi - llo))
+        return theta
+
+    def cost(self, theta: npt.ArrayLike) -> float:
+        """Sum over loops of NRMSE^2 (inf where the model force is not finite)."""
+        r = self.residuals(theta)
+        c = float(r @ r)
+        return c if math.isfinite(c) else math.inf
+
+    def starts(self, count: int, seed: int = 0, *, screen: int | None = None) -> list[FloatArray]:
+        """The scaled start set first, then the ``count - 1`` best of a global stage.
+
+        The global stage draws ``screen`` points (default ``max(64, 16 count)``) of a
+        scrambled Sobol sequence over the bounds (:meth:`_unit_to_theta`), brings each
+        to the campaign's force level (:meth:`scaled`) and keeps the ``count - 1`` of
+        lowest cost; the local polish (:meth:`solve`) starts from them. Starts from the
+        whole box, not perturbations of the start set, so a campaign whose damper is
+        far from the published one is still searched (issue 15).
+        """
         out = [self.scaled(self.x_start)]
-        span = self.upper - self.lower
-        for _ in range(count - 1):
-            z = self.x_start * np.exp(rng.normal(0.0, 0.3, self.x_start.size))
-            zero = self.x_start == 0
-            z[zero] = 0.05 * span[zero] * rng.normal(0.0, 1.0, int(zero.sum()))
-            out.append(self.scaled(z))
+        if count <= 1:
+            return out
+        from scipy.stats import qmc
+
+        n = int(screen) if screen is not None else max(64, 16 * count)
+        m = max(1, math.ceil(math.log2(max(n, count))))
+        u = qmc.Sobol(self.x_start.size, scramble=True, seed=seed).random_base2(m)[:n]
+        cands = [self.scaled(theta) for theta in self._unit_to_theta(u)]
+        costs = np.array([self.cost(c) for c in cands])
+        order = np.argsort(costs, kind="stable")
+        out.extend(cands[k] for k in order[: count - 1] if math.isfinite(costs[k]))
         return out
+
+    def identifiability(
+        self, theta: npt.ArrayLike, jac: FloatArray | None = None, threshold: float = 0.98
+    ) -> tuple[tuple[tuple[str, str, float], ...], float]:
+        """Correlated parameter pairs and the condition number at ``theta``.
+
+        From the Jacobian of the residuals (columns scaled to unit norm), the
+        correlation matrix of the Gauss-Newton covariance ``(J^T J)^-1`` gives the pairs
+        with ``|corr| > threshold``; the condition number of the scaled ``J^T J`` above
+        1e10 says the data cannot tell some parameters apart.
+        """
+        j = np.asarray(self.jacobian(theta) if jac is None else jac, dtype=float)
+        norms = np.linalg.norm(j, axis=0)
+        live = norms > 0
+        if not live.any():
+            return (), math.inf
+        js = j[:, live] / norms[live]
+        jtj = js.T @ js
+        cond = float(np.linalg.cond(jtj)) if live.all() else math.inf
+        cov = np.linalg.pinv(jtj)
+        d = np.sqrt(np.clip(np.diag(cov), 1e-300, None))
+        corr = cov / np.outer(d, d)
+        names = [n for n, ok in zip(self.free, live, strict=True) if ok]
+        pairs = []
+        for a in range(len(names)):
+            for b in range(a + 1, len(names)):
+                if abs(corr[a, b]) > threshold:
+                    pairs.append((names[a], names[b], float(round(corr[a, b], 4))))
+        pairs.sort(key=lambda p: -abs(p[2]))
+        return tuple(pairs), cond
 
     # -- solving --------------------------------------------------------------------------
     def solve(
@@ -315,6 +396,7 @@ class FitProblem:
         )
         t0 = time.perf_counter()
         records = []
+        costs: list[float] = []
         best: Any = None
         failures = []
         n_loops = len(self.data.loops)
@@ -330,8 +412,9 @@ class FitProblem:
                     continue
                 records.append(
                     StartRecord(k, math.sqrt(2 * sol.cost / n_loops), sol.nfev, sol.status,
-                                sol.message)
+                                sol.message, "start set" if k == 0 else "sobol")
                 )  # fmt: skip
+                costs.append(float(sol.cost))
                 if best is None or sol.cost < best.cost:
                     best = sol
         if best is None:
@@ -345,6 +428,14 @@ class FitProblem:
             if min(x - lo, hi - x) <= 1e-6 * s
         )  # fmt: skip
         pset = self._parameter_set(values, nrmse, name, source)
+        within = sum(1 for c in costs if c <= best.cost * 1.01 + 1e-300)
+        with np.errstate(all="ignore"):
+            try:
+                correlated, condition = self.identifiability(
+                    best.x, best.jac if not callable(jac) else None
+                )
+            except (ValueError, np.linalg.LinAlgError, ValidationError):
+                correlated, condition = (), math.nan
         return FitResult(
             model=self.spec.name,
             parameters=pset,
@@ -366,6 +457,9 @@ class FitProblem:
             at_bounds=at_bounds,
             excluded=dict(excluded or {}),
             jacobian="analytic" if callable(jac) else str(jac),
+            starts_within=within,
+            correlated=correlated,
+            condition=condition,
         )
 
     def _parameter_set(

@@ -37,6 +37,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 import numpy.typing as npt
@@ -289,6 +290,81 @@ def detect_frequency(
     )
 
 
+#: Largest share of rows holding NaN/inf that pre-processing drops (with a note) rather
+#: than refuses: a few dropped samples are bridged by the uniform-grid interpolation.
+MAX_BAD_ROWS = 0.02
+
+#: Fewest samples per excitation period that still resolve a loop (a 5-point
+#: derivative window then spans under half a period; 40 per cycle is common at 200 Hz).
+MIN_SAMPLES_PER_CYCLE = 12
+
+#: Peak force [N] outside which the declared force unit is implausible for a damper
+#: (a kN record declared in N peaks below 1 N; an N record declared in kN above 1 MN).
+PLAUSIBLE_FORCE = (1.0, 1e6)
+
+
+def _drop_bad_rows(raw: RawTest, notes: list[str]) -> RawTest:
+    """Drop the rows holding NaN or inf in any signal when they are few
+    (:data:`MAX_BAD_ROWS`); leave the record alone otherwise (``_check_signals`` then
+    names the first bad value)."""
+    import dataclasses
+
+    arrays = {
+        role: np.asarray(getattr(raw, role), dtype=float)
+        for role in ("time", "displacement", "velocity", "acceleration", "force", "current")
+        if isinstance(getattr(raw, role), np.ndarray)
+    }
+    n = raw.time.size
+    if any(a.shape != (n,) for a in arrays.values()):
+        return raw
+    bad = np.zeros(n, dtype=bool)
+    where = []
+    for role, a in arrays.items():
+        row_bad = ~np.isfinite(a)
+        if row_bad.any():
+            where.append(role)
+        bad |= row_bad
+    count = int(bad.sum())
+    if count == 0:
+        return raw
+    share = count / n
+    if share > MAX_BAD_ROWS:
+        first = int(np.flatnonzero(bad)[0])
+        at = f"data row {first + 1}"
+        if np.isfinite(raw.time[first]):
+            at += f", t = {raw.time[first]:.6g} s"
+        raise TestDataError(
+            f"{count} of {n} rows ({100 * share:.1f} %) hold NaN or infinite values in "
+            f"{', '.join(where)} (first at {at}); more than {100 * MAX_BAD_ROWS:g} % cannot be "
+            "bridged: clean or cut the record"
+        )
+    keep = ~bad
+    notes.append(
+        f"dropped {count} row{'s' if count > 1 else ''} holding NaN or infinite values in "
+        f"{', '.join(where)} ({100 * share:.2g} % of the record)"
+    )
+    changes: dict[str, Any] = {role: a[keep] for role, a in arrays.items()}
+    return dataclasses.replace(raw, **changes)
+
+
+def _check_force_unit(raw: RawTest) -> None:
+    peak = float(np.max(np.abs(raw.force)))
+    unit = raw.units.get("force", "N")
+    low, high = PLAUSIBLE_FORCE
+    if 0 < peak < low:
+        hint = "kN" if unit.lower() == "n" else "a larger unit"
+        raise TestDataError(
+            f"the force peaks at {peak:.3g} N with the force declared in {unit}: implausibly "
+            f"small for a damper; is the force column in {hint}? (--units, e.g. F=kN)"
+        )
+    if peak > high:
+        hint = "N" if unit.lower() == "kn" else "a smaller unit"
+        raise TestDataError(
+            f"the force peaks at {peak:.3g} N with the force declared in {unit}: implausibly "
+            f"large for a damper; is the force column in {hint}? (--units, e.g. F=N)"
+        )
+
+
 def _check_signals(raw: RawTest) -> None:
     for role in ("time", "displacement", "velocity", "acceleration", "force", "current"):
         value = getattr(raw, role)
@@ -333,6 +409,8 @@ def _uniform(raw: RawTest, notes: list[str]) -> dict[str, FloatArray | None]:
     if jitter <= 0.01:
         signals["time"] = t
         return signals
+    # the grid step is the mean step: a median of rounded time stamps is biased
+    dt = float(t[-1] - t[0]) / (t.size - 1)
     n = math.floor((t[-1] - t[0]) / dt + 1e-9) + 1
     grid = t[0] + dt * np.arange(n)
     notes.append(
@@ -435,13 +513,16 @@ def preprocess(
     """
     opts = options or PreprocessOptions()
     notes: list[str] = []
+    raw = _drop_bad_rows(raw, notes)
     _check_signals(raw)
+    _check_force_unit(raw)
     sig = _uniform(raw, notes)
     t = sig["time"]
     assert t is not None
     dt = float(t[1] - t[0])
     x, v, a, force = sig["displacement"], sig["velocity"], sig["acceleration"], sig["force"]
     assert force is not None
+    x_from_file, v_from_file = x is not None, v is not None
     motion = x if x is not None else v
     assert motion is not None
     fit = detect_frequency(t, motion, hint=frequency)
@@ -468,6 +549,14 @@ def preprocess(
             f"({100 * (f / frequency - 1):+.1f} %); cycles are cut at the detected frequency"
         )
     spc = period / dt
+    if spc < MIN_SAMPLES_PER_CYCLE:
+        raise TestDataError(
+            f"{spc:.3g} samples per cycle ({1 / dt:.4g} Hz sampling of a {f:.4g} Hz "
+            f"excitation); at least {MIN_SAMPLES_PER_CYCLE} are needed to resolve the loop: "
+            "record at a higher sample rate"
+        )
+    # the derivative window follows the samples per cycle: `smoothing` of a period,
+    # at least 5 samples (a cubic fit), so at 40 samples per cycle 5 samples (1/8 period)
     window = max(5, round(opts.smoothing * spc) | 1)
     sg = f"Savitzky-Golay, cubic, {window}-sample window"
     if x is None:
@@ -580,10 +669,28 @@ def preprocess(
         loop_i = np.maximum(loop_i, 0.0)
         notes.append("small negative currents (sensor offset) clipped to 0 A")
 
-    # peak velocity v_m for the dissertation's models; stroke amplitude of the loop
-    spectrum = np.fft.rfft(loop_v)
-    measured_vm = float(2.0 * np.abs(spectrum[1]) / n_pts)
-    loop_amplitude = float(2.0 * np.abs(np.fft.rfft(loop_x)[1]) / n_pts)
+    # peak velocity v_m for the dissertation's models and the stroke amplitude: least-
+    # squares sines (with offset and drift) over the raw samples of the steady cycles at
+    # the detected frequency. Measured on the samples themselves, not on the resampled,
+    # phase-averaged loop, these figures do not depend on the interpolation, the cycle
+    # alignment or the sample rate.
+    t_steady = float(t[-1]) - len(kept) * period
+    sel = t >= t_steady - 0.5 * dt
+    _, coef_v = _sine_fit(t[sel], v[sel], f)
+    _, coef_x = _sine_fit(t[sel], x[sel], f)
+    measured_vm = float(math.hypot(coef_v[2], coef_v[3]))
+    loop_amplitude = float(math.hypot(coef_x[2], coef_x[3]))
+    how = f"least-squares sine over the {len(kept)} steady cycle{'s' if len(kept) > 1 else ''}"
+    v_what = "of the velocity column" if v_from_file else "of the derived velocity"
+    if x_from_file and v_from_file and loop_amplitude > 0:
+        ratio = measured_vm / (2.0 * math.pi * f * loop_amplitude)
+        if abs(ratio - 1) > 0.05:
+            notes.append(
+                f"warning: the velocity column's amplitude {measured_vm:.4g} m/s is "
+                f"{100 * (ratio - 1):+.0f} % off 2 pi f times the stroke amplitude "
+                f"({2 * math.pi * f * loop_amplitude:.4g} m/s, {how}); check the velocity "
+                "unit and column"
+            )
     has_nominal = frequency is not None and amplitude is not None
     if opts.peak_velocity == "nominal" and not has_nominal:
         raise TestDataError(
@@ -596,16 +703,17 @@ def preprocess(
         notes.append(f"v_m = 2 pi f a_m = {vm:.4g} m/s (manifest)")
         if abs(measured_vm / vm - 1) > 0.1:
             notes.append(
-                f"warning: the measured velocity amplitude {measured_vm:.4g} m/s differs by "
-                f"{100 * (measured_vm / vm - 1):+.0f} % from 2 pi f a_m"
+                f"warning: the velocity amplitude {measured_vm:.4g} m/s ({how} {v_what}) "
+                f"differs by {100 * (measured_vm / vm - 1):+.0f} % from 2 pi f a_m = "
+                f"{vm:.4g} m/s"
             )
     else:
         vm = measured_vm
-        notes.append(f"v_m = {vm:.4g} m/s (fundamental of the velocity)")
+        notes.append(f"v_m = {vm:.4g} m/s (amplitude {v_what}, {how})")
     if amplitude is not None and abs(loop_amplitude / amplitude - 1) > 0.1:
         notes.append(
-            f"warning: stroke amplitude {loop_amplitude * 1e3:.4g} mm differs from the manifest's "
-            f"{amplitude * 1e3:g} mm"
+            f"warning: stroke amplitude {loop_amplitude * 1e3:.4g} mm ({how}) differs from "
+            f"the manifest's {amplitude * 1e3:g} mm"
         )
     if not 0.0 < vm <= V_LIMIT:
         raise TestDataError(

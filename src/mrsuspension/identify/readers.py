@@ -48,6 +48,7 @@ __all__ = [
     "ROLES",
     "ROLE_ALIASES",
     "UNITS",
+    "VOLTAGE_UNITS",
     "ColumnSpec",
     "RawTest",
     "TestDataError",
@@ -106,7 +107,12 @@ UNITS: dict[str, tuple[str, float]] = {
     "lbf": ("force", 4.4482216152605),
     "a": ("current", 1.0),
     "ma": ("current", 1e-3),
+    "v": ("current", 1.0),  # a coil-driver command voltage: times the gain [A/V]
+    "mv": ("current", 1e-3),
 }
+
+#: Units of the current column that are voltages: they need the driver's gain [A/V].
+VOLTAGE_UNITS = ("v", "mv")
 
 #: File name suffixes read as test records (a folder given as manifest is scanned for them).
 DATA_SUFFIXES = (".csv", ".tsv", ".txt", ".dat", ".asc", ".mat")
@@ -290,7 +296,7 @@ class RawTest:
 
     Signals absent from the file are ``None``; ``current`` may also be a scalar (a
     ``.mat`` variable). ``notes`` says what the reader did (columns matched, units,
-    sign flips, columns ignored).
+    sign flips, columns ignored); ``units`` the unit each signal was declared in.
     """
 
     source: str
@@ -301,6 +307,7 @@ class RawTest:
     current: FloatArray | float | None = None
     acceleration: FloatArray | None = None
     notes: tuple[str, ...] = ()
+    units: Mapping[str, str] = field(default_factory=dict)
 
     __test__ = False
 
@@ -363,7 +370,20 @@ def _match_header(names: Sequence[str]) -> tuple[dict[str, int], list[str], dict
 def _split(line: str, delimiter: str | None) -> list[str]:
     if delimiter is None:
         return line.split()
+    if '"' in line:  # quoted fields ("Force, kN"): the csv module keeps them whole
+        import csv
+
+        return [f.strip() for f in next(csv.reader([line], delimiter=delimiter))]
     return [f.strip() for f in line.split(delimiter)]
+
+
+def _trailing_empty(fields: list[str]) -> int:
+    n = 0
+    for f in reversed(fields):
+        if f:
+            break
+        n += 1
+    return n
 
 
 def _is_number(field_: str) -> bool:
@@ -420,13 +440,19 @@ def _read_delimited(path: Path) -> tuple[FloatArray, list[str] | None, list[str]
     if first_data is None:
         raise TestDataError(f"{path.name}: no line of numbers found (is it a data file?)")
     data_lines = lines[first_data:]
-    if delimiter is not None and all(ln.rstrip().endswith(delimiter) for ln in data_lines[:50]):
-        data_lines = [ln.rstrip()[: -len(delimiter)] for ln in data_lines]
-    ncol = len(_split(data_lines[0], delimiter))
     notes: list[str] = []
+    if delimiter is not None:
+        # trailing empty columns (a spreadsheet export's "1,2,3,,"): drop the empty fields
+        # every row ends with
+        empty = min(_trailing_empty(_split(ln, delimiter)) for ln in data_lines[:50])
+        if empty:
+            data_lines = [delimiter.join(_split(ln, delimiter)[:-empty]) for ln in data_lines]
+            notes.append(f"ignored {empty} empty trailing column{'s' if empty > 1 else ''}")
+    ncol = len(_split(data_lines[0], delimiter))
     header: list[str] | None = None
     units_line: list[str] | None = None
-    above = [_split(ln.rstrip().rstrip(delimiter or " "), delimiter) for ln in lines[:first_data]]
+    above = [_split(ln.rstrip(), delimiter) for ln in lines[:first_data]]
+    above = [row[: max(ncol, len(row) - _trailing_empty(row))] for row in above]
     if above and len(above[-1]) == ncol and _units_line(above[-1]):
         units_line = [f.strip("[]() ") for f in above.pop()]
     if above and len(above[-1]) == ncol:
@@ -509,6 +535,8 @@ def read_test(
     path: str | Path,
     columns: str | ColumnSpec | None = None,
     units: str | UnitSpec | None = None,
+    *,
+    current_gain: float | None = None,
 ) -> RawTest:
     """Read one test record (delimited text or ``.mat``) into SI units.
 
@@ -524,6 +552,9 @@ def read_test(
     units : str or UnitSpec, optional
         Units of the signals (see :func:`parse_units`); they override units found in
         the header. Default: units from the header, else SI.
+    current_gain : float, optional
+        Gain of the coil driver [A/V] for a current column in V or mV (the command
+        voltage of a current-controlled driver); required for such a column.
 
     Returns
     -------
@@ -560,7 +591,7 @@ def read_test(
     else:
         table, header, units_line, notes = _read_delimited(path)
         signals, header_units = _from_table(path.name, table, header, units_line, cols, notes)
-    return _finish(path, signals, header_units, unit_spec, cols, notes)
+    return _finish(path, signals, header_units, unit_spec, cols, notes, current_gain)
 
 
 def _from_table(
@@ -733,8 +764,11 @@ def _finish(
     unit_spec: UnitSpec | None,
     cols: ColumnSpec | None,
     notes: list[str],
+    current_gain: float | None = None,
 ) -> RawTest:
     name = path.name
+    if current_gain is not None and not (math.isfinite(current_gain) and current_gain > 0):
+        raise ValidationError(f"current gain must be a number > 0 [A/V]; got {current_gain!r}")
     present = ", ".join(signals) or "none"
     for required in ("time", "force"):
         if required not in signals:
@@ -747,6 +781,7 @@ def _finish(
     n = np.asarray(signals["time"]).size
     out: dict[str, Any] = {}
     used_units: list[str] = []
+    declared: dict[str, str] = {}
     for role, value in signals.items():
         factor = 1.0
         unit_name = ROLES[role]
@@ -763,6 +798,15 @@ def _finish(
                     f"{name}: the {role} column is in {header_units[role]!r}, a unit of {dim}"
                 )
             unit_name = header_units[role]
+        if role == "current" and unit_name.lower() in VOLTAGE_UNITS:
+            if current_gain is None:
+                raise TestDataError(
+                    f"{name}: the current column is in {unit_name}, a voltage; give the coil "
+                    "driver's gain in A/V (--gain, e.g. --gain 0.5) to convert it to A"
+                )
+            factor *= current_gain
+            notes.append(f"current from the {unit_name} column times the gain {current_gain:g} A/V")
+        declared[role] = unit_name
         sign = -1.0 if cols is not None and role in cols.flipped else 1.0
         if isinstance(value, float):
             out[role] = sign * factor * value
@@ -786,4 +830,5 @@ def _finish(
         current=out.get("current"),
         acceleration=out.get("acceleration"),
         notes=tuple(notes),
+        units=declared,
     )

@@ -32,9 +32,10 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 if TYPE_CHECKING:
-    from mrsuspension.identify.campaign import IdentificationResult, TestOutcome
+    from mrsuspension.identify.fit import FitResult
+    from mrsuspension.identify.results import IdentificationResult, TestOutcome
 
-__all__ = ["plot_test", "summary_text", "write_outputs"]
+__all__ = ["evidence_text", "plot_test", "summary_text", "write_outputs"]
 
 
 def _pct(value: float | None, signed: bool = False) -> str:
@@ -53,6 +54,27 @@ def _set_file(label: str) -> str:
     )
 
 
+def evidence_text(r: FitResult) -> str:
+    """One line on how trustworthy a fit's optimum is (:attr:`FitResult.evidence`)."""
+    parts = [
+        f"best of {len(r.starts)} starts, {r.starts_within} within 1 % of the best cost"
+        + ("" if len(r.starts) < 2 or r.starts_within > 1 else " (a single start found it:"
+           " try --multistart higher)")
+    ]  # fmt: skip
+    if r.at_bounds:
+        parts.append(f"at a bound: {', '.join(r.at_bounds)}")
+    if r.correlated:
+        shown = ", ".join(f"{a}/{b} {c:+.3f}" for a, b, c in r.correlated[:4])
+        more = f" (+{len(r.correlated) - 4} more)" if len(r.correlated) > 4 else ""
+        parts.append(f"strongly correlated (|corr| > 0.98): {shown}{more}")
+    if r.condition > 1e10:
+        parts.append(
+            f"J^T J near singular (condition {r.condition:.2g}): some parameters are not "
+            "identifiable from these tests (fix them with --fix)"
+        )
+    return "; ".join(parts)
+
+
 def summary_text(result: IdentificationResult) -> str:
     """Plain-text summary: fit status, per-test table, comparison, parameters."""
     lines = [f"identify: {result.model} on {len(result.tests)} test rows from {result.manifest}"]
@@ -67,6 +89,7 @@ def summary_text(result: IdentificationResult) -> str:
             f"fit{tag}: {state} ({r.message}); {len(r.starts)} start(s), {r.nfev} evaluations, "
             f"{r.seconds:.2f} s; RMS of the per-test NRMSE {_pct(r.rms_nrmse)}"
         )
+        lines.append(f"  evidence{tag}: {evidence_text(r)}")
     header = (
         f"{'#':>3} {'file':28} {'band':10} {'i [A]':>6} {'f [Hz]':>7} {'a [mm]':>7} "
         f"{'v_m':>6} {'NRMSE':>8} {'peak err':>9} {'energy':>9}  status"
@@ -213,6 +236,7 @@ def _html(result: IdentificationResult, plots: dict[int, str], files: list[str])
             f"<h3>{e(title)}: <code>{e(_set_file(band.label))}</code></h3><p>{state} "
             f"({e(r.message)}); {len(r.starts)} start(s), {r.nfev} evaluations, {r.seconds:.2f} s, "
             f"Jacobian {e(r.jacobian)}; started from <code>{e(r.start.name)}</code>.</p>"
+            f"<p>Evidence: {e(evidence_text(r))}.</p>"
         )
         prows = []
         for key, v in r.parameters.items():

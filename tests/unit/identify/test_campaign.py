@@ -53,7 +53,8 @@ def test_bad_tests_are_reported_and_the_rest_fit(tmp_path: Path) -> None:
     assert len(result.tests) == len(GOOD) + len(bad)  # nothing dropped
     expected = {
         "no_force.csv": "no force column (found: time, displacement)",
-        "nans.csv": "force has 799 NaN values (first at data row 1202, t = 1.201 s)",
+        "nans.csv": "799 of 2000 rows (40.0 %) hold NaN or infinite values in force (first at "
+        "data row 1202, t = 1.201 s)",
         "time_back.csv": "time is not increasing at data row 901",
         "short.csv": "no whole cycle",
         "no_current.csv": "no drive current: the manifest gives none",
