@@ -11,7 +11,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 import numpy.typing as npt
 
-from mrsuspension.errors import ValidationError, unknown_name
+from mrsuspension.errors import MRSuspensionError, ValidationError, unknown_name
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -23,6 +23,7 @@ if TYPE_CHECKING:
 __all__ = [
     "CLAMP_WARN_FRACTION",
     "SIGNALS",
+    "SimulationDiverged",
     "SimulationResult",
     "VelocityClampWarning",
     "warn_if_clamped",
@@ -35,6 +36,32 @@ CLAMP_WARN_FRACTION = 0.05
 
 class VelocityClampWarning(UserWarning):
     """A run spent a large share of its time with v_m at the estimator's upper clamp."""
+
+
+class SimulationDiverged(MRSuspensionError):
+    """A run left the physical range; the message says when and which signal.
+
+    Attributes
+    ----------
+    time : float
+        Simulated time of the first offence [s].
+    signal : str
+        The signal out of range (``z_s``, ``F_d``, ...).
+    value : float
+        Its value there.
+
+    Examples
+    --------
+    >>> err = SimulationDiverged("diverged at t = 1 s", 1.0, "z_s", 11.0)
+    >>> err.signal, err.value
+    ('z_s', 11.0)
+    """
+
+    def __init__(self, message: str, time: float, signal: str, value: float) -> None:
+        super().__init__(message)
+        self.time = time
+        self.signal = signal
+        self.value = value
 
 
 #: Recorded signals: name -> (unit, description).
