@@ -3,7 +3,7 @@
 Every control law of :mod:`mrsuspension.control` is a code (``C_*``, the class's
 ``code``) and a parameter vector (``CP_SIZE`` values at the ``P_*`` slots, written by
 :meth:`Controller.params <mrsuspension.control.Controller.params>`). The engine's step
-(:func:`mrsuspension.engine.kernel.step`) calls :func:`control` once per step with the
+(``step`` in ``engine/kernel.py``) calls :func:`control` once per step with the
 sampled state and holds the drive current over the step (zero-order hold); the ideal
 references act through an ideal dissipative damper instead (:func:`ideal_force`, force
 source codes ``F_*``).

@@ -1,7 +1,7 @@
 """The quarter car's compiled equations (spec sections 4 and 5): state and parameter layouts.
 
 The one place the vehicle's equations are written, for the engine's scalar step
-(:mod:`mrsuspension.engine.kernel`), its lane kernel (:mod:`mrsuspension.engine.lanes`)
+(``engine/kernel.py``), its lane kernel (``engine/lanes.py``)
 and, through the engine, the HiL loop.
 
 State ``y`` (``NY`` values, indices ``Y_*``)::
