@@ -12,7 +12,11 @@ from __future__ import annotations
 import hashlib
 from pathlib import Path
 
-__all__ = ["invalidate_if_changed"]
+__all__ = ["DEPENDENCIES", "invalidate_if_changed"]
+
+#: module file -> the source files its cached kernels inline (as registered by
+#: :func:`invalidate_if_changed`; checked by ``tests/unit/engine/test_numba_deps.py``)
+DEPENDENCIES: dict[str, tuple[str, ...]] = {}
 
 
 def invalidate_if_changed(module_file: str, *dependencies: str) -> None:
@@ -21,7 +25,15 @@ def invalidate_if_changed(module_file: str, *dependencies: str) -> None:
     The digest of the dependencies is kept in ``__pycache__/<stem>.deps``; failures to
     read or write (a read-only install) are ignored, numba then simply recompiles or uses
     its own fallback cache location.
+
+    Examples
+    --------
+    >>> import mrsuspension.engine.kernel as EK
+    >>> import mrsuspension.control.kernel as CK
+    >>> CK.__file__ in DEPENDENCIES[EK.__file__]
+    True
     """
+    DEPENDENCIES[str(module_file)] = tuple(str(d) for d in dependencies)
     module = Path(module_file)
     cache = module.parent / "__pycache__"
     digest = hashlib.sha256()

@@ -198,17 +198,13 @@ def _fresh_compile(sim: Any) -> float:
     from numba import njit
 
     from mrsuspension.engine import kernel as EK
-    from mrsuspension.engine.simulate import road_grid
 
     fresh = njit(**EK.NO_REFCOUNT)(EK.run.py_func)
-    a = sim._arrays(1e-4)
     n = 10
-    zr, zrd = road_grid(sim.excitation, 2 * n + 1, 5e-5)
+    zr, zrd = sim.road_samples(n, 1e-4)
     args = (
-        np.zeros(6), n, 1e-4, zr, zrd, a["vp"], a["fk"], a["dk"], a["dp"],
-        a["ds"], a["dek"], a["dep"], a["des"], a["ck"], a["cp"], a["cek"], a["cep"], a["ces"],
-        a["mem"], 1, np.zeros((n + 1, EK.N_REC)), np.array([10.0, 100.0, 1e6, 1e7]),
-        np.zeros(EK.SCRATCH_SIZE),
+        np.zeros(6), n, 1e-4, zr, zrd, *sim.kernel_arrays(1e-4).args(), 1,
+        np.zeros((n + 1, EK.N_REC)), EK.LIMITS, np.zeros(EK.SCRATCH_SIZE),
     )  # fmt: skip
     t0 = time.perf_counter()
     fresh(*args)

@@ -28,7 +28,7 @@ ERRATA: tuple[Erratum, ...] = (
         "eq. (3.1)",
         "unsprung equation carries the gravity term (m_s + m_u) g",
         "m_u g, so the model is in equilibrium at rest (spec section 4)",
-        "mrsuspension.engine.kernel.rates",
+        "mrsuspension.vehicle.kernel.plant_rates",
     ),
     Erratum(
         2,
@@ -49,14 +49,14 @@ ERRATA: tuple[Erratum, ...] = (
         "eqs. (3.24)/(3.34)",
         "sign of the switching term",
         "-K sat(s/eps) with the force acting up on the sprung mass; the seed's own (3.22) frame would need +K",
-        "mrsuspension.engine.kernel.control (SlidingMode)",
+        "mrsuspension.control.kernel.control (SlidingMode)",
     ),
     Erratum(
         5,
         "eq. (3.34)",
         "sat(s/eps) undefined",
         "sat(y) = clip(y, -1, 1)",
-        "mrsuspension.engine.kernel.control (SlidingMode)",
+        "mrsuspension.control.kernel.control (SlidingMode)",
     ),
     Erratum(
         6,

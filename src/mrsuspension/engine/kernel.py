@@ -28,9 +28,18 @@ A step of length ``dt``:
 4. evaluate the rates at the new state (accelerations, forces for the record and the
    next step's ``a_d``), then advance the damper's internal dynamics.
 
-Arrays (layouts by the index constants below): ``vp`` vehicle, ``cp`` controller,
-``mem`` values carried between steps and the step's outputs, ``scratch`` work space
-(``SCRATCH_SIZE``; used by :func:`start`, kept in :func:`step`'s signature), plus the damper arrays of :mod:`mrsuspension.dampers.kernels`.
+Arrays: the state ``y`` and the vehicle's ``vp`` have the layouts of
+:mod:`mrsuspension.vehicle.kernel`, the controller's ``cp`` (and the codes ``ck``,
+``fk``) those of :mod:`mrsuspension.control.kernel`, the damper's and the estimators'
+those of :mod:`mrsuspension.dampers.kernels`; ``mem`` (``M_*`` below) holds the values
+carried between steps and the step's outputs, ``scratch`` is work space
+(``SCRATCH_SIZE``; used by :func:`start`, kept in :func:`step`'s signature). The entry
+points take them positionally (numba needs arrays);
+:class:`~mrsuspension.engine.arrays.KernelArrays` names them and unpacks them in one
+place (:meth:`~mrsuspension.engine.arrays.KernelArrays.args`).
+
+The layouts belong to their families (the engine only inlines their kernels): adding a
+controller touches :mod:`mrsuspension.control` only.
 """
 
 from __future__ import annotations
@@ -42,52 +51,26 @@ from numba import njit
 
 from mrsuspension import shaping as _shaping
 from mrsuspension._numba_cache import invalidate_if_changed
+from mrsuspension.control import kernel as CK
+from mrsuspension.control.kernel import EST_SHARED, F_EXTERNAL, F_MODEL, P_C0, P_CS, P_MS0
 from mrsuspension.dampers import kernels as DK
 from mrsuspension.dampers.kernels import NO_REFCOUNT
-from mrsuspension.shaping import drive_current_kernel, onoff_kernel
+from mrsuspension.vehicle import kernel as VK
+from mrsuspension.vehicle.kernel import (
+    NY,
+    V_CSKY,
+    V_CT,
+    V_DXU,
+    V_G,
+    V_KS,
+    V_KT,
+    V_MS,
+    V_MU,
+    plant_rates,
+)
 
-# the cached entry points below inline the damper and shaping kernels
-invalidate_if_changed(__file__, DK.__file__, _shaping.__file__)
-
-# vehicle parameters (QuarterCar.params)
-V_MS, V_MU, V_KS, V_KT, V_CT, V_CSKY, V_G, V_DXU = range(8)
-
-# controller codes
-C_PASSIVE = 0
-C_ONOFF_ADFG = 1
-C_POLICY = 2
-C_INVERSE_HILO = 3
-C_SLIDING = 4
-C_IDEAL_SKYHOOK = 5
-C_IDEAL_ONOFF = 6
-
-# controller parameters
-(
-    P_CURRENT,  # passive current / on-off high current [A]
-    P_GAIN,  # k_c
-    P_ORDER,  # n
-    P_POLICY,  # 1..4
-    P_P,  # ADFG asymmetry p (1: SCM, 0: ACM)
-    P_XI,  # ADFG smoothing xi
-    P_PC,  # CM asymmetry p_c
-    P_XIC,  # CM smoothing xi_c
-    P_IMAX,  # i_max [A]
-    P_LAMBDA,  # sliding surface slope
-    P_EPS,  # boundary layer
-    P_PHI,  # sliding condition gain
-    P_BETA,  # mass uncertainty bound
-    P_MS0,  # nominal sprung mass [kg]
-    P_CS,  # skyhook damping c_s [N s/m]
-    P_C0,  # passive damping c_0 [N s/m]
-    P_INV_HYST,  # inverse controllers: 1 = hysteretic inverse model, 0 = mean (v_h = 0)
-) = range(17)
-CP_SIZE = 17
-
-# force source in the rates
-F_MODEL = 0  # the damper model at the held current
-F_SKYHOOK = 1  # ideal skyhook (3.12) through an ideal dissipative damper
-F_ONOFF = 2  # Rakheja displacement on-off (3.13) through an ideal dissipative damper
-F_EXTERNAL = 3  # a given force held over the step (hardware in the loop)
+# the cached entry points below inline the damper, shaping, controller and vehicle kernels
+invalidate_if_changed(__file__, DK.__file__, _shaping.__file__, CK.__file__, VK.__file__)
 
 # mem: carried between steps and outputs of the last step
 (
@@ -106,10 +89,6 @@ F_EXTERNAL = 3  # a given force held over the step (hardware in the loop)
 ) = range(12)
 MEM_SIZE = 12
 
-#: controller estimator code meaning "use the damper's latched v_m" (dissertation's model)
-EST_SHARED = -1
-
-NY = 6
 SCRATCH_SIZE = 6 * NY  # work space of the callers (rates of start())
 
 
@@ -140,14 +119,10 @@ def accelerations(
     vd = vu - vs
     if fk == F_MODEL:
         fd = DK.damper_force(dk, dp, ds, xd, vd, mem[M_ID])
-    elif fk == F_SKYHOOK:
-        # (3.12) in the up-positive frame: -c_s z_s' when z_s' v_d < 0, else 0
-        fd = -cp[P_CS] * vs if vs * vd < 0.0 else 0.0
-    elif fk == F_ONOFF:
-        # (3.13): c_s v_d when x_d v_d < 0, else 0
-        fd = cp[P_CS] * vd if xd * vd < 0.0 else 0.0
-    else:
+    elif fk == F_EXTERNAL:
         fd = mem[M_FEXT]
+    else:  # an ideal dissipative damper (the ideal reference laws)
+        fd = CK.ideal_force(fk, cp, vs, xd, vd)
     # multiply by the reciprocal masses: their divisions depend on parameters only, so
     # they leave the chain of dependent operations from one RK4 stage to the next
     a_s, a_u, a_0, ft = plant_rates(
@@ -156,50 +131,6 @@ def accelerations(
         reference, cp[P_C0], cp[P_CS], 1.0 / cp[P_MS0] if reference else 0.0,
     )  # fmt: skip
     return a_s, a_u, a_0, fd, ft
-
-
-@njit(cache=True, inline="always")
-def plant_rates(
-    zs: float,
-    vs: float,
-    zu: float,
-    vu: float,
-    z0: float,
-    v0: float,
-    zr: float,
-    zrd: float,
-    fd: float,
-    ks: float,
-    csky: float,
-    inv_ms: float,
-    inv_mu: float,
-    weight: float,
-    kt: float,
-    ct: float,
-    dxu: float,
-    reference: bool,
-    c0: float,
-    cs: float,
-    inv_ms0: float,
-) -> tuple[float, float, float, float]:
-    """``(z_s'', z_u'', z_s0'', F_T)`` given the damper force: the quarter car of spec 4.
-
-    The one place the vehicle's equations are written, for :func:`accelerations` and the
-    lane kernel alike. Branch-free (selects), so that a loop over independent cars
-    compiles to vector instructions. ``weight = (m_s + m_u) g``; the tire force is zero
-    when the tire has lifted off (``delta <= 0``) and never pulls.
-    """
-    xd = zu - zs
-    delta = zr - zu + dxu
-    ft = kt * delta + ct * (zrd - vu)
-    ft = 0.0 if ft < 0.0 else ft
-    ft = ft if delta > 0.0 else 0.0
-    spring = ks * xd
-    a_s = (spring + fd - csky * vs) * inv_ms
-    a_u = (ft - weight - spring - fd) * inv_mu
-    # single-DOF modified-skyhook reference (3.18), driven by the plant's z_u
-    a_0 = (-c0 * (v0 - vu) - cs * v0 - ks * (z0 - zu)) * inv_ms0 if reference else 0.0
-    return a_s, a_u, a_0, ft
 
 
 @njit(cache=True, inline="always")
@@ -231,7 +162,7 @@ def rates(
 
 
 @njit(cache=True, inline="always")
-def control(
+def apply_control(
     ck: int,
     cp: np.ndarray,
     vp: np.ndarray,
@@ -241,96 +172,14 @@ def control(
     vm: float,
     mem: np.ndarray,
 ) -> None:
-    """Controller (spec section 6): sets mem[M_ID], M_IZ, M_ZC, M_TARGET."""
-    zs, vs, zu, vu = y[0], y[1], y[2], y[3]
-    xd = zu - zs
-    vd = vu - vs
-    imax = cp[P_IMAX]
-    iz = 0.0
-    zc = math.nan
-    target = math.nan
-    if ck == C_PASSIVE:
-        mem[M_ID] = min(cp[P_CURRENT], imax)
-        mem[M_IZ] = mem[M_ID]
-        mem[M_ZC] = zc
-        mem[M_TARGET] = target
-        return
-    if ck == C_ONOFF_ADFG:
-        # (2.1): p i_H in compression, i_H otherwise
-        i = onoff_kernel(cp[P_CURRENT], vd, cp[P_P])
-        mem[M_ID] = min(max(i, 0.0), imax)
-        mem[M_IZ] = cp[P_CURRENT]
-        mem[M_ZC] = zc
-        mem[M_TARGET] = target
-        return
-    if ck == C_IDEAL_SKYHOOK:
-        mem[M_ID] = 0.0
-        mem[M_IZ] = 0.0
-        mem[M_ZC] = vs * vd
-        mem[M_TARGET] = -cp[P_CS] * vs
-        return
-    if ck == C_IDEAL_ONOFF:
-        mem[M_ID] = 0.0
-        mem[M_IZ] = 0.0
-        mem[M_ZC] = xd * vd
-        mem[M_TARGET] = cp[P_CS] * vd
-        return
-    sgn_a = DK.sign(ad)
-    if ck == C_POLICY:
-        policy = int(cp[P_POLICY])
-        if policy == 1:
-            sig = vs
-            zc = vs * vd
-        elif policy == 2:
-            sig = vd
-            zc = vs * vd
-        elif policy == 3:
-            sig = vd
-            zc = xd * vd
-        else:
-            sig = xd
-            zc = xd * vd
-        n = cp[P_ORDER]
-        mag = abs(sig)
-        if n == 2.0:
-            iz = cp[P_GAIN] * mag * mag  # (3.15), the default order without pow()
-        elif n == 1.0:
-            iz = cp[P_GAIN] * mag
-        else:
-            iz = cp[P_GAIN] * mag**n
-    elif ck == C_INVERSE_HILO:
-        target = vp[V_KS] * xd  # F* = F_k, (3.17)
-        sa = sgn_a * cp[P_INV_HYST]  # 0: the mean inverse model (v_h = 0)
-        fh = DK.passive_hysteron(dp, vd, sa, vm)
-        iz = DK.wang_inverse(dp, target, vd, sa, vm, imax)
-        zc = fh * target
-    else:  # C_SLIDING, (3.19)-(3.35) in the up-positive frame (erratum 4)
-        z0, v0 = y[4], y[5]
-        ms0 = cp[P_MS0]
-        a0 = (-cp[P_C0] * (v0 - vu) - cp[P_CS] * v0 - vp[V_KS] * (z0 - zu)) / ms0
-        e = zs - z0
-        ed = vs - v0
-        lam = cp[P_LAMBDA]
-        s = ed + lam * e
-        fd0 = -vp[V_KS] * xd + ms0 * a0 - ms0 * lam * ed
-        beta = cp[P_BETA]
-        gain = ms0 * beta * cp[P_PHI] + (beta - 1.0) * (
-            abs(fd0) + vp[V_KS] * abs(zs) + vp[V_KS] * abs(zu)
-        )
-        sat = s / cp[P_EPS]
-        if sat > 1.0:
-            sat = 1.0
-        elif sat < -1.0:
-            sat = -1.0
-        target = fd0 - gain * sat  # (3.34), erratum 5
-        sa = sgn_a * cp[P_INV_HYST]
-        fh = DK.passive_hysteron(dp, vd, sa, vm)
-        iz = DK.wang_inverse(dp, target, vd, sa, vm, imax)
-        zc = -fh * target  # (3.35)
-    # drive current (3.9)/(3.16)
-    mem[M_ID] = drive_current_kernel(iz, vd, vm, zc, cp[P_P], cp[P_XI], cp[P_PC], cp[P_XIC], imax)
-    mem[M_IZ] = iz
-    mem[M_ZC] = zc
+    """Run the control law (:func:`mrsuspension.control.kernel.control`) into ``mem``.
+
+    Sets ``mem[M_ID]`` (held over the step), ``M_IZ``, ``M_ZC`` and ``M_TARGET``.
+    """
+    i_d, i_z, z_c, target = CK.control(ck, cp, vp, dp, y, ad, vm)
+    mem[M_ID] = i_d
+    mem[M_IZ] = i_z
+    mem[M_ZC] = z_c
     mem[M_TARGET] = target
 
 
@@ -368,8 +217,8 @@ def step(
     # EST_SHARED: the damper's own estimate (same estimator, same samples)
     vm = ds[DK.WS_VM] if cek == EST_SHARED else DK.estimator_update(cek, cep, ces, xd, vd, ad)
     mem[M_VM] = vm
-    control(ck, cp, vp, dp, y, ad, vm, mem)
-    reference = ck == C_SLIDING
+    apply_control(ck, cp, vp, dp, y, ad, vm, mem)
+    reference = CK.needs_reference(ck)
     # classical RK4 in scalars; the four stages and the evaluation at the new state share
     # one call site of accelerations() (small inlined code, short compile). k_j is
     # (velocities, accelerations) at stage j; acc = k1 + 2 k2 + 2 k3 + k4 accumulated in
@@ -442,7 +291,7 @@ N_REC = 16
 
 
 @njit(cache=True, inline="always")
-def _record(
+def record(
     rec: np.ndarray, row: int, y: np.ndarray, zr: float, zrd: float, mem: np.ndarray
 ) -> None:
     rec[row, R_ZS] = y[0]
@@ -478,12 +327,18 @@ def start(
     des: np.ndarray,
     ck: int,
     cp: np.ndarray,
+    cek: int,
+    cep: np.ndarray,
+    ces: np.ndarray,
     mem: np.ndarray,
     scratch: np.ndarray,
 ) -> None:
-    """Initial accelerations and forces (for the record and the first step's a_d)."""
+    """Initial accelerations and forces (for the record and the first step's a_d).
+
+    Takes the arrays of :func:`step` (the controller estimator's are not used here).
+    """
     DK.damper_sample(dk, dp, ds, dek, dep, des, y[2] - y[0], y[3] - y[1], 0.0, mem[M_ID])
-    fd, ft = rates(y, zr, zrd, vp, fk, dk, dp, ds, cp, mem, ck == C_SLIDING, scratch[0:NY])
+    fd, ft = rates(y, zr, zrd, vp, fk, dk, dp, ds, cp, mem, CK.needs_reference(ck), scratch[0:NY])
     mem[M_AS] = scratch[1]
     mem[M_AU] = scratch[3]
     mem[M_A0] = scratch[5]
@@ -494,6 +349,8 @@ def start(
 
 # divergence limits: which signal ran away
 D_OK, D_STATE, D_FORCE, D_TIRE = 0, 1, 2, 3
+#: Divergence limits (``limits`` of :func:`check_limits`): |z| [m], |z'| [m/s], |F_d| [N], F_T [N].
+LIMITS = np.array([10.0, 100.0, 1e6, 1e7])
 
 
 @njit(cache=True, inline="always")
@@ -550,8 +407,8 @@ def run(
     ``limits = [max |z|, max |z'|, max |F_d|, max F_T]``, else the first offence.
     ``scratch`` is work space of ``SCRATCH_SIZE``.
     """
-    start(y, zr[0], zrd[0], vp, fk, dk, dp, ds, dek, dep, des, ck, cp, mem, scratch)
-    _record(rec, 0, y, zr[0], zrd[0], mem)
+    start(y, zr[0], zrd[0], vp, fk, dk, dp, ds, dek, dep, des, ck, cp, cek, cep, ces, mem, scratch)
+    record(rec, 0, y, zr[0], zrd[0], mem)
     row = 1
     for k in range(n_steps):
         j = 2 * k
@@ -563,6 +420,6 @@ def run(
         if status != D_OK:
             return status, k + 1, q, value
         if (k + 1) % decimate == 0 and row < rec.shape[0]:
-            _record(rec, row, y, zr[j + 2], zrd[j + 2], mem)
+            record(rec, row, y, zr[j + 2], zrd[j + 2], mem)
             row += 1
     return D_OK, n_steps, 0, 0.0

@@ -18,7 +18,7 @@ check instead of one per field pair, over its limit).
 
 The physics is shared, not copied: the force is
 :func:`~mrsuspension.dampers.kernels.wang_combine`, the car
-:func:`~mrsuspension.engine.kernel.plant_rates`, the per-run parts the scalar kernels
+:func:`~mrsuspension.vehicle.kernel.plant_rates`, the per-run parts the scalar kernels
 themselves. The numerical differences from :meth:`Simulation.run` are that exp, which is
 within 1.5 ulp of libm's, and fused multiply-adds in the stages: results agree to
 round-off (measured over 3 s runs of every controller, relative to each signal's range:
@@ -34,24 +34,68 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from typing import TYPE_CHECKING, Any
+from typing import Any, Protocol
 
 import numpy as np
 from numba import njit
 
 from mrsuspension import shaping as _shaping
 from mrsuspension._numba_cache import invalidate_if_changed
+from mrsuspension.control import kernel as CK
+from mrsuspension.control.kernel import EST_SHARED, F_MODEL, P_C0, P_CS, P_MS0
 from mrsuspension.dampers import kernels as DK
 from mrsuspension.dampers.kernels import NO_REFCOUNT
 from mrsuspension.engine import kernel as EK
+from mrsuspension.engine.arrays import KernelArrays, RunPlan
+from mrsuspension.engine.result import SimulationDiverged, SimulationResult
+from mrsuspension.errors import ValidationError
+from mrsuspension.vehicle import kernel as VK
+from mrsuspension.vehicle.kernel import V_CSKY, V_CT, V_DXU, V_G, V_KS, V_KT, V_MS, V_MU
 
-if TYPE_CHECKING:
-    from mrsuspension.engine.result import SimulationResult
-    from mrsuspension.engine.simulate import Simulation, SimulationDiverged
+# the cached kernels below inline the damper, shaping, controller, vehicle and step kernels
+invalidate_if_changed(
+    __file__, DK.__file__, EK.__file__, _shaping.__file__, CK.__file__, VK.__file__
+)
 
-invalidate_if_changed(__file__, DK.__file__, EK.__file__, _shaping.__file__)
+__all__ = [
+    "LANES",
+    "MAX_BATCH_STEPS",
+    "MIN_GROUP",
+    "LaneRun",
+    "lane_key",
+    "plan_batches",
+    "run_lanes",
+]
 
-__all__ = ["LANES", "MAX_BATCH_STEPS", "MIN_GROUP", "lane_key", "plan_batches", "run_lanes"]
+
+class LaneRun(Protocol):
+    """What the lanes need of a run (:class:`~mrsuspension.engine.Simulation` has it).
+
+    An interface rather than an import, so that :mod:`~mrsuspension.engine.simulate` can
+    use the lanes without a cycle.
+    """
+
+    @property
+    def excitation(self) -> Any: ...
+
+    def check_dt(self, dt: float) -> float: ...
+
+    def plan(
+        self, duration: float | None, dt: float, output_rate: float, check_stability: bool
+    ) -> RunPlan: ...
+
+    def road_samples(self, n: int, dt: float) -> tuple[np.ndarray, np.ndarray]: ...
+
+    def kernel_arrays(self, dt: float, *, check_stability: bool = True) -> KernelArrays: ...
+
+    def result_from_record(
+        self, time: np.ndarray, record: np.ndarray, dt: float
+    ) -> SimulationResult: ...
+
+    def divergence(
+        self, status: int, t: float, idx: int, value: float, dt: float
+    ) -> SimulationDiverged: ...
+
 
 #: runs stepped together (a compile-time constant: the vectoriser needs fixed offsets;
 #: with 8 it judged the loop not worth vectorising, 32 measured no faster than 16)
@@ -93,7 +137,7 @@ def _lane_rates(
     vd = vu - vs
     k1 = k1c if vd >= 0.0 else k1e
     fd = DK.wang_combine(kdci, ftr, fb, DK.lane_tanh(ha * (vd + shift)), k1, decay, vd)
-    a_s, a_u, a_0, ft = EK.plant_rates(
+    a_s, a_u, a_0, ft = VK.plant_rates(
         zs, vs, zu, vu, z0, v0, zr, zrd, fd, c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7],
         reference, c[8], c[9], c[10],
     )  # fmt: skip
@@ -182,8 +226,8 @@ def _start_lane(
     q: int, j: int, y: np.ndarray, mem: np.ndarray, ds: np.ndarray, des: np.ndarray,
     ces: np.ndarray, ds0: np.ndarray, des0: np.ndarray, ces0: np.ndarray, road_off: np.ndarray,
     zr: np.ndarray, zrd: np.ndarray, rec_off: np.ndarray, rec: np.ndarray, vp: np.ndarray,
-    dk: int, dp: np.ndarray, dek: int, dep: np.ndarray, ck: int, cp: np.ndarray,
-    scratch: np.ndarray,
+    dk: int, dp: np.ndarray, dek: int, dep: np.ndarray, ck: int, cp: np.ndarray, cek: int,
+    cep: np.ndarray, scratch: np.ndarray,
 ) -> None:  # fmt: skip
     """Fresh state for run ``j`` in lane ``q``, its initial rates and record row 0."""
     o = road_off[j]
@@ -196,8 +240,11 @@ def _start_lane(
         des[m] = des0[m]
     for m in range(ces.size):
         ces[m] = ces0[m]
-    EK.start(y, zr[o], zrd[o], vp, EK.F_MODEL, dk, dp, ds, dek, dep, des, ck, cp, mem, scratch)
-    EK._record(rec, rec_off[j], y, zr[o], zrd[o], mem)
+    EK.start(
+        y, zr[o], zrd[o], vp, F_MODEL, dk, dp, ds, dek, dep, des, ck, cp, cek, cep, ces, mem,
+        scratch,
+    )  # fmt: skip
+    EK.record(rec, rec_off[j], y, zr[o], zrd[o], mem)
 
 
 @njit(cache=True, error_model="numpy", **NO_REFCOUNT)
@@ -221,7 +268,7 @@ def run_lanes_kernel(
     """
     runs = n_steps.shape[0]
     n = LANES
-    reference = ck == EK.C_SLIDING
+    reference = CK.needs_reference(ck)
     k1c, k1e = dp[DK.W_K1C], dp[DK.W_K1E]
     nxt = 0
     active = 0
@@ -230,7 +277,7 @@ def run_lanes_kernel(
         if nxt < runs:
             _start_lane(
                 q, nxt, ys[q], mems[q], dss[q], dess[q], cess[q], ds0, des0, ces0, road_off,
-                zr, zrd, rec_off, rec, vp, dk, dp, dek, dep, ck, cp, scratch,
+                zr, zrd, rec_off, rec, vp, dk, dp, dek, dep, ck, cp, cek, cep, scratch,
             )  # fmt: skip
             lane_run[q] = nxt
             lane_k[q] = 0
@@ -247,12 +294,12 @@ def run_lanes_kernel(
             vd = y[3] - y[1]
             ad = mem[EK.M_AD]
             DK.damper_sample(dk, dp, ds, dek, dep, dess[q], xd, vd, ad, mem[EK.M_ID])
-            if cek == EK.EST_SHARED:
+            if cek == EST_SHARED:
                 vm = ds[DK.WS_VM]
             else:
                 vm = DK.estimator_update(cek, cep, cess[q], xd, vd, ad)
             mem[EK.M_VM] = vm
-            EK.control(ck, cp, vp, dp, y, ad, vm, mem)
+            EK.apply_control(ck, cp, vp, dp, y, ad, vm, mem)
             i = mem[EK.M_ID]
             if i != ds[DK.WS_I]:
                 DK.wang_latch_current(dp, ds, i)
@@ -290,7 +337,7 @@ def run_lanes_kernel(
             done = code != EK.D_OK or k == n_steps[j]
             if code == EK.D_OK and k % decimate == 0:
                 o = road_off[j] + 2 * k
-                EK._record(rec, rec_off[j] + k // decimate, y, zr[o], zrd[o], mem)
+                EK.record(rec, rec_off[j] + k // decimate, y, zr[o], zrd[o], mem)
             if not done:
                 continue
             status[j, 0] = code
@@ -302,7 +349,7 @@ def run_lanes_kernel(
             if nxt < runs:
                 _start_lane(
                     q, nxt, y, mem, dss[q], dess[q], cess[q], ds0, des0, ces0, road_off, zr,
-                    zrd, rec_off, rec, vp, dk, dp, dek, dep, ck, cp, scratch,
+                    zrd, rec_off, rec, vp, dk, dp, dek, dep, ck, cp, cek, cep, scratch,
                 )  # fmt: skip
                 lane_run[q] = nxt
                 lane_k[q] = 0
@@ -311,37 +358,43 @@ def run_lanes_kernel(
 
 
 def _constants(vp: np.ndarray, cp: np.ndarray) -> np.ndarray:
-    """The car's constants as :func:`~mrsuspension.engine.kernel.plant_rates` takes them.
+    """The car's constants as :func:`~mrsuspension.vehicle.kernel.plant_rates` takes them.
 
     Computed as :func:`~mrsuspension.engine.kernel.accelerations` computes them, so the
     lane and scalar steps use the same numbers.
     """
-    ms, mu = vp[EK.V_MS], vp[EK.V_MU]
+    ms, mu = vp[V_MS], vp[V_MU]
     return np.array(
         [
-            vp[EK.V_KS], vp[EK.V_CSKY], 1.0 / ms, 1.0 / mu, (ms + mu) * vp[EK.V_G], vp[EK.V_KT],
-            vp[EK.V_CT], vp[EK.V_DXU], cp[EK.P_C0], cp[EK.P_CS], 1.0 / cp[EK.P_MS0],
+            vp[V_KS], vp[V_CSKY], 1.0 / ms, 1.0 / mu, (ms + mu) * vp[V_G], vp[V_KT],
+            vp[V_CT], vp[V_DXU], cp[P_C0], cp[P_CS], 1.0 / cp[P_MS0],
         ]
     )  # fmt: skip
 
 
-def lane_key(simulation: Simulation, dt: float) -> tuple[Any, ...] | None:
+def lane_key(simulation: LaneRun, dt: float) -> tuple[Any, ...] | None:
     """What runs must share to step in one lane group; None when the run is not eligible.
 
     Eligible: the damper is the dissertation's model and the controller acts through it
     (not an ideal reference force). The key holds every kernel array except the road.
     """
-    a = simulation._arrays(dt)
-    if a["fk"] != EK.F_MODEL or a["dk"] != DK.WANG:
+    a = simulation.kernel_arrays(dt, check_stability=False)
+    if a.force_source != F_MODEL or a.damper_kind != DK.WANG:
         return None
     arrays = tuple(
-        np.asarray(a[k], dtype=float).tobytes() for k in ("vp", "dp", "ds", "dep", "des", "cp", "cep", "ces")
+        np.asarray(v, dtype=float).tobytes()
+        for v in (
+            a.vehicle, a.damper_params, a.damper_state, a.damper_estimator_params,
+            a.damper_estimator_state, a.controller_params, a.controller_estimator_params,
+            a.controller_estimator_state,
+        )
     )  # fmt: skip
-    return (float(dt), int(a["dk"]), int(a["dek"]), int(a["ck"]), int(a["cek"]), *arrays)
+    kinds = (a.damper_kind, a.damper_estimator_kind, a.controller_kind, a.controller_estimator_kind)
+    return (float(dt), *(int(k) for k in kinds), *arrays)
 
 
 def run_lanes(
-    simulations: Sequence[Simulation],
+    simulations: Sequence[LaneRun],
     *,
     duration: float | None = None,
     dt: float = 1e-4,
@@ -371,13 +424,10 @@ def run_lanes(
     >>> bool(abs(results[1].z_s - single.z_s).max() < 1e-12)
     True
     """
-    from mrsuspension.engine.simulate import LIMITS
-    from mrsuspension.errors import ValidationError
-
     sims = list(simulations)
     if not sims:
         return []
-    plans = [s._plan(duration, dt, output_rate, check_stability) for s in sims]
+    plans = [s.plan(duration, dt, output_rate, check_stability) for s in sims]
     dt = plans[0][0]
     decimate = plans[0][2]
     keys = {lane_key(s, dt) for s in sims}
@@ -386,7 +436,7 @@ def run_lanes(
             "run_lanes needs simulations that differ only in their excitation, with the "
             "dissertation's damper model (see lane_key); use run_many for any mix"
         )
-    roads = [s._road(n, dt) for s, (_, n, _) in zip(sims, plans, strict=True)]
+    roads = [s.road_samples(n, dt) for s, (_, n, _) in zip(sims, plans, strict=True)]
     steps = np.array([n for _, n, _ in plans], dtype=np.int64)
     road_len = 2 * steps + 1
     road_off = np.concatenate([[0], np.cumsum(road_len)[:-1]]).astype(np.int64)
@@ -396,14 +446,18 @@ def run_lanes(
     zrd = np.concatenate([r[1] for r in roads])
     rec = np.zeros((int(rows.sum()), EK.N_REC))
     status = np.zeros((len(sims), 4))
-    a = sims[0]._arrays(dt)
+    a = sims[0].kernel_arrays(dt, check_stability=False)
+    ds0, des0 = a.damper_state, a.damper_estimator_state
+    ces0 = a.controller_estimator_state
     w = LANES
     args = (
-        steps, road_off, zr, zrd, rec_off, rec, decimate, status, dt, a["vp"], a["dk"], a["dp"],
-        a["ds"].copy(), a["dek"], a["dep"], a["des"].copy(), a["ck"], a["cp"], a["cek"],
-        a["cep"], a["ces"].copy(), LIMITS, _constants(a["vp"], a["cp"]), np.zeros((w, EK.NY)),
-        np.zeros((w, EK.MEM_SIZE)), np.zeros((w, a["ds"].size)), np.zeros((w, a["des"].size)),
-        np.zeros((w, a["ces"].size)), np.zeros(N_IN * w), np.zeros(N_OUT * w),
+        steps, road_off, zr, zrd, rec_off, rec, decimate, status, dt, a.vehicle, a.damper_kind,
+        a.damper_params, ds0, a.damper_estimator_kind, a.damper_estimator_params, des0,
+        a.controller_kind, a.controller_params, a.controller_estimator_kind,
+        a.controller_estimator_params, ces0, EK.LIMITS,
+        _constants(a.vehicle, a.controller_params), np.zeros((w, VK.NY)),
+        np.zeros((w, EK.MEM_SIZE)), np.zeros((w, ds0.size)), np.zeros((w, des0.size)),
+        np.zeros((w, ces0.size)), np.zeros(N_IN * w), np.zeros(N_OUT * w),
         np.full(w, -1, dtype=np.int64), np.zeros(w, dtype=np.int64), np.zeros(EK.SCRATCH_SIZE),
     )  # fmt: skip
     run_lanes_kernel(*args)
@@ -411,11 +465,11 @@ def run_lanes(
     for j, sim in enumerate(sims):
         code, k, idx, value = status[j]
         if int(code) != EK.D_OK:
-            out.append(sim._diverged(int(code), int(k) * dt, int(idx), float(value), dt))
+            out.append(sim.divergence(int(code), int(k) * dt, int(idx), float(value), dt))
             continue
         block = rec[rec_off[j] : rec_off[j] + rows[j]]
         time = np.arange(rows[j]) * (decimate * dt)
-        out.append(sim._result(time, block, dt))
+        out.append(sim.result_from_record(time, block, dt))
     return out
 
 
@@ -427,7 +481,7 @@ MAX_BATCH_STEPS = 10_000_000
 
 
 def plan_batches(
-    simulations: Sequence[Simulation], dt: float, duration: float | None, parts: int
+    simulations: Sequence[LaneRun], dt: float, duration: float | None, parts: int
 ) -> list[list[int]]:
     """Split runs into batches: lane groups (longest first) and single runs.
 

@@ -11,7 +11,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 import numpy.typing as npt
 
-from mrsuspension.errors import ValidationError, unknown_name
+from mrsuspension.errors import MRSuspensionError, ValidationError, unknown_name
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -25,6 +25,7 @@ __all__ = [
     "MEASURES_BY_KIND",
     "MEASURE_NOTES",
     "SIGNALS",
+    "SimulationDiverged",
     "SimulationResult",
     "VelocityClampWarning",
     "warn_if_clamped",
@@ -56,6 +57,33 @@ MEASURES_BY_KIND: dict[str, tuple[str, ...]] = {
 #: Non-numeric entries of :meth:`SimulationResult.measures` by measures kind (how a
 #: measure was computed, not a measure).
 MEASURE_NOTES: dict[str, tuple[str, ...]] = {"pulse": ("road_peak",)}
+
+
+class SimulationDiverged(MRSuspensionError):
+    """A run left the physical range; the message says when and which signal.
+
+    Attributes
+    ----------
+    time : float
+        Simulated time of the first offence [s].
+    signal : str
+        The signal out of range (``z_s``, ``F_d``, ...).
+    value : float
+        Its value there.
+
+    Examples
+    --------
+    >>> err = SimulationDiverged("diverged at t = 1 s", 1.0, "z_s", 11.0)
+    >>> err.signal, err.value
+    ('z_s', 11.0)
+    """
+
+    def __init__(self, message: str, time: float, signal: str, value: float) -> None:
+        super().__init__(message)
+        self.time = time
+        self.signal = signal
+        self.value = value
+
 
 #: Recorded signals: name -> (unit, description).
 SIGNALS: dict[str, tuple[str, str]] = {

@@ -13,18 +13,28 @@ import numpy as np
 import numpy.typing as npt
 
 from mrsuspension.control import Controller, Passive
+from mrsuspension.control.kernel import EST_SHARED, F_EXTERNAL, F_MODEL, P_CS
 from mrsuspension.dampers import CycleRms, DamperModel, PeakVelocityEstimator, WangSymmetric
 from mrsuspension.dampers import kernels as DK
 from mrsuspension.dampers.wang import VEHICLE_VH_VARIANT
 from mrsuspension.engine import kernel as EK
-from mrsuspension.engine.result import SimulationResult, VelocityClampWarning, warn_if_clamped
+from mrsuspension.engine import lanes as LN
+from mrsuspension.engine.arrays import KernelArrays, RunPlan
+from mrsuspension.engine.result import (
+    SimulationDiverged,
+    SimulationResult,
+    VelocityClampWarning,
+    warn_if_clamped,
+)
 from mrsuspension.engine.settings import DEFAULT_DT, RunSettings, run_settings
-from mrsuspension.errors import MRSuspensionError, ValidationError, check_range
+from mrsuspension.errors import ValidationError, check_range
 from mrsuspension.vehicle import QuarterCar
 
 __all__ = [
     "DEFAULT_DT",
+    "KernelArrays",
     "RoadInput",
+    "RunPlan",
     "Simulation",
     "SimulationDiverged",
     "Stepper",
@@ -34,8 +44,6 @@ __all__ = [
 
 #: RK4's stability limit on the negative real axis is about 2.785; keep a margin.
 _RK4_LIMIT = 2.5
-#: Divergence limits: |z| [m], |z'| [m/s], |F_d| [N], F_T [N].
-LIMITS = np.array([10.0, 100.0, 1e6, 1e7])
 
 
 class RoadInput(Protocol):
@@ -59,16 +67,6 @@ def road_grid(excitation: RoadInput, n: int, step: float) -> tuple[np.ndarray, n
         t = np.arange(n) * step
         zr, zrd = excitation.displacement(t), excitation.velocity(t)
     return np.ascontiguousarray(zr, dtype=float), np.ascontiguousarray(zrd, dtype=float)
-
-
-class SimulationDiverged(MRSuspensionError):
-    """A run left the physical range; the message says when and which signal."""
-
-    def __init__(self, message: str, time: float, signal: str, value: float) -> None:
-        super().__init__(message)
-        self.time = time
-        self.signal = signal
-        self.value = value
 
 
 _STATE_NAMES = ("z_s", "z_s_dot", "z_u", "z_u_dot", "z_s0", "z_s0_dot")
@@ -161,9 +159,9 @@ class Simulation:
 
     def _slope(self) -> float:
         """Largest damper (or ideal-damper) slope dF/dv [N s/m] up to max_current."""
-        if self.controller.force_source == EK.F_MODEL:
+        if self.controller.force_source == F_MODEL:
             return self.damper.max_damping_rate(self.max_current)
-        return float(self.controller.params(self.max_current)[EK.P_CS])
+        return float(self.controller.params(self.max_current)[P_CS])
 
     def describe(self) -> dict[str, Any]:
         """Plain-data description of the scenario."""
@@ -177,40 +175,55 @@ class Simulation:
             "peak_velocity_limit": getattr(self.controller_estimator, "v_max", None),
         }
 
-    def kernel_arrays(self, dt: float) -> dict[str, Any]:
-        """The compiled step's parameter and state arrays at step ``dt`` (checked).
+    def kernel_arrays(self, dt: float, *, check_stability: bool = True) -> KernelArrays:
+        """The compiled step's parameter and state arrays at step ``dt``, by name.
 
-        For :meth:`Stepper.update`; raises :class:`ValidationError` when ``dt`` is too
-        large for this model.
+        Fresh states (the damper's, the estimators' and the step memory) each call. For
+        :meth:`Stepper.update`, the lane kernel and benchmarks.
+
+        Parameters
+        ----------
+        dt : float
+            Fixed step [s].
+        check_stability : bool
+            Refuse a ``dt`` above the RK4 stability limit of this model (default).
+
+        Raises
+        ------
+        ValidationError
+            When ``dt`` is not positive, above 10 ms or (with ``check_stability``) too
+            large for this model.
 
         Examples
         --------
         >>> from mrsuspension.excitation import Harmonic
-        >>> sorted(Simulation(Harmonic(1.0, 0.01)).kernel_arrays(1e-4))[:3]
-        ['cek', 'cep', 'ces']
+        >>> a = Simulation(Harmonic(1.0, 0.01)).kernel_arrays(1e-4)
+        >>> a.controller_params.size, a.memory.size
+        (17, 12)
         """
-        return self._arrays(self.check_dt(dt))
-
-    def _arrays(self, dt: float) -> dict[str, Any]:
+        if check_stability:
+            dt = self.check_dt(dt)
+        else:
+            dt = float(check_range("dt", dt, 0.0, 0.01, unit="s", low_inclusive=False))
         kern = self.damper.kernel(dt)
         est = self.controller_estimator
         shared = self.estimator is None and kern.kind == DK.WANG
-        return {
-            "vp": self.vehicle.params(),
-            "fk": self.controller.force_source,
-            "dk": kern.kind,
-            "dp": kern.params,
-            "ds": kern.state,
-            "dek": kern.estimator_code,
-            "dep": kern.estimator_params,
-            "des": kern.estimator_state,
-            "ck": self.controller.code,
-            "cp": self.controller.params(self.max_current),
-            "cek": EK.EST_SHARED if shared else est.code,
-            "cep": est.params_for(dt),
-            "ces": est.buffer(dt),
-            "mem": np.zeros(EK.MEM_SIZE),
-        }
+        return KernelArrays(
+            vehicle=self.vehicle.params(),
+            force_source=self.controller.force_source,
+            damper_kind=kern.kind,
+            damper_params=kern.params,
+            damper_state=kern.state,
+            damper_estimator_kind=kern.estimator_code,
+            damper_estimator_params=kern.estimator_params,
+            damper_estimator_state=kern.estimator_state,
+            controller_kind=self.controller.code,
+            controller_params=self.controller.params(self.max_current),
+            controller_estimator_kind=EST_SHARED if shared else est.code,
+            controller_estimator_params=est.params_for(dt),
+            controller_estimator_state=est.buffer(dt),
+            memory=np.zeros(EK.MEM_SIZE),
+        )
 
     # -- running ---------------------------------------------------------------------
     def run(
@@ -258,28 +271,42 @@ class Simulation:
         """
         settings = run_settings(settings, duration=duration, dt=dt, output_rate=output_rate)
         duration, dt, output_rate = settings.duration, settings.dt, settings.output_rate
-        dt, n, decimate = self._plan(duration, dt, output_rate, check_stability)
-        zr, zrd = self._road(n, dt)
-        a = self._arrays(dt)
+        dt, n, decimate = self.plan(duration, dt, output_rate, check_stability)
+        zr, zrd = self.road_samples(n, dt)
+        a = self.kernel_arrays(dt, check_stability=False)  # dt is checked by plan()
         y = np.array([zr[0], 0.0, zr[0], 0.0, zr[0], 0.0])
         rows = n // decimate + 1
         rec = np.zeros((rows, EK.N_REC))
         status, k, idx, value = EK.run(
-            y, n, dt, zr, zrd, a["vp"], a["fk"], a["dk"], a["dp"], a["ds"], a["dek"], a["dep"],
-            a["des"], a["ck"], a["cp"], a["cek"], a["cep"], a["ces"], a["mem"], decimate, rec,
-            LIMITS, np.zeros(EK.SCRATCH_SIZE),
-        )  # fmt: skip
+            y, n, dt, zr, zrd, *a.args(), decimate, rec, EK.LIMITS, np.zeros(EK.SCRATCH_SIZE)
+        )
         if status != EK.D_OK:
-            raise self._diverged(status, k * dt, idx, value, dt)
+            raise self.divergence(status, k * dt, idx, value, dt)
         time = np.arange(rows) * (decimate * dt)
-        result = self._result(time, rec, dt)
+        result = self.result_from_record(time, rec, dt)
         warn_if_clamped(result)
         return result
 
-    def _plan(
-        self, duration: float | None, dt: float, output_rate: float, check_stability: bool
-    ) -> tuple[float, int, int]:
-        """Checked ``(dt, steps, decimate)`` of a run (see :meth:`run`)."""
+    def plan(
+        self,
+        duration: float | None = None,
+        dt: float = DEFAULT_DT,
+        output_rate: float = 1000.0,
+        check_stability: bool = True,
+    ) -> RunPlan:
+        """Checked step, step count and decimation of a run (arguments of :meth:`run`).
+
+        Raises
+        ------
+        ValidationError
+            For a bad ``duration``, ``dt`` or ``output_rate`` (as :meth:`run`).
+
+        Examples
+        --------
+        >>> from mrsuspension.excitation import Harmonic
+        >>> Simulation(Harmonic(1.0, 0.01)).plan(2.0)
+        RunPlan(dt=0.0001, steps=20000, decimate=10)
+        """
         if check_stability:
             dt = self.check_dt(dt)
         else:
@@ -293,25 +320,49 @@ class Simulation:
         decimate = max(1, round(1.0 / (rate * dt)))
         # whole output intervals covering the duration (the record ends at or after it)
         n = max(1, math.ceil(duration / (dt * decimate) - 1e-9)) * decimate
-        return dt, n, decimate
+        return RunPlan(dt, n, decimate)
 
-    def _road(self, n: int, dt: float) -> tuple[np.ndarray, np.ndarray]:
-        """The road at every half step of an ``n``-step run (checked finite)."""
+    def road_samples(self, n: int, dt: float) -> tuple[np.ndarray, np.ndarray]:
+        """The road ``(z_r, z_r')`` at every half step of an ``n``-step run (checked finite).
+
+        Raises
+        ------
+        ValidationError
+            When the excitation gives non-finite values.
+
+        Examples
+        --------
+        >>> from mrsuspension.excitation import Harmonic
+        >>> zr, zrd = Simulation(Harmonic(1.0, 0.01)).road_samples(2, 1e-4)
+        >>> zr.shape
+        (5,)
+        """
         zr, zrd = road_grid(self.excitation, 2 * n + 1, 0.5 * dt)
         if not (np.all(np.isfinite(zr)) and np.all(np.isfinite(zrd))):
             raise ValidationError("the excitation produced non-finite road values")
         return zr, zrd
 
-    def _diverged(
+    def divergence(
         self, status: int, t: float, idx: int, value: float, dt: float
     ) -> SimulationDiverged:
+        """The error for a run's divergence as the kernels report it (``D_*``, index, value).
+
+        Examples
+        --------
+        >>> from mrsuspension.engine import kernel as EK
+        >>> from mrsuspension.excitation import Harmonic
+        >>> err = Simulation(Harmonic(1.0, 0.01)).divergence(EK.D_FORCE, 0.5, 0, 2e6, 1e-4)
+        >>> err.signal, err.time
+        ('F_d', 0.5)
+        """
+        limits = EK.LIMITS
         if status == EK.D_STATE:
             name, unit = _STATE_NAMES[idx], _STATE_UNITS[idx]
-            limit = LIMITS[0] if idx % 2 == 0 else LIMITS[1]
+            limit = limits[0] if idx % 2 == 0 else limits[1]
         elif status == EK.D_FORCE:
-            name, unit, limit = "F_d", "N", LIMITS[2]
+            name, unit, limit = "F_d", "N", limits[2]
         else:
-            name, unit, limit = "F_T", "N", LIMITS[3]
+            name, unit, limit = "F_T", "N", limits[3]
         what = "is not finite" if not math.isfinite(value) else f"exceeds {limit:g} {unit}"
         return SimulationDiverged(
             f"simulation diverged at t = {t:.4f} s: {name} = {value:.3g} {unit} {what}. "
@@ -322,7 +373,20 @@ class Simulation:
             value,
         )
 
-    def _result(self, time: np.ndarray, record: np.ndarray, dt: float) -> SimulationResult:
+    def result_from_record(
+        self, time: np.ndarray, record: np.ndarray, dt: float
+    ) -> SimulationResult:
+        """The result of this simulation from the kernels' record (rows: ``R_*`` columns).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from mrsuspension.engine import kernel as EK
+        >>> from mrsuspension.excitation import Harmonic
+        >>> sim = Simulation(Harmonic(1.0, 0.01))
+        >>> sim.result_from_record(np.zeros(1), np.zeros((1, EK.N_REC)), 1e-4).z_s.tolist()
+        [0.0]
+        """
         R = EK
         rec = np.ascontiguousarray(record.T)  # one pass; each signal is then contiguous
         signals = {
@@ -378,19 +442,24 @@ class Stepper:
 
     def reset(self, road: float = 0.0, road_velocity: float = 0.0) -> None:
         """Back to static equilibrium on a road at height ``road``; fresh internals."""
-        self._a = self.simulation._arrays(self.dt)
-        if self.external_force:
-            self._a["fk"] = EK.F_EXTERNAL
+        a = self.simulation.kernel_arrays(self.dt, check_stability=False)  # checked in init
+        self._use(a.replace(force_source=F_EXTERNAL) if self.external_force else a)
         self._scratch = np.zeros(EK.SCRATCH_SIZE)
         self.y = np.array([road, 0.0, road, 0.0, road, 0.0])
         self.time = 0.0
-        a = self._a
-        EK.start(
-            self.y, road, road_velocity, a["vp"], a["fk"], a["dk"], a["dp"], a["ds"], a["dek"], a["dep"],
-            a["des"], a["ck"], a["cp"], a["mem"], self._scratch,
-        )  # fmt: skip
+        EK.start(self.y, road, road_velocity, *self._args, self._scratch)
 
-    def update(self, simulation: Simulation, arrays: dict[str, Any] | None = None) -> None:
+    def _use(self, arrays: KernelArrays) -> None:
+        """Step with ``arrays`` (their positional form is kept for the hot path)."""
+        self._a = arrays
+        self._args = arrays.args()
+
+    @property
+    def arrays(self) -> KernelArrays:
+        """The arrays being stepped (their states change in place each step)."""
+        return self._a
+
+    def update(self, simulation: Simulation, arrays: KernelArrays | None = None) -> None:
         """Swap in another simulation's vehicle, controller and damper between two steps.
 
         The vehicle state, the held drive current and the other step memory are kept (a
@@ -402,7 +471,7 @@ class Stepper:
         ----------
         simulation : Simulation
             The new configuration (checked for stability at this stepper's ``dt``).
-        arrays : dict, optional
+        arrays : KernelArrays, optional
             ``simulation.kernel_arrays(dt)`` computed beforehand (e.g. by another process,
             so that the tick that applies the change stays short).
 
@@ -425,15 +494,31 @@ class Stepper:
         new = arrays if arrays is not None else simulation.kernel_arrays(self.dt)
         a = self._a
         old = self.simulation
-        if new["ces"].shape != a["ces"].shape or new["cek"] != a["cek"]:
-            a["ces"] = new["ces"]
-        for key in ("vp", "ck", "cp", "cek", "cep"):
-            a[key] = new[key]
+        changes: dict[str, Any] = {
+            "vehicle": new.vehicle,
+            "controller_kind": new.controller_kind,
+            "controller_params": new.controller_params,
+            "controller_estimator_kind": new.controller_estimator_kind,
+            "controller_estimator_params": new.controller_estimator_params,
+        }
+        if (
+            new.controller_estimator_state.shape != a.controller_estimator_state.shape
+            or new.controller_estimator_kind != a.controller_estimator_kind
+        ):
+            changes["controller_estimator_state"] = new.controller_estimator_state
         if not self.external_force:
-            a["fk"] = new["fk"]
+            changes["force_source"] = new.force_source
         if simulation.damper.describe() != old.damper.describe():
-            for key in ("dk", "dp", "ds", "dek", "dep", "des"):
-                a[key] = new[key]
+            for key in (
+                "damper_kind",
+                "damper_params",
+                "damper_state",
+                "damper_estimator_kind",
+                "damper_estimator_params",
+                "damper_estimator_state",
+            ):
+                changes[key] = getattr(new, key)
+        self._use(a.replace(**changes))
         self.simulation = simulation
 
     def step(
@@ -451,19 +536,16 @@ class Stepper:
                 raise ValidationError(
                     f"external_force stepper needs a finite damper_force each tick; got {damper_force!r}"
                 )
-            self._a["mem"][EK.M_FEXT] = damper_force
+            self._a.memory[EK.M_FEXT] = damper_force
         elif damper_force is not None:
             raise ValidationError("damper_force is only accepted with external_force=True")
         zr1, zrd1 = road_mid if road_mid is not None else (road, road_velocity)
         zr2, zrd2 = road_end if road_end is not None else (zr1, zrd1)
-        a = self._a
         EK.step(
-            self.y, self.dt, road, road_velocity, zr1, zrd1, zr2, zrd2, a["vp"], a["fk"], a["dk"],
-            a["dp"], a["ds"], a["dek"], a["dep"], a["des"], a["ck"], a["cp"], a["cek"], a["cep"],
-            a["ces"], a["mem"], self._scratch,
-        )  # fmt: skip
+            self.y, self.dt, road, road_velocity, zr1, zrd1, zr2, zrd2, *self._args, self._scratch
+        )
         self.time += self.dt
-        y, mem = self.y, a["mem"]
+        y, mem = self.y, self._a.memory
         out = {
             "time": self.time,
             "z_s": y[0], "z_s_dot": y[1], "z_u": y[2], "z_u_dot": y[3],
@@ -509,10 +591,8 @@ def _run_batch(
 ) -> list[Any]:
     """A lane batch (:func:`~mrsuspension.engine.lanes.run_lanes`), reduced; raises the
     first divergence, as a run on its own would."""
-    from mrsuspension.engine.lanes import run_lanes
-
     sims, settings, reduce = args
-    results = run_lanes(
+    results = LN.run_lanes(
         sims, duration=settings.duration, dt=settings.dt, output_rate=settings.output_rate
     )
     for r in results:
@@ -539,9 +619,7 @@ def _warm_lanes(simulation: Simulation, dt: float) -> None:
     global _LANES_WARM
     if _LANES_WARM:
         return
-    from mrsuspension.engine.lanes import run_lanes
-
-    run_lanes([simulation, simulation], duration=dt, dt=dt, output_rate=1.0 / dt)
+    LN.run_lanes([simulation, simulation], duration=dt, dt=dt, output_rate=1.0 / dt)
     _LANES_WARM = True
 
 
@@ -588,7 +666,6 @@ def run_many(
     [51, 51]
     """
     from mrsuspension._pool import pool_map, worker_count
-    from mrsuspension.engine.lanes import plan_batches
 
     plan = run_settings(settings, duration=duration, dt=dt, output_rate=output_rate)
     sims = list(simulations)
@@ -596,7 +673,7 @@ def run_many(
         return []
     n_workers = worker_count(workers, len(sims))
     if lanes:
-        batches = plan_batches(sims, plan.dt, plan.duration, n_workers)
+        batches = LN.plan_batches(sims, plan.dt, plan.duration, n_workers)
     else:
         batches = [[j] for j in range(len(sims))]
     tasks = [

@@ -16,6 +16,7 @@ from typing import Any
 import numpy as np
 from numba import njit
 
+from mrsuspension.engine.arrays import KernelArrays
 from mrsuspension.engine.simulate import DEFAULT_DT, Simulation
 from mrsuspension.errors import ValidationError, check_range
 from mrsuspension.excitation.base import Excitation
@@ -158,7 +159,7 @@ class LiveChange:
         cross-fades) changed.
     dt : float
         Engine step the arrays were prepared for.
-    arrays : dict, optional
+    arrays : KernelArrays, optional
         :meth:`Simulation.kernel_arrays <mrsuspension.engine.simulate.Simulation.kernel_arrays>`.
     ramp_time : float, optional
         Ramp (and cross-fade) time of this change [s]; default: the hooks' ``ramp_time``.
@@ -180,7 +181,7 @@ class LiveChange:
     controller: bool = True
     excitation: bool = True
     dt: float = 0.0
-    arrays: dict[str, Any] | None = None
+    arrays: KernelArrays | None = None
     ramp_time: float | None = None
 
     def __post_init__(self) -> None:

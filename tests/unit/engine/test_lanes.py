@@ -17,8 +17,8 @@ from mrsuspension.control import CONTROLLERS, make_controller
 from mrsuspension.dampers import LinearViscous, WangAsymmetric, WangSymmetric
 from mrsuspension.dampers import kernels as DK
 from mrsuspension.engine import Simulation, SimulationDiverged, measures_of, run_many
+from mrsuspension.engine import kernel as EK
 from mrsuspension.engine import lanes as LN
-from mrsuspension.engine import simulate as SIM
 from mrsuspension.errors import ValidationError
 from mrsuspension.excitation import Harmonic, RoundedPulse
 
@@ -123,7 +123,7 @@ def test_the_asymmetric_model_runs_in_lanes() -> None:
 
 def test_a_diverging_run_is_reported_and_the_others_kept(monkeypatch: pytest.MonkeyPatch) -> None:
     # a small |z| limit: the 4 cm runs leave it, the 1 mm runs do not
-    monkeypatch.setattr(SIM, "LIMITS", np.array([0.01, 100.0, 1e6, 1e7]))
+    monkeypatch.setattr(EK, "LIMITS", np.array([0.01, 100.0, 1e6, 1e7]))
     sims = [Simulation(Harmonic(2.0, a)) for a in (0.001, 0.04, 0.001, 0.04)]
     out = LN.run_lanes(sims, duration=1.0)
     for sim, lane in zip(sims, out, strict=True):
@@ -224,7 +224,7 @@ def test_run_many_with_lanes_matches_without(monkeypatch: pytest.MonkeyPatch) ->
 
 
 def test_run_many_raises_a_lane_runs_divergence(monkeypatch: pytest.MonkeyPatch) -> None:
-    monkeypatch.setattr(SIM, "LIMITS", np.array([0.01, 100.0, 1e6, 1e7]))
+    monkeypatch.setattr(EK, "LIMITS", np.array([0.01, 100.0, 1e6, 1e7]))
     sims = [Simulation(Harmonic(2.0, 0.001)) for _ in range(LN.MIN_GROUP)]
     sims[5] = Simulation(Harmonic(2.0, 0.04))
     with pytest.raises(SimulationDiverged, match=r"z_s|z_u"):

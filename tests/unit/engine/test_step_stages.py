@@ -2,7 +2,8 @@
 
 The reference below is classical RK4 over the state vector, written with numpy arrays
 and the engine's own building blocks called one by one from Python (damper latch,
-controller, ``rates`` into an array, damper advance), in the order of the module
+controller (:func:`mrsuspension.control.kernel.control`), ``rates`` into an array,
+damper advance), in the order of the module
 docstring of :mod:`mrsuspension.engine.kernel`. Both do the same arithmetic, so they
 must agree to round-off for every controller, including the sliding-mode controller's
 reference model (state entries 4-5), and for the ideal-damper and external-force paths.
@@ -14,36 +15,45 @@ import numpy as np
 import pytest
 
 from mrsuspension.control import CONTROLLERS, make_controller
+from mrsuspension.control import kernel as CK
 from mrsuspension.dampers import WangSymmetric
 from mrsuspension.dampers import kernels as DK
-from mrsuspension.engine import Simulation
+from mrsuspension.engine import KernelArrays, Simulation
 from mrsuspension.engine import kernel as EK
 from mrsuspension.excitation import Harmonic
+from mrsuspension.vehicle import kernel as VK
 
 DT = 1e-4
 N_STEPS = 400
 ROAD = Harmonic(3.0, 0.03)
 
 
-def reference_step(y: np.ndarray, road: list[tuple[float, float]], a: dict) -> None:  # type: ignore[type-arg]
-    mem = a["mem"]
+def reference_step(y: np.ndarray, road: list[tuple[float, float]], a: KernelArrays) -> None:
+    mem, ds = a.memory, a.damper_state
     xd, vd, ad = y[2] - y[0], y[3] - y[1], mem[EK.M_AD]
     DK.damper_sample(
-        a["dk"], a["dp"], a["ds"], a["dek"], a["dep"], a["des"], xd, vd, ad, mem[EK.M_ID]
-    )
-    if a["cek"] == EK.EST_SHARED:
-        vm = a["ds"][DK.WS_VM]
+        a.damper_kind, a.damper_params, ds, a.damper_estimator_kind, a.damper_estimator_params,
+        a.damper_estimator_state, xd, vd, ad, mem[EK.M_ID],
+    )  # fmt: skip
+    if a.controller_estimator_kind == CK.EST_SHARED:
+        vm = ds[DK.WS_VM]
     else:
-        vm = DK.estimator_update(a["cek"], a["cep"], a["ces"], xd, vd, ad)
+        vm = DK.estimator_update(
+            a.controller_estimator_kind, a.controller_estimator_params,
+            a.controller_estimator_state, xd, vd, ad,
+        )  # fmt: skip
     mem[EK.M_VM] = vm
-    EK.control(a["ck"], a["cp"], a["vp"], a["dp"], y, ad, vm, mem)
-    reference = a["ck"] == EK.C_SLIDING
+    i_d, i_z, z_c, target = CK.control(
+        a.controller_kind, a.controller_params, a.vehicle, a.damper_params, y, ad, vm
+    )
+    mem[EK.M_ID], mem[EK.M_IZ], mem[EK.M_ZC], mem[EK.M_TARGET] = i_d, i_z, z_c, target
+    reference = a.controller_kind == CK.C_SLIDING
 
     def f(state: np.ndarray, zr: float, zrd: float) -> tuple[np.ndarray, float, float]:
-        dy = np.zeros(EK.NY)
+        dy = np.zeros(VK.NY)
         fd, ft = EK.rates(
-            state, zr, zrd, a["vp"], a["fk"], a["dk"], a["dp"], a["ds"], a["cp"], mem,
-            reference, dy,
+            state, zr, zrd, a.vehicle, a.force_source, a.damper_kind, a.damper_params, ds,
+            a.controller_params, mem, reference, dy,
         )  # fmt: skip
         return dy, fd, ft
 
@@ -55,7 +65,7 @@ def reference_step(y: np.ndarray, road: list[tuple[float, float]], a: dict) -> N
     k5, fd, ft = f(y, *road[2])
     mem[EK.M_AS], mem[EK.M_AU], mem[EK.M_A0] = k5[1], k5[3], k5[5]
     mem[EK.M_FD], mem[EK.M_FT], mem[EK.M_AD] = fd, ft, k5[3] - k5[1]
-    DK.damper_advance(a["dk"], a["dp"], a["ds"], xd, vd, mem[EK.M_ID], DT)
+    DK.damper_advance(a.damper_kind, a.damper_params, ds, xd, vd, mem[EK.M_ID], DT)
 
 
 def simulation(law: str) -> Simulation:
@@ -72,31 +82,24 @@ def road_at(k: int) -> list[tuple[float, float]]:
 
 def run_both(sim: Simulation, external: float | None = None) -> tuple[np.ndarray, np.ndarray]:
     """States and mem after every step: compiled step, array reference."""
-    a_eng, a_ref = sim._arrays(DT), sim._arrays(DT)
+    a_eng, a_ref = sim.kernel_arrays(DT), sim.kernel_arrays(DT)
     if external is not None:
+        a_eng = a_eng.replace(force_source=CK.F_EXTERNAL)
+        a_ref = a_ref.replace(force_source=CK.F_EXTERNAL)
         for a in (a_eng, a_ref):
-            a["fk"] = EK.F_EXTERNAL
-            a["mem"][EK.M_FEXT] = external
-    y_eng = np.zeros(EK.NY)
-    y_ref = np.zeros(EK.NY)
+            a.memory[EK.M_FEXT] = external
+    y_eng = np.zeros(VK.NY)
+    y_ref = np.zeros(VK.NY)
     scratch = np.zeros(EK.SCRATCH_SIZE)
     for a, y in ((a_eng, y_eng), (a_ref, y_ref)):
-        EK.start(
-            y, 0.0, float(ROAD.velocity(0.0)), a["vp"], a["fk"], a["dk"], a["dp"], a["ds"],
-            a["dek"], a["dep"], a["des"], a["ck"], a["cp"], a["mem"], scratch,
-        )  # fmt: skip
+        EK.start(y, 0.0, float(ROAD.velocity(0.0)), *a.args(), scratch)
     out_eng, out_ref = [], []
     for k in range(N_STEPS):
         road = road_at(k)
-        a = a_eng
-        EK.step(
-            y_eng, DT, *road[0], *road[1], *road[2], a["vp"], a["fk"], a["dk"], a["dp"],
-            a["ds"], a["dek"], a["dep"], a["des"], a["ck"], a["cp"], a["cek"], a["cep"],
-            a["ces"], a["mem"], scratch,
-        )  # fmt: skip
+        EK.step(y_eng, DT, *road[0], *road[1], *road[2], *a_eng.args(), scratch)
         reference_step(y_ref, road, a_ref)
-        out_eng.append(np.concatenate([y_eng, a_eng["mem"]]))
-        out_ref.append(np.concatenate([y_ref, a_ref["mem"]]))
+        out_eng.append(np.concatenate([y_eng, a_eng.memory]))
+        out_ref.append(np.concatenate([y_ref, a_ref.memory]))
     return np.array(out_eng), np.array(out_ref)
 
 
@@ -123,5 +126,5 @@ def test_sliding_mode_reference_model_is_integrated() -> None:
 
 def test_external_force_path() -> None:
     eng, ref = run_both(simulation("passive"), external=150.0)
-    assert np.all(eng[:, EK.NY + EK.M_FD] == 150.0)
+    assert np.all(eng[:, VK.NY + EK.M_FD] == 150.0)
     assert_same(eng, ref)
