@@ -27,6 +27,7 @@ PACKAGE = "mrsuspension"
 LAYERS: dict[str, int] = {
     "errors": 0,
     "_numba_cache": 0,
+    "_pool": 0,
     "_cli_errors": 0,
     "errata": 0,
     "parameters": 1,
