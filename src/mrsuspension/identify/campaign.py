@@ -185,15 +185,7 @@ def parse_bands(
     return pairs
 
 
-def _json_safe(value: Any) -> Any:
-    """Replace NaN/inf by None and tuples by lists (strict JSON)."""
-    if isinstance(value, float):
-        return value if math.isfinite(value) else None
-    if isinstance(value, dict):
-        return {k: _json_safe(v) for k, v in value.items()}
-    if isinstance(value, list | tuple):
-        return [_json_safe(v) for v in value]
-    return value
+from mrsuspension._jsonsafe import to_jsonable as _json_safe  # noqa: E402 (the one sanitiser)
 
 
 def _warning(note: str) -> bool:
