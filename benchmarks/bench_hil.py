@@ -47,7 +47,7 @@ TARGET = 0.999
 def _emulator(realtime: str) -> Iterator[int]:
     """A ``mrsus rig-emulator`` process on an ephemeral loopback port; yields the port."""
     code = (
-        "import typer\nfrom mrsuspension.hil.cli import rig_emulator_command\n"
+        "import typer\nfrom mrsuspension.cli.hil import rig_emulator_command\n"
         "typer.run(rig_emulator_command)"
     )
     args = [sys.executable, "-c", code, "--port", "0", "--realtime", realtime]

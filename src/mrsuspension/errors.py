@@ -10,9 +10,10 @@ import difflib
 import tomllib
 from collections.abc import Iterable
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-import numpy as np
+if TYPE_CHECKING:  # numpy is imported where used: `import mrsuspension.errors` stays cheap
+    import numpy as np
 
 __all__ = ["MRSuspensionError", "ValidationError", "did_you_mean", "read_toml"]
 
@@ -57,6 +58,8 @@ def check_finite(name: str, value: object, valid: str = "finite") -> np.ndarray:
     ...
     mrsuspension.errors.ValidationError: velocity must be finite; got nan at index 1
     """
+    import numpy as np
+
     try:
         arr = np.asarray(value, dtype=float)
     except (TypeError, ValueError) as exc:
@@ -89,6 +92,8 @@ def check_range(
     ...
     mrsuspension.errors.ValidationError: drive current must be in [0, 0.5] A; got 0.7 A
     """
+    import numpy as np
+
     lo = "-inf" if low is None else f"{low:g}"
     hi = "inf" if high is None else f"{high:g}"
     lb = "[" if low_inclusive and low is not None else "("

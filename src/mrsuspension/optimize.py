@@ -808,22 +808,13 @@ def _bar(enabled: bool | Progress, label: str) -> Iterator[Progress | None]:
     if not enabled:
         yield None
         return
-    from rich.console import Console
-    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TimeElapsedColumn
+    from mrsuspension._progress import progress_bar
 
-    with Progress(
-        "[progress.description]{task.description}",
-        BarColumn(),
-        MofNCompleteColumn(),
-        TimeElapsedColumn(),
-        console=Console(stderr=True),
-    ) as bar:
-        task = bar.add_task(label, total=None)
+    with progress_bar(True, label) as bar:
+        assert bar is not None
 
         def update(done: int, total: int, best: float) -> None:
-            bar.update(
-                task, completed=done, total=total, description=f"{label}: best J = {best:.4g}"
-            )
+            bar(done, total, f"best J = {best:.4g}")
 
         yield update
 

@@ -16,7 +16,7 @@ from typing import Any
 import pytest
 
 from mrsuspension.errors import ValidationError
-from mrsuspension.monitor.cli import check_bind
+from mrsuspension.monitor.server import check_bind
 
 pytestmark = pytest.mark.browser
 

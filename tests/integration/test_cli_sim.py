@@ -10,7 +10,7 @@ import pytest
 import typer
 from typer.testing import CliRunner
 
-from mrsuspension.cli_sim import parse_frequencies, simulate_command, sweep_command
+from mrsuspension.cli.simulate import parse_frequencies, simulate_command, sweep_command
 from mrsuspension.engine.simulate import Simulation, SimulationDiverged
 from mrsuspension.errors import ValidationError
 

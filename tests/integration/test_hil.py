@@ -14,11 +14,11 @@ import pytest
 import typer
 from typer.testing import CliRunner
 
+from mrsuspension.cli.hil import hil_run_command
 from mrsuspension.control import HiLo
 from mrsuspension.engine.simulate import Simulation
 from mrsuspension.excitation import Harmonic
 from mrsuspension.hil import SimulatedRig, StartUp, ideal_rig, load_recording, run_hil
-from mrsuspension.hil.cli import hil_run_command
 from mrsuspension.hil.loop import start_process
 from mrsuspension.hil.recorder import DATA_FILE
 

@@ -17,8 +17,8 @@ import pytest
 import typer
 from typer.testing import CliRunner
 
+from mrsuspension.cli.hil import hil_run_command, hil_validate_command
 from mrsuspension.hil import SafetyLimits, load_recording, run_hil
-from mrsuspension.hil.cli import hil_run_command, hil_validate_command
 from mrsuspension.hil.latency import cpu_times
 from mrsuspension.hil.loop import STATE_TRIPPED
 from mrsuspension.hil.network import UdpRig
@@ -178,7 +178,7 @@ def test_cli_hil_run_over_udp(tmp_path: Path) -> None:
             app,
             [
                 "run", str(SCENARIO), "--rig", f"udp://127.0.0.1:{port}", "--duration", "1.0",
-                "--out", str(out), "--json",
+                "--rate", "1000", "--out", str(out), "--json",
             ],
         )  # fmt: skip
     assert res.exit_code == 0, res.output
@@ -196,7 +196,7 @@ def _ignore_sigint() -> None:
 @pytest.mark.parametrize("stop", [signal.SIGINT, signal.SIGTERM], ids=["ctrl-c", "sigterm"])
 def test_rig_emulator_command(stop: signal.Signals) -> None:
     code = (
-        "import typer\nfrom mrsuspension.hil.cli import rig_emulator_command\n"
+        "import typer\nfrom mrsuspension.cli.hil import rig_emulator_command\n"
         "typer.run(rig_emulator_command)"
     )
     # started with SIGINT ignored, it still stops on Ctrl-C (and on SIGTERM) with counts

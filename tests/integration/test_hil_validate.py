@@ -10,9 +10,9 @@ import typer
 from typer.testing import CliRunner
 
 from _helpers import raises_validation
+from mrsuspension.cli.hil import hil_validate_command
 from mrsuspension.hil import ideal_rig
 from mrsuspension.hil.chapter7 import FREQUENCY_MEASURES, validate_chapter7
-from mrsuspension.hil.cli import hil_validate_command
 from mrsuspension.hil.network import UdpRig
 from mrsuspension.scenario import Scenario
 

@@ -68,7 +68,7 @@ def test_hil_run_monitor_serves_the_attached_run(tmp_path: Path) -> None:
     out = tmp_path / "rec"
     proc = subprocess.Popen(
         [*MRSUS, "hil", "run", str(SCENARIO), "--monitor", "--port", str(port),
-         "--duration", "3", "--rig", "ideal", "--out", str(out)],
+         "--duration", "3", "--rate", "1000", "--rig", "ideal", "--out", str(out)],
         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
     )  # fmt: skip
     try:
@@ -104,7 +104,7 @@ def test_hil_run_monitor_json_prints_the_result_when_the_run_ends(tmp_path: Path
     """Issue 7: ``--json`` with ``--monitor`` prints what ``hil run --json`` prints."""
     proc = subprocess.Popen(
         [*MRSUS, "hil", "run", str(SCENARIO), "--monitor", "--port", str(_free_port()),
-         "--duration", "0.5", "--rig", "ideal", "--json"],
+         "--duration", "0.5", "--rate", "1000", "--rig", "ideal", "--json"],
         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
     )  # fmt: skip
     lines: list[str] = []
@@ -154,14 +154,16 @@ def test_hil_run_monitor_exits_1_when_the_attached_run_trips(tmp_path: Path) -> 
     """As `hil run`: a safety trip of the attached run is exit code 1 once served."""
     big = tmp_path / "big.toml"
     big.write_text(SCENARIO.read_text().replace("amplitude = 0.025", "amplitude = 0.3"))
-    info, proc = _monitored_json([str(big), "--duration", "3", "--rig", "ideal"])
+    info, proc = _monitored_json([str(big), "--duration", "3", "--rate", "1000", "--rig", "ideal"])
     assert info["tripped"] is True  # 30 cm at 1.5 Hz: a force or stroke limit
     assert info["reason"] != "completed"
     assert proc.returncode == 1
 
 
 def test_hil_run_monitor_exits_0_when_the_attached_run_completes() -> None:
-    info, proc = _monitored_json([str(SCENARIO), "--duration", "0.5", "--rig", "ideal"])
+    info, proc = _monitored_json(
+        [str(SCENARIO), "--duration", "0.5", "--rate", "1000", "--rig", "ideal"]
+    )
     assert info["reason"] == "completed"
     assert proc.returncode == 0
 

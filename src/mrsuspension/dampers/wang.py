@@ -12,7 +12,6 @@ from typing import Any, ClassVar, Literal
 
 import numpy as np
 import numpy.typing as npt
-from scipy.special import expit  # overflow-free logistic, like kernels.sigmoid
 
 from mrsuspension import parameters as _parameters
 from mrsuspension.dampers import kernels as K
@@ -195,6 +194,8 @@ class WangSymmetric(DamperModel):
         Each factor is computed on the shape of its own input (a scalar current costs
         one evaluation of C_i), and the large arrays are updated in place.
         """
+        from scipy.special import expit  # overflow-free logistic, like kernels.sigmoid
+
         p = self._p
         if vm is None:
             vm = self._pointwise_peak_velocity(x, v, a)

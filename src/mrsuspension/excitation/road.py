@@ -18,13 +18,11 @@ import re
 from collections.abc import Callable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import Any, ClassVar
+from typing import TYPE_CHECKING, Any, ClassVar
 
 import numpy as np
 import numpy.typing as npt
 from numba import njit
-from scipy.interpolate import CubicSpline
-from scipy.signal import welch
 
 from mrsuspension.errors import ValidationError, check_finite, did_you_mean, unknown_name
 from mrsuspension.excitation.base import (
@@ -37,6 +35,9 @@ from mrsuspension.excitation.base import (
     time_array,
 )
 from mrsuspension.excitation.deterministic import REFERENCE_SPEED_KMH
+
+if TYPE_CHECKING:
+    from scipy.interpolate import CubicSpline
 
 __all__ = [
     "ISO8608_BAND",
@@ -249,6 +250,8 @@ class RoadProfile(Excitation):
             raise ValidationError(f"source must be a string; got {self.source!r}")
         if self.spectrum is not None and not isinstance(self.spectrum, RoadSpectrum):
             raise ValidationError(f"spectrum must be a RoadSpectrum or None; got {self.spectrum!r}")
+        from scipy.interpolate import CubicSpline  # here: scipy loads with the first road
+
         spline = CubicSpline(distance, elevation)
         object.__setattr__(self, "_spline", spline)
         pp = (np.ascontiguousarray(spline.x), np.ascontiguousarray(spline.c))
@@ -569,6 +572,8 @@ class RoadProfile(Excitation):
                     f"nperseg must be in [{MIN_POINTS}, {h.size}] (the profile's points); got {nperseg}"
                 )
             seg = int(nperseg)
+        from scipy.signal import welch
+
         n, gd = welch(h, fs=1.0 / dx, window="hann", nperseg=seg, noverlap=seg // 2)
         return SpatialPsd(np.asarray(n, dtype=float), np.asarray(gd, dtype=float), seg)
 

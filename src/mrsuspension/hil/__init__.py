@@ -23,13 +23,39 @@ measured force closes the loop through the engine's compiled step. Pieces:
 
 from __future__ import annotations
 
-from mrsuspension.hil.driver import PICurrentDriver
-from mrsuspension.hil.loop import CHANNELS, HilResult, LiveChange, LoopHooks, TickStats, run_hil
-from mrsuspension.hil.network import UdpRig, serve_rig
-from mrsuspension.hil.recorder import Recorder, Recording, load_recording
-from mrsuspension.hil.rig import Rig, RigSample, SimulatedRig, ideal_rig
-from mrsuspension.hil.safety import SafetyLimits, SafetySupervisor, StartUp
-from mrsuspension.hil.tap import ChangeQueue, StopFlag, TapRing
+from typing import TYPE_CHECKING
+
+from mrsuspension._lazy import lazy_namespace
+
+if TYPE_CHECKING:
+    from mrsuspension.hil.driver import PICurrentDriver
+    from mrsuspension.hil.loop import (
+        CHANNELS,
+        HilResult,
+        LiveChange,
+        LoopHooks,
+        TickStats,
+        run_hil,
+    )
+    from mrsuspension.hil.network import UdpRig, serve_rig
+    from mrsuspension.hil.recorder import Recorder, Recording, load_recording
+    from mrsuspension.hil.rig import Rig, RigSample, SimulatedRig, ideal_rig
+    from mrsuspension.hil.safety import SafetyLimits, SafetySupervisor, StartUp
+    from mrsuspension.hil.tap import ChangeQueue, StopFlag, TapRing
+
+# the names load on first use: `import mrsuspension.hil.rigs` (the CLI's help) stays cheap
+_MODULES = {
+    "mrsuspension.hil.driver": ("PICurrentDriver",),
+    "mrsuspension.hil.loop": ("CHANNELS", "HilResult", "LiveChange", "LoopHooks", "TickStats", "run_hil"),
+    "mrsuspension.hil.network": ("UdpRig", "serve_rig"),
+    "mrsuspension.hil.recorder": ("Recorder", "Recording", "load_recording"),
+    "mrsuspension.hil.rig": ("Rig", "RigSample", "SimulatedRig", "ideal_rig"),
+    "mrsuspension.hil.safety": ("SafetyLimits", "SafetySupervisor", "StartUp"),
+    "mrsuspension.hil.tap": ("ChangeQueue", "StopFlag", "TapRing"),
+}  # fmt: skip
+__getattr__, __dir__ = lazy_namespace(
+    __name__, {n: m for m, names in _MODULES.items() for n in names}, globals()
+)
 
 __all__ = [
     "CHANNELS",

@@ -47,6 +47,7 @@ from typing import Any
 
 import numpy as np
 
+from mrsuspension._jsonsafe import to_jsonable as _clean
 from mrsuspension.engine.simulate import DEFAULT_DT, Simulation
 from mrsuspension.errors import ValidationError, did_you_mean
 from mrsuspension.excitation import Excitation
@@ -613,18 +614,6 @@ def validate_chapter7(
         (out_dir / "validation.json").write_text(json.dumps(_clean(data), indent=1) + "\n")
         (out_dir / "index.html").write_text(_index(data, figures))
     return data
-
-
-def _clean(value: Any) -> Any:
-    if isinstance(value, dict):
-        return {str(k): _clean(v) for k, v in value.items()}
-    if isinstance(value, list | tuple):
-        return [_clean(v) for v in value]
-    if isinstance(value, np.generic):
-        return _clean(value.item())
-    if isinstance(value, float) and not math.isfinite(value):
-        return None
-    return value
 
 
 #: panels of the pulse figures: (channel, label)

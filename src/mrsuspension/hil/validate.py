@@ -18,6 +18,7 @@ from typing import Any
 
 import numpy as np
 
+from mrsuspension._jsonsafe import to_jsonable as _clean
 from mrsuspension.engine.simulate import DEFAULT_DT, Simulation
 from mrsuspension.hil.loop import HilResult, run_hil
 from mrsuspension.hil.rig import Rig
@@ -159,18 +160,6 @@ def validate(
         summary["rate"] = rate
         (out_dir / "summary.json").write_text(json.dumps(_clean(summary), indent=2) + "\n")
     return report
-
-
-def _clean(value: Any) -> Any:
-    if isinstance(value, dict):
-        return {str(k): _clean(v) for k, v in value.items()}
-    if isinstance(value, list | tuple):
-        return [_clean(v) for v in value]
-    if isinstance(value, float) and not math.isfinite(value):
-        return None
-    if isinstance(value, np.generic):
-        return _clean(value.item())
-    return value
 
 
 def _figures(report: ValidationReport, out: Path) -> list[Path]:

@@ -119,17 +119,6 @@ def parse_bands(
     return pairs
 
 
-def _json_safe(value: Any) -> Any:
-    """Replace NaN/inf by None and tuples by lists (strict JSON)."""
-    if isinstance(value, float):
-        return value if math.isfinite(value) else None
-    if isinstance(value, dict):
-        return {k: _json_safe(v) for k, v in value.items()}
-    if isinstance(value, list | tuple):
-        return [_json_safe(v) for v in value]
-    return value
-
-
 def _warning(note: str) -> bool:
     return note.startswith("warning:")
 

@@ -219,9 +219,9 @@ class IdentificationResult:
             fits.append(entry)
         # the campaign module owns the JSON cleaner (imported when called: no cycle at
         # import time; it moves to a shared module later)
-        from mrsuspension.identify.campaign import _json_safe
+        from mrsuspension._jsonsafe import to_jsonable
 
-        return _json_safe({
+        return to_jsonable({
             "manifest": self.manifest,
             "model": self.model,
             "created": self.created,

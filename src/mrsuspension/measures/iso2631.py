@@ -29,7 +29,6 @@ import math
 
 import numpy as np
 import numpy.typing as npt
-from scipy.signal import bilinear_zpk, resample_poly, sosfilt, zpk2sos
 
 from mrsuspension.errors import ValidationError, check_finite, check_range
 from mrsuspension.measures._checks import FloatArray, rate, signal
@@ -124,6 +123,8 @@ def wk_sos(fs: float) -> FloatArray:
     # gains of the monic forms: high-pass 1, low-pass w2^2, transition w4^2/w3, and the
     # step (1 + s/(Q5 w5) + s^2/w5^2)/(1 + s/(Q6 w6) + s^2/w6^2) (w5/w6)^2 is monic/monic
     gain = w2**2 * w4**2 / w3
+    from scipy.signal import bilinear_zpk, zpk2sos  # scipy loads on first use
+
     z_d, p_d, k_d = bilinear_zpk(np.array(zeros), np.array(pole_list), gain, rate_hz)
     return np.asarray(zpk2sos(z_d, p_d, k_d), dtype=float)
 
@@ -141,6 +142,8 @@ def _upsampling(fs: float) -> int:
 
 def _weighted(acc: npt.ArrayLike, fs: float) -> tuple[FloatArray, float, int]:
     """``(a_w, rate, factor)``: the Wk-weighted signal at ``rate = factor fs`` >= 2 kHz."""
+    from scipy.signal import resample_poly, sosfilt  # scipy loads on first use
+
     a = signal("acc", acc)
     factor = _upsampling(fs)
     if factor > 1:

@@ -14,7 +14,6 @@ from fractions import Fraction
 
 import numpy as np
 import numpy.typing as npt
-from scipy.signal import resample_poly, welch
 
 from mrsuspension.errors import ValidationError
 from mrsuspension.measures._checks import FloatArray, rate, signal
@@ -106,6 +105,8 @@ def psd(
     >>> round(float(np.sum(spec.density) * spec.resolution), 3)  # power = 1/2
     0.5
     """
+    from scipy.signal import resample_poly, welch  # scipy loads on first use
+
     data = signal("x", x)
     f_in = rate("fs_in", fs_in)
     f_out = rate("fs", fs)

@@ -515,7 +515,7 @@ def create_app(
     ----------
     token : str, optional
         Access token every request must carry as ``?token=...`` (required by
-        :func:`~mrsuspension.monitor.cli.monitor_command` off loopback).
+        :func:`~mrsuspension.monitor.server.serve` off loopback).
     workdir : path, optional
         Directory for the recordings (default: a temporary one).
     rig : str

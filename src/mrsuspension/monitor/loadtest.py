@@ -50,8 +50,8 @@ def unmonitored_run(
     isolate: bool = False,
 ) -> dict[str, Any]:
     """The scenario through ``run_hil`` in its own process; its deadline figures."""
-    from mrsuspension.hil.cli import make_rig
     from mrsuspension.hil.loop import run_hil
+    from mrsuspension.hil.rigs import make_rig
     from mrsuspension.monitor.settings import scenario_from_settings
 
     sim = scenario_from_settings({**_SETTINGS, "rate": rate}).simulation()

@@ -86,9 +86,9 @@ def loop_main(
         Move the machine's other movable tasks off the loop's core for the run
         (:func:`~mrsuspension.hil.loop.run_hil`'s ``isolate``).
     """
-    from mrsuspension.hil.cli import make_rig
     from mrsuspension.hil.loop import LoopHooks, run_hil
     from mrsuspension.hil.realtime import widen_affinity
+    from mrsuspension.hil.rigs import make_rig
 
     widen_affinity(cpus)
 

@@ -12,8 +12,7 @@ import functools
 import json
 import os
 import time
-from collections.abc import Callable, Iterator, Sequence
-from contextlib import contextmanager
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -21,6 +20,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from mrsuspension._batch import Job
+from mrsuspension._progress import progress_bar as _bar
 from mrsuspension.engine.result import SimulationResult
 from mrsuspension.engine.settings import RunSettings
 from mrsuspension.engine.simulate import run_many, run_quietly
@@ -176,41 +176,6 @@ def _run_dask(
     finally:
         if own:
             client.close()
-
-
-@contextmanager
-def _bar(enabled: bool | Progress, label: str) -> Iterator[Progress | None]:
-    """A rich progress bar on stderr as a ``progress(done, total)`` callback."""
-    if callable(enabled):
-        yield enabled
-        return
-    if not enabled:
-        yield None
-        return
-    from rich.console import Console
-    from rich.progress import (
-        BarColumn,
-        MofNCompleteColumn,
-        Progress,
-        TimeElapsedColumn,
-        TimeRemainingColumn,
-    )
-
-    with Progress(
-        "[progress.description]{task.description}",
-        BarColumn(),
-        MofNCompleteColumn(),
-        TimeElapsedColumn(),
-        TimeRemainingColumn(),
-        console=Console(stderr=True),
-        transient=False,
-    ) as bar:
-        task = bar.add_task(label, total=None)
-
-        def update(done: int, total: int) -> None:
-            bar.update(task, completed=done, total=total)
-
-        yield update
 
 
 # -- assembling ---------------------------------------------------------------------------

@@ -1,25 +1,34 @@
-"""``mrsus monitor``: serve the HiL browser monitor with uvicorn."""
+"""Serving the HiL browser monitor with uvicorn (``mrsus monitor``, ``mrsus hil run --monitor``).
+
+Library code behind those commands: the bind check (loopback unless an access token),
+the rig check and :func:`serve`. The command functions live in :mod:`mrsuspension.cli`.
+"""
 
 from __future__ import annotations
 
 import ipaddress
 import secrets
+import sys
 import webbrowser
 from pathlib import Path
-from typing import TYPE_CHECKING, Annotated, Any
-
-import typer
+from typing import TYPE_CHECKING, Any
 
 from mrsuspension.errors import ValidationError
 
 if TYPE_CHECKING:
     from mrsuspension.monitor.app import AttachedRun
 
-__all__ = ["check_bind", "check_rig", "is_loopback", "monitor_command", "serve"]
+__all__ = ["check_bind", "check_rig", "is_loopback", "serve"]
 
 
 def is_loopback(host: str) -> bool:
-    """Whether ``host`` is a loopback address (``localhost`` counts)."""
+    """Whether ``host`` is a loopback address (``localhost`` counts).
+
+    Examples
+    --------
+    >>> is_loopback("localhost"), is_loopback("::1"), is_loopback("0.0.0.0")
+    (True, True, False)
+    """
     if host.strip().lower() == "localhost":
         return True
     try:
@@ -35,6 +44,11 @@ def check_bind(host: str, token: str | None) -> None:
     ------
     ValidationError
         When ``host`` is not loopback and ``token`` is empty or missing.
+
+    Examples
+    --------
+    >>> check_bind("127.0.0.1", None)
+    >>> check_bind("0.0.0.0", "secret")
     """
     if not is_loopback(host) and not token:
         raise ValidationError(
@@ -50,14 +64,18 @@ def check_rig(spec: str) -> str:
     ------
     ValidationError
         For an unknown rig, a bad ``udp://HOST:PORT`` or a UDP rig that does not answer.
+
+    Examples
+    --------
+    >>> check_rig(" Ideal ")
+    'ideal'
     """
     from mrsuspension.dampers import WangSymmetric
-    from mrsuspension.hil.cli import make_rig
+    from mrsuspension.hil.rigs import make_rig, normalise_rig_spec
 
     rig = make_rig(spec, WangSymmetric())
     rig.close()
-    spec = spec.strip()
-    return spec if spec.lower().startswith("udp://") else spec.lower()
+    return normalise_rig_spec(spec)
 
 
 def serve(
@@ -93,7 +111,11 @@ def serve(
     )  # fmt: skip
     shown = "localhost" if is_loopback(host) else host
     url = f"http://{shown}:{port}/" + (f"?token={token}" if token else "")
-    typer.echo(f"mrsus monitor ({rig} rig): {url}", err=url_to_stderr)
+    print(
+        f"mrsus monitor ({rig} rig): {url}",
+        file=sys.stderr if url_to_stderr else sys.stdout,
+        flush=True,
+    )
     kwargs: dict[str, Any] = {"host": host, "port": port, "log_level": "warning"}
     from mrsuspension.hil.realtime import yield_loop_cpu
 
@@ -104,52 +126,3 @@ def serve(
         if open_browser:
             webbrowser.open(url)
         uvicorn.run(app, **kwargs)
-
-
-def monitor_command(
-    host: Annotated[str, typer.Option(help="address to bind (loopback unless --token)")] = (
-        "127.0.0.1"
-    ),
-    port: Annotated[int, typer.Option(help="TCP port")] = 8765,
-    token: Annotated[
-        str | None,
-        typer.Option(help="access token required in the URL (?token=...); needed off loopback"),
-    ] = None,
-    open_browser: Annotated[bool, typer.Option(help="open the page in a browser")] = False,
-    rig: Annotated[
-        str, typer.Option(help="rig in the loop: simulated | ideal | udp://HOST:PORT")
-    ] = "simulated",
-    road_dir: Annotated[
-        Path | None, typer.Option(help="directory the page may take road profile files from")
-    ] = None,
-    workdir: Annotated[
-        Path | None, typer.Option(help="directory for the recordings (default: a temporary one)")
-    ] = None,
-    realtime: Annotated[
-        str,
-        typer.Option(
-            help="scheduling of the loop: auto (SCHED_FIFO when permitted) | fifo | spin "
-            "(busy-wait on a pinned core; best on a virtual machine) | off"
-        ),
-    ] = "auto",
-    isolate: Annotated[
-        bool,
-        typer.Option(
-            "--isolate",
-            help="move every other movable task off the loop's core during each run, and "
-            "back afterwards (needs --realtime auto, fifo or spin; docs/hil.md)",
-        ),
-    ] = False,
-) -> None:
-    """Serve the HiL browser monitor (live plots, measures, STOP, recording).
-
-    Runs started from the page are HiL runs (`run_hil`) with the --rig rig in the loop,
-    in their own process; settings changed on the page are applied between ticks.
-    """
-    from mrsuspension._cli_errors import _user_errors
-
-    with _user_errors():
-        serve(
-            host, port, token, rig=rig, road_dir=road_dir, open_browser=open_browser,
-            workdir=workdir, realtime=realtime, isolate=isolate,
-        )  # fmt: skip

@@ -1,6 +1,7 @@
 """HiL command functions: ``mrsus hil run``, ``hil validate``, ``hil latency``, ``rig-emulator``.
 
-Plain typer command functions; :mod:`mrsuspension.cli` registers them. ``hil run`` runs
+Plain typer command functions; :mod:`mrsuspension.cli` registers them. The loop, the
+rigs (:mod:`mrsuspension.hil.rigs`) and the monitor load inside the commands. ``hil run`` runs
 the loop in its own process with a simulated, ideal or network (``udp://HOST:PORT``)
 rig; the recording goes to ``--out`` (see docs/hil.md for the format). ``hil validate``
 runs a scenario in HiL and offline and compares them. ``hil latency`` measures the
@@ -19,72 +20,61 @@ from typing import Annotated, Any
 
 import typer
 
-from mrsuspension._cli_errors import _user_errors
+from mrsuspension._jsonsafe import to_jsonable
+from mrsuspension.cli.errors import user_errors
 from mrsuspension.errors import ValidationError, check_range
-from mrsuspension.hil.loop import run_hil
-from mrsuspension.hil.realtime import normalise_mode
-from mrsuspension.hil.rig import Rig, SimulatedRig, ideal_rig
+from mrsuspension.hil.rigs import rig_syntax
 
 __all__ = [
-    "RIGS",
+    "app",
     "hil_latency_command",
     "hil_run_command",
     "hil_validate_command",
-    "make_rig",
     "rig_emulator_command",
 ]
 
-#: rig names accepted by ``--rig`` (plus ``udp://HOST:PORT``)
-RIGS = ("simulated", "ideal", "udp://HOST:PORT")
+#: ``hil run`` when neither the options nor the scenario's ``[simulation]`` say
+DEFAULT_DURATION = 10.0  # [s]
+DEFAULT_RATE = 1000.0  # [Hz]
+#: fastest loop ``hil run`` starts (the range :func:`~mrsuspension.hil.loop.run_hil` checks),
+#: and with ``--monitor`` (the monitor's live stream and settings)
+MAX_RATE = 100000.0  # [Hz]
+MONITOR_MAX_RATE = 5000.0  # [Hz]
 
-
-def make_rig(spec: str, damper: Any) -> Rig:
-    """A rig from its ``--rig`` spec carrying ``damper``.
-
-    ``simulated`` and ``ideal`` build a :class:`SimulatedRig` (or its ideal preset);
-    ``udp://HOST:PORT`` a :class:`~mrsuspension.hil.network.UdpRig` (the served rig
-    carries its own damper), checked with a heartbeat first.
-    """
-    spec = spec.strip()
-    low = spec.lower()
-    if low == "simulated":
-        return SimulatedRig(damper=damper)
-    if low == "ideal":
-        return ideal_rig(damper)
-    if low.startswith("udp://"):
-        from mrsuspension.errors import MRSuspensionError
-        from mrsuspension.hil.network import UdpRig
-
-        udp = UdpRig.from_spec(spec, reset_timeout=0.5)
-        try:
-            udp.ping()
-        except MRSuspensionError as exc:
-            raise ValidationError(f"--rig {spec}: {exc}; is `mrsus rig-emulator` running?") from exc
-        finally:
-            udp.close()
-        return udp
-    raise ValidationError(f"unknown --rig {spec!r}; valid: {', '.join(RIGS)}")
-
-
-def _clean(value: Any) -> Any:
-    if isinstance(value, dict):
-        return {str(k): _clean(v) for k, v in value.items()}
-    if isinstance(value, list | tuple):
-        return [_clean(v) for v in value]
-    if isinstance(value, float) and not math.isfinite(value):
-        return None
-    return value
+#: ``mrsus hil ...`` (``rig-emulator`` is a top-level command)
+app = typer.Typer(
+    help="Hardware in the loop: run a scenario around a (simulated) rig.",
+    no_args_is_help=True,
+    rich_markup_mode=None,  # as the root app: units in brackets stay
+)
 
 
 def hil_run_command(
     scenario: Annotated[
-        Path, typer.Argument(help="scenario TOML file (see docs/scenarios.md)", show_default=False)
+        Path,
+        typer.Argument(
+            metavar="SCENARIO",
+            help="scenario TOML file (see docs/scenarios.md)",
+            show_default=False,
+        ),
     ],
-    rig: Annotated[
-        str, typer.Option(help="rig: simulated | ideal | udp://HOST:PORT")
-    ] = "simulated",
-    duration: Annotated[float, typer.Option(help="run time [s]")] = 10.0,
-    rate: Annotated[float, typer.Option(help="loop rate [Hz]")] = 1000.0,
+    rig: Annotated[str, typer.Option(help=f"rig: {rig_syntax()}")] = "simulated",
+    duration: Annotated[
+        float | None,
+        typer.Option(
+            help=f"run time [s] (default: the scenario's [simulation] duration, else "
+            f"{DEFAULT_DURATION:g})",
+            show_default=False,
+        ),
+    ] = None,
+    rate: Annotated[
+        float | None,
+        typer.Option(
+            help=f"loop rate [Hz] (default: 1/dt of the scenario's [simulation] dt, else "
+            f"{DEFAULT_RATE:g})",
+            show_default=False,
+        ),
+    ] = None,
     out: Annotated[
         Path | None, typer.Option(help="recording directory (default: not kept)")
     ] = None,
@@ -125,9 +115,12 @@ def hil_run_command(
     run tripped (not when STOP was pressed); with --monitor --json the run's outcome is printed as JSON when it ends
     (the monitor's address goes to stderr).
     """
-    from mrsuspension.hil.loop import STOP_REASON, _simulation_of
+    from mrsuspension.hil.loop import STOP_REASON, _simulation_of, run_hil
+    from mrsuspension.hil.realtime import normalise_mode
+    from mrsuspension.hil.rigs import make_rig, rig_kind
+    from mrsuspension.scenario import Scenario
 
-    with _user_errors():
+    with user_errors():
         if not scenario.exists():
             raise ValidationError(f"scenario file {scenario} does not exist")
         if normalise_mode(realtime) == "unpaced":
@@ -138,10 +131,15 @@ def hil_run_command(
             raise ValidationError(
                 "--isolate needs a pinned loop: use --realtime auto, fifo or spin (got 'off')"
             )
-        sim = _simulation_of(scenario)
+        rig_kind(rig)  # the spec's form; a network rig is pinged when it is built
+        scn = Scenario.load(scenario)
+        duration, rate = _run_settings(
+            scn, duration, rate, MONITOR_MAX_RATE if monitor else MAX_RATE
+        )
+        sim = _simulation_of(scn)
         if monitor:
             from mrsuspension.monitor.app import AttachedRun
-            from mrsuspension.monitor.cli import serve
+            from mrsuspension.monitor.server import serve
 
             check_range("duration", duration, 0.0, 1e5, unit="s", low_inclusive=False)
             check_range("rate", rate, 50.0, 5000.0, unit="Hz")
@@ -153,7 +151,7 @@ def hil_run_command(
                 if as_json:  # the object `hil run --json` prints (the recording: the run's folder)
                     if out is None and "out" in info:
                         info["out"] = None
-                    typer.echo(json.dumps(_clean(info), indent=2))
+                    typer.echo(json.dumps(to_jsonable(info), indent=2))
 
             serve(
                 host, port, token, rig=rig, workdir=out, url_to_stderr=as_json, realtime=realtime,
@@ -183,7 +181,7 @@ def hil_run_command(
     if tmp is not None:
         info["out"] = None
     if as_json:
-        typer.echo(json.dumps(_clean(info), indent=2))
+        typer.echo(json.dumps(to_jsonable(info), indent=2))
     else:
         typer.echo(f"stopped: {result.reason}")
         typer.echo(result.stats.summary())
@@ -194,18 +192,53 @@ def hil_run_command(
         raise typer.Exit(1)
 
 
+def _run_settings(
+    scn: Any, duration: float | None, rate: float | None, max_rate: float
+) -> tuple[float, float]:
+    """``hil run``'s duration and rate: the options, else the scenario's, else the defaults.
+
+    The scenario's ``[simulation] duration`` and ``dt`` (as the rate ``1/dt``) count when
+    the file sets them; what was taken from where is said on stderr. A rate from the
+    scenario that the loop cannot run is refused with a hint to give ``--rate``.
+    """
+    table = scn.data.get("simulation", {})
+    said = []
+    if duration is None:
+        if "duration" in table:
+            duration = float(table["duration"])
+            said.append(f"duration {duration:g} s from [simulation] duration")
+        else:
+            duration = DEFAULT_DURATION
+    if rate is None:
+        if "dt" in table:
+            rate = 1.0 / float(table["dt"])
+            if rate > max_rate * (1 + 1e-9):
+                where = " with --monitor" if max_rate == MONITOR_MAX_RATE else ""
+                raise ValidationError(
+                    f"the scenario's [simulation] dt = {table['dt']:g} s asks for a "
+                    f"{rate:g} Hz loop; `hil run`{where} runs at most {max_rate:g} Hz: give "
+                    "--rate (e.g. --rate 1000)"
+                )
+            said.append(f"rate {rate:g} Hz from [simulation] dt = {table['dt']:g} s")
+        else:
+            rate = DEFAULT_RATE
+    if said:
+        typer.echo(f"hil run: {' and '.join(said)} (--duration/--rate override)", err=True)
+    return duration, rate
+
+
 def hil_latency_command(
     rate: Annotated[float, typer.Option(help="tick rate [Hz]")] = 1000.0,
     duration: Annotated[float, typer.Option(help="length of the measurement [s]")] = 10.0,
     realtime: Annotated[
-        str, typer.Option(help="scheduling: auto | fifo | spin | off (as `hil run`)")
+        str, typer.Option(help="scheduling: auto | fifo | spin | off (as 'hil run')")
     ] = "auto",
     isolate: Annotated[
         bool,
         typer.Option(
             "--isolate",
             help="move every other movable task off the measuring core meanwhile, as "
-            "`hil run --isolate` (needs --realtime auto, fifo or spin)",
+            "'hil run --isolate' (needs --realtime auto, fifo or spin)",
         ),
     ] = False,
     work_us: Annotated[
@@ -229,10 +262,11 @@ def hil_latency_command(
     """
     import sys
 
-    from mrsuspension.cli_sim import _progress
+    from mrsuspension._progress import progress_bar
     from mrsuspension.hil.latency import LATENCY_MODES, measure_latency
+    from mrsuspension.hil.realtime import normalise_mode
 
-    with _user_errors():
+    with user_errors():
         rate = float(check_range("--rate", rate, 0.0, 100000.0, unit="Hz", low_inclusive=False))
         check_range("--duration", duration, 0.0, 1e6, unit="s", low_inclusive=False)
         check_range("--work-us", work_us, 0.0, 1e6 / rate, unit="us", high_inclusive=False)
@@ -245,22 +279,27 @@ def hil_latency_command(
             raise ValidationError(
                 "--isolate needs a pinned loop: use --realtime auto, fifo or spin (got 'off')"
             )
-        with _progress(not as_json and sys.stderr.isatty(), "latency") as progress:
+        with progress_bar(not as_json and sys.stderr.isatty(), "latency") as progress:
             result = measure_latency(
                 rate, duration, realtime, work=work_us / 1e6, progress=progress, process=True,
                 isolate=isolate,
             )  # fmt: skip
     if as_json:
-        typer.echo(json.dumps(_clean(result.describe())))
+        typer.echo(json.dumps(to_jsonable(result.describe())))
     else:
         typer.echo(result.summary())
 
 
 def hil_validate_command(
     scenario: Annotated[
-        Path, typer.Argument(help="scenario TOML file (see docs/scenarios.md)", show_default=False)
+        Path,
+        typer.Argument(
+            metavar="SCENARIO",
+            help="scenario TOML file (see docs/scenarios.md)",
+            show_default=False,
+        ),
     ],
-    rig: Annotated[str, typer.Option(help="rig: ideal | simulated | udp://HOST:PORT")] = "ideal",
+    rig: Annotated[str, typer.Option(help=f"rig: {rig_syntax()}")] = "ideal",
     duration: Annotated[float, typer.Option(help="run time of the 'time' comparison [s]")] = 10.0,
     rate: Annotated[float, typer.Option(help="loop rate [Hz]")] = 1000.0,
     out: Annotated[
@@ -320,8 +359,10 @@ def hil_validate_command(
         validate_chapter7,
     )
     from mrsuspension.hil.loop import _simulation_of
+    from mrsuspension.hil.realtime import normalise_mode
+    from mrsuspension.hil.rigs import make_rig
 
-    with _user_errors():
+    with user_errors():
         chosen = parse_what(what)
         case_list = parse_cases(cases)
         freq_list = parse_frequencies(frequencies)
@@ -347,7 +388,7 @@ def hil_validate_command(
     info["scenario"] = str(scenario)
     info["rig"] = rig
     if as_json:
-        typer.echo(json.dumps(_clean(info), indent=2))
+        typer.echo(json.dumps(to_jsonable(info), indent=2))
     else:
         _print_validation(data, out)
     if tripped:
@@ -413,7 +454,9 @@ def _print_validation(data: dict[str, Any], out: Path | None) -> None:
 def rig_emulator_command(
     port: Annotated[int, typer.Option(help="UDP port (0: any free port)")] = 9870,
     host: Annotated[str, typer.Option(help="address to bind (loopback by default)")] = "127.0.0.1",
-    rig: Annotated[str, typer.Option(help="served rig: simulated | ideal")] = "simulated",
+    rig: Annotated[str, typer.Option(help=f"served rig: {rig_syntax(local_only=True)}")] = (
+        "simulated"
+    ),
     damper: Annotated[str, typer.Option(help="damper model carried by the rig")] = (
         "wang-symmetric"
     ),
@@ -443,6 +486,7 @@ def rig_emulator_command(
     from mrsuspension.dampers import make_damper
     from mrsuspension.dampers.wang import VEHICLE_VH_VARIANT
     from mrsuspension.hil.network import serve_rig
+    from mrsuspension.hil.rigs import RIGS, make_rig, rig_kind
 
     def interrupt(_signum: int, _frame: Any) -> None:
         raise KeyboardInterrupt
@@ -452,12 +496,8 @@ def rig_emulator_command(
     signal.signal(signal.SIGINT, signal.default_int_handler)
     signal.signal(signal.SIGTERM, interrupt)
 
-    with _user_errors():
-        spec = rig.strip().lower()
-        if spec not in ("simulated", "ideal"):
-            raise ValidationError(
-                f"unknown --rig {rig!r} for the emulator; valid: simulated, ideal"
-            )
+    with user_errors():
+        spec = rig_kind(rig, kinds=[k for k in RIGS.values() if k.local]).name
         model = make_damper(
             damper, **({"vh_variant": VEHICLE_VH_VARIANT} if damper.startswith("wang-") else {})
         )

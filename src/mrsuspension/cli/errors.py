@@ -9,16 +9,26 @@ import typer
 
 from mrsuspension.errors import MRSuspensionError
 
-__all__ = ["_user_errors"]
+__all__ = ["user_errors"]
 
 
 @contextmanager
-def _user_errors() -> Iterator[None]:
+def user_errors() -> Iterator[None]:
     """Turn a :class:`~mrsuspension.errors.MRSuspensionError` into one line and exit code 2.
 
     Covers :class:`~mrsuspension.errors.ValidationError` and
     :class:`~mrsuspension.engine.simulate.SimulationDiverged`; anything else is a bug and
     keeps its traceback.
+
+    Examples
+    --------
+    >>> from mrsuspension.errors import ValidationError
+    >>> try:
+    ...     with user_errors():
+    ...         raise ValidationError("--rate must be > 0 Hz; got -1 Hz")
+    ... except typer.Exit as exc:
+    ...     print("exit", exc.exit_code)
+    exit 2
     """
     try:
         yield

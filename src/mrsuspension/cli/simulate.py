@@ -1,8 +1,8 @@
 """``mrsus simulate`` and ``mrsus sweep``: run scenario files from the command line.
 
-The functions here are plain typer command functions; :mod:`mrsuspension.cli` registers
-them (``app.command("simulate")(simulate_command)``). Input errors and diverging runs are
-reported in one line on stderr with exit code 2.
+Plain typer command functions; :mod:`mrsuspension.cli` registers them. The engine,
+scenarios and plots load inside the commands, so ``mrsus --help`` stays fast. Input
+errors and diverging runs are reported in one line on stderr with exit code 2.
 """
 
 from __future__ import annotations
@@ -11,51 +11,40 @@ import csv
 import importlib.util
 import json
 import math
-from collections.abc import Callable, Iterator, Mapping, Sequence
-from contextlib import contextmanager
+from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
-from typing import Annotated, Any
+from typing import TYPE_CHECKING, Annotated, Any
 
 import typer
 
-from mrsuspension._cli_errors import _user_errors
-from mrsuspension.engine.result import SimulationResult
-from mrsuspension.engine.simulate import measures_of, run_many
+from mrsuspension._jsonsafe import to_jsonable
+from mrsuspension.cli.errors import user_errors
 from mrsuspension.errors import ValidationError
-from mrsuspension.excitation import (
-    DEFAULT_SWEEP_POINTS,
-    Harmonic,
-    SteppedSweep,
-    log_frequencies,
-)
-from mrsuspension.measures.shock import DEFAULT_ROAD_PEAK, check_road_peak
-from mrsuspension.scenario import Scenario
+
+if TYPE_CHECKING:
+    from mrsuspension.engine.result import SimulationResult
+    from mrsuspension.excitation import Harmonic, SteppedSweep
+    from mrsuspension.scenario import Scenario
 
 __all__ = ["parse_frequencies", "simulate_command", "sweep_command"]
 
 #: measures shown in the transmissibility plot of a sweep
 SWEEP_PLOT = ("T_as", "T_au", "T_dr", "DLC")
+#: the defaults the help texts name (the library's own, kept here so that ``--help`` does
+#: not import the engine; ``tests/integration/test_cli_startup.py`` checks they agree)
+DEFAULT_ROAD_PEAK = "after-onset"  # measures.shock.DEFAULT_ROAD_PEAK
+DEFAULT_SWEEP_POINTS = 30  # excitation.DEFAULT_SWEEP_POINTS
 
 ScenarioArg = Annotated[
-    Path, typer.Argument(help="scenario TOML file (see docs/scenarios.md)", show_default=False)
+    Path,
+    typer.Argument(
+        metavar="SCENARIO", help="scenario TOML file (see docs/scenarios.md)", show_default=False
+    ),
 ]
 JsonOpt = Annotated[bool, typer.Option("--json", help="print the measures as JSON on stdout")]
 
 
 # -- helpers ------------------------------------------------------------------------------
-def _clean(value: Any) -> Any:
-    """JSON-safe value: numpy scalars to Python, NaN/inf to None."""
-    if isinstance(value, Mapping):
-        return {str(k): _clean(v) for k, v in value.items()}
-    if isinstance(value, list | tuple):
-        return [_clean(v) for v in value]
-    if hasattr(value, "item") and callable(value.item):
-        value = value.item()
-    if isinstance(value, float) and not math.isfinite(value):
-        return None
-    return value
-
-
 def _run_row(excitation: Harmonic, measures: Mapping[str, Any]) -> dict[str, Any]:
     """``frequency``, ``amplitude`` and the harmonic measures of one sweep run."""
     return {
@@ -89,6 +78,8 @@ def parse_frequencies(text: str) -> list[float]:
             raise ValidationError(
                 f"--frequencies 'log:N:fmin:fmax' needs an integer N and numbers; got {text!r}"
             ) from None
+        from mrsuspension.excitation import log_frequencies
+
         return [float(f) for f in log_frequencies(n, lo, hi)]
     try:
         values = [float(v) for v in text.split(",") if v.strip()]
@@ -99,32 +90,6 @@ def parse_frequencies(text: str) -> list[float]:
     if not values:
         raise ValidationError("--frequencies needs at least one frequency [Hz]")
     return values
-
-
-@contextmanager
-def _progress(enabled: bool, label: str) -> Iterator[Callable[[int, int], None] | None]:
-    """A rich progress bar on stderr, as a ``progress(done, total)`` callback."""
-    if not enabled:
-        yield None
-        return
-    from rich.console import Console
-    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TimeElapsedColumn
-
-    console = Console(stderr=True)
-    with Progress(
-        "[progress.description]{task.description}",
-        BarColumn(),
-        MofNCompleteColumn(),
-        TimeElapsedColumn(),
-        console=console,
-        transient=False,
-    ) as bar:
-        task = bar.add_task(label, total=None)
-
-        def update(done: int, total: int) -> None:
-            bar.update(task, completed=done, total=total)
-
-        yield update
 
 
 def _write(out: Path, write: Callable[[Path], Any]) -> None:
@@ -176,7 +141,7 @@ def _write_single(out: Path, result: SimulationResult, measures: Mapping[str, An
     fig.savefig(out / "result.png", dpi=120)
     plt.close(fig)
     files.append(out / "result.png")
-    (out / "measures.json").write_text(json.dumps(_clean(measures), indent=2))
+    (out / "measures.json").write_text(json.dumps(to_jsonable(measures), indent=2))
     files.append(out / "measures.json")
     return files
 
@@ -243,16 +208,21 @@ def simulate_command(
     objects with ``frequency`` and ``amplitude`` added). A pulse run's measures include
     ``road_peak``, the definition ``--road-peak`` chose for the SAR denominators.
     """
-    with _user_errors():
+    from mrsuspension._progress import progress_bar
+    from mrsuspension.excitation import Harmonic
+    from mrsuspension.measures.shock import check_road_peak
+    from mrsuspension.scenario import Scenario
+
+    with user_errors():
         how = check_road_peak(road_peak)
         scn = Scenario.load(scenario)
-        with _progress(scn.is_sweep and not as_json, "simulating") as progress:
+        with progress_bar(scn.is_sweep and not as_json, "simulating") as progress:
             results = scn.run(duration=duration, workers=None, progress=progress)
         files: list[Path] = []
         payload: Any
         if scn.is_sweep:
             rows = [
-                _clean(_run_row(exc, res.measures()))
+                to_jsonable(_run_row(exc, res.measures()))
                 for exc, res in zip(scn.excitations, results, strict=True)
                 if isinstance(exc, Harmonic)
             ]
@@ -262,7 +232,7 @@ def simulate_command(
                 _write(out, lambda d: (d / "measures.json").write_text(json.dumps(rows, indent=2)))
                 files.append(out / "measures.json")
         else:
-            payload = _clean(results[0].measures(road_peak=how))
+            payload = to_jsonable(results[0].measures(road_peak=how))
             if out is not None:
                 _write(out, lambda d: files.extend(_write_single(d, results[0], payload)))
     _clamp_note([r.velocity_clamp_fraction for r in results])
@@ -309,14 +279,18 @@ def sweep_command(
     stderr (none with ``--json``), and prints T_as, T_au, T_dr, T_ds, T_du, DLC, gamma
     and the current per frequency (``--json``: a list of objects).
     """
-    with _user_errors():
+    from mrsuspension._progress import progress_bar
+    from mrsuspension.engine.simulate import measures_of, run_many
+    from mrsuspension.scenario import Scenario
+
+    with user_errors():
         scn = Scenario.load(scenario)
         sweep = _sweep_for(scn, frequencies, amplitude)
         if workers is not None and workers < 1:
             raise ValidationError(f"--workers must be >= 1; got {workers}")
         excitations = list(sweep.excitations())
         sims = scn.simulations(excitations)
-        with _progress(not as_json, "sweep") as progress:
+        with progress_bar(not as_json, "sweep") as progress:
             results = run_many(
                 sims,
                 dt=scn.dt,
@@ -325,7 +299,7 @@ def sweep_command(
                 progress=progress,
                 reduce=measures_of,  # measures computed in the workers: little traffic
             )
-        rows = [_clean(_run_row(e, m)) for e, m in zip(excitations, results, strict=True)]
+        rows = [to_jsonable(_run_row(e, m)) for e, m in zip(excitations, results, strict=True)]
         files: list[Path] = []
         if out is not None:
             _write(out, lambda d: files.extend(_write_sweep(d, rows)))
@@ -340,13 +314,16 @@ def sweep_command(
 
 def _sweep_for(scn: Scenario, frequencies: str | None, amplitude: float | None) -> SteppedSweep:
     """The stepped sweep of ``mrsus sweep``: options first, then the scenario's excitation."""
+    from mrsuspension import excitation as E
+    from mrsuspension.excitation import Harmonic, SteppedSweep, log_frequencies
+
     exc = scn.excitation
     if frequencies is not None:
         freqs: Sequence[float] = parse_frequencies(frequencies)
     elif isinstance(exc, SteppedSweep):
         freqs = exc.frequencies
     else:
-        freqs = [float(f) for f in log_frequencies(DEFAULT_SWEEP_POINTS)]
+        freqs = [float(f) for f in log_frequencies(E.DEFAULT_SWEEP_POINTS)]
     if amplitude is None:
         if isinstance(exc, SteppedSweep | Harmonic):
             amplitude = exc.amplitude

@@ -1,55 +1,24 @@
-"""The ``mrsus`` command.
-
-``mrsus reproduce`` regenerates the dissertation's analyses into an HTML report (the
-main job); ``mrsus damper ...`` evaluates, characterises and plots damper models. Every
-error in the input is reported in one line on stderr with exit code 2.
-"""
+"""``mrsus damper ...``: evaluate, characterise and plot damper models."""
 
 from __future__ import annotations
 
 import json
-import sys
 from pathlib import Path
 from typing import Annotated, Any
 
 import typer
 
-from mrsuspension._cli_errors import _user_errors
-from mrsuspension.cli_optimize import optimize_command
-from mrsuspension.cli_sim import simulate_command, sweep_command
-from mrsuspension.errors import MRSuspensionError, ValidationError
-from mrsuspension.hil.cli import (
-    hil_latency_command,
-    hil_run_command,
-    hil_validate_command,
-    rig_emulator_command,
-)
-from mrsuspension.identify.cli import identify_command
-from mrsuspension.monitor.cli import monitor_command
+from mrsuspension.cli.errors import user_errors
+from mrsuspension.errors import ValidationError
 
+__all__ = ["app"]
+
+#: ``mrsus damper ...``
 app = typer.Typer(
-    help="mrsuspension: MR-damper models, semi-active suspension studies and reports.",
+    help="Evaluate, characterise and plot damper models.",
     no_args_is_help=True,
-    pretty_exceptions_enable=False,
-    add_completion=False,
+    rich_markup_mode=None,  # as the root app: units in brackets stay
 )
-damper_app = typer.Typer(
-    help="Evaluate, characterise and plot damper models.", no_args_is_help=True
-)
-app.add_typer(damper_app, name="damper")
-app.command("simulate")(simulate_command)
-app.command("sweep")(sweep_command)
-app.command("optimize")(optimize_command)
-app.command("identify")(identify_command)
-hil_app = typer.Typer(
-    help="Hardware in the loop: run a scenario around a (simulated) rig.", no_args_is_help=True
-)
-app.add_typer(hil_app, name="hil")
-hil_app.command("run")(hil_run_command)
-hil_app.command("validate")(hil_validate_command)
-hil_app.command("latency")(hil_latency_command)
-app.command("rig-emulator")(rig_emulator_command)
-app.command("monitor")(monitor_command)
 
 _WANG = ("wang-symmetric", "wang-asymmetric")
 
@@ -90,7 +59,6 @@ EstOpt = Annotated[
         help="peak-velocity estimator: cycle-rms (default) | window | instantaneous | known",
     ),
 ]
-JsonOpt = Annotated[bool, typer.Option("--json", help="print the result as one JSON object")]
 
 
 def _model(
@@ -125,55 +93,10 @@ def _model(
     return make_damper(model, parameters, **options)
 
 
-def _chapters(text: str) -> list[int | str]:
-    """``--chapters``: chapter numbers and the ``findings`` / ``beyond`` sections,
-    comma-separated."""
-    out: list[int | str] = []
-    for item in (c.strip() for c in text.split(",")):
-        if not item:
-            continue
-        if item.lower() in ("beyond", "findings"):
-            out.append(item.lower())
-            continue
-        try:
-            out.append(int(item))
-        except ValueError:
-            raise ValidationError(
-                f"--chapters: unknown chapter {item!r}; give chapter numbers (2-6), "
-                "'findings' and/or 'beyond', comma-separated"
-            ) from None
-    if not out:
-        raise ValidationError(
-            "--chapters needs at least one chapter number, 'findings' or 'beyond'"
-        )
-    return out
+JsonOpt = Annotated[bool, typer.Option("--json", help="print the result as one JSON object")]
 
 
-@app.command()
-def reproduce(
-    out: Annotated[Path, typer.Option("--out", "-o", help="output folder")] = Path("results"),
-    chapters: Annotated[
-        str | None,
-        typer.Option(help="comma-separated chapters and sections, e.g. 2,4,findings,beyond"),
-    ] = None,
-    quick: Annotated[bool, typer.Option("--quick", help="coarse grids, for a fast check")] = False,
-) -> None:
-    """Regenerate the dissertation's analyses into OUT/index.html (the main job)."""
-    from rich.console import Console
-
-    from mrsuspension.report import build_report
-
-    console = Console(stderr=True)
-    with _user_errors():
-        chosen = None if chapters is None else _chapters(chapters)
-        with console.status("starting") as status:
-            index = build_report(
-                out, chapters=chosen, quick=quick, progress=lambda m: status.update(m)
-            )
-    typer.echo(f"report written to {index}")
-
-
-@damper_app.command("force")
+@app.command("force")
 def damper_force(
     velocity: Annotated[
         str, typer.Option("--velocity", "-v", help="v_d [m/s], comma-separated for several")
@@ -198,7 +121,7 @@ def damper_force(
     """
     import numpy as np
 
-    with _user_errors():
+    with user_errors():
         m = _model(model, parameters, hysteresis, vh_variant, force_gain, estimator, peak_velocity)
         arrays = [np.asarray(_floats(n, t)) for n, t in
                   (("stroke", stroke), ("velocity", velocity), ("acceleration", acceleration), ("current", current))]  # fmt: skip
@@ -223,7 +146,7 @@ def damper_force(
         typer.echo(f"{row[0]:10.4g} {row[1]:10.4g} {row[2]:11.4g} {row[3]:7.3g} {row[4]:12.6g}")
 
 
-@damper_app.command("inverse")
+@app.command("inverse")
 def damper_inverse(
     force: Annotated[str, typer.Option("--force", "-f", help="target force F* [N]")],
     velocity: Annotated[str, typer.Option("--velocity", "-v", help="v_d [m/s]")],
@@ -239,7 +162,7 @@ def damper_inverse(
     """Inverse model (spec section 2.3): current that makes the symmetric model produce F*."""
     import numpy as np
 
-    with _user_errors():
+    with user_errors():
         m = _model("wang-symmetric", parameters, hysteresis, "2.13", force_gain, None)
         arrays = [np.asarray(_floats(n, t)) for n, t in
                   (("force", force), ("velocity", velocity), ("acceleration", acceleration))]  # fmt: skip
@@ -258,7 +181,7 @@ def damper_inverse(
         typer.echo(f"F*={row[0]:g} N  v={row[1]:g} m/s  a={row[2]:g} m/s2  ->  i={row[3]:.6g} A")
 
 
-@damper_app.command("loops")
+@app.command("loops")
 def damper_loops(
     frequency: Annotated[float, typer.Option("--frequency", help="f [Hz]")] = 1.5,
     amplitude: Annotated[float, typer.Option("--amplitude", help="a_m [m]")] = 0.0125,
@@ -278,7 +201,7 @@ def damper_loops(
     """Steady-state F-v and F-x loops of one harmonic test at several currents."""
     from mrsuspension.characterisation import TestCondition, characterise
 
-    with _user_errors():
+    with user_errors():
         m = _model(model, parameters, hysteresis, vh_variant, force_gain, None)
         conds = [TestCondition(frequency, amplitude, i) for i in _floats("currents", currents)]
         result = characterise(m, conds)
@@ -325,7 +248,7 @@ def _print_rows(rows: list[dict[str, float]]) -> None:
         typer.echo("  ".join(f"{r[k]:14.5g}" for k in keys))
 
 
-@damper_app.command("matrix")
+@app.command("matrix")
 def damper_matrix(
     model: ModelOpt = "wang-symmetric",
     parameters: ParamsOpt = None,
@@ -340,7 +263,7 @@ def damper_matrix(
     """Run the 165 tests of Table 2.1 on a model (summary per test; loops with --out)."""
     from mrsuspension.characterisation import characterise
 
-    with _user_errors():
+    with user_errors():
         m = _model(model, parameters, hysteresis, vh_variant, force_gain, None)
         result = characterise(m, progress=not as_json)
         files = [str(p) for p in result.save(out)] if out is not None else []
@@ -353,15 +276,17 @@ def damper_matrix(
         typer.echo(f"wrote {f}")
 
 
-@damper_app.command("figures")
+@app.command("figures")
 def damper_figures(
     out: Annotated[Path, typer.Option("--out", "-o", help="output folder")] = Path("results"),
 ) -> None:
     """Regenerate the Chapter 2 figures (2.3-2.11) and their index page."""
+    from mrsuspension.cli.report import reproduce
+
     reproduce(out=out, chapters="2", quick=False)
 
 
-@damper_app.command("sets")
+@app.command("sets")
 def damper_sets(
     name: Annotated[str | None, typer.Argument(help="a set name or file to show")] = None,
     as_json: JsonOpt = False,
@@ -369,7 +294,7 @@ def damper_sets(
     """List the registered parameter sets, or show one with units and provenance."""
     from mrsuspension import parameters
 
-    with _user_errors():
+    with user_errors():
         if name is None:
             sets = [parameters.get(n) for n in parameters.available()]
             if as_json:
@@ -389,114 +314,3 @@ def damper_sets(
     typer.echo(f"{s.name} (model {s.model}, table {s.table})\nsource: {s.source}")
     for k, v in s.items():
         typer.echo(f"  {k:14} {v:14.6g} {s.units.get(k, ''):12} {s.descriptions.get(k, '')}")
-
-
-@app.command()
-def study(
-    path: Annotated[Path, typer.Argument(help="study file (TOML)")],
-    out: Annotated[
-        Path | None, typer.Option("--out", "-o", help="write results (.nc or .csv)")
-    ] = None,
-    scheduler: Annotated[
-        str | None,
-        typer.Option(help="Dask scheduler address, e.g. tcp://host:8786 (default: local pool)"),
-    ] = None,
-    workers: Annotated[
-        int | None, typer.Option(help="local processes (default: all cores)")
-    ] = None,
-    no_cache: Annotated[
-        bool, typer.Option("--no-cache", help="ignore and do not write the cache")
-    ] = False,
-    as_json: JsonOpt = False,
-) -> None:
-    """Run a parameter study (a scenario and a grid of fields) and print or save the measures."""
-    from mrsuspension.studies import Study, run_study
-
-    with _user_errors():
-        st = Study.load(path)
-        result = run_study(
-            st,
-            executor=scheduler or "local",
-            workers=workers,
-            progress=not as_json,
-            cache_dir=False if no_cache else None,
-        )
-        saved = result.save(out) if out is not None else None
-    df = result.to_pandas()
-    if as_json:
-        typer.echo(df.to_json(orient="records"))
-        return
-    typer.echo(df.to_string(index=False))
-    if saved is not None:
-        typer.echo(f"wrote {saved}")
-
-
-@app.command()
-def bench(
-    as_json: JsonOpt = False,
-    quick: Annotated[
-        bool, typer.Option("--quick", help="1 s runs and a 6-frequency sweep")
-    ] = False,
-    workers: Annotated[
-        int | None, typer.Option(help="processes for the sweep (default: all cores)")
-    ] = None,
-) -> None:
-    """Time the engine against scipy, LSODA and plain-Python RK4 baselines, and a sweep."""
-    from rich.console import Console
-
-    from mrsuspension.bench import run_benchmarks
-
-    console = Console(stderr=True)
-    with _user_errors(), console.status("benchmarking") as status:
-        res = run_benchmarks(quick=quick, workers=workers, say=lambda m: status.update(m))
-    if as_json:
-        typer.echo(json.dumps(res))
-        return
-    typer.echo(
-        f"single run ({res['duration_s']:g} s simulated, dt = 1e-4 s): {res['single_run_s']:.3f} s "
-        f"({res['single_run_ns_per_step']:.0f} ns per step, of which road sampling "
-        f"{res['single_run_road_sampling_s'] * 1e3:.1f} ms)"
-    )
-    typer.echo(
-        f"  vs scipy RK45: {res['speedup_vs_scipy']:.1f}x ({res['scipy_baseline_s']:.2f} s, "
-        f"relative rms difference {res['scipy_relative_rms_difference']:.1e})"
-    )
-    typer.echo(f"  vs scipy LSODA: {res['speedup_vs_lsoda']:.1f}x ({res['lsoda_s']:.2f} s)")
-    typer.echo(
-        f"  vs plain-Python RK4: {res['speedup_vs_python_rk4']:.1f}x ({res['python_rk4_s']:.2f} s, "
-        f"max difference {res['python_rk4_max_difference_m']:.1e} m)"
-    )
-    typer.echo(
-        f"sweep: {res['sweep_runs']} runs, {res['sweep_steps'] / 1e6:.1f} M steps in {res['sweep_s']:.2f} s "
-        f"on {res['sweep_workers']} processes ({res['sweep_ns_per_step_per_core']:.0f} ns per step "
-        f"per core; {res['sweep_at_single_run_speed_s']:.2f} s at the single run's speed)"
-    )
-    typer.echo(
-        f"  in lane batches (run_many(lanes=True)): {res['sweep_lanes_s']:.2f} s, "
-        f"{res['lanes_speedup']:.2f}x"
-    )
-    compiled = "skipped" if res["compile_s"] is None else f"{res['compile_s']:.1f} s"
-    typer.echo(f"compile (fresh, no cache): {compiled}; first call: {res['first_call_s']:.2f} s")
-    load = ", ".join("n/a" if x is None else f"{x:.2f}" for x in res["load_average"])
-    typer.echo(f"load average (1 min) before, after: {load}")
-
-
-@app.command()
-def version() -> None:
-    """Print the package version."""
-    from mrsuspension import __version__
-
-    typer.echo(__version__)
-
-
-def main() -> None:
-    """Entry point of the ``mrsus`` command."""
-    try:
-        app()
-    except MRSuspensionError as exc:  # pragma: no cover - commands catch their own
-        print(f"error: {exc}", file=sys.stderr)
-        sys.exit(2)
-
-
-if __name__ == "__main__":  # pragma: no cover
-    main()

@@ -12,7 +12,7 @@ from typing import Annotated
 
 import typer
 
-from mrsuspension._cli_errors import _user_errors
+from mrsuspension.cli.errors import user_errors
 
 __all__ = ["optimize_command"]
 
@@ -42,7 +42,7 @@ def optimize_command(
     """Tune scenario fields (e.g. a controller's gains) for a weighted objective over roads."""
     from mrsuspension.optimize import OptimizationProblem, optimize
 
-    with _user_errors():
+    with user_errors():
         prob = OptimizationProblem.load(problem)
         result = optimize(
             prob, max_evaluations=max_evaluations, workers=workers, progress=not as_json

@@ -1,0 +1,60 @@
+"""``mrsus monitor``: serve the HiL browser monitor (:mod:`mrsuspension.monitor.server`)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Annotated
+
+import typer
+
+from mrsuspension.cli.errors import user_errors
+from mrsuspension.hil.rigs import rig_syntax
+
+__all__ = ["monitor_command"]
+
+
+def monitor_command(
+    host: Annotated[str, typer.Option(help="address to bind (loopback unless --token)")] = (
+        "127.0.0.1"
+    ),
+    port: Annotated[int, typer.Option(help="TCP port")] = 8765,
+    token: Annotated[
+        str | None,
+        typer.Option(help="access token required in the URL (?token=...); needed off loopback"),
+    ] = None,
+    open_browser: Annotated[bool, typer.Option(help="open the page in a browser")] = False,
+    rig: Annotated[str, typer.Option(help=f"rig in the loop: {rig_syntax()}")] = "simulated",
+    road_dir: Annotated[
+        Path | None, typer.Option(help="directory the page may take road profile files from")
+    ] = None,
+    workdir: Annotated[
+        Path | None, typer.Option(help="directory for the recordings (default: a temporary one)")
+    ] = None,
+    realtime: Annotated[
+        str,
+        typer.Option(
+            help="scheduling of the loop: auto (SCHED_FIFO when permitted) | fifo | spin "
+            "(busy-wait on a pinned core; best on a virtual machine) | off"
+        ),
+    ] = "auto",
+    isolate: Annotated[
+        bool,
+        typer.Option(
+            "--isolate",
+            help="move every other movable task off the loop's core during each run, and "
+            "back afterwards (needs --realtime auto, fifo or spin; docs/hil.md)",
+        ),
+    ] = False,
+) -> None:
+    """Serve the HiL browser monitor (live plots, measures, STOP, recording).
+
+    Runs started from the page are HiL runs (`run_hil`) with the --rig rig in the loop,
+    in their own process; settings changed on the page are applied between ticks.
+    """
+    from mrsuspension.monitor.server import serve
+
+    with user_errors():
+        serve(
+            host, port, token, rig=rig, road_dir=road_dir, open_browser=open_browser,
+            workdir=workdir, realtime=realtime, isolate=isolate,
+        )  # fmt: skip

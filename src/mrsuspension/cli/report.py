@@ -1,0 +1,60 @@
+"""``mrsus reproduce``: regenerate the dissertation's analyses into an HTML report."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Annotated
+
+import typer
+
+from mrsuspension.cli.errors import user_errors
+from mrsuspension.errors import ValidationError
+
+__all__ = ["reproduce"]
+
+
+def _chapters(text: str) -> list[int | str]:
+    """``--chapters``: chapter numbers and the ``findings`` / ``beyond`` sections,
+    comma-separated."""
+    out: list[int | str] = []
+    for item in (c.strip() for c in text.split(",")):
+        if not item:
+            continue
+        if item.lower() in ("beyond", "findings"):
+            out.append(item.lower())
+            continue
+        try:
+            out.append(int(item))
+        except ValueError:
+            raise ValidationError(
+                f"--chapters: unknown chapter {item!r}; give chapter numbers (2-6), "
+                "'findings' and/or 'beyond', comma-separated"
+            ) from None
+    if not out:
+        raise ValidationError(
+            "--chapters needs at least one chapter number, 'findings' or 'beyond'"
+        )
+    return out
+
+
+def reproduce(
+    out: Annotated[Path, typer.Option("--out", "-o", help="output folder")] = Path("results"),
+    chapters: Annotated[
+        str | None,
+        typer.Option(help="comma-separated chapters and sections, e.g. 2,4,findings,beyond"),
+    ] = None,
+    quick: Annotated[bool, typer.Option("--quick", help="coarse grids, for a fast check")] = False,
+) -> None:
+    """Regenerate the dissertation's analyses into OUT/index.html (the main job)."""
+    from rich.console import Console
+
+    from mrsuspension.report import build_report
+
+    console = Console(stderr=True)
+    with user_errors():
+        chosen = None if chapters is None else _chapters(chapters)
+        with console.status("starting") as status:
+            index = build_report(
+                out, chapters=chosen, quick=quick, progress=lambda m: status.update(m)
+            )
+    typer.echo(f"report written to {index}")
