@@ -317,9 +317,9 @@ def hil_validate_command(
         parse_frequencies,
         parse_masses,
         parse_what,
-        validate_chapter7,
     )
     from mrsuspension.hil.loop import _simulation_of
+    from mrsuspension.report.ch7 import validate_chapter7
 
     with _user_errors():
         chosen = parse_what(what)
