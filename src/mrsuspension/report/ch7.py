@@ -96,6 +96,15 @@ def render(data: dict[str, Any], pulses: dict[str, Any], out: Path) -> dict[str,
     -------
     dict
         The new figures' file names by comparison.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> data = {"pacing": "UNPACED", "realtime": "unpaced", "rig": {"rig": "simulated"},
+    ...         "masses": [563.0], "figures": {}}
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     render(data, {}, Path(tmp)), sorted(p.name for p in Path(tmp).iterdir())
+    ({}, ['index.html'])
     """
     made = draw_figures(data, pulses, out)
     (out / "index.html").write_text(index_page(data, {**data.get("figures", {}), **made}))
@@ -134,6 +143,12 @@ def draw_figures(data: dict[str, Any], pulses: dict[str, Any], out: Path) -> dic
     dict
         File names by comparison (``frequency``, ``pulse``, ``pulse_masses``, ``road``,
         ``road_masses``).
+
+    Examples
+    --------
+    >>> data = {"realtime": "unpaced", "masses": [563.0]}
+    >>> draw_figures(data, {}, Path("unused"))
+    {}
     """
     import matplotlib
 
@@ -265,6 +280,13 @@ def index_page(data: dict[str, Any], figures: dict[str, list[str]]) -> str:
     -------
     str
         The page (``index.html``).
+
+    Examples
+    --------
+    >>> data = {"pacing": "UNPACED", "rig": {"rig": "simulated"}, "masses": [563.0]}
+    >>> page = index_page(data, {"pulse": ["pulse_scenario.png"]})
+    >>> "<h2>Other figures</h2>" in page, "src='pulse_scenario.png'" in page
+    (True, True)
     """
     several = len(data["masses"]) > 1
     made = {name for group in figures.values() for name in group}

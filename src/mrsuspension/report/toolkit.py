@@ -452,6 +452,15 @@ def table_sections(
     -------
     tuple
         The HTML (the colour legend first) and each table's manifest entry.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> tab = {"number": "9.1", "title": "T", "caption": "C.", "rows": [{"V": 50.0}]}
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     text, entries = table_sections(9, [tab], Path(tmp))
+    >>> text.startswith(LEGEND), entries[0]["file"]
+    (True, 'chapter9/table_9_1.csv')
     """
     out = []
     parts = []
@@ -517,6 +526,15 @@ def family_chapter(
     -------
     tuple
         The body HTML and ``{"figures": [...], "tables": [...]}``.
+
+    Examples
+    --------
+    >>> from types import SimpleNamespace
+    >>> built = SimpleNamespace(figures={}, tables={})
+    >>> context = Context(9, Path("out/chapter9"), True, built, print)
+    >>> body, manifest = family_chapter(context, "Chapter 9: more", [])
+    >>> body[:33], manifest
+    ("<h2 id='ch9'>Chapter 9: more</h2>", {'figures': [], 'tables': []})
     """
     n = context.number
     sections, records = figure_sections(n, context.built.figures, context.folder)
@@ -552,6 +570,11 @@ class Jobs:
     calls : mapping
         Name -> ``(function, args)``: other work for the pool (its result under
         ``Built.calls[name]``).
+
+    Examples
+    --------
+    >>> Jobs(tables=("4.1",)).tables, Jobs().figures
+    (('4.1',), {})
     """
 
     figures: Mapping[str, Sequence[Any]] = field(default_factory=dict)
@@ -576,6 +599,11 @@ class Context:
         What the report's one pool built (figures, tables, call results).
     progress : callable
         Progress messages.
+
+    Examples
+    --------
+    >>> Context(4, Path("out/chapter4"), True, None, print).folder.name
+    'chapter4'
     """
 
     number: int
@@ -702,7 +730,15 @@ def sweep_study(quick: bool, name: str, **tables: Any) -> Study:
 
 
 def run_sweep(study: Study) -> StudyResult:
-    """Run ``study`` quietly, uncached, in this process inside a report worker."""
+    """Run ``study`` quietly and uncached (in this process inside a report worker).
+
+    Examples
+    --------
+    >>> study = sweep_study(True, "demo", controller={"law": "passive", "current": 0.0})
+    >>> result = run_sweep(study)
+    >>> result.to_xarray()["T_as"].shape
+    (10,)
+    """
     from mrsuspension.studies import run_study
 
     return run_study(study, workers=1 if in_worker() else None, progress=False, cache_dir=False)
@@ -726,6 +762,16 @@ def plot_sweep(
     -------
     tuple
         The figure and the data for its record (curves, peak T_as and its frequency).
+
+    Examples
+    --------
+    >>> currents = {f"{i:g} A": {"controller": {"law": "passive", "current": i}}
+    ...             for i in (0.0, 0.4)}
+    >>> result = run_sweep(sweep_study(True, "demo", cases={"damping": currents}))
+    >>> fig, data = plot_sweep(result, "damping", {k: k for k in currents})
+    >>> data["peak T_as 0 A"] > data["peak T_as 0.4 A"]
+    True
+    >>> import matplotlib.pyplot as plt; plt.close(fig)
     """
     ds = result.to_xarray()
     f = ds["frequency"].values
@@ -791,17 +837,38 @@ def harmonic_runs(
 
 
 def steady(result: SimulationResult) -> np.ndarray:
-    """Mask of the steady window (t >= :data:`STEADY_FROM`)."""
+    """Mask of the steady window (t >= :data:`STEADY_FROM`).
+
+    Examples
+    --------
+    >>> from types import SimpleNamespace
+    >>> steady(SimpleNamespace(time=np.array([3.0, 4.0, 7.0]))).tolist()
+    [False, True, True]
+    """
     return np.asarray(result.time >= STEADY_FROM)
 
 
 def shown(result: SimulationResult) -> np.ndarray:
-    """Mask of the window shown in time-history panels (:data:`SHOWN`)."""
+    """Mask of the window shown in time-history panels (:data:`SHOWN`).
+
+    Examples
+    --------
+    >>> from types import SimpleNamespace
+    >>> shown(SimpleNamespace(time=np.array([5.0, 6.5, 7.5]))).tolist()
+    [False, True, False]
+    """
     return np.asarray((result.time >= SHOWN[0]) & (result.time <= SHOWN[1]))
 
 
 def tracking_error(result: SimulationResult) -> float:
-    """rms(|F_d| - |F*|) while z_c < 0 over the steady window [N]."""
+    """rms(|F_d| - |F*|) while z_c < 0 over the steady window [N].
+
+    Examples
+    --------
+    >>> (r,) = harmonic_runs([{"controller": {"law": "inverse-hilo", "mode": "ACM"}}], True)
+    >>> tracking_error(r) > 0.0
+    True
+    """
     from mrsuspension.measures import force_tracking_error
 
     sel = steady(result)
@@ -826,6 +893,12 @@ def force_tracking_errors(
     -------
     dict
         ``{mode: [error at k_d = 1, 1.5, 2, 2.5]}``.
+
+    Examples
+    --------
+    >>> errors = force_tracking_errors("inverse-hilo", True, modes=("ACM",))
+    >>> list(errors), len(errors["ACM"])
+    (['ACM'], 4)
     """
     cases = [
         {"damper": {"force_gain": kd}, "controller": {"law": law, "mode": mode}}
@@ -851,6 +924,13 @@ def error_figure(law: str, quick: bool) -> tuple[Any, dict[str, Any]]:
     -------
     tuple
         The figure and the data for its record.
+
+    Examples
+    --------
+    >>> fig, data = error_figure("sliding-mode", True)
+    >>> data["k_d"], len(data["force-tracking error SCM [N]"])
+    ([1.0, 1.5, 2.0, 2.5], 4)
+    >>> import matplotlib.pyplot as plt; plt.close(fig)
     """
     errors = force_tracking_errors(law, quick)
     runs = harmonic_runs(
