@@ -126,7 +126,7 @@ def parse_chapters(text: str) -> list[int | str]:
     >>> parse_chapters("9")
     Traceback (most recent call last):
     ...
-    mrsuspension.errors.ValidationError: --chapters: unknown chapter '9'; valid: 2, 3, 4, 5, 6, findings, beyond (comma-separated)
+    mrsuspension.errors.ValidationError: --chapters: unknown chapter '9'. Give chapter numbers (2, 3, 4, 5, 6), 'findings' and/or 'beyond', comma-separated.
     """
     out: list[int | str] = []
     for item in (c.strip() for c in text.split(",")):
@@ -138,9 +138,19 @@ def parse_chapters(text: str) -> list[int | str]:
             out.append(int(item))
         else:
             raise ValidationError(
-                f"--chapters: unknown chapter {item!r}; valid: {', '.join(choices())} "
-                "(comma-separated)"
+                f"--chapters: unknown chapter {item!r}.{did_you_mean(item.lower(), choices())} "
+                f"Give chapter numbers ({_numbers()}), {_sections()}, comma-separated."
             )
     if not out:
-        raise ValidationError(f"--chapters needs at least one of {', '.join(choices())}")
+        raise ValidationError(
+            f"--chapters needs at least one chapter number ({_numbers()}), {_sections()}"
+        )
     return out
+
+
+def _numbers() -> str:
+    return ", ".join(str(n) for n in sorted(CHAPTERS))
+
+
+def _sections() -> str:
+    return " and/or ".join(f"'{s}'" for s in SECTIONS)

@@ -127,8 +127,9 @@ def test_chapter_choices_come_from_the_registry() -> None:
     assert choices() == (*(str(n) for n in sorted(CHAPTERS)), "findings", "beyond")
     assert parse_chapters(" 4,findings, 2") == [4, "findings", 2]
     assert resolve(["beyond", 3]) == ([3], {"beyond"})
-    raises_validation(lambda: parse_chapters("4,x"), "--chapters", "'x'", "findings")
-    raises_validation(lambda: parse_chapters(" , "), "--chapters")
+    raises_validation(lambda: parse_chapters("4,x"), "--chapters", "'x'", "'findings'")
+    raises_validation(lambda: parse_chapters("2,beyonf"), "unknown chapter 'beyonf'", "'beyond'?")
+    raises_validation(lambda: parse_chapters(" , "), "--chapters", "at least one")
     raises_validation(lambda: resolve([7]), "chapter 7", "beyond")
     raises_validation(lambda: resolve([]), "no chapters")
     raises_validation(lambda: chapter(9), "chapter 9")
