@@ -1,7 +1,7 @@
 """Write docs/report.md: every figure and table of the report's Chapters 4-6 with its scenario.
 
-Generated from the figure-family specs (``mrsuspension.report.ch4/ch5/ch6``), so the page
-cannot drift from the code; ``tests/unit/report/test_families.py`` checks it is current.
+Generated from the figure-family specs of the registered chapters
+(``mrsuspension.report.chapters``), so the page cannot drift from the code; ``tests/unit/report/test_families.py`` checks it is current.
 
 Run: ``python tools/report_docs.py``.
 """

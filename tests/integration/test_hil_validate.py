@@ -12,8 +12,9 @@ from typer.testing import CliRunner
 from _helpers import raises_validation
 from mrsuspension.cli.hil import hil_validate_command
 from mrsuspension.hil import ideal_rig
-from mrsuspension.hil.chapter7 import FREQUENCY_MEASURES, validate_chapter7
+from mrsuspension.hil.chapter7 import FREQUENCY_MEASURES
 from mrsuspension.hil.network import UdpRig
+from mrsuspension.report.ch7 import validate_chapter7
 from mrsuspension.scenario import Scenario
 
 ROOT = Path(__file__).resolve().parents[2]

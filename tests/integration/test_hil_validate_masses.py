@@ -17,8 +17,9 @@ from typer.testing import CliRunner
 from _helpers import raises_validation
 from mrsuspension.cli.hil import hil_validate_command
 from mrsuspension.hil import ideal_rig
-from mrsuspension.hil.chapter7 import FREQUENCY_MEASURES, parse_masses, validate_chapter7
+from mrsuspension.hil.chapter7 import FREQUENCY_MEASURES, parse_masses
 from mrsuspension.hil.recorder import load_recording
+from mrsuspension.report.ch7 import validate_chapter7
 from mrsuspension.scenario import Scenario
 
 ROOT = Path(__file__).resolve().parents[2]

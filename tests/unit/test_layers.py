@@ -61,25 +61,7 @@ LAYERS: dict[str, int] = {
 KNOWN_UPWARD: set[tuple[str, str]] = set()
 
 #: import cycles between modules today (each a set of modules)
-KNOWN_CYCLES: set[frozenset[str]] = {
-    # the chapters, the findings and the HTML report import each other (a chapter
-    # registry is the planned fix)
-    frozenset(
-        {
-            "mrsuspension.report.beyond",
-            "mrsuspension.report.ch2",
-            "mrsuspension.report.ch3",
-            "mrsuspension.report.ch4",
-            "mrsuspension.report.ch5",
-            "mrsuspension.report.ch6",
-            "mrsuspension.report.families",
-            "mrsuspension.report.findings",
-            "mrsuspension.report.findings.checks",
-            "mrsuspension.report.findings.claims",
-            "mrsuspension.report.html",
-        }
-    ),
-}
+KNOWN_CYCLES: set[frozenset[str]] = set()
 
 #: packages whose layering is checked with no exception (the controller work's scope)
 CLEAN = ("control", "vehicle", "engine")

@@ -356,11 +356,11 @@ def hil_validate_command(
         parse_frequencies,
         parse_masses,
         parse_what,
-        validate_chapter7,
     )
     from mrsuspension.hil.loop import _simulation_of
     from mrsuspension.hil.realtime import normalise_mode
     from mrsuspension.hil.rigs import make_rig
+    from mrsuspension.report.ch7 import validate_chapter7
 
     with user_errors():
         chosen = parse_what(what)

@@ -8,33 +8,16 @@ from typing import Annotated
 import typer
 
 from mrsuspension.cli.errors import user_errors
-from mrsuspension.errors import ValidationError
 
 __all__ = ["reproduce"]
 
 
 def _chapters(text: str) -> list[int | str]:
-    """``--chapters``: chapter numbers and the ``findings`` / ``beyond`` sections,
-    comma-separated."""
-    out: list[int | str] = []
-    for item in (c.strip() for c in text.split(",")):
-        if not item:
-            continue
-        if item.lower() in ("beyond", "findings"):
-            out.append(item.lower())
-            continue
-        try:
-            out.append(int(item))
-        except ValueError:
-            raise ValidationError(
-                f"--chapters: unknown chapter {item!r}; give chapter numbers (2-6), "
-                "'findings' and/or 'beyond', comma-separated"
-            ) from None
-    if not out:
-        raise ValidationError(
-            "--chapters needs at least one chapter number, 'findings' or 'beyond'"
-        )
-    return out
+    """``--chapters``: the registry's chapter numbers and sections, comma-separated
+    (:func:`mrsuspension.report.chapters.parse_chapters`, imported on use)."""
+    from mrsuspension.report.chapters import parse_chapters
+
+    return parse_chapters(text)
 
 
 def reproduce(

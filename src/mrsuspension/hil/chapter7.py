@@ -31,17 +31,18 @@ A rig simulated in the same process may run unpaced (``realtime="unpaced"``: as 
 possible, not real time; the outputs say so), so a sweep validates in seconds; a
 network rig always runs paced.
 
-The output folder gets one PNG per comparison, ``validation.json`` (every number) and
-``index.html`` (the figures and tables).
+The output folder gets ``validation.json`` (every number) and the ``time`` comparison's
+files; the figures of the other comparisons and ``index.html`` come from a renderer passed
+in (``render=``): :func:`mrsuspension.report.ch7.validate_chapter7` passes the report's,
+:func:`mrsuspension.report.ch7.render` (``hil`` does not import the report).
 """
 
 from __future__ import annotations
 
 import dataclasses
-import html
 import json
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -68,6 +69,8 @@ from mrsuspension.hil.safety import SafetyLimits, StartUp
 __all__ = [
     "CASES",
     "WHAT",
+    "Renderer",
+    "mass_tag",
     "parse_cases",
     "parse_frequencies",
     "parse_masses",
@@ -99,6 +102,10 @@ PSD_CHANNELS = (
 PSD_BAND = (0.5, 20.0)
 #: most sprung masses one validation compares
 MAX_MASSES = 6
+#: ``render(data, pulses, out)``: draws the comparison figures into ``out``, writes its
+#: ``index.html`` and returns the new figures' file names by comparison
+#: (:func:`mrsuspension.report.ch7.render`); ``data["figures"]`` holds those made so far
+Renderer = Callable[[dict[str, Any], dict[str, Any], Path], dict[str, list[str]]]
 _CHANNELS = ("z_r", "z_s", "z_u", "z_s_ddot", "z_u_ddot", "x_d", "v_d", "F_d", "F_T", "i_d")
 
 
@@ -221,7 +228,14 @@ def parse_masses(text: str | Sequence[float] | None) -> tuple[float, ...]:
     return tuple(out)
 
 
-def _mass_tag(mass: float) -> str:
+def mass_tag(mass: float) -> str:
+    """The file and folder tag of a sprung mass (several masses: ``m703/``, ``_m703.png``).
+
+    Examples
+    --------
+    >>> mass_tag(703.0)
+    'm703'
+    """
     return f"m{mass:g}"
 
 
@@ -459,6 +473,7 @@ def validate_chapter7(
     limits: SafetyLimits | None = None,
     realtime: bool | str | None = None,
     masses: Sequence[float] | None = None,
+    render: Renderer | None = None,
 ) -> dict[str, Any]:
     """The Chapter 7 comparisons of HiL against offline (see the module docstring).
 
@@ -469,8 +484,8 @@ def validate_chapter7(
     rig : Rig
         The rig (reset before every run).
     out : path, optional
-        Output folder (figures, ``validation.json``, ``index.html``, the ``time``
-        recording); nothing is written without it.
+        Output folder (``validation.json``, the ``time`` recording and figures, and what
+        ``render`` writes); nothing is written without it.
     what : sequence of str
         Comparisons (:data:`WHAT`).
     cases : sequence of str
@@ -499,6 +514,11 @@ def validate_chapter7(
         ``time`` report); with several, ``data[what]["<case>@<mass>kg"]`` (``time``:
         ``"scenario@<mass>kg"``, its files in ``m<mass>/``). Every entry has its
         ``sprung_mass``.
+    render : Renderer, optional
+        With ``out``: draws the other figures and writes ``index.html``
+        (:func:`mrsuspension.report.ch7.render`, which
+        :func:`mrsuspension.report.ch7.validate_chapter7` passes). Without it only the
+        numbers and the ``time`` files are written.
 
     Returns
     -------
@@ -553,7 +573,7 @@ def validate_chapter7(
         "pacing": pacing,
         "realtime": mode,
         "rate": rate,
-        "rig": rig.describe(),
+        "rig": _clean(rig.describe()),
         "scenario": sim.describe(),
         "what": list(what),
         "cases": list(cases),
@@ -578,7 +598,7 @@ def validate_chapter7(
         reports: dict[str, Any] = {}
         figures["time"] = []
         for m in mass_list:
-            where = out_dir / _mass_tag(m) if out_dir is not None and several else out_dir
+            where = out_dir / mass_tag(m) if out_dir is not None and several else out_dir
             report = validate(
                 dataclasses.replace(sim, vehicle=vehicles[m]), rig, duration=duration,
                 rate=rate, out=where, model_dt=model_dt, limits=limits, realtime=mode,
@@ -609,275 +629,8 @@ def validate_chapter7(
             roads[key] = {"case": c, "sprung_mass": m, **road_response(s, rig, rate, road, **kw)}
         data["road"] = roads
     if out_dir is not None:
-        figures.update(_figures(data, pulses, out_dir))
         data["figures"] = figures
+        if render is not None:
+            figures.update(render(data, pulses, out_dir))
         (out_dir / "validation.json").write_text(json.dumps(_clean(data), indent=1) + "\n")
-        (out_dir / "index.html").write_text(_index(data, figures))
     return data
-
-
-#: panels of the pulse figures: (channel, label)
-_PULSE_PANELS = (
-    ("z_s", "x_s [m]"), ("z_s_ddot", "a_s [m/s^2]"), ("z_u_ddot", "a_u [m/s^2]"),
-    ("x_d", "x_r [m]"), ("F_d", "F_d [N]"), ("F_T", "F_T [N]"),
-)  # fmt: skip
-
-
-def _by_case(entries: dict[str, Any]) -> dict[str, list[dict[str, Any]]]:
-    """Entries grouped by controller case, in mass order."""
-    out: dict[str, list[dict[str, Any]]] = {}
-    for res in entries.values():
-        out.setdefault(res["case"], []).append(res)
-    return out
-
-
-def _figures(data: dict[str, Any], pulses: dict[str, Any], out: Path) -> dict[str, list[str]]:
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    tag = " [UNPACED]" if data["realtime"] == "unpaced" else ""
-    masses = data["masses"]
-    several = len(masses) > 1
-
-    def suffix(mass: float) -> str:
-        return f"_{_mass_tag(mass)}" if several else ""
-
-    made: dict[str, list[str]] = {}
-    if "frequency" in data:
-        made["frequency"] = []
-        for mass in masses:
-            fig, axes = plt.subplots(2, 2, figsize=(10, 7), sharex=True)
-            here = [fr for fr in data["frequency"].values() if fr["sprung_mass"] == mass]
-            for i, fr in enumerate(here):
-                color, case = f"C{i}", fr["case"]
-                for ax, k in zip(axes.flat, FREQUENCY_MEASURES, strict=True):
-                    ax.plot(
-                        fr["frequency"], fr["offline"][k], "-", color=color, label=f"{case} offline"
-                    )
-                    ax.plot(fr["frequency"], fr["hil"][k], "o", mfc="none", color=color,
-                            label=f"{case} HiL")  # fmt: skip
-            for ax, k in zip(axes.flat, FREQUENCY_MEASURES, strict=True):
-                ax.set_xscale("log")
-                ax.set_ylabel(k)
-                ax.grid(True, which="both", alpha=0.3)
-            for ax in axes[1]:
-                ax.set_xlabel("frequency [Hz]")
-            axes[0, 0].legend(fontsize=7)
-            fig.suptitle(
-                f"Frequency responses, m_s = {mass:g} kg: HiL (markers) vs offline (lines){tag}"
-            )
-            made["frequency"].append(_save(fig, out, f"frequency_response{suffix(mass)}.png"))
-    if pulses:
-        made["pulse"] = []
-        for res in pulses.values():
-            case, mass, pair = res["case"], res["sprung_mass"], res["_pair"]
-            fig, axes = plt.subplots(3, 2, figsize=(10, 8), sharex=True)
-            for ax, (ch, ylabel) in zip(axes.flat, _PULSE_PANELS, strict=True):
-                ax.plot(pair["time"], pair["offline"][ch], label="offline", lw=1.2)
-                ax.plot(pair["time"], pair["hil"][ch], "--", label="HiL", lw=1.0)
-                ax.set_ylabel(ylabel)
-                ax.grid(True, alpha=0.3)
-            axes[0, 0].legend()
-            for ax in axes[2]:
-                ax.set_xlabel("time [s]")
-            fig.suptitle(f"Rounded pulse, {case}, m_s = {mass:g} kg: HiL vs offline{tag}")
-            made["pulse"].append(_save(fig, out, f"pulse_{case}{suffix(mass)}.png"))
-        if several:  # Fig 7.18: the masses overlaid, one figure per case
-            made["pulse_masses"] = []
-            for case, group in _by_case(pulses).items():
-                fig, axes = plt.subplots(3, 2, figsize=(10, 8), sharex=True)
-                for i, res in enumerate(group):
-                    pair, m = res["_pair"], res["sprung_mass"]
-                    for ax, (ch, ylabel) in zip(axes.flat, _PULSE_PANELS, strict=True):
-                        ax.plot(pair["time"], pair["offline"][ch], "-", color=f"C{i}", lw=1.2,
-                                label=f"{m:g} kg offline")  # fmt: skip
-                        ax.plot(pair["time"], pair["hil"][ch], "--", color=f"C{i}", lw=1.0,
-                                label=f"{m:g} kg HiL")  # fmt: skip
-                        ax.set_ylabel(ylabel)
-                for ax in axes.flat:
-                    ax.grid(True, alpha=0.3)
-                axes[0, 0].legend(fontsize=7)
-                for ax in axes[2]:
-                    ax.set_xlabel("time [s]")
-                fig.suptitle(f"Rounded pulse, {case}, sprung masses overlaid (Fig 7.18){tag}")
-                made["pulse_masses"].append(_save(fig, out, f"pulse_masses_{case}.png"))
-    if "road" in data:
-        made["road"] = []
-        for res in data["road"].values():
-            case, mass = res["case"], res["sprung_mass"]
-            fig, axes = plt.subplots(2, 2, figsize=(10, 7), sharex=True)
-            for ax, (_, label, unit) in zip(axes.flat, PSD_CHANNELS, strict=True):
-                s = res["psd"][label]
-                ax.loglog(s["frequency"], s["offline"], label="offline", lw=1.2)
-                ax.loglog(s["frequency"], s["hil"], "--", label="HiL", lw=1.0)
-                ax.set_ylabel(f"PSD {label} [({unit})^2/Hz]")
-                ax.grid(True, which="both", alpha=0.3)
-            axes[0, 0].legend()
-            for ax in axes[1]:
-                ax.set_xlabel("frequency [Hz]")
-            fig.suptitle(
-                f"Random road (rough, 50 km/h, x0.5), {case}, m_s = {mass:g} kg: "
-                f"HiL vs offline{tag}"
-            )
-            made["road"].append(_save(fig, out, f"road_psd_{case}{suffix(mass)}.png"))
-        if several:  # Fig 7.21: the masses overlaid, one figure per case
-            made["road_masses"] = []
-            for case, group in _by_case(data["road"]).items():
-                fig, axes = plt.subplots(2, 2, figsize=(10, 7), sharex=True)
-                for i, res in enumerate(group):
-                    m = res["sprung_mass"]
-                    for ax, (_, label, unit) in zip(axes.flat, PSD_CHANNELS, strict=True):
-                        s = res["psd"][label]
-                        ax.loglog(s["frequency"], s["offline"], "-", color=f"C{i}", lw=1.2,
-                                  label=f"{m:g} kg offline")  # fmt: skip
-                        ax.loglog(s["frequency"], s["hil"], "--", color=f"C{i}", lw=1.0,
-                                  label=f"{m:g} kg HiL")  # fmt: skip
-                        ax.set_ylabel(f"PSD {label} [({unit})^2/Hz]")
-                for ax in axes.flat:
-                    ax.grid(True, which="both", alpha=0.3)
-                axes[0, 0].legend(fontsize=7)
-                for ax in axes[1]:
-                    ax.set_xlabel("frequency [Hz]")
-                fig.suptitle(
-                    f"Random road (rough, 50 km/h, x0.5), {case}, sprung masses overlaid "
-                    f"(Fig 7.21){tag}"
-                )
-                made["road_masses"].append(_save(fig, out, f"road_psd_masses_{case}.png"))
-    return made
-
-
-def _save(fig: Any, out: Path, name: str) -> str:
-    """Lay out, write (``out/name``, PNG) and close a comparison figure; its file name."""
-    import matplotlib.pyplot as plt
-
-    fig.tight_layout()
-    fig.savefig(out / name, dpi=90)
-    plt.close(fig)
-    return name
-
-
-def _fmt(v: Any, pct: bool = False) -> str:
-    if v is None or (isinstance(v, float) and not math.isfinite(v)):
-        return "-"
-    return f"{100 * v:+.2f} %" if pct else f"{v:.4g}"
-
-
-def _table(head: Sequence[str], rows: Sequence[Sequence[str]]) -> str:
-    th = "".join(f"<th>{html.escape(h)}</th>" for h in head)
-    body = "".join(
-        "<tr>" + "".join(f"<td>{html.escape(c)}</td>" for c in row) + "</tr>" for row in rows
-    )
-    return f"<table><tr>{th}</tr>{body}</table>"
-
-
-def _index(data: dict[str, Any], figures: dict[str, list[str]]) -> str:
-    several = len(data["masses"]) > 1
-    made = {name for group in figures.values() for name in group}
-    placed: list[str] = []
-
-    def img(name: str) -> str:
-        if name not in made:
-            return ""
-        placed.append(name)
-        return f"<p><img src='{html.escape(name)}' style='max-width:100%'></p>"
-
-    def title(res: dict[str, Any]) -> str:
-        mass = f", m_s = {res['sprung_mass']:g} kg" if several else ""
-        return f"<h3>{html.escape(res['case'])}{mass}</h3>"
-
-    def suffix(mass: float) -> str:
-        return f"_{_mass_tag(mass)}" if several else ""
-
-    parts = [
-        "<!doctype html><html><head><meta charset='utf-8'><title>HiL validation</title>",
-        "<style>body{font-family:sans-serif;margin:2em}table{border-collapse:collapse;"
-        "margin:1em 0}td,th{border:1px solid #ccc;padding:2px 8px;text-align:right}"
-        ".pacing{font-weight:bold;padding:.5em;background:#ffe}</style></head><body>",
-        "<h1>HiL against offline (dissertation Chapter 7)</h1>",
-        f"<p class='pacing'>{html.escape(data['pacing'])}</p>",
-        f"<p>rig: {html.escape(json.dumps(_clean(data['rig'])))}</p>",
-        "<p>sprung mass m_s: " + ", ".join(f"{m:g} kg" for m in data["masses"]) + "</p>",
-    ]
-    if "time" in data:
-        parts.append(
-            "<h2>Time histories and F-v loop, scenario excitation "
-            "(Figs 7.7, 7.8, 7.12, 7.13; Fig 7.14 at m_s = 703 kg)</h2>"
-        )
-        reports = data["time"] if several else {"": data["time"]}
-        for t in reports.values():
-            if several:
-                parts.append(f"<h3>m_s = {t['sprung_mass']:g} kg</h3>")
-            parts.append(f"<p>{html.escape(str(t['reason']))}</p>")
-            rows = [
-                [m["label"], _fmt(m["hil"]), _fmt(m["offline"]),
-                 _fmt(m["relative_difference"], True)]
-                for m in t["rms"].values()
-            ]  # fmt: skip
-            parts.append(_table(["RMS", "HiL", "offline", "difference"], rows))
-            prefix = f"{_mass_tag(t['sprung_mass'])}/" if several else ""
-            parts += [img(n) for n in figures.get("time", []) if n.startswith(prefix)]
-    if "frequency" in data:
-        parts.append("<h2>Frequency responses (Figs 7.9, 7.15; Fig 7.16 at m_s = 703 kg)</h2>")
-        for fr in data["frequency"].values():
-            parts.append(title(fr))
-            head = ["f [Hz]", "a [mm]"]
-            for k in FREQUENCY_MEASURES:
-                head += [f"{k} HiL", f"{k} offline", "diff"]
-            rows = []
-            for i, f in enumerate(fr["frequency"]):
-                row = [f"{f:g}", f"{1e3 * fr['amplitude'][i]:.3g}"]
-                for k in FREQUENCY_MEASURES:
-                    row += [
-                        _fmt(fr["hil"][k][i]),
-                        _fmt(fr["offline"][k][i]),
-                        _fmt(fr["relative_difference"][k][i], True),
-                    ]
-                rows.append(row)
-            parts.append(_table(head, rows))
-        for mass in data["masses"]:
-            if several:
-                parts.append(f"<h3>Frequency responses, m_s = {mass:g} kg</h3>")
-            parts.append(img(f"frequency_response{suffix(mass)}.png"))
-    if "pulse" in data:
-        parts.append("<h2>Rounded pulse (Figs 7.10, 7.17)</h2>")
-        for res in data["pulse"].values():
-            parts.append(title(res))
-            rows = [
-                [k, _fmt(res["hil"][k]), _fmt(res["offline"][k]),
-                 _fmt(res["relative_difference"][k], True)]
-                for k in res["hil"]
-            ]  # fmt: skip
-            parts.append(_table(["measure", "HiL", "offline", "difference"], rows))
-            parts.append(img(f"pulse_{res['case']}{suffix(res['sprung_mass'])}.png"))
-        if several:
-            parts.append("<h2>Rounded pulse, sprung masses overlaid (Fig 7.18)</h2>")
-            for case in _by_case(data["pulse"]):
-                parts.append(f"<h3>{html.escape(case)}</h3>")
-                parts.append(img(f"pulse_masses_{case}.png"))
-    if "road" in data:
-        parts.append("<h2>Random road PSDs (Figs 7.11, 7.19, 7.20)</h2>")
-        for res in data["road"].values():
-            parts.append(title(res))
-            lo, hi = res["band"]
-            rows = [
-                [f"{label} [{b['unit']}]", _fmt(b["hil"]), _fmt(b["offline"]),
-                 _fmt(b["relative_difference"], True),
-                 _fmt(b["max_pointwise_relative_difference"], True)]
-                for label, b in res["band_rms"].items()
-            ]  # fmt: skip
-            head = [f"RMS {lo:g}-{hi:g} Hz", "HiL", "offline", "difference", "max PSD diff"]
-            parts.append(_table(head, rows))
-            parts.append(img(f"road_psd_{res['case']}{suffix(res['sprung_mass'])}.png"))
-        if several:
-            parts.append("<h2>Random road PSDs, sprung masses overlaid (Fig 7.21)</h2>")
-            for case in _by_case(data["road"]):
-                parts.append(f"<h3>{html.escape(case)}</h3>")
-                parts.append(img(f"road_psd_masses_{case}.png"))
-    rest = [n for group in figures.values() for n in group if n not in placed]
-    if rest:
-        parts.append("<h2>Other figures</h2>")
-        parts += [img(n) for n in rest]
-    parts.append("</body></html>\n")
-    return "\n".join(p for p in parts if p)

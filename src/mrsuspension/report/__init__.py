@@ -2,7 +2,8 @@
 
 from __future__ import annotations
 
-from mrsuspension.report.html import FigureRecord, build_report
+from mrsuspension.report.html import build_report
+from mrsuspension.report.toolkit import FigureRecord
 
 __all__ = ["FigureRecord", "build_report", "report_page"]
 
@@ -100,15 +101,10 @@ def report_page() -> str:
     >>> "| 4.12 | time |" in report_page()
     True
     """
-    from mrsuspension.report import ch4, ch5, ch6
+    from mrsuspension.report.chapters import CHAPTERS, chapter
     from mrsuspension.report.families import markdown_index
     from mrsuspension.report.findings import claims_markdown
 
-    body = markdown_index(
-        {
-            4: (ch4.FIGURES, ch4.TABLES),
-            5: (ch5.FIGURES, ch5.TABLES),
-            6: (ch6.FIGURES, ch6.TABLES),
-        }
-    )
+    entries = [chapter(n) for n in sorted(CHAPTERS)]
+    body = markdown_index({c.number: (c.figures, c.tables) for c in entries if c.figures})
     return _HEADER + claims_markdown() + "\n" + body + "\n"

@@ -21,7 +21,8 @@ from pathlib import Path
 from typing import Any
 
 from mrsuspension.optimize import OptimizationProblem, OptimizationResult, Road, optimize
-from mrsuspension.report.html import FigureRecord, _table
+from mrsuspension.report.toolkit import FigureRecord, table
+from mrsuspension.report.toolkit import inverse_model_step as step
 from mrsuspension.tradeoff import TradeoffResult, default_grid, tradeoff
 
 __all__ = ["WEIGHTS", "build", "problem", "road"]
@@ -35,11 +36,6 @@ def road(quick: bool) -> Road:
     return Road.from_dict(
         {"iso_class": "C", "seed": 1, "length": 100.0 if quick else 500.0, "speed": 50.0}
     )
-
-
-def step(quick: bool) -> float:
-    """Fixed step [s]: 0.25 ms in quick mode (stable up to k_d = 2.5), else 0.1 ms."""
-    return 2.5e-4 if quick else 1e-4
 
 
 def problem(quick: bool) -> OptimizationProblem:
@@ -164,12 +160,12 @@ def build(folder: Path, quick: bool, progress: Callable[[str], None]) -> tuple[s
         "docs/optimisation.md) tunes the skyhook hi-lo gain for a weighted objective.</p>"
         + sections[0]
         + "<h3>The points</h3><p><a href='beyond/tradeoff_points.csv'>tradeoff_points.csv</a>"
-        "</p>" + _table(rows) + f"<h3>Optimiser: {html.escape(best_label)}</h3>"
+        "</p>" + table(rows) + f"<h3>Optimiser: {html.escape(best_label)}</h3>"
         f"<p>{result.evaluations} candidates"
         f"{' (quick mode: a tiny budget)' if quick else ''}; "
         "J = sum of weighted measure ratios to passive 0 A over the weights' sum. "
         "<a href='beyond/optimization.json'>optimization.json</a></p>"
-        + _table(best_rows)
+        + table(best_rows)
         + sections[1]
     )
     return body, {

@@ -2,12 +2,13 @@
 
 The dissertation's Figs 2.3-2.5 and 2.8 show *measured* loops; the measurements are not
 available, so these figures show the identified models under the same test conditions.
-Every function returns a :class:`~mrsuspension.report.html.FigureRecord` holding the
+Every function returns a :class:`~mrsuspension.report.toolkit.FigureRecord` holding the
 figure, its caption and the numbers a test can check.
 """
 
 from __future__ import annotations
 
+import html
 import math
 from collections.abc import Callable, Sequence
 from typing import TYPE_CHECKING, Any
@@ -22,13 +23,22 @@ from mrsuspension.dampers import (
     WangSymmetric,
     make_damper,
 )
-from mrsuspension.report.html import FigureRecord
+from mrsuspension.report.toolkit import (
+    Chapter,
+    Context,
+    FigureRecord,
+    Jobs,
+    figure_sections,
+    subplots,
+    table,
+    write_csv,
+)
 from mrsuspension.shaping import adfg_multiplier, onoff_adfg_current
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
 
-__all__ = ["CHAPTER_2_FIGURES", "band_model"]
+__all__ = ["CHAPTER", "CHAPTER_2_FIGURES", "band_model", "table_2_1_rows"]
 
 _CURRENTS = (0.0, 0.1, 0.2, 0.3, 0.4)
 
@@ -37,18 +47,6 @@ def band_model(frequency: float, **options: Any) -> WangSymmetric:
     """The symmetric model with the Table 2.2 set of the frequency band (<= 5 Hz: low)."""
     name = "wang-symmetric-low" if frequency <= 5.0 else "wang-symmetric-high"
     return WangSymmetric(name, **options)
-
-
-def _subplots(nrows: int, ncols: int, width: float = 4.2, height: float = 3.4) -> tuple[Any, Any]:
-    import matplotlib
-
-    matplotlib.use("Agg", force=False)
-    import matplotlib.pyplot as plt
-
-    fig, axes = plt.subplots(
-        nrows, ncols, figsize=(width * ncols, height * nrows), squeeze=False, layout="constrained"
-    )
-    return fig, axes
 
 
 def _loop_axes(ax: Axes, kind: str = "F-v") -> None:
@@ -76,7 +74,7 @@ def _peaks(loops: Sequence[HarmonicLoop]) -> list[float]:
 def fig_2_3() -> FigureRecord:
     """Model F-v and F-x loops under different drive currents and excitations."""
     conditions = [(0.5, 0.025), (1.5, 0.0125), (2.5, 0.0125)]
-    fig, axes = _subplots(2, len(conditions))
+    fig, axes = subplots(2, len(conditions))
     data: dict[str, Any] = {}
     for col, (f, a) in enumerate(conditions):
         model = band_model(f)
@@ -104,7 +102,7 @@ def fig_2_4() -> FigureRecord:
     """Model loops at 2.5 mm under different frequencies and currents."""
     freqs = (0.5, 1.5, 2.5, 5.0, 7.5, 10.0, 12.5, 15.0)
     currents = (0.0, 0.2, 0.4)
-    fig, axes = _subplots(1, len(currents))
+    fig, axes = subplots(1, len(currents))
     data: dict[str, Any] = {}
     for col, i in enumerate(currents):
         loops = [harmonic_loop(band_model(f), f, 0.0025, i) for f in freqs]
@@ -128,7 +126,7 @@ def fig_2_5() -> FigureRecord:
     """Model loops at 0.5 Hz under different amplitudes and currents."""
     amps = (0.0025, 0.0125, 0.025, 0.05, 0.075)
     currents = (0.0, 0.2, 0.4)
-    fig, axes = _subplots(1, len(currents))
+    fig, axes = subplots(1, len(currents))
     model = band_model(0.5)
     data: dict[str, Any] = {}
     for col, i in enumerate(currents):
@@ -149,7 +147,7 @@ def fig_2_5() -> FigureRecord:
 def fig_2_6() -> FigureRecord:
     """ADFG multiplier M_p against v_d/v_m."""
     ratio = np.linspace(-2.0, 2.0, 801)
-    fig, axes = _subplots(1, 2)
+    fig, axes = subplots(1, 2)
     data: dict[str, Any] = {}
     for p in (0.0, 0.25, 0.5, 1.0):
         m = adfg_multiplier(ratio, 1.0, p=p, xi=2.0)
@@ -188,7 +186,7 @@ def fig_2_7() -> FigureRecord:
     vm = 0.025 * w
     i_s = onoff_adfg_current(i_c, v, p=0.0)
     i_d = adfg_multiplier(v, vm, p=0.0, xi=2.0) * i_c
-    fig, axes = _subplots(1, 1, width=8.0, height=3.6)
+    fig, axes = subplots(1, 1, width=8.0, height=3.6)
     ax = axes[0, 0]
     ax.plot(t, i_c, label="symmetric $i_c$")
     ax.plot(t, i_s, "--", label="on-off $i_s$ (2.1)")
@@ -220,7 +218,7 @@ def fig_2_8() -> FigureRecord:
     """Asymmetric loops: the asymmetric model, and the symmetric model through ADFG."""
     conditions = [(0.5, 0.025), (1.5, 0.0125)]
     currents = (0.0, 0.1, 0.2, 0.3)
-    fig, axes = _subplots(2, len(conditions))
+    fig, axes = subplots(2, len(conditions))
     asym = WangAsymmetric()
     sym = WangSymmetric()
 
@@ -265,7 +263,7 @@ def _generalised(model: WangSymmetric, number: str, title: str) -> FigureRecord:
     f, a, i = 1.5, 0.0125, 0.2
     hyst = harmonic_loop(model, f, a, i)
     mean = harmonic_loop(model.with_options(hysteresis=False), f, a, i)
-    fig, axes = _subplots(1, 1, width=6.0, height=4.2)
+    fig, axes = subplots(1, 1, width=6.0, height=4.2)
     ax = axes[0, 0]
     ax.plot(
         np.append(hyst.velocity, hyst.velocity[0]),
@@ -325,7 +323,7 @@ def fig_2_10() -> FigureRecord:
     i_z = model.inverse_current(f_d, v, a, stroke=x)
     f_h = model.passive_hysteron(v, a, stroke=x)
     err = np.abs(i_d - i_z)
-    fig, axes = _subplots(3, 1, width=8.0, height=2.4)
+    fig, axes = subplots(3, 1, width=8.0, height=2.4)
     axes[0, 0].plot(t, i_d, label="$i_d$")
     axes[0, 0].plot(t, i_z, "--", label="$i_z$ (inverse)")
     axes[0, 0].set_ylabel("current [A]")
@@ -355,7 +353,7 @@ def fig_2_10() -> FigureRecord:
 def fig_models() -> FigureRecord:
     """Every damper model of the toolkit under the same test (beyond the dissertation)."""
     f, a = 1.5, 0.0125
-    fig, axes = _subplots(1, 2)
+    fig, axes = subplots(1, 2)
     data: dict[str, Any] = {}
     for col, i in enumerate((0.0, 0.4)):
         loops, labels = [], []
@@ -392,3 +390,81 @@ CHAPTER_2_FIGURES: tuple[Callable[[], FigureRecord], ...] = (
     fig_2_11,
     fig_models,
 )
+
+
+def table_2_1_rows(quick: bool) -> list[dict[str, Any]]:
+    """Table 2.1's test matrix on the symmetric model (both frequency bands), sorted."""
+    from mrsuspension.characterisation import characterise, table_2_1
+
+    conds = table_2_1() if not quick else table_2_1(frequencies=[0.5, 1.5, 5.0, 15.0])
+    result = characterise(band_model(0.5), [c for c in conds if c.frequency <= 5.0])
+    result_hi = characterise(band_model(7.5), [c for c in conds if c.frequency > 5.0])
+    rows: list[dict[str, Any]] = result.summary_rows() + result_hi.summary_rows()
+    rows.sort(key=lambda r: (r["amplitude [m]"], r["frequency [Hz]"], r["current [A]"]))
+    return rows
+
+
+def _jobs(quick: bool) -> Jobs:
+    return Jobs(
+        specials=[("chapter2", b, None) for b in CHAPTER_2_FIGURES],
+        calls={"table 2.1": (table_2_1_rows, (quick,))},
+    )
+
+
+def _build(context: Context) -> tuple[str, dict[str, Any]]:
+    """The chapter's section: figures, the Table 2.1 matrix, parameter sets, errata."""
+    from mrsuspension import parameters
+    from mrsuspension.errata import ERRATA
+
+    folder, quick = context.folder, context.quick
+    sections, records = figure_sections(2, context.built.figures, folder)
+    manifest: dict[str, Any] = {"figures": records, "tables": []}
+    rows = context.built.calls["table 2.1"]
+    folder.mkdir(parents=True, exist_ok=True)
+    write_csv(folder / "table_2_1_model.csv", rows)
+    manifest["tables"].append(
+        {"number": "2.1", "file": "chapter2/table_2_1_model.csv", "rows": len(rows)}
+    )
+    ptables = []
+    for name in ("wang-symmetric-low", "wang-symmetric-high", "wang-asymmetric"):
+        p = parameters.get(name)
+        ptables.append(
+            f"<h3>{html.escape(name)} (Table {p.table})</h3><p class='meta'>"
+            f"{html.escape(p.source)}</p>"
+            + table(
+                [{"parameter": k, "value": v, "unit": p.units.get(k, "")} for k, v in p.items()]
+            )
+        )
+    errata = table(
+        [
+            {
+                "#": e.number,
+                "where": e.location,
+                "dissertation": e.printed,
+                "mrsuspension": e.correction,
+            }
+            for e in ERRATA
+        ]
+    )
+    body = (
+        "<h2 id='ch2'>Chapter 2: characterisation and modelling of the MR damper</h2>"
+        + "".join(sections)
+        + f"<h3>Table 2.1 test matrix on the model ({len(rows)} tests)</h3>"
+        "<p>Peak forces, energy per cycle and equivalent damping of every test, with the "
+        "Table 2.2 set of each frequency band: "
+        "<a href='chapter2/table_2_1_model.csv'>table_2_1_model.csv</a>. Tests far outside "
+        "the identified velocity range (about 0.05-0.75 m/s) extrapolate the exponential "
+        "transition force (2.7) and give unphysically large forces.</p>"
+        + table(
+            [r for r in rows if r["current [A]"] in (0.0, 0.4)][:: 1 if quick else 2], fmt="{:.4g}"
+        )
+        + "<h3>Parameter sets</h3>"
+        + "".join(ptables)
+        + "<h3>Errata applied (MODEL_SPEC section 12)</h3>"
+        + errata
+    )
+    return body, manifest
+
+
+#: The chapter's entry in the report (:data:`mrsuspension.report.chapters.CHAPTERS`)
+CHAPTER = Chapter(2, _jobs, _build)

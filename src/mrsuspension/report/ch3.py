@@ -2,7 +2,7 @@
 pulses (3.9) and road spectra (3.10).
 
 Every function takes ``quick`` (coarser grids) and returns a
-:class:`~mrsuspension.report.html.FigureRecord` holding the figure, its caption and the
+:class:`~mrsuspension.report.toolkit.FigureRecord` holding the figure, its caption and the
 numbers a test can check. Matplotlib is imported inside the functions (Agg backend).
 """
 
@@ -21,12 +21,18 @@ from mrsuspension.excitation import (
     preset_road,
     two_stage_amplitude,
 )
-from mrsuspension.report.ch2 import _subplots
-from mrsuspension.report.html import FigureRecord
+from mrsuspension.report.toolkit import (
+    Chapter,
+    Context,
+    FigureRecord,
+    Jobs,
+    figure_sections,
+    subplots,
+)
 from mrsuspension.shaping import cm_multiplier
 from mrsuspension.vehicle import QuarterCar, linear_frequency_response
 
-__all__ = ["CHAPTER_3_FIGURES", "fig_3_2", "fig_3_4", "fig_3_9", "fig_3_10"]
+__all__ = ["CHAPTER", "CHAPTER_3_FIGURES", "fig_3_2", "fig_3_4", "fig_3_9", "fig_3_10"]
 
 #: viscous damping c_0 [N s/m] of the reference-model curves of Fig. 3.4
 REFERENCE_DAMPING = (1000.0, 2500.0, 4000.0, 6000.0)
@@ -39,7 +45,7 @@ def fig_3_2(quick: bool = False) -> FigureRecord:
     t = np.linspace(0.0, 2.0, 401 if quick else 2001)
     z_c = np.sin(2.0 * math.pi * t)  # condition function varied harmonically
     i_z = 0.5  # on-off upper limit [A]
-    fig, axes = _subplots(1, 2)
+    fig, axes = subplots(1, 2)
     data: dict[str, Any] = {}
     for xi_c in (1.0, 10.0, 100.0):
         i_c = i_z * cm_multiplier(z_c, p_c=0.0, xi_c=xi_c)
@@ -75,7 +81,7 @@ def fig_3_4(quick: bool = False) -> FigureRecord:
     f = np.geomspace(0.5, 15.0, 80 if quick else 400)
     car = QuarterCar.reference()
     amp = np.asarray(two_stage_amplitude(f, SWEEP_AMPLITUDE))
-    fig, axes = _subplots(2, 2)
+    fig, axes = subplots(2, 2)
     panels = (("T_as", "$T_{as}$"), ("T_au", "$T_{au}$"), ("T_dr", "$T_{dr}$"), ("DLC", "DLC"))
     data: dict[str, Any] = {"frequency [Hz]": [float(v) for v in f[:: max(1, f.size // 40)]]}
     for c0 in REFERENCE_DAMPING:
@@ -108,7 +114,7 @@ def fig_3_4(quick: bool = False) -> FigureRecord:
 def fig_3_9(quick: bool = False) -> FigureRecord:
     """Rounded pulse displacement: severity, peak displacement, fundamental frequency."""
     n = 300 if quick else 1500
-    fig, axes = _subplots(1, 3)
+    fig, axes = subplots(1, 3)
     data: dict[str, Any] = {}
     groups: list[tuple[str, list[tuple[str, RoundedPulse]]]] = [
         (
@@ -156,7 +162,7 @@ def fig_3_9(quick: bool = False) -> FigureRecord:
 
 def fig_3_10(quick: bool = False) -> FigureRecord:
     """Road spectra: spatial PSDs of the presets and temporal PSDs at 50 and 100 km/h."""
-    fig, axes = _subplots(1, 3)
+    fig, axes = subplots(1, 3)
     data: dict[str, Any] = {}
     nn = np.geomspace(0.011, 2.83, 50)
     for name, preset in PRESET_ROADS.items():
@@ -211,3 +217,20 @@ CHAPTER_3_FIGURES: tuple[Callable[[bool], FigureRecord], ...] = (
     fig_3_9,
     fig_3_10,
 )
+
+
+def _jobs(quick: bool) -> Jobs:
+    return Jobs(specials=[("chapter3", b, quick) for b in CHAPTER_3_FIGURES])
+
+
+def _build(context: Context) -> tuple[str, dict[str, Any]]:
+    sections, records = figure_sections(3, context.built.figures, context.folder)
+    body = (
+        "<h2 id='ch3'>Chapter 3: semi-active control synthesis, reference model and "
+        "excitations</h2>" + "".join(sections)
+    )
+    return body, {"figures": records, "tables": []}
+
+
+#: The chapter's entry in the report (:data:`mrsuspension.report.chapters.CHAPTERS`)
+CHAPTER = Chapter(3, _jobs, _build)

@@ -17,11 +17,8 @@ from __future__ import annotations
 
 from typing import Any
 
-import numpy as np
-
 from mrsuspension.engine.result import SimulationResult
 from mrsuspension.engine.simulate import run_many
-from mrsuspension.report.ch2 import _subplots
 from mrsuspension.report.families import (
     HARMONIC_AMPS,
     MASSES,
@@ -30,18 +27,29 @@ from mrsuspension.report.families import (
     SPEEDS,
     FigureSpec,
     ShockTable,
-    in_worker,
     passive,
     road_note,
     spec_factory,
     vary,
 )
-from mrsuspension.report.html import FigureRecord
+from mrsuspension.report.toolkit import (
+    FREQUENCY_PANELS,
+    SKYHOOK_ACM,
+    Chapter,
+    Context,
+    FigureRecord,
+    Jobs,
+    family_chapter,
+    run_sweep,
+    subplots,
+    sweep_study,
+)
 from mrsuspension.scenario import Scenario
-from mrsuspension.studies import Study, StudyResult, run_study
+from mrsuspension.studies import StudyResult
 
 __all__ = [
     "BASE",
+    "CHAPTER",
     "FIGURES",
     "POLICY_CASES",
     "SHOCK_TABLES",
@@ -60,74 +68,15 @@ POLICY_CASES: dict[str, dict[str, Any]] = {
     "III": {"controller": {"law": "policy-iii", "gain": 10.0}},
     "IV": {"controller": {"law": "policy-iv", "gain": 300.0}},
 }
-#: Skyhook hi-lo in ACM with the section 4.4 parameters (n = 2, k_c = 3, p = 0)
-SKYHOOK_ACM: dict[str, Any] = {"law": "skyhook-hilo", "mode": "ACM", "gain": 3.0}
-_PANELS = (("T_as", "$T_{as}$"), ("T_au", "$T_{au}$"), ("T_dr", "$T_{dr}$"), ("DLC", "DLC"))
-
-
-def sweep_study(quick: bool, name: str, **tables: Any) -> Study:
-    """A two-stage swept study (a = 2.5 cm, f_T = 2.1 Hz) over 0.5-15 Hz.
-
-    Parameters
-    ----------
-    quick : bool
-        10 frequencies and dt = 0.5 ms, else 30 frequencies and dt = 0.1 ms.
-    name : str
-        Study name.
-    **tables
-        Further study tables (``controller``, ``grid``, ``cases``, ...).
-    """
-    data: dict[str, Any] = {
-        "study": {"name": name, "measures": [k for k, _ in _PANELS]},
-        "excitation": {
-            "kind": "swept",
-            "amplitude": 0.025,
-            "transition_frequency": 2.1,
-            "frequencies": "log:10:0.5:15" if quick else "log:30:0.5:15",
-        },
-        "simulation": {"dt": 5e-4 if quick else 1e-4},
-        **tables,
-    }
-    return Study.from_dict(data)
-
-
-def _run(study: Study) -> StudyResult:
-    return run_study(study, workers=1 if in_worker() else None, progress=False, cache_dir=False)
-
-
-def _plot(result: StudyResult, dim: str, labels: dict[Any, str]) -> tuple[Any, dict[str, Any]]:
-    """Four panels against frequency, one curve per value of ``dim``; data for the record."""
-    ds = result.to_xarray()
-    f = ds["frequency"].values
-    fig, axes = _subplots(2, 2)
-    data: dict[str, Any] = {"frequency [Hz]": [float(v) for v in f]}
-    for value, label in labels.items():
-        sel = ds.sel({dim: value})
-        for ax, (key, ylabel) in zip(axes.ravel(), _PANELS, strict=True):
-            ax.plot(f, sel[key].values, marker="o", ms=3, label=label)
-            ax.set_ylabel(ylabel)
-            data[f"{key} {label}"] = [float(v) for v in sel[key].values]
-        body = sel["T_as"].sel(frequency=slice(0.5, 4.0))
-        data[f"peak T_as {label}"] = float(body.max())
-        data[f"peak T_as frequency {label} [Hz]"] = float(
-            body["frequency"].values[int(np.argmax(body.values))]
-        )
-    for ax in axes.ravel():
-        ax.set_xscale("log")
-        ax.set_xlabel("frequency [Hz]")
-        ax.grid(True, which="both", alpha=0.3)
-    axes[0, 0].legend(fontsize=8)
-    data["study hash"] = result.content_hash
-    data["study run time [s]"] = round(result.run_time, 2)
-    return fig, data
+# SKYHOOK_ACM (the section 4.4 parameters), HARMONIC and sweep_study: the toolkit's
+_PANELS = FREQUENCY_PANELS
 
 
 # ---------------------------------------------------------------------------------------
 # Time histories, pulse (shock) responses and random-road PSDs: the engine directly.
 # These runs are cheap (well under a second each), so quick mode only coarsens the step.
 
-#: The chapter's harmonic input for time histories: 2.5 cm at 1.5 Hz
-HARMONIC: dict[str, Any] = {"kind": "harmonic", "frequency": 1.5, "amplitude": 0.025}
+# The chapter's harmonic input for time histories (2.5 cm at 1.5 Hz): the toolkit's HARMONIC
 #: Length of the harmonic runs [s] and the time window shown [s]
 HARMONIC_DURATION = 8.0
 SHOWN = (6.0, 7.4)
@@ -196,9 +145,9 @@ _SIGNALS = {
 def _plot_selection(
     ds: Any, selections: dict[str, dict[str, Any]], result: StudyResult
 ) -> tuple[Any, dict[str, Any]]:
-    """Like :func:`_plot`, but each curve is an ``xarray`` selection over several dims."""
+    """Like :func:`~mrsuspension.report.toolkit.plot_sweep`, but each curve is an ``xarray`` selection over several dims."""
     f = ds["frequency"].values
-    fig, axes = _subplots(2, 2)
+    fig, axes = subplots(2, 2)
     data: dict[str, Any] = {"frequency [Hz]": [float(v) for v in f]}
     for label, where in selections.items():
         sel = ds.sel(where)
@@ -218,24 +167,18 @@ def _plot_selection(
     return fig, data
 
 
-_HYST_STUDY: dict[bool, StudyResult] = {}
-
-
 def _hysteresis_study(quick: bool) -> StudyResult:
     """Skyhook hi-lo SCM/ACM x hysteretic/mean damper (grid as :func:`sweep_study`)."""
-    if quick not in _HYST_STUDY:
-        modes = {
-            m: {"controller": {"law": "skyhook-hilo", "mode": m, "gain": 3.0}}
-            for m in ("SCM", "ACM")
-        }
-        study = sweep_study(
-            quick,
-            "fig-4.7-scm-acm-hysteresis",
-            cases={"mode": modes},
-            grid={"damper.hysteresis": [True, False]},
-        )
-        _HYST_STUDY[quick] = _run(study)
-    return _HYST_STUDY[quick]
+    modes = {
+        m: {"controller": {"law": "skyhook-hilo", "mode": m, "gain": 3.0}} for m in ("SCM", "ACM")
+    }
+    study = sweep_study(
+        quick,
+        "fig-4.7-scm-acm-hysteresis",
+        cases={"mode": modes},
+        grid={"damper.hysteresis": [True, False]},
+    )
+    return run_sweep(study)
 
 
 def fig_4_hysteresis(quick: bool = False) -> FigureRecord:
@@ -553,3 +496,17 @@ TABLES: tuple[ShockTable, ...] = tuple(
     )
     for number, title, column, key, values, given in SHOCK_TABLES
 )
+
+
+def _jobs(quick: bool) -> Jobs:
+    return Jobs(figures={"chapter4": FIGURES}, tables=TABLES)
+
+
+def _build(context: Context) -> tuple[str, dict[str, Any]]:
+    return family_chapter(
+        context, "Chapter 4: hi-lo semi-active MR suspension, simulation studies", TABLES
+    )
+
+
+#: The chapter's entry in the report (:data:`mrsuspension.report.chapters.CHAPTERS`)
+CHAPTER = Chapter(4, _jobs, _build, FIGURES, TABLES)

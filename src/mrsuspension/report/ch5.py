@@ -24,16 +24,10 @@ the pre-yield slope 2.5 times steeper, so the step is 0.25 ms in quick mode (RK4
 
 from __future__ import annotations
 
-from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
 
-from mrsuspension.engine.result import SimulationResult
-from mrsuspension.engine.simulate import run_many
-from mrsuspension.measures import force_tracking_error
-from mrsuspension.report.ch2 import _subplots
-from mrsuspension.report.ch4 import _plot, _run, sweep_study
 from mrsuspension.report.families import (
     HARMONIC_AMPS,
     MASSES,
@@ -42,16 +36,36 @@ from mrsuspension.report.families import (
     SPEEDS,
     FigureSpec,
     ShockTable,
-    in_worker,
     passive,
     road_note,
+    shock_tables,
     spec_factory,
     vary,
 )
-from mrsuspension.report.html import FigureRecord
-from mrsuspension.scenario import Scenario
+from mrsuspension.report.toolkit import (
+    FORCE_GAINS,
+    HARMONIC,
+    TRACK,
+    Chapter,
+    Context,
+    FigureRecord,
+    Jobs,
+    error_figure,
+    family_chapter,
+    force_tracking_errors,
+    harmonic_runs,
+    plot_sweep,
+    run_sweep,
+    shown,
+    steady,
+    subplots,
+    sweep_study,
+    tracking_error,
+)
+from mrsuspension.report.toolkit import inverse_model_step as step
 
 __all__ = [
+    "CHAPTER",
     "FIGURES",
     "FORCE_GAINS",
     "HARMONIC",
@@ -67,92 +81,9 @@ __all__ = [
     "tracking_figure",
 ]
 
-#: The section 5.3 force gains k_d (1 = the nominal damper)
-FORCE_GAINS: tuple[float, ...] = (1.0, 1.5, 2.0, 2.5)
-#: The chapter's harmonic excitation: 2.5 cm at 1.5 Hz
-HARMONIC: dict[str, Any] = {"kind": "harmonic", "frequency": 1.5, "amplitude": 0.025}
-#: Length of the time-history runs [s] and the start of the measured (steady) window
-DURATION = 8.0
-STEADY_FROM = 4.0
-#: The time window shown in the time-history panels [s]
-SHOWN = (6.0, 7.4)
-
-
-def step(quick: bool) -> float:
-    """Fixed step [s]: 0.25 ms in quick mode (stable up to k_d = 2.5), else 0.1 ms."""
-    return 2.5e-4 if quick else 1e-4
-
-
-def harmonic_runs(
-    cases: Sequence[dict[str, Any]], quick: bool, excitation: dict[str, Any] | None = None
-) -> list[SimulationResult]:
-    """Run scenario tables (``damper``, ``controller``, ``vehicle``) under a harmonic input.
-
-    Parameters
-    ----------
-    cases : sequence of dict
-        Scenario tables of each run, without ``excitation``/``simulation``.
-    quick : bool
-        Step size choice (see :func:`step`).
-    excitation : dict, optional
-        Excitation table; default :data:`HARMONIC`.
-
-    Returns
-    -------
-    list of SimulationResult
-        Time histories sampled at 1 kHz, in the order given.
-    """
-    dt = step(quick)
-    sims = []
-    for case in cases:
-        data = {**case, "excitation": dict(excitation or HARMONIC), "simulation": {"dt": dt}}
-        sims.extend(Scenario.from_dict(data).simulations())
-    return run_many(
-        sims, duration=DURATION, dt=dt, output_rate=1000.0, workers=1 if in_worker() else None
-    )
-
-
-def _steady(result: SimulationResult) -> np.ndarray:
-    return np.asarray(result.time >= STEADY_FROM)
-
-
-def tracking_error(result: SimulationResult) -> float:
-    """rms(|F_d| - |F*|) while z_c < 0 over the steady window [N]."""
-    sel = _steady(result)
-    return float(force_tracking_error(result.F_d[sel], result.F_target[sel], result.z_c[sel]))
-
-
-def force_tracking_errors(
-    law: str, quick: bool, modes: Sequence[str] = ("ACM", "SCM")
-) -> dict[str, list[float]]:
-    """Force-tracking error [N] of ``law`` for each k_d of :data:`FORCE_GAINS`, by mode.
-
-    Parameters
-    ----------
-    law : str
-        ``"inverse-hilo"`` or ``"sliding-mode"``.
-    quick : bool
-        Step size choice (see :func:`step`).
-    modes : sequence of str
-        Control modes to run.
-
-    Returns
-    -------
-    dict
-        ``{mode: [error at k_d = 1, 1.5, 2, 2.5]}``.
-    """
-    cases = [
-        {"damper": {"force_gain": kd}, "controller": {"law": law, "mode": mode}}
-        for mode in modes
-        for kd in FORCE_GAINS
-    ]
-    errors = [tracking_error(r) for r in harmonic_runs(cases, quick)]
-    n = len(FORCE_GAINS)
-    return {mode: errors[k * n : (k + 1) * n] for k, mode in enumerate(modes)}
-
-
-def _window(result: SimulationResult) -> np.ndarray:
-    return np.asarray((result.time >= SHOWN[0]) & (result.time <= SHOWN[1]))
+# FORCE_GAINS, HARMONIC, DURATION, STEADY_FROM, SHOWN, TRACK and the helpers step
+# (inverse_model_step), harmonic_runs, tracking_error, force_tracking_errors and
+# error_figure are the toolkit's (Chapter 6 shares them); shock_tables is the families'.
 
 
 def tracking_figure(law: str, quick: bool, target: str) -> tuple[Any, dict[str, Any]]:
@@ -181,10 +112,10 @@ def tracking_figure(law: str, quick: bool, target: str) -> tuple[Any, dict[str, 
         for hyst, kd in grid
     ]
     results = harmonic_runs(cases, quick)
-    fig, axes = _subplots(2, 2)
+    fig, axes = subplots(2, 2)
     data: dict[str, Any] = {}
     for ax, (hyst, kd), r in zip(axes.ravel(), grid, results, strict=True):
-        w = _window(r)
+        w = shown(r)
         t = r.time[w]
         model = "hysteretic" if hyst else "mean"
         ax.plot(t, r.F_d[w], label="$F_d$")
@@ -206,62 +137,12 @@ def tracking_figure(law: str, quick: bool, target: str) -> tuple[Any, dict[str, 
         ax.grid(True, alpha=0.3)
         key = f"{model} k_d={kd:g}"
         data[f"force-tracking error {key} [N]"] = tracking_error(r)
-        data[f"peak |F_d| {key} [N]"] = float(np.max(np.abs(r.F_d[_steady(r)])))
-        data[f"mean current {key} [A]"] = float(np.mean(r.i_d[_steady(r)]))
+        data[f"peak |F_d| {key} [N]"] = float(np.max(np.abs(r.F_d[steady(r)])))
+        data[f"mean current {key} [A]"] = float(np.mean(r.i_d[steady(r)]))
         data[f"time {key} [s]"] = [float(v) for v in t[::10]]
         data[f"F_d {key} [N]"] = [float(v) for v in r.F_d[w][::10]]
         data[f"target {key} [N]"] = [float(v) for v in r.F_target[w][::10]]
     axes[0, 0].legend(fontsize=8)
-    return fig, data
-
-
-def error_figure(law: str, quick: bool) -> tuple[Any, dict[str, Any]]:
-    """Force-tracking error against k_d (SCM, ACM) and ACM F_d histories per k_d.
-
-    Parameters
-    ----------
-    law : str
-        Inverse-model law.
-    quick : bool
-        Step size choice.
-
-    Returns
-    -------
-    tuple
-        The figure and the data for its record.
-    """
-    errors = force_tracking_errors(law, quick)
-    runs = harmonic_runs(
-        [
-            {"damper": {"force_gain": kd}, "controller": {"law": law, "mode": "ACM"}}
-            for kd in FORCE_GAINS
-        ],
-        quick,
-    )
-    fig, grid = _subplots(1, 3)
-    axes = grid[0]
-    data: dict[str, Any] = {"k_d": list(FORCE_GAINS)}
-    for mode, values in errors.items():
-        axes[0].plot(FORCE_GAINS, values, marker="o", label=mode)
-        data[f"force-tracking error {mode} [N]"] = values
-    axes[0].set_xlabel("force gain $k_d$")
-    axes[0].set_ylabel("rms(|F_d| - |F*|) while $z_c$ < 0 [N]")
-    axes[0].legend(fontsize=8)
-    axes[0].grid(True, alpha=0.3)
-    for kd, r in zip(FORCE_GAINS, runs, strict=True):
-        w = _window(r)
-        axes[1].plot(r.time[w], r.F_d[w], label=f"$k_d$ = {kd:g}")
-        axes[2].plot(r.time[w], r.i_d[w], label=f"$k_d$ = {kd:g}")
-        data[f"mean current ACM k_d={kd:g} [A]"] = float(np.mean(r.i_d[_steady(r)]))
-        data[f"rms body acceleration ACM k_d={kd:g} [m/s^2]"] = float(
-            np.sqrt(np.mean(r.z_s_ddot[_steady(r)] ** 2))
-        )
-    axes[1].set_ylabel("$F_d$ [N] (ACM)")
-    axes[2].set_ylabel("$i_d$ [A] (ACM)")
-    for ax in axes[1:]:
-        ax.set_xlabel("time [s]")
-        ax.grid(True, alpha=0.3)
-        ax.legend(fontsize=8)
     return fig, data
 
 
@@ -327,7 +208,7 @@ def response_figure(law: str, quick: bool, name: str) -> tuple[Any, dict[str, An
     """
     cases = response_cases(law)
     study = sweep_study(quick, name, simulation={"dt": step(quick)}, cases={"damping": cases})
-    return _plot(_run(study), "damping", {k: k for k in cases})
+    return plot_sweep(run_sweep(study), "damping", {k: k for k in cases})
 
 
 #: The chapter's controller: inverse-model hi-lo ACM with k_d = 2.5 (section 5.3)
@@ -337,8 +218,6 @@ BASE: dict[str, Any] = {
 }
 _ACM = "inverse-model hi-lo ACM"
 _PASSIVE_ACM = {**passive(0.0, 0.1), _ACM: {}}
-#: Force-tracking panels: damper force, its target, current, accelerations, stroke
-TRACK = ("F_d", "F*", "i_d", "a_s", "a_u", "x_r")
 _MEAN = {"damper": {"hysteresis": False}}
 _HYST: dict[str, Any] = {}
 _H = "2.5 cm harmonic excitation at 1.5 Hz (steady state 6-7.4 s shown)"
@@ -483,62 +362,6 @@ _WHY = (
 )
 
 
-def shock_tables(
-    base: dict[str, Any],
-    numbers: tuple[str, str, str],
-    given: Sequence[dict[float, tuple[float, ...]]],
-    why: str,
-) -> tuple[ShockTable, ...]:
-    """The three shock tables of Chapters 5 and 6: sprung mass, speed, pulse height.
-
-    Parameters
-    ----------
-    base : dict
-        The controller's scenario tables.
-    numbers : tuple of str
-        Table numbers (mass, speed, pulse height).
-    given : tuple of dict
-        The dissertation's rows of each table (value -> SDR_s, SAR_s, SDR_u, SAR_u, RDR, DTR).
-    why : str
-        Known causes of differences.
-
-    Returns
-    -------
-    tuple of ShockTable
-    """
-    mass, speed, height = given
-    return (
-        ShockTable(
-            numbers[0],
-            "Influence of sprung mass variations on the transient response measures",
-            "m_s (kg)",
-            base,
-            {m: ({} if m == 563.0 else {"vehicle": {"sprung_mass": m}}) for m in mass},
-            mass,
-            why,
-        ),
-        ShockTable(
-            numbers[1],
-            "Influence of vehicle speed variations on the transient response measures",
-            "V (km/h)",
-            base,
-            {v: ({} if v == 50.0 else {"excitation": {"speed": v}}) for v in speed},
-            speed,
-            why,
-        ),
-        ShockTable(
-            numbers[2],
-            "Influence of variations in peak pulse displacement on the transient response "
-            "measures (the dissertation's caption says 'road roughness'; its rows vary a_m)",
-            "a_m (cm)",
-            base,
-            {a: ({} if a == 3.5 else {"excitation": {"amplitude": a / 100}}) for a in height},
-            height,
-            why,
-        ),
-    )
-
-
 #: Tables 5.1-5.3 as printed in the dissertation (SDR_s, SAR_s, SDR_u, SAR_u, RDR, DTR)
 GIVEN: tuple[dict[float, tuple[float, ...]], ...] = (
     {
@@ -554,3 +377,20 @@ GIVEN: tuple[dict[float, tuple[float, ...]], ...] = (
     },
 )
 TABLES: tuple[ShockTable, ...] = shock_tables(BASE, ("5.1", "5.2", "5.3"), GIVEN, _WHY)
+
+
+def _jobs(quick: bool) -> Jobs:
+    return Jobs(figures={"chapter5": FIGURES}, tables=TABLES)
+
+
+def _build(context: Context) -> tuple[str, dict[str, Any]]:
+    return family_chapter(
+        context,
+        "Chapter 5: inverse-model hi-lo semi-active damping",
+        TABLES,
+        intro="<p>The force gain k_d is damper.force_gain.</p>",
+    )
+
+
+#: The chapter's entry in the report (:data:`mrsuspension.report.chapters.CHAPTERS`)
+CHAPTER = Chapter(5, _jobs, _build, FIGURES, TABLES)

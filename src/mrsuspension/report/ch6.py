@@ -20,8 +20,6 @@ import numpy as np
 
 from mrsuspension.engine.result import SimulationResult
 from mrsuspension.engine.simulate import run_many
-from mrsuspension.report.ch4 import SKYHOOK_ACM
-from mrsuspension.report.ch5 import HARMONIC, STEADY_FROM, TRACK, error_figure, shock_tables, step
 from mrsuspension.report.families import (
     HARMONIC_AMPS,
     MASSES,
@@ -33,13 +31,29 @@ from mrsuspension.report.families import (
     in_worker,
     passive,
     road_note,
+    shock_tables,
     spec_factory,
 )
-from mrsuspension.report.html import FigureRecord
+from mrsuspension.report.toolkit import (
+    HARMONIC,
+    SKYHOOK_ACM,
+    STEADY_FROM,
+    TRACK,
+    Chapter,
+    Context,
+    FigureRecord,
+    Jobs,
+    error_figure,
+    family_chapter,
+    table,
+    write_csv,
+)
+from mrsuspension.report.toolkit import inverse_model_step as step
 from mrsuspension.scenario import Scenario
 
 __all__ = [
     "BASE",
+    "CHAPTER",
     "COMPARISON_CONTROLLERS",
     "COMPARISON_EXCITATIONS",
     "FIGURES",
@@ -318,3 +332,36 @@ _WHY = (
     "heads DTR as 'STR'."
 )
 TABLES: tuple[ShockTable, ...] = shock_tables(BASE, ("6.1", "6.2", "6.3"), GIVEN, _WHY)
+
+
+def _jobs(quick: bool) -> Jobs:
+    return Jobs(
+        figures={"chapter6": FIGURES},
+        tables=TABLES,
+        calls={"comparison 6.5": (comparison_table, (quick,))},
+    )
+
+
+def _build(context: Context) -> tuple[str, dict[str, Any]]:
+    """Figures, Tables 6.1-6.3 and the section 6.5 comparison of the controllers."""
+    body, manifest = family_chapter(
+        context, "Chapter 6: inverse-model sliding-mode semi-active damping", TABLES
+    )
+    rows = context.built.calls["comparison 6.5"]
+    write_csv(context.folder / "table_6_5_comparison.csv", rows)
+    body += (
+        "<h3 id='table_6_5'>Section 6.5: comparison of the controllers</h3>"
+        "<p>Passive 0 A, skyhook hi-lo ACM (k_c = 3, n = 2), inverse-model hi-lo ACM and "
+        "sliding mode ACM (both k_d = 2.5) under a 1.5 Hz / 2.5 cm harmonic (steady state, "
+        "t &ge; 4 s), a 3.5 cm rounded pulse (mu = 3, 50 km/h) and the 'rough' road preset "
+        "at 50 km/h (whole records). DLC = std(F_T)/static load. "
+        "<a href='chapter6/table_6_5_comparison.csv'>table_6_5_comparison.csv</a></p>" + table(rows)
+    )
+    manifest["tables"].append(
+        {"number": "6.5", "file": "chapter6/table_6_5_comparison.csv", "rows": rows}
+    )
+    return body, manifest
+
+
+#: The chapter's entry in the report (:data:`mrsuspension.report.chapters.CHAPTERS`)
+CHAPTER = Chapter(6, _jobs, _build, FIGURES, TABLES)

@@ -55,7 +55,6 @@ from __future__ import annotations
 import copy
 import json
 import math
-import multiprocessing
 import os
 import time
 from collections.abc import Callable, Mapping, Sequence
@@ -66,6 +65,17 @@ from typing import Any, NamedTuple
 import numpy as np
 
 from mrsuspension.errors import ValidationError
+from mrsuspension.report.toolkit import (
+    FREQUENCY_PANELS,
+    HARMONIC,
+    SHOCK,
+    SHOWN,
+    STEADY_FROM,
+    TABLE_MEASURES,
+    FigureRecord,
+    in_worker,
+    subplots,
+)
 
 __all__ = [
     "AGREEMENT_BANDS",
@@ -93,6 +103,7 @@ __all__ = [
     "road_note",
     "run_unit",
     "shock_table",
+    "shock_tables",
     "spec_factory",
     "vary",
 ]
@@ -100,8 +111,7 @@ __all__ = [
 #: The kinds of figure family
 KINDS: tuple[str, ...] = ("time", "freq", "pulse", "psd", "special")
 
-#: Default excitation of each simulated kind
-HARMONIC: dict[str, Any] = {"kind": "harmonic", "frequency": 1.5, "amplitude": 0.025}
+#: Default excitation of each simulated kind (HARMONIC: the toolkit's)
 PULSE: dict[str, Any] = {"kind": "pulse", "amplitude": 0.035, "severity": 3.0, "speed": 50.0}
 ROAD: dict[str, Any] = {"kind": "road", "profile": "rough", "speed": 50.0}
 
@@ -127,9 +137,8 @@ SWEPT: dict[str, Any] = {"kind": "swept", "amplitude": 0.025, "transition_freque
 #: Run lengths [s]: harmonic, pulse (the road runs its own length)
 HARMONIC_DURATION = 8.0
 PULSE_DURATION = 4.0
-#: Window shown for harmonic runs and the start of their steady state [s]
-SHOWN = (6.0, 7.4)
-STEADY_FROM = 4.0
+# The window shown for harmonic runs and the start of their steady state [s]: the
+# toolkit's SHOWN and STEADY_FROM
 #: The laws that use the inverse damper model (smaller step in quick mode)
 INVERSE_LAWS = ("inverse-hilo", "sliding-mode")
 
@@ -151,25 +160,7 @@ DEFAULT_SIGNALS: tuple[str, ...] = ("F_d", "i_d", "a_s", "a_u", "x_s", "x_u", "x
 #: PSD panels (the dissertation's random-response figures), then the i_d history
 PSD_SIGNALS: tuple[str, ...] = ("F_d", "a_s", "a_u", "x_r", "F_T")
 #: Frequency-response panels
-FREQ_PANELS: tuple[tuple[str, str], ...] = (
-    ("T_as", "$T_{as}$"),
-    ("T_au", "$T_{au}$"),
-    ("T_dr", "$T_{dr}$"),
-    ("DLC", "DLC"),
-)
-#: Shock-response measures of the tables
-SHOCK: tuple[str, ...] = ("SDR_s", "SAR_s", "SDR_u", "SAR_u", "RDR")
-
-
-def in_worker() -> bool:
-    """True in a child process (a pool worker): nested pools are then avoided.
-
-    Examples
-    --------
-    >>> in_worker()
-    False
-    """
-    return multiprocessing.parent_process() is not None
+FREQ_PANELS: tuple[tuple[str, str], ...] = FREQUENCY_PANELS
 
 
 def merge_tables(base: Mapping[str, Any], variant: Mapping[str, Any]) -> dict[str, Any]:
@@ -507,24 +498,8 @@ def run_unit(unit: Unit) -> dict[str, Any]:
 
 # -- rendering ----------------------------------------------------------------------------
 def _subplots(rows: int, cols: int) -> tuple[Any, Any]:
-    """A grid of panels with fixed margins (constrained layout costs about 60 % of a
-    figure's rendering time, and the family figures all share a few shapes)."""
-    import matplotlib
-
-    matplotlib.use("Agg", force=False)
-    import matplotlib.pyplot as plt
-
-    width, height = 3.3 * cols, 2.5 * rows + 0.35
-    fig, axes = plt.subplots(rows, cols, figsize=(width, height), squeeze=False)
-    fig.subplots_adjust(
-        left=0.95 / width,
-        right=1 - 0.15 / width,
-        bottom=0.5 / height,
-        top=1 - 0.45 / height,
-        wspace=0.5,
-        hspace=0.42,
-    )
-    return fig, axes
+    """The family figures' panel grid: 3.3 x 2.5 in panels with fixed margins."""
+    return subplots(rows, cols, 3.3, 2.5, layout="fixed")
 
 
 def _grid(n: int) -> tuple[int, int]:
@@ -699,8 +674,6 @@ def render(
         ``number``, ``title``, ``caption``, ``files``, ``data`` (with the scenario of each
         variant under ``scenario <label>``) and ``render time [s]``.
     """
-    from mrsuspension.report.html import FigureRecord
-
     start, cpu = time.perf_counter(), time.process_time()
     draw = _RENDERERS.get(spec.kind, _render_psd)
     fig, data = draw(spec, payloads)
@@ -799,8 +772,8 @@ class ShockTable:
         }
 
 
-#: The measures of a shock table, in column order (DTR last: it needs the nominal row)
-TABLE_MEASURES: tuple[str, ...] = (*SHOCK, "DTR")
+# The measures of a shock table, in column order (DTR last: it needs the nominal row):
+# the toolkit's TABLE_MEASURES
 #: Agreement bands of a shock-table cell, best first: (name, limit on
 #: ``|model/dissertation - 1|``, limit on ``|model - dissertation|`` for DTR, which the
 #: dissertation often gives as 0). The report colours the cells green, amber and red.
@@ -972,6 +945,70 @@ def shock_table(
         "rows": rows,
         "summary": agreement_summary(rows),
     }
+
+
+def shock_tables(
+    base: dict[str, Any],
+    numbers: tuple[str, str, str],
+    given: Sequence[dict[float, tuple[float, ...]]],
+    why: str,
+) -> tuple[ShockTable, ...]:
+    """The three shock tables of Chapters 5 and 6: sprung mass, speed, pulse height.
+
+    Parameters
+    ----------
+    base : dict
+        The controller's scenario tables.
+    numbers : tuple of str
+        Table numbers (mass, speed, pulse height).
+    given : tuple of dict
+        The dissertation's rows of each table (value -> SDR_s, SAR_s, SDR_u, SAR_u, RDR, DTR).
+    why : str
+        Known causes of differences.
+
+    Returns
+    -------
+    tuple of ShockTable
+
+    Examples
+    --------
+    >>> row = (1.0, 0.3, 1.1, 1.2, 0.9, 0.0)
+    >>> tabs = shock_tables({}, ("9.1", "9.2", "9.3"),
+    ...                     ({563.0: row}, {50.0: row}, {3.5: row}), "")
+    >>> [t.column for t in tabs]
+    ['m_s (kg)', 'V (km/h)', 'a_m (cm)']
+    """
+    mass, speed, height = given
+    return (
+        ShockTable(
+            numbers[0],
+            "Influence of sprung mass variations on the transient response measures",
+            "m_s (kg)",
+            base,
+            {m: ({} if m == 563.0 else {"vehicle": {"sprung_mass": m}}) for m in mass},
+            mass,
+            why,
+        ),
+        ShockTable(
+            numbers[1],
+            "Influence of vehicle speed variations on the transient response measures",
+            "V (km/h)",
+            base,
+            {v: ({} if v == 50.0 else {"excitation": {"speed": v}}) for v in speed},
+            speed,
+            why,
+        ),
+        ShockTable(
+            numbers[2],
+            "Influence of variations in peak pulse displacement on the transient response "
+            "measures (the dissertation's caption says 'road roughness'; its rows vary a_m)",
+            "a_m (cm)",
+            base,
+            {a: ({} if a == 3.5 else {"excitation": {"amplitude": a / 100}}) for a in height},
+            height,
+            why,
+        ),
+    )
 
 
 # -- the pool ----------------------------------------------------------------------------
