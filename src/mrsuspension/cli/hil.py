@@ -33,7 +33,8 @@ __all__ = [
     "rig_emulator_command",
 ]
 
-#: ``hil run`` when neither the options nor the scenario's ``[simulation]`` say
+#: ``hil run``'s run time when neither ``--duration`` nor the scenario's ``[simulation]``
+#: says, and its loop rate (the dissertation's HiL rig, Chapter 7)
 DEFAULT_DURATION = 10.0  # [s]
 DEFAULT_RATE = 1000.0  # [Hz]
 #: fastest loop ``hil run`` starts (the range :func:`~mrsuspension.hil.loop.run_hil` checks),
@@ -68,13 +69,12 @@ def hil_run_command(
         ),
     ] = None,
     rate: Annotated[
-        float | None,
+        float,
         typer.Option(
-            help=f"loop rate [Hz] (default: 1/dt of the scenario's [simulation] dt, else "
-            f"{DEFAULT_RATE:g})",
-            show_default=False,
+            help="loop rate [Hz] (the scenario's [simulation] dt is the engine step within "
+            "each tick)"
         ),
-    ] = None,
+    ] = DEFAULT_RATE,
     out: Annotated[
         Path | None, typer.Option(help="recording directory (default: not kept)")
     ] = None,
@@ -115,6 +115,7 @@ def hil_run_command(
     run tripped (not when STOP was pressed); with --monitor --json the run's outcome is printed as JSON when it ends
     (the monitor's address goes to stderr).
     """
+    from mrsuspension.engine.settings import DEFAULT_DT
     from mrsuspension.hil.loop import STOP_REASON, _simulation_of, run_hil
     from mrsuspension.hil.realtime import normalise_mode
     from mrsuspension.hil.rigs import make_rig, rig_kind
@@ -133,16 +134,13 @@ def hil_run_command(
             )
         rig_kind(rig)  # the spec's form; a network rig is pinged when it is built
         scn = Scenario.load(scenario)
-        duration, rate = _run_settings(
-            scn, duration, rate, MONITOR_MAX_RATE if monitor else MAX_RATE
-        )
+        duration, model_dt = _run_settings(scn, duration)
+        check_range("--duration", duration, 0.0, 1e5, unit="s", low_inclusive=False)
+        check_range("--rate", rate, 50.0, MONITOR_MAX_RATE if monitor else MAX_RATE, unit="Hz")
         sim = _simulation_of(scn)
         if monitor:
             from mrsuspension.monitor.app import AttachedRun
             from mrsuspension.monitor.server import serve
-
-            check_range("duration", duration, 0.0, 1e5, unit="s", low_inclusive=False)
-            check_range("rate", rate, 50.0, 5000.0, unit="Hz")
 
             ended: dict[str, Any] = {}
 
@@ -155,7 +153,9 @@ def hil_run_command(
 
             serve(
                 host, port, token, rig=rig, workdir=out, url_to_stderr=as_json, realtime=realtime,
-                isolate=isolate, attach=AttachedRun(sim, rate=rate, duration=duration, on_end=on_end),
+                isolate=isolate, attach=AttachedRun(
+                    sim, rate=rate, duration=duration, model_dt=model_dt, on_end=on_end
+                ),
             )  # fmt: skip
             # as `hil run`: a safety trip (or a failed loop) of the attached run exits 1;
             # the operator's STOP (which takes the same safe path) does not
@@ -173,6 +173,7 @@ def hil_run_command(
             result = run_hil(
                 sim, the_rig, duration=duration, rate=rate, out=target, process=True,
                 realtime=realtime, isolate=isolate,
+                model_dt=DEFAULT_DT if model_dt is None else model_dt,
             )  # fmt: skip
         finally:
             if tmp is not None:
@@ -192,39 +193,30 @@ def hil_run_command(
         raise typer.Exit(1)
 
 
-def _run_settings(
-    scn: Any, duration: float | None, rate: float | None, max_rate: float
-) -> tuple[float, float]:
-    """``hil run``'s duration and rate: the options, else the scenario's, else the defaults.
+def _run_settings(scn: Any, duration: float | None) -> tuple[float, float | None]:
+    """``hil run``'s duration and engine step: the option, else the scenario's, else the
+    defaults.
 
-    The scenario's ``[simulation] duration`` and ``dt`` (as the rate ``1/dt``) count when
-    the file sets them; what was taken from where is said on stderr. A rate from the
-    scenario that the loop cannot run is refused with a hint to give ``--rate``.
+    The scenario's ``[simulation] duration`` is the run time unless ``--duration`` is
+    given; its ``dt`` is the engine step of the loop (``run_hil``'s ``model_dt``: each
+    tick of ``--rate`` runs ``ceil(1/(rate dt))`` steps), as offline. What was taken from
+    the scenario is said on stderr.
     """
     table = scn.data.get("simulation", {})
     said = []
     if duration is None:
         if "duration" in table:
             duration = float(table["duration"])
-            said.append(f"duration {duration:g} s from [simulation] duration")
+            said.append(f"duration {duration:g} s")
         else:
             duration = DEFAULT_DURATION
-    if rate is None:
-        if "dt" in table:
-            rate = 1.0 / float(table["dt"])
-            if rate > max_rate * (1 + 1e-9):
-                where = " with --monitor" if max_rate == MONITOR_MAX_RATE else ""
-                raise ValidationError(
-                    f"the scenario's [simulation] dt = {table['dt']:g} s asks for a "
-                    f"{rate:g} Hz loop; `hil run`{where} runs at most {max_rate:g} Hz: give "
-                    "--rate (e.g. --rate 1000)"
-                )
-            said.append(f"rate {rate:g} Hz from [simulation] dt = {table['dt']:g} s")
-        else:
-            rate = DEFAULT_RATE
+    model_dt = None
+    if "dt" in table:
+        model_dt = float(table["dt"])
+        said.append(f"engine step dt = {model_dt:g} s")
     if said:
-        typer.echo(f"hil run: {' and '.join(said)} (--duration/--rate override)", err=True)
-    return duration, rate
+        typer.echo(f"hil run: {' and '.join(said)} from the scenario's [simulation]", err=True)
+    return duration, model_dt
 
 
 def hil_latency_command(

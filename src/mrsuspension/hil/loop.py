@@ -435,10 +435,11 @@ def run_hil(
     hooks : LoopHooks, optional
         Live tap, external stop and settings channel (the monitor's); None: none.
     settings : RunSettings, optional
-        The run plan instead of ``duration`` and ``rate``: its ``duration`` (None: the
-        excitation's own) and one tick per ``dt`` (``rate = 1/dt``); ``output_rate``
-        does not apply (every tick is recorded). Giving it with a ``duration`` or
-        ``rate`` other than the defaults is an error.
+        The run plan instead of ``duration`` and ``model_dt``: its ``duration`` (None:
+        the excitation's own) and its ``dt`` as the engine step ``model_dt``. The loop
+        rate stays ``rate`` (a property of the rig and its driver, not of the model);
+        ``output_rate`` does not apply (every tick is recorded). Giving it with a
+        ``duration`` or ``model_dt`` other than the defaults is an error.
 
     Returns
     -------
@@ -446,9 +447,9 @@ def run_hil(
         The recording, the tick statistics and why the run stopped.
     """
     if settings is not None:
-        if (duration, rate) != (10.0, 1000.0):
-            raise ValidationError("run_hil: give either settings or duration/rate, not both")
-        rate = 1.0 / settings.dt
+        if (duration, model_dt) != (10.0, DEFAULT_DT):
+            raise ValidationError("run_hil: give either settings or duration/model_dt, not both")
+        model_dt = settings.dt
         duration = settings.duration_for(_simulation_of(target).excitation)
     if process:
         check_isolate(realtime, isolate)  # refused here, not in the child

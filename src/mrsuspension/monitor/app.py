@@ -144,6 +144,9 @@ class AttachedRun:
         The scenario's configuration (its damper stays; the page changes the rest live).
     rate, duration : float
         Loop rate [Hz] and run length [s].
+    model_dt : float, optional
+        Largest engine step [s] per tick (the scenario's ``[simulation] dt``; None: the
+        loop's default, :data:`~mrsuspension.engine.settings.DEFAULT_DT`).
     on_end : callable, optional
         Called once with the run's result description (what ``mrsus hil run --json``
         prints: :meth:`~mrsuspension.hil.loop.HilResult.describe`) when the run has
@@ -153,6 +156,7 @@ class AttachedRun:
     simulation: Simulation
     rate: float = 1000.0
     duration: float = 60.0
+    model_dt: float | None = None
     on_end: Callable[[dict[str, Any]], None] | None = None
 
 
@@ -226,7 +230,9 @@ class MonitorState:
     def attach(self, run: AttachedRun) -> dict[str, Any]:
         """Start the attached run (its scenario's damper is kept for live changes)."""
         self.base = run.simulation
-        info = self._launch(run.simulation, run.rate, run.duration, 0.2, None)
+        info = self._launch(
+            run.simulation, run.rate, run.duration, 0.2, None, model_dt=run.model_dt
+        )
         self._on_end = run.on_end
         return info
 
@@ -250,6 +256,7 @@ class MonitorState:
         duration: float,
         ramp_time: float,
         settings: MonitorSettings | None,
+        model_dt: float | None = None,
     ) -> dict[str, Any]:
         self.stop()
         if self.handle is not None:
@@ -283,7 +290,7 @@ class MonitorState:
         }  # fmt: skip
         self.handle = LoopHandle(
             sim, self.rig, rate, duration, out, ramp_time=ramp_time, realtime=self.realtime,
-            cpus=self.loop_cpus, isolate=self.isolate,
+            cpus=self.loop_cpus, isolate=self.isolate, model_dt=model_dt,
         )  # fmt: skip
         return {"run": self.run_id, "rig": self.rig, "fields": self.status["fields"]}
 

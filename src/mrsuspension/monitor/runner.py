@@ -57,6 +57,7 @@ def loop_main(
     realtime: str = "auto",
     cpus: set[int] | None = None,
     isolate: bool = False,
+    model_dt: float | None = None,
 ) -> None:
     """Body of the loop process: build the rig and run :func:`run_hil` with the hooks.
 
@@ -85,7 +86,11 @@ def loop_main(
     isolate : bool
         Move the machine's other movable tasks off the loop's core for the run
         (:func:`~mrsuspension.hil.loop.run_hil`'s ``isolate``).
+    model_dt : float, optional
+        Largest engine step [s] (:func:`~mrsuspension.hil.loop.run_hil`'s ``model_dt``;
+        None: its default).
     """
+    from mrsuspension.engine.settings import DEFAULT_DT
     from mrsuspension.hil.loop import LoopHooks, run_hil
     from mrsuspension.hil.realtime import widen_affinity
     from mrsuspension.hil.rigs import make_rig
@@ -112,7 +117,7 @@ def loop_main(
         )
         result = run_hil(
             sim, rig, duration=duration, rate=rate, out=out, hooks=hooks, realtime=realtime,
-            isolate=isolate,
+            isolate=isolate, model_dt=DEFAULT_DT if model_dt is None else model_dt,
         )  # fmt: skip
     except Exception as exc:  # reported to the page, never raised in the server
         end({"state": "error", "reason": f"{type(exc).__name__}: {exc}", "safe": True})
@@ -173,6 +178,7 @@ class LoopHandle:
         realtime: str = "auto",
         cpus: set[int] | None = None,
         isolate: bool = False,
+        model_dt: float | None = None,
     ) -> None:
         ctx = multiprocessing.get_context("spawn")
         self.out = Path(out)
@@ -188,7 +194,7 @@ class LoopHandle:
             args=(
                 sim, rig, float(rate), float(duration), str(self.out), float(ramp_time),
                 self.queue, self.stop_event, self.settings, self.ring, realtime, cpus,
-                isolate,
+                isolate, model_dt,
             ),
             name="mrsus-monitor-loop",
             daemon=True,
