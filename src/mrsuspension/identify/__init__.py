@@ -12,7 +12,10 @@ The pipeline of ``mrsus identify``, usable piece by piece:
 * :mod:`~mrsuspension.identify.campaign` - all of it, with per-test outcomes
   (:func:`identify`);
 * :mod:`~mrsuspension.identify.report` - parameter set, tables, plots, HTML;
-* :mod:`~mrsuspension.identify.synthetic` - synthetic campaigns from any model.
+* :mod:`~mrsuspension.identify.synthetic` - synthetic campaigns from any model;
+* :mod:`~mrsuspension.identify.record` and :mod:`~mrsuspension.identify.timedomain` -
+  records of any motion (random displacement, switched coil) and models with internal
+  states integrated over them (:func:`read_record`, :func:`fit_time_domain`).
 
 Examples
 --------
@@ -42,7 +45,14 @@ from mrsuspension.identify.preprocess import (
     smooth_derivative,
 )
 from mrsuspension.identify.readers import RawTest, TestDataError, read_test
+from mrsuspension.identify.record import TimeRecord, read_record
 from mrsuspension.identify.synthetic import synthetic_campaign
+from mrsuspension.identify.timedomain import (
+    TIME_DOMAIN_MODELS,
+    TimeDomainResult,
+    fit_time_domain,
+    synthetic_record,
+)
 
 __all__ = [
     "FitError",
@@ -66,4 +76,13 @@ __all__ = [
     "read_test",
     "smooth_derivative",
     "synthetic_campaign",
+]
+# time-domain records (issue 15)
+__all__ += [
+    "TIME_DOMAIN_MODELS",
+    "TimeDomainResult",
+    "TimeRecord",
+    "fit_time_domain",
+    "read_record",
+    "synthetic_record",
 ]
