@@ -58,9 +58,10 @@ MAX_NAN_FRACTION = 0.02
 #: Default smoothing window of a derived velocity [s]: a cubic Savitzky-Golay derivative
 #: over 5 ms passes (-3 dB) about 1.25/(5 ms) = 250 Hz, well above a 0-50 Hz excitation.
 VELOCITY_WINDOW = 0.005
-#: Plausible peak forces of a damper test [N] (a small MR damper's seal friction to a
-#: 100 kN seismic damper); outside, the column is almost surely in another unit.
-FORCE_RANGE = (1.0, 2e5)
+#: Plausible force swings of a damper test [N] (peak deviation from the median): a small
+#: seat damper's ~10 N to a 200 kN seismic damper; outside, the column is almost surely
+#: in another unit (kN read as N, mN...).
+FORCE_RANGE = (10.0, 2e5)
 #: Plausible peak strokes [m] (0.05 mm to 1 m).
 STROKE_RANGE = (5e-5, 1.0)
 
