@@ -385,7 +385,7 @@ class SpencerLag(TimeDomainModel):
             "the force), so the others are identified relative to it",
             "x0": "only f0 = k1 x0 (a force offset) is identifiable; x0 = f0 / k1 is derived",
             "n": f"held at {q['n']:g}: random motion hardly identifies the loop's corner "
-            "sharpness (free it with free=['n'])",
+            "sharpness (free it: --free n, free=['n'])",
             "volts_per_amp": "the current-to-voltage map, not a damper property",
         }
         return self._FITTED
