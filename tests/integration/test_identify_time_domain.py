@@ -127,3 +127,14 @@ def test_benchmark_smoke() -> None:
     data = json.loads(done.stdout)
     assert data["samples"] == 6000
     assert data["ratios"]["solve_ivp (RK45)"] > 1
+
+
+def test_cli_options_of_the_other_path_are_refused(record_file: Path) -> None:
+    res = runner.invoke(app, [str(record_file), *ARGS, "--bands", "0.5-5"])
+    assert res.exit_code == 2
+    assert res.stderr.strip() == (
+        "error: --bands applies to periodic campaigns, not with --time-domain"
+    )
+    res = runner.invoke(app, [str(record_file), "--gain", "0.2"])
+    assert res.exit_code == 2
+    assert "--gain applies to time-domain records only (add --time-domain)" in res.stderr

@@ -162,6 +162,28 @@ def identify_command(
     """
     from mrsuspension.identify.campaign import identify
 
+    periodic_only = {
+        "--current-pattern": current_pattern is not None, "--compare": compare is not None,
+        "--bands": bands is not None, "--points": points != 360,
+        "--remove-offset": remove_offset, "--max-cycles": max_cycles is not None,
+        "--peak-velocity": peak_velocity != "auto", "--fix": fix is not None,
+        "--vh-variant": vh_variant is not None, "--hysteresis/--mean": hysteresis is not None,
+    }  # fmt: skip
+    time_domain_only = {
+        "--gain": gain is not None, "--free": free is not None,
+        "--validation-fraction": validation_fraction != 0.3,
+    }  # fmt: skip
+    clash = [
+        k for k, given in (periodic_only if time_domain else time_domain_only).items() if given
+    ]
+    if clash:
+        typer.echo(
+            f"error: {', '.join(clash)} appl{'ies' if len(clash) == 1 else 'y'} "
+            + ("to periodic campaigns, not with --time-domain" if time_domain
+               else "to time-domain records only (add --time-domain)"),
+            err=True,
+        )  # fmt: skip
+        raise typer.Exit(2)
     if time_domain:
         _time_domain(
             manifest, model, out=out, as_json=as_json, columns=columns, units=units,
