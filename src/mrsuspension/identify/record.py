@@ -37,7 +37,7 @@ import numpy.typing as npt
 
 from mrsuspension.errors import ValidationError
 from mrsuspension.identify.preprocess import smooth_derivative
-from mrsuspension.identify.readers import TestDataError, read_test
+from mrsuspension.identify.readers import ROLE_ALIASES, TestDataError, read_test
 
 __all__ = [
     "COIL_UNITS",
@@ -390,6 +390,51 @@ def _split_coil(
     return cols_out, units_out, factor, coil_unit
 
 
+def _columns_from_header(path: Path) -> tuple[str, str | None] | None:
+    """Positional roles from a text header naming a coil column (``voltage``, ``coil [V]``).
+
+    The readers match time, stroke, velocity and force by name but know no coil input;
+    this finds the header line (the line above the first row of numbers) and returns the
+    roles (``_`` for unknown names) and the coil unit named in the header, or None when
+    no header column is a coil input.
+    """
+    if path.suffix.lower() == ".mat" or not path.is_file():
+        return None
+    header: list[str] | None = None
+    with path.open(encoding="utf-8-sig", errors="replace") as fh:
+        for _, line in zip(range(200), fh, strict=False):
+            text = line.strip()
+            if not text or text.startswith(("#", "%", "//")):
+                continue
+            delim = next((d for d in ("\t", ";", ",") if d in text), None)
+            fields = [f.strip() for f in (text.split(delim) if delim else text.split())]
+            try:
+                [float(f) for f in fields if f]
+            except ValueError:
+                header = fields
+                continue
+            break
+    if not header:
+        return None
+    from mrsuspension.identify.readers import split_name_unit
+
+    alias = {a: r for r, names in ROLE_ALIASES.items() for a in names}
+    short = {"time": "t", "displacement": "x", "velocity": "v", "acceleration": "a",
+             "force": "F", "current": "i"}  # fmt: skip
+    roles, coil_unit = [], None
+    for name in header:
+        key, unit = split_name_unit(name)
+        if key in _COIL_TOKENS and coil_unit is None:
+            roles.append("u")
+            coil_unit = unit or ("V" if key in ("voltage", "volt") else None)
+        else:
+            role = alias.get(key) or alias.get(key.replace("_", ""))
+            roles.append(short[role] if role and short[role] not in roles else "_")
+    if coil_unit is None and "u" not in roles:
+        return None
+    return ",".join(roles), coil_unit
+
+
 def read_record(
     path: str | Path,
     columns: str | None = None,
@@ -434,6 +479,12 @@ def read_record(
     >>> rec.coil_unit, round(float(rec.coil_current()[0]), 3), round(float(rec.displacement[50]), 5)
     ('V', 0.5, 0.00841)
     """
+    if columns is None:
+        found = _columns_from_header(Path(path))
+        if found is not None:
+            columns = found[0]
+            if found[1] and found[1].lower() in (*COIL_UNITS, "a", "ma"):
+                units = f"{units},u={found[1]}" if units else f"u={found[1]}"
     cols, unit_text, factor, coil_unit = _split_coil(columns, units)
     raw = read_test(path, cols, unit_text)
     name = Path(path).name

@@ -114,3 +114,15 @@ def test_jittered_time_is_resampled(record: TimeRecord) -> None:
     rec = TimeRecord.from_arrays(t, record.displacement, record.force, record.coil)
     assert any("resampled" in n for n in rec.notes)
     assert np.allclose(np.diff(rec.time), rec.dt)
+
+
+def test_header_naming_the_coil_needs_no_columns(record: TimeRecord, tmp_path: Path) -> None:
+    p = record.save(tmp_path / "s.csv", units="s,mm,mm/s,kN")  # header: ...,coil [V]
+    rec = read_record(p)
+    assert rec.coil_unit == "V"
+    assert np.allclose(rec.force, record.force, rtol=1e-8, atol=1e-6)
+    assert np.array_equal(rec.coil, record.coil)
+    path = write(tmp_path / "r.csv", record)  # header: time,disp,vel,force,voltage (cm)
+    rec = read_record(path, units="s,cm,cm/s,N")
+    assert rec.coil_unit == "V"
+    assert np.allclose(rec.displacement, record.displacement, rtol=1e-8)
