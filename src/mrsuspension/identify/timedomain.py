@@ -49,6 +49,7 @@ import numpy.typing as npt
 from numba import njit
 
 from mrsuspension import parameters as _parameters
+from mrsuspension._numba_cache import invalidate_if_changed
 from mrsuspension.dampers import kernels as K
 from mrsuspension.dampers.base import DamperModel
 from mrsuspension.dampers.peers import Bingham, SpencerBoucWen
@@ -73,6 +74,9 @@ __all__ = [
 
 FloatArray = npt.NDArray[np.float64]
 Bounds = dict[str, tuple[float, float]]
+
+# _record_series inlines the damper kernels: drop its compiled cache when they change
+invalidate_if_changed(__file__, K.__file__)
 
 #: Default share of the record (its end) kept for validation.
 VALIDATION_FRACTION = 0.3
