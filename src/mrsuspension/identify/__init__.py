@@ -14,7 +14,10 @@ The pipeline of ``mrsus identify``, usable piece by piece:
 * :mod:`~mrsuspension.identify.report` - parameter set, tables, plots, HTML;
 * :mod:`~mrsuspension.identify.results` - the result types (per test, per band, all);
 * :mod:`~mrsuspension.identify.synthetic` - synthetic campaigns from any model, and the
-  example campaign shipped with the package (:func:`example_campaign`).
+  example campaign shipped with the package (:func:`example_campaign`);
+* :mod:`~mrsuspension.identify.record` and :mod:`~mrsuspension.identify.timedomain` -
+  records of any motion (random displacement, switched coil) and models with internal
+  states integrated over them (:func:`read_record`, :func:`fit_time_domain`).
 
 Examples
 --------
@@ -44,7 +47,14 @@ from mrsuspension.identify.preprocess import (
     smooth_derivative,
 )
 from mrsuspension.identify.readers import RawTest, TestDataError, read_test
+from mrsuspension.identify.record import TimeRecord, read_record
 from mrsuspension.identify.synthetic import example_campaign, field_campaign, synthetic_campaign
+from mrsuspension.identify.timedomain import (
+    TIME_DOMAIN_MODELS,
+    TimeDomainResult,
+    fit_time_domain,
+    synthetic_record,
+)
 
 __all__ = [
     "FitError",
@@ -70,4 +80,13 @@ __all__ = [
     "read_test",
     "smooth_derivative",
     "synthetic_campaign",
+]
+# time-domain records (issue 15)
+__all__ += [
+    "TIME_DOMAIN_MODELS",
+    "TimeDomainResult",
+    "TimeRecord",
+    "fit_time_domain",
+    "read_record",
+    "synthetic_record",
 ]

@@ -49,7 +49,8 @@ def identify_command(
         typer.Option(
             "--model",
             "-m",
-            help="model to fit: wang-symmetric | wang-asymmetric | bingham | spencer | linear",
+            help="model to fit: wang-symmetric | wang-asymmetric | bingham | spencer | linear "
+            "(--time-domain: spencer | bingham | wang)",
         ),
     ] = "wang-symmetric",
     out: Annotated[
@@ -81,7 +82,11 @@ def identify_command(
     ] = None,
     gain: Annotated[
         float | None,
-        typer.Option("--gain", help="coil driver gain [A/V] for a current column in V or mV"),
+        typer.Option(
+            "--gain",
+            help="coil driver gain [A/V] for a coil input in V or mV (periodic tests and "
+            "--time-domain records)",
+        ),
     ] = None,
     start: Annotated[
         str | None,
@@ -129,6 +134,24 @@ def identify_command(
     plots: Annotated[
         bool, typer.Option("--plots/--no-plots", help="loop plots in --out (needs matplotlib)")
     ] = True,
+    time_domain: Annotated[
+        bool,
+        typer.Option(
+            "--time-domain",
+            help="MANIFEST is one record of any motion (random, switched coil): integrate "
+            "the model over it (--model spencer | bingham | wang)",
+        ),
+    ] = False,
+    validation_fraction: Annotated[
+        float,
+        typer.Option(
+            "--validation-fraction", help="--time-domain: share of the record (its end) kept out"
+        ),
+    ] = 0.3,
+    free: Annotated[
+        str | None,
+        typer.Option("--free", help="--time-domain: parameters fixed by default to fit, e.g. n"),
+    ] = None,
 ) -> None:
     """Fit a damper model to the harmonic tests listed in MANIFEST (spec section 10).
 
@@ -136,9 +159,42 @@ def identify_command(
 
     With --out it writes the parameter set the simulator loads, tests.csv, summary.json,
     loop plots and index.html (docs/identification.md).
+
+    With --time-domain, MANIFEST is one record (random displacement, switched coil
+    current or voltage): the model is integrated over it, fitted on its start and
+    validated on its end (docs/identification.md, "Time-domain records").
     """
     from mrsuspension.identify.campaign import identify
 
+    periodic_only = {
+        "--current-pattern": current_pattern is not None, "--compare": compare is not None,
+        "--bands": bands is not None, "--points": points != 360,
+        "--remove-offset": remove_offset, "--max-cycles": max_cycles is not None,
+        "--peak-velocity": peak_velocity != "auto", "--fix": fix is not None,
+        "--vh-variant": vh_variant is not None, "--hysteresis/--mean": hysteresis is not None,
+    }  # fmt: skip
+    time_domain_only = {
+        "--free": free is not None,
+        "--validation-fraction": validation_fraction != 0.3,
+    }  # fmt: skip
+    clash = [
+        k for k, given in (periodic_only if time_domain else time_domain_only).items() if given
+    ]
+    if clash:
+        typer.echo(
+            f"error: {', '.join(clash)} appl{'ies' if len(clash) == 1 else 'y'} "
+            + ("to periodic campaigns, not with --time-domain" if time_domain
+               else "to time-domain records only (add --time-domain)"),
+            err=True,
+        )  # fmt: skip
+        raise typer.Exit(2)
+    if time_domain:
+        _time_domain(
+            manifest, model, out=out, as_json=as_json, columns=columns, units=units,
+            gain=gain, validation_fraction=validation_fraction, start=start, free=free,
+            starts=multistart, seed=seed, max_nfev=max_nfev, name=name, plots=plots,
+        )  # fmt: skip
+        return
     try:
         options: dict[str, Any] = {}
         if vh_variant is not None:
@@ -189,6 +245,74 @@ def identify_command(
         )
     if failed:
         raise typer.Exit(1)
+
+
+_TIME_DOMAIN_MODELS_BY_PERIODIC = {"wang-symmetric": "wang"}
+
+
+def _time_domain(
+    record_path: Path,
+    model: str,
+    *,
+    out: Path | None,
+    as_json: bool,
+    columns: str | None,
+    units: str | None,
+    gain: float | None,
+    validation_fraction: float,
+    start: str | None,
+    free: str | None,
+    starts: int | None,
+    seed: int,
+    max_nfev: int | None,
+    name: str | None,
+    plots: bool,
+) -> None:
+    """``mrsus identify RECORD --time-domain``: one line on a user error, exit code 2."""
+    from mrsuspension.identify.record import read_record
+    from mrsuspension.identify.timedomain import TIME_DOMAIN_MODELS, fit_time_domain
+
+    try:
+        # the periodic default model name maps onto its time-domain counterpart
+        model = _TIME_DOMAIN_MODELS_BY_PERIODIC.get(model, model)
+        if model not in TIME_DOMAIN_MODELS:
+            from mrsuspension.errors import unknown_name
+
+            raise unknown_name("--model for --time-domain", model, TIME_DOMAIN_MODELS)
+        if record_path.is_dir():
+            raise ValidationError(
+                f"--time-domain takes one record file, not a folder ({record_path})"
+            )
+        record = read_record(record_path, columns, units, gain=gain)
+        frees = [k.strip() for k in free.split(",") if k.strip()] if free else None
+        kwargs: dict[str, Any] = {
+            "validation_fraction": validation_fraction, "start": start, "free": frees,
+            "starts": 3 if starts is None else starts, "seed": seed, "max_nfev": max_nfev,
+            "name": name,
+        }  # fmt: skip
+        if as_json:
+            result = fit_time_domain(record, model, **kwargs)
+        else:
+            from rich.console import Console
+
+            with Console(stderr=True).status("identify --time-domain") as status:
+                result = fit_time_domain(
+                    record, model, progress=lambda m: status.update(m), **kwargs
+                )
+        files = [str(p) for p in result.save(out, plots=plots)] if out is not None else []
+    except MRSuspensionError as exc:
+        typer.echo(f"error: {exc}", err=True)
+        raise typer.Exit(2) from None
+    if as_json:
+        data = result.to_dict()
+        data["files"] = files
+        typer.echo(json.dumps(data))
+        return
+    typer.echo(result.summary_text())
+    if out is None:
+        typer.echo("no files written; --out DIR saves the parameter set, result.json and plots")
+    for f in files:
+        typer.echo(f"wrote {f}")
 
 
 app = typer.Typer(add_completion=False, pretty_exceptions_enable=False)
