@@ -135,6 +135,6 @@ def test_cli_options_of_the_other_path_are_refused(record_file: Path) -> None:
     assert res.stderr.strip() == (
         "error: --bands applies to periodic campaigns, not with --time-domain"
     )
-    res = runner.invoke(app, [str(record_file), "--gain", "0.2"])
+    res = runner.invoke(app, [str(record_file), "--free", "n"])
     assert res.exit_code == 2
-    assert "--gain applies to time-domain records only (add --time-domain)" in res.stderr
+    assert "--free applies to time-domain records only (add --time-domain)" in res.stderr

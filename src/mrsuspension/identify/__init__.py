@@ -57,6 +57,7 @@ from mrsuspension.identify.timedomain import (
 )
 
 __all__ = [
+    "TIME_DOMAIN_MODELS",
     "FitError",
     "FitProblem",
     "FitResult",
@@ -68,25 +69,21 @@ __all__ = [
     "TestDataError",
     "TestEntry",
     "TestOutcome",
+    "TimeDomainResult",
+    "TimeRecord",
     "detect_frequency",
     "example_campaign",
     "field_campaign",
     "fit_loops",
+    "fit_time_domain",
     "identify",
     "load_campaign",
     "loop_metrics",
     "preprocess",
     "read_manifest",
+    "read_record",
     "read_test",
     "smooth_derivative",
     "synthetic_campaign",
-]
-# time-domain records (issue 15)
-__all__ += [
-    "TIME_DOMAIN_MODELS",
-    "TimeDomainResult",
-    "TimeRecord",
-    "fit_time_domain",
-    "read_record",
     "synthetic_record",
 ]
