@@ -58,7 +58,7 @@ def test_public_names_still_import() -> None:
 def test_help_defaults_match_the_library() -> None:
     from mrsuspension import excitation
     from mrsuspension.cli import simulate
-    from mrsuspension.identify.cli import identify_command
+    from mrsuspension.cli.identify import identify_command
     from mrsuspension.measures import shock
 
     assert simulate.DEFAULT_ROAD_PEAK == shock.DEFAULT_ROAD_PEAK

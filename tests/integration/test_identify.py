@@ -16,9 +16,9 @@ from typer.testing import CliRunner
 
 from mrsuspension import parameters
 from mrsuspension.characterisation import harmonic_loop
+from mrsuspension.cli.identify import app
 from mrsuspension.dampers import KnownPeak, WangSymmetric
 from mrsuspension.identify import identify, synthetic_campaign
-from mrsuspension.identify.cli import app
 
 CURRENTS = (0.0, 0.1, 0.2, 0.3, 0.4)
 # Table 2.1-like frequency/amplitude pairs in the 0.5-5 Hz band (v_m 0.08-0.39 m/s)

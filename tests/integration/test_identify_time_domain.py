@@ -16,9 +16,9 @@ import pytest
 from typer.testing import CliRunner
 
 from mrsuspension import parameters
+from mrsuspension.cli.identify import app
 from mrsuspension.dampers import Bingham, SpencerBoucWen
 from mrsuspension.identify import fit_time_domain, synthetic_record
-from mrsuspension.identify.cli import app
 from mrsuspension.identify.timedomain import segment_metrics
 
 runner = CliRunner()

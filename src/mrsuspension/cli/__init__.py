@@ -60,9 +60,9 @@ def plain_help(text: str | None) -> str | None:
 #: name -> (module, function, one-line help for ``mrsus --help``)
 _LAZY: dict[str, tuple[str, str, str]] = {
     "identify": (
-        "mrsuspension.identify.cli",
+        "mrsuspension.cli.identify",
         "identify_command",
-        "Fit a damper model to the harmonic tests listed in MANIFEST (spec section 10).",
+        "Fit a damper model to harmonic tests (MANIFEST) or to one record (--time-domain).",
     ),
 }
 

@@ -1,7 +1,7 @@
 """The ``mrsus identify`` command (registered by :mod:`mrsuspension.cli`).
 
 ``identify_command`` is a plain typer command function; ``app`` runs it on its own
-(``python -m mrsuspension.identify.cli MANIFEST ...``). User errors print one line on
+(``python -m mrsuspension.cli.identify MANIFEST ...``). User errors print one line on
 stderr and exit with code 2; problems with single tests are reported per test and do
 not change the exit code; when no fit succeeded at all (every band failed) the output
 says why and the exit code is 1.
@@ -42,7 +42,12 @@ def _fixed(text: str | None) -> dict[str, float | None] | None:
 
 def identify_command(
     manifest: Annotated[
-        Path, typer.Argument(help="manifest (.csv or .toml) or a folder of test files")
+        Path,
+        typer.Argument(
+            metavar="MANIFEST",
+            help="manifest (.csv or .toml) or a folder of test files; with --time-domain, "
+            "one record file",
+        ),
     ],
     model: Annotated[
         str,
