@@ -305,3 +305,35 @@ def test_server_refuses_what_the_page_would(server: str) -> None:
             urllib.request.urlopen(req)
         assert info.value.code == 400
         assert fragment in json.loads(info.value.read())["error"]
+
+
+def test_controller_fields_from_the_registry(server: str, browser: Any) -> None:
+    """The law select and its fields come from ``GET /api/controllers`` (the registry)."""
+    with urllib.request.urlopen(server + "api/controllers") as r:
+        forms = json.loads(r.read())
+    page = browser.new_page()
+    page.goto(server)
+    page.wait_for_selector("#start:not([disabled])", timeout=10000)
+    laws = page.eval_on_selector_all("#controller option", "os => os.map((o) => o.value)")
+    assert laws == [c["law"] for c in forms["controllers"]]
+    assert page.input_value("#controller") == forms["default"] == "skyhook-hilo"
+    assert page.input_value("#mode") == "ACM"
+    assert page.get_attribute("#gain", "placeholder") == "3"
+    assert not page.is_visible("#current")
+    page.select_option("#controller", "policy-iv")
+    assert page.get_attribute("#gain", "placeholder") == "300"  # the law's own default
+    page.select_option("#controller", "sliding-mode")
+    assert page.is_visible("#slope")
+    assert not page.is_visible("#gain")
+    page.select_option("#controller", "passive")
+    assert page.is_visible("#current")
+    assert not page.is_visible("#mode")
+    page.fill("#current", "0.9")
+    page.click("#start")
+    page.wait_for_function(
+        "() => document.getElementById('error').textContent.length > 0", timeout=10000
+    )
+    error = page.text_content("#error") or ""
+    assert "current (i [A]) must be in [0, 0.3] A; got 0.9" in error
+    assert _posts(page) == []
+    page.close()

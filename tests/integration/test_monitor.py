@@ -248,7 +248,7 @@ def test_api_acquisition_and_live_changes(tmp_path: Path) -> None:
         assert r.json()["period"] == 2
         r = client.post(
             "/api/start",
-            json={"controller": "passive-zero", "excitation": "harmonic", "frequency": 2.0,
+            json={"controller": "passive", "excitation": "harmonic", "frequency": 2.0,
                   "amplitude": 0.01, "duration": 3, "ramp_time": 0.1},
         )  # fmt: skip
         assert r.status_code == 200, r.text
@@ -256,11 +256,11 @@ def test_api_acquisition_and_live_changes(tmp_path: Path) -> None:
         while time.time() < deadline and state.status.get("state") != "running":
             time.sleep(0.1)
         time.sleep(0.6)
-        r = client.post("/api/apply", json={"controller": "fixed-current", "current": 0.3,
+        r = client.post("/api/apply", json={"controller": "passive", "current": 0.3,
                                             "excitation": "harmonic", "frequency": 2.0,
                                             "amplitude": 0.01, "ramp_time": 0.1})  # fmt: skip
         assert r.status_code == 200, r.text
-        r = client.post("/api/apply", json={"controller": "fixed-current", "current": 0.9})
+        r = client.post("/api/apply", json={"controller": "passive", "current": 0.9})
         assert r.status_code == 400  # above the 0.3 A HiL limit: refused by the server
         while time.time() < deadline and state.status.get("state") != "ended":
             time.sleep(0.2)

@@ -5,6 +5,8 @@ Routes: ``GET /`` (the page), ``/static/...`` (its JS and CSS, package data),
 comes back as ``400 {"error": ...}``), ``POST /api/apply`` (validated settings -> the
 running loop, applied between ticks), ``POST /api/stop`` (STOP), ``POST /api/record``
 (record start/stop), ``POST /api/acquisition`` (period, trigger, display rate),
+``GET /api/controllers`` (the controller laws the page offers and their options,
+derived from the controller registry: :func:`~mrsuspension.monitor.settings.controller_forms`),
 ``GET /api/status``, ``GET /api/recording`` (CSV of the acquired rows of the HiL
 recording) and ``WS /ws`` (JSON frames at 25 Hz: new samples at the display rate, loop
 status, live measures). When the app has an access token every request must carry
@@ -43,7 +45,12 @@ from mrsuspension.hil.recorder import META_FILE, load_recording
 from mrsuspension.measures.steady import T_as, T_au, T_dr, T_ds, T_du, dlc
 from mrsuspension.monitor.acquisition import Acquisition, acquisition_from_settings
 from mrsuspension.monitor.runner import TAP_RATE, LoopHandle
-from mrsuspension.monitor.settings import MonitorSettings, page_fields, scenario_from_settings
+from mrsuspension.monitor.settings import (
+    MonitorSettings,
+    controller_forms,
+    page_fields,
+    scenario_from_settings,
+)
 
 __all__ = ["DISPLAY_CHANNELS", "AttachedRun", "MonitorState", "create_app", "live_measures"]
 
@@ -572,6 +579,9 @@ def create_app(
         state.stop()
         return JSONResponse({"state": state.status.get("state")})
 
+    async def controllers(request: Request) -> JSONResponse:
+        return JSONResponse(controller_forms())
+
     async def status(request: Request) -> JSONResponse:
         state.poll()
         return JSONResponse(
@@ -648,6 +658,7 @@ def create_app(
             Route("/api/stop", stop, methods=["POST"]),
             Route("/api/record", _call(record), methods=["POST"]),
             Route("/api/acquisition", _call(state.set_acquisition), methods=["POST"]),
+            Route("/api/controllers", controllers),
             Route("/api/status", status),
             Route("/api/recording", recording),
             WebSocketRoute("/ws", ws),

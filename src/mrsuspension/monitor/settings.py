@@ -4,6 +4,11 @@ The page sends a flat dictionary of its form fields; :func:`scenario_from_settin
 it into scenario tables and validates them with :meth:`Scenario.from_dict` (and by
 building the simulation), so an invalid entry raises
 :class:`~mrsuspension.errors.ValidationError` before anything reaches the loop.
+
+The controller part of the form is derived from the controller registry
+(:data:`~mrsuspension.control.CONTROLLERS`): :func:`monitor_laws` are the registered laws
+that drive the MR damper, :func:`controller_forms` their options as the page builds its
+fields (``GET /api/controllers``), so a new law needs no edit here.
 """
 
 from __future__ import annotations
@@ -18,6 +23,7 @@ from typing import Any, ClassVar
 import numpy as np
 import numpy.typing as npt
 
+from mrsuspension.control import CONTROLLERS, ControlOption, law_options, make_controller
 from mrsuspension.engine.simulate import Simulation
 from mrsuspension.errors import ValidationError
 from mrsuspension.excitation import PRESET_ROADS, Excitation
@@ -26,17 +32,26 @@ from mrsuspension.scenario import Scenario
 from mrsuspension.vehicle import QuarterCar
 
 __all__ = [
-    "CONTROLLERS",
+    "DEFAULT_LAW",
     "EXCITATIONS",
     "VEHICLE_FIELDS",
     "MonitorSettings",
     "ZeroRoad",
+    "controller_forms",
+    "controller_table",
+    "monitor_laws",
     "page_fields",
+    "page_options",
     "scenario_from_settings",
 ]
 
-#: controller choices of the page
-CONTROLLERS = ("passive-zero", "fixed-current", "skyhook-hilo", "inverse-hilo", "sliding-mode")
+#: law the page starts with (the skyhook hi-lo of the HiL demonstration, docs/monitor.md)
+DEFAULT_LAW = "skyhook-hilo"
+#: the page's defaults where they differ from the law's: the asymmetric mode ACM (p = 0)
+#: of the HiL demonstration (the laws default to SCM)
+PAGE_DEFAULTS: dict[str, Any] = {"mode": "ACM"}
+#: option given on the page -> option it overrides (an explicit p overrides SCM/ACM)
+_OVERRIDES = {"p": "mode"}
 #: excitation choices of the page
 EXCITATIONS = ("zero", "harmonic", "pulse", "road")
 #: drive-current limit of the monitored run [A] (the HiL safety limit)
@@ -163,6 +178,10 @@ def _number(settings: Mapping[str, Any], key: str, default: float, label: str) -
     raw = settings.get(key, default)
     if raw is None or raw == "":
         raw = default
+    return _as_number(raw, label)
+
+
+def _as_number(raw: Any, label: str) -> float:
     try:
         value = float(raw)
     except (TypeError, ValueError):
@@ -179,6 +198,144 @@ def _choice(settings: Mapping[str, Any], key: str, choices: tuple[str, ...], def
     return value
 
 
+def monitor_laws() -> tuple[str, ...]:
+    """The controller laws the monitor runs: every registered law that drives the MR damper.
+
+    The ideal references (an ideal dissipative damper in place of the MR damper) have no
+    drive current for the rig, so they are left out
+    (:attr:`~mrsuspension.control.Controller.drives_damper`).
+
+    Examples
+    --------
+    >>> laws = monitor_laws()
+    >>> "skyhook-hilo" in laws, "ideal-skyhook" in laws
+    (True, False)
+    """
+    return tuple(law for law in CONTROLLERS if make_controller(law).drives_damper)
+
+
+def page_options(law: str) -> list[ControlOption]:
+    """The options of ``law`` as the monitor offers them (:func:`law_options`, adapted).
+
+    A drive current (unit ``A``) is capped at the HiL limit :data:`MAX_CURRENT` (its
+    default too) and :data:`PAGE_DEFAULTS` replace the law's defaults.
+
+    Examples
+    --------
+    >>> [(o.name, o.default, o.high) for o in page_options("passive")]
+    [('current', 0.0, 0.3)]
+    >>> [o.default for o in page_options("skyhook-hilo") if o.name == "mode"]
+    ['ACM']
+    """
+    out = []
+    for opt in law_options(law):
+        if opt.unit == "A" and (opt.high is None or opt.high >= MAX_CURRENT):
+            default = opt.default
+            if isinstance(default, int | float) and default > MAX_CURRENT:
+                default = MAX_CURRENT
+            opt = dataclasses.replace(opt, high=MAX_CURRENT, high_open=False, default=default)
+        if opt.name in PAGE_DEFAULTS:
+            page = PAGE_DEFAULTS[opt.name]
+            if opt.choices is None or page in opt.choices:
+                opt = dataclasses.replace(opt, default=page)
+        out.append(opt)
+    return out
+
+
+def _form_field(opt: ControlOption) -> dict[str, Any]:
+    """One option as the page builds its field (label: the spec's symbol and the unit)."""
+    label = opt.symbol or opt.name
+    if opt.unit:
+        label += f" [{opt.unit}]"
+    return {
+        "name": opt.name,
+        "label": label,
+        "symbol": opt.symbol,
+        "unit": opt.unit,
+        "default": opt.default,
+        "min": opt.low,
+        "max": opt.high,
+        "min_open": opt.low_open,
+        "max_open": opt.high_open,
+        "choices": None if opt.choices is None else list(opt.choices),
+    }
+
+
+def controller_forms() -> dict[str, Any]:
+    """The page's controller choices and their fields (``GET /api/controllers``).
+
+    Returns
+    -------
+    dict
+        ``default`` (the law the page starts with) and ``controllers``: for each of
+        :func:`monitor_laws`, ``law`` and ``options`` (each with ``name``, ``label``,
+        ``symbol``, ``unit``, ``default``, ``min``, ``max``, ``min_open``, ``max_open``
+        and, for a text option, ``choices``), as :func:`page_options` gives them.
+
+    Examples
+    --------
+    >>> forms = controller_forms()
+    >>> forms["default"], [o["label"] for o in forms["controllers"][0]["options"]]
+    ('skyhook-hilo', ['i [A]'])
+    """
+    laws = monitor_laws()
+    return {
+        "default": _default_law(laws),
+        "controllers": [
+            {"law": law, "options": [_form_field(o) for o in page_options(law)]} for law in laws
+        ],
+    }
+
+
+def _default_law(laws: tuple[str, ...]) -> str:
+    """:data:`DEFAULT_LAW`, or the first of ``laws`` when it is not registered."""
+    return DEFAULT_LAW if DEFAULT_LAW in laws else laws[0]
+
+
+def _given(settings: Mapping[str, Any], opt: ControlOption) -> Any:
+    """The page's value of ``opt`` (by name, else by its spec symbol); None when blank."""
+    for key in (opt.name, opt.symbol):
+        raw = settings.get(key) if key else None
+        if raw is not None and str(raw).strip() != "":
+            return raw
+    return None
+
+
+def controller_table(law: str, settings: Mapping[str, Any]) -> dict[str, Any]:
+    """The ``[controller]`` table of ``law`` from the page's fields, validated.
+
+    Each option of :func:`page_options` is read by name (or by its spec symbol, e.g.
+    ``lambda`` for ``slope``); a blank or missing one takes its default. Numbers are
+    checked against the option's range, text against its choices.
+
+    Examples
+    --------
+    >>> controller_table("sliding-mode", {"lambda": "0.7", "mode": "SCM", "p": "0.5"})["slope"]
+    0.7
+    >>> controller_table("passive", {"current": "0.9"})
+    Traceback (most recent call last):
+    ...
+    mrsuspension.errors.ValidationError: current must be in [0, 0.3]; got 0.9
+    """
+    table: dict[str, Any] = {"law": law}
+    explicit: set[str] = set()
+    for opt in page_options(law):
+        raw = _given(settings, opt)
+        if raw is None:
+            if opt.default is not None:
+                table[opt.name] = opt.default
+            continue
+        explicit.add(opt.name)
+        label = opt.label or opt.name
+        if opt.choices is None:
+            raw = _as_number(raw, label)
+        table[opt.name] = opt.check(raw)
+    for key, overridden in _OVERRIDES.items():
+        if key in explicit:
+            table.pop(overridden, None)
+    return table
+
+
 def scenario_from_settings(
     settings: Mapping[str, Any], road_dir: str | Path | None = None
 ) -> MonitorSettings:
@@ -187,9 +344,9 @@ def scenario_from_settings(
     Parameters
     ----------
     settings : mapping
-        Form fields: ``controller`` (one of :data:`CONTROLLERS`), ``current``, ``gain``
-        (k_c), ``order``, ``lambda``, ``eps``, ``mode`` (``SCM``/``ACM``), optional
-        shaping factors ``p`` (overrides ``mode``), ``xi``, ``p_c``, ``xi_c``, ``excitation``
+        Form fields: ``controller`` (one of :func:`monitor_laws`), the law's options
+        (:func:`controller_table`: by name or spec symbol, blank for the default; an
+        explicit ``p`` overrides ``mode``), ``excitation``
         (one of :data:`EXCITATIONS`), ``frequency``, ``amplitude``, ``height``,
         ``severity``, ``speed``, ``profile`` (a preset, or ``file`` with ``road_file``),
         ``road_speed``, ``scale``, the vehicle parameters of :data:`VEHICLE_FIELDS`,
@@ -208,37 +365,9 @@ def scenario_from_settings(
     ValidationError
         For an unknown choice, a non-number or a value the scenario layer refuses.
     """
-    law = _choice(settings, "controller", CONTROLLERS, "skyhook-hilo")
-    mode = _choice(settings, "mode", ("SCM", "ACM"), "ACM")
-    # shaping of the hi-lo and inverse-model laws: p (blank: from SCM/ACM), xi, p_c, xi_c
-    shaping: dict[str, Any] = {"mode": mode}
-    for key, label in (("p", "p"), ("xi", "xi"), ("p_c", "p_c"), ("xi_c", "xi_c")):
-        raw = settings.get(key)
-        if raw is not None and str(raw).strip() != "":
-            shaping[key] = _number(settings, key, 0.0, label)
-    if "p" in shaping:
-        del shaping["mode"]  # an explicit asymmetry factor overrides SCM/ACM
-    controller: dict[str, Any]
-    if law == "passive-zero":
-        controller = {"law": "passive", "current": 0.0}
-    elif law == "fixed-current":
-        controller = {"law": "passive", "current": _number(settings, "current", 0.1, "current")}
-    elif law == "skyhook-hilo":
-        controller = {
-            "law": "skyhook-hilo",
-            **shaping,
-            "gain": _number(settings, "gain", 3.0, "k_c"),
-            "order": _number(settings, "order", 2.0, "order n"),
-        }
-    elif law == "inverse-hilo":
-        controller = {"law": "inverse-hilo", **shaping}
-    else:
-        controller = {
-            "law": "sliding-mode",
-            **shaping,
-            "lambda": _number(settings, "lambda", 0.5, "lambda"),
-            "eps": _number(settings, "eps", 0.05, "eps"),
-        }
+    laws = monitor_laws()
+    law = _choice(settings, "controller", laws, _default_law(laws))
+    controller = controller_table(law, settings)
 
     kind = _choice(settings, "excitation", EXCITATIONS, "harmonic")
     excitation: dict[str, Any]
@@ -318,7 +447,7 @@ def _road_file(name: Any, road_dir: str | Path | None) -> str:
 
 
 def page_fields(sim: Simulation) -> dict[str, Any]:
-    """The page's form values describing ``sim`` (its vehicle and controller gain).
+    """The page's form values describing ``sim`` (its vehicle and controller options).
 
     Examples
     --------
@@ -328,7 +457,8 @@ def page_fields(sim: Simulation) -> dict[str, Any]:
     """
     out: dict[str, Any] = {key: getattr(sim.vehicle, key) for key in VEHICLE_FIELDS}
     desc = sim.controller.describe()
-    for key in ("gain", "order", "p", "xi", "p_c", "xi_c"):
-        if key in desc:
-            out[key] = desc[key]
+    if desc["law"] in CONTROLLERS:
+        for opt in law_options(desc["law"]):
+            if opt.name in desc:
+                out[opt.name] = desc[opt.name]
     return out

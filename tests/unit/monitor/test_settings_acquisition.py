@@ -38,7 +38,7 @@ def test_zero_input_is_a_real_zero_road() -> None:
 def test_base_keeps_the_damper() -> None:
     base = Simulation(Harmonic(1.0, 0.01), damper=LinearViscous(damping=1500.0), max_current=0.3)
     sim = scenario_from_settings(
-        {"controller": "fixed-current", "current": 0.0, "sprung_mass": 600}
+        {"controller": "passive", "current": 0.0, "sprung_mass": 600}
     ).simulation(base)
     assert sim.damper is base.damper
     assert sim.vehicle.sprung_mass == 600.0

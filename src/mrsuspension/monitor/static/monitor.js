@@ -56,18 +56,81 @@
   const healthCells = rows("health", ["state", "safety", "reason", "time [s]", "ticks", "misses",
     "in deadline", "dropped", "lost rows", "tick [us]", "tick max [us]", "late max [us]", "current [A]", "changes applied"]);
 
-  function showFields() {
-    for (const sel of ["controller", "excitation"]) {
-      const value = $(sel).value;
-      document.querySelectorAll("fieldset label[data-for]").forEach((l) => {
-        const owner = l.closest("fieldset").querySelector("select").id;
-        const shaped = ["skyhook-hilo", "inverse-hilo", "sliding-mode"].includes(value);
-        const show = l.dataset.for === value || (l.dataset.for === "shaped" && shaped);
-        if (owner === sel) l.style.display = show ? "" : "none";
-      });
+  // -- controller fields, built from the controller registry (GET api/controllers) ------
+  // one field per option name (laws sharing an option share its field); blank: the
+  // selected law's default (its placeholder)
+  const laws = {}; // law -> its options (name, label, unit, default, min, max, choices)
+  const lawFields = {}; // option name -> { label, text, field }
+  function rangeText(o) {
+    const lo = o.min === null ? "-inf" : o.min;
+    const hi = o.max === null ? "inf" : o.max;
+    return "in " + (o.min_open ? "(" : "[") + lo + ", " + hi + (o.max_open ? ")" : "]") + (o.unit ? " " + o.unit : "");
+  }
+  function inRange(o) {
+    return (v) => (o.min === null || (o.min_open ? v > o.min : v >= o.min)) &&
+      (o.max === null || (o.max_open ? v < o.max : v <= o.max));
+  }
+  function buildControllers(forms) {
+    const sel = $("controller");
+    const box = $("controller_options");
+    for (const c of forms.controllers) {
+      laws[c.law] = c.options;
+      const item = document.createElement("option");
+      item.value = c.law; item.textContent = c.law;
+      sel.appendChild(item);
+      for (const o of c.options) {
+        let f = lawFields[o.name];
+        if (!f) {
+          const label = document.createElement("label");
+          const text = document.createTextNode(o.label + " ");
+          let field;
+          if (o.choices) {  // a switch: applied at once while a run goes
+            field = document.createElement("select");
+            for (const ch of ["", ...o.choices]) {
+              const x = document.createElement("option");
+              x.value = ch; x.textContent = ch || "(law default)";
+              field.appendChild(x);
+            }
+            field.addEventListener("change", applySwitch);
+          } else {
+            field = document.createElement("input");
+          }
+          field.name = o.name; field.id = o.name;
+          label.appendChild(text); label.appendChild(field);
+          box.appendChild(label);
+          f = lawFields[o.name] = { label: label, text: text, field: field, laws: [] };
+        }
+        f.laws.push(c.law);
+      }
+    }
+    sel.value = forms.default;
+    monitor.controllers = forms;
+    lawDefaults();
+    showFields();
+  }
+  // the selected law's labels and defaults (fields typed into since the last start/apply kept)
+  function lawDefaults() {
+    for (const o of laws[$("controller").value] || []) {
+      const f = lawFields[o.name];
+      f.text.textContent = o.label + " ";
+      f.label.title = o.name + (o.choices ? ": " + o.choices.join(", ") : " " + rangeText(o));
+      if (edited.has(o.name)) continue;
+      if (o.choices) f.field.value = o.default === null ? "" : o.default;
+      else { f.field.value = ""; f.field.placeholder = o.default === null ? "law default" : String(o.default); }
     }
   }
-  $("controller").addEventListener("change", showFields);
+  function showFields() {
+    const law = $("controller").value;
+    for (const f of Object.values(lawFields)) f.label.style.display = f.laws.includes(law) ? "" : "none";
+    const exc = $("excitation").value;
+    document.querySelectorAll("label[data-for]").forEach((l) => {
+      l.style.display = l.dataset.for === exc ? "" : "none";
+    });
+  }
+  function applySwitch() {  // switches apply at once while a run goes; the rest on Apply
+    if (["running", "startup"].includes(monitor.status.state)) send("api/apply", "change sent: applied between ticks");
+  }
+  $("controller").addEventListener("change", () => { lawDefaults(); showFields(); applySwitch(); });
   $("excitation").addEventListener("change", showFields);
   showFields();
 
@@ -100,20 +163,10 @@
       ["duration", "run [s]", (v) => v > 0 && v <= 3600, "in (0, 3600] s"],
       ["ramp_time", "ramp [s]", (v) => v > 0 && v <= 5, "in (0, 5] s"],
     ];
-    const law = s.controller;
-    if (law === "fixed-current") checks.push(["current", "i [A]", (v) => v >= 0 && v <= 0.3, "in [0, 0.3] A"]);
-    if (law === "skyhook-hilo") {
-      checks.push(["gain", "k_c", (v) => v >= 0, ">= 0"]);
-      checks.push(["order", "n", pos, "> 0"]);
-    }
-    if (law === "sliding-mode") {
-      checks.push(["lambda", "lambda", pos, "> 0"]);
-      checks.push(["eps", "eps", pos, "> 0"]);
-    }
-    if (["skyhook-hilo", "inverse-hilo", "sliding-mode"].includes(law)) {
-      const optional = [["p", "p", (v) => v >= 0 && v <= 1, "in [0, 1]"], ["xi", "xi", pos, "> 0"],
-        ["p_c", "p_c", (v) => v >= 0 && v < 1, "in [0, 1)"], ["xi_c", "xi_c", pos, "> 0"]];
-      for (const c of optional) if (String(s[c[0]] || "").trim() !== "") checks.push(c);
+    for (const o of laws[s.controller] || []) {  // blank: the law's default
+      if (!o.choices && String(s[o.name] === undefined ? "" : s[o.name]).trim() !== "") {
+        checks.push([o.name, o.label, inRange(o), rangeText(o)]);
+      }
     }
     const exc = s.excitation;
     if (exc === "harmonic") {
@@ -162,11 +215,6 @@
   }
   $("start").addEventListener("click", () => send("api/start", "run started"));
   $("apply").addEventListener("click", () => send("api/apply", "change sent: applied between ticks"));
-  for (const id of ["controller", "mode"]) {  // switches apply at once; the rest on Apply
-    $(id).addEventListener("change", () => {
-      if (["running", "startup"].includes(monitor.status.state)) send("api/apply", "change sent: applied between ticks");
-    });
-  }
   $("stop").addEventListener("click", async () => {
     try { await post("api/stop"); } catch (e) { setError(e.message); }
   });
@@ -332,6 +380,15 @@
     ws.onclose = () => setTimeout(connect, 1000);
     monitor.socket = ws;
   }
-  connect();
+  async function loadControllers() {
+    try {
+      const r = await fetch("api/controllers" + q);
+      if (!r.ok) throw new Error("HTTP " + r.status);
+      buildControllers(await r.json());
+      $("start").disabled = false;
+      $("apply").disabled = false;
+    } catch (e) { setError("controller list not loaded: " + e.message); }
+  }
   draw();
+  loadControllers().then(connect);  // the fields exist before a frame fills them
 })();
