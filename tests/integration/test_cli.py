@@ -99,7 +99,7 @@ def test_inverse_recovers_current() -> None:
         ),
         (("damper", "force", "-v", "0.1", "-p", "missing.toml"), "does not exist"),
         (("damper", "sets", "nope"), "unknown parameter set 'nope'"),
-        (("reproduce", "--chapters", "9"), "chapter 9 is not available"),
+        (("reproduce", "--chapters", "9"), "unknown chapter '9'"),
     ],
 )
 def test_bad_input_exit_code_2_with_message(args: tuple[str, ...], message: str) -> None:
