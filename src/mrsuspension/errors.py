@@ -8,14 +8,21 @@ from __future__ import annotations
 
 import difflib
 import tomllib
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:  # numpy is imported where used: `import mrsuspension.errors` stays cheap
     import numpy as np
 
-__all__ = ["MRSuspensionError", "ValidationError", "did_you_mean", "read_toml"]
+__all__ = [
+    "MRSuspensionError",
+    "ValidationError",
+    "check_keys",
+    "check_tables",
+    "did_you_mean",
+    "read_toml",
+]
 
 
 class MRSuspensionError(Exception):
@@ -44,6 +51,90 @@ def unknown_name(kind: str, name: str, choices: Iterable[str]) -> ValidationErro
     return ValidationError(
         f"unknown {kind} {name!r}.{did_you_mean(name, choices)} Valid: {', '.join(choices)}."
     )
+
+
+def check_keys(where: str, table: object, valid: Sequence[str]) -> Mapping[str, Any]:
+    """Return ``table`` if it is a table whose keys are all in ``valid``, else raise.
+
+    Parameters
+    ----------
+    where : str
+        The table's name in messages, e.g. ``"[study]"``.
+    table : object
+        The value read for it (e.g. from TOML).
+    valid : sequence of str
+        The keys it may hold, in the order the message lists them.
+
+    Returns
+    -------
+    Mapping
+        ``table``, unchanged.
+
+    Raises
+    ------
+    ValidationError
+        ``table`` is not a mapping, or holds a key not in ``valid`` (with a did-you-mean).
+
+    Examples
+    --------
+    >>> check_keys("[study]", {"name": "a"}, ["name", "seed"])
+    {'name': 'a'}
+    >>> check_keys("[study]", {"seeed": 1}, ["name", "seed"])
+    Traceback (most recent call last):
+    ...
+    mrsuspension.errors.ValidationError: unknown key [study] seeed. Did you mean 'seed'? Valid: name, seed.
+    """
+    return _named(table, valid, f"{where} must be a table", lambda key: f"key {where} {key}")
+
+
+def check_tables(what: str, data: object, valid: Sequence[str]) -> Mapping[str, Any]:
+    """Return ``data`` if it is a table of tables named in ``valid``, else raise.
+
+    Parameters
+    ----------
+    what : str
+        The document in messages, with its article, e.g. ``"a study"``.
+    data : object
+        The document as read (e.g. from TOML).
+    valid : sequence of str
+        The top-level tables it may hold.
+
+    Returns
+    -------
+    Mapping
+        The document itself.
+
+    Raises
+    ------
+    ValidationError
+        Not a mapping, or a table name not in ``valid`` (with a did-you-mean).
+
+    Examples
+    --------
+    >>> check_tables("a study", {"study": {}}, ["study", "grid"])
+    {'study': {}}
+    >>> check_tables("a study", {"gird": {}}, ["study", "grid"])
+    Traceback (most recent call last):
+    ...
+    mrsuspension.errors.ValidationError: unknown table [gird] in a study. Did you mean 'grid'? Valid: study, grid.
+    """
+    return _named(
+        data, valid, f"{what} must be a table of tables", lambda key: f"table [{key}] in {what}"
+    )
+
+
+def _named(
+    value: object, valid: Sequence[str], not_table: str, subject: Callable[[object], str]
+) -> Mapping[str, Any]:
+    """``value`` if a mapping with keys in ``valid``; else ``not_table`` or ``unknown <subject>``."""
+    if not isinstance(value, Mapping):
+        raise ValidationError(f"{not_table}; got {value!r}")
+    for key in value:
+        if key not in valid:
+            raise ValidationError(
+                f"unknown {subject(key)}.{did_you_mean(str(key), valid)} Valid: {', '.join(valid)}."
+            )
+    return value
 
 
 def check_finite(name: str, value: object, valid: str = "finite") -> np.ndarray:

@@ -76,10 +76,16 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from mrsuspension._batch import Job, job_of, process_pool, run_jobs
-from mrsuspension.errors import ValidationError, did_you_mean, read_toml
+from mrsuspension.errors import (
+    ValidationError,
+    check_keys,
+    check_tables,
+    did_you_mean,
+    read_toml,
+)
 from mrsuspension.excitation import EXCITATION_OPTIONS
 from mrsuspension.scenario import SCENARIO_KEYS, Scenario
-from mrsuspension.studies.study import MEASURES
+from mrsuspension.studies.study import MEASURES, merge_scenario_tables
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -141,18 +147,6 @@ def _number(where: str, value: object) -> float:
     if not _is_number(value) or not math.isfinite(float(value)):  # type: ignore[arg-type]
         raise ValidationError(f"{where} must be a finite number; got {value!r}")
     return float(value)  # type: ignore[arg-type]
-
-
-def _check_keys(where: str, table: object, valid: Sequence[str]) -> Mapping[str, Any]:
-    if not isinstance(table, Mapping):
-        raise ValidationError(f"{where} must be a table; got {table!r}")
-    for key in table:
-        if key not in valid:
-            raise ValidationError(
-                f"unknown key {where} {key}.{did_you_mean(str(key), valid)} "
-                f"Valid: {', '.join(valid)}."
-            )
-    return table
 
 
 def _int_option(where: str, value: object, low: int) -> int:
@@ -246,7 +240,7 @@ class Parameter:
 
 def _parameter(index: int, table: object) -> Parameter:
     where = f"[[parameters]] #{index + 1}"
-    t = _check_keys(where, table, _PARAMETER_KEYS)
+    t = check_keys(where, table, _PARAMETER_KEYS)
     for key in ("field", "lower", "upper"):
         if key not in t:
             raise ValidationError(f"{where} needs {key!r}")
@@ -303,7 +297,7 @@ class Road:
     ) -> Road:
         """A ``[[roads]]`` table over the base ``[excitation]`` options ``shared``."""
         where = f"[[roads]] #{index + 1}"
-        t = _check_keys(where, table, _ROAD_KEYS)
+        t = check_keys(where, table, _ROAD_KEYS)
         options = {k: v for k, v in (shared or {}).items() if k != "kind"}
         for key, dropped in _PROFILE_KEYS.items():
             if key in t:
@@ -424,7 +418,7 @@ def _weights(table: object) -> dict[str, float]:
 
 def _reference(table: object) -> dict[str, dict[str, Any]]:
     where = "[objective] reference"
-    t = _check_keys(where, table, tuple(s for s in SCENARIO_KEYS if s != "excitation"))
+    t = check_keys(where, table, tuple(s for s in SCENARIO_KEYS if s != "excitation"))
     out: dict[str, dict[str, Any]] = {}
     for section, value in t.items():
         if not isinstance(value, Mapping):
@@ -509,25 +503,11 @@ class OptimizationProblem:
             empty parameter or road lists, and any candidate scenario (a parameter at a
             bound, a road, the reference) that fails the scenario checks.
         """
-        if not isinstance(data, Mapping):
-            raise ValidationError(f"a problem must be a table of tables; got {data!r}")
-        for key in data:
-            if key not in _TOP_LEVEL:
-                raise ValidationError(
-                    f"unknown table [{key}] in optimisation problem."
-                    f"{did_you_mean(str(key), _TOP_LEVEL)} Valid: {', '.join(_TOP_LEVEL)}."
-                )
+        check_tables("an optimisation problem", data, _TOP_LEVEL)
         base_path = Path.cwd() if base_dir is None else Path(base_dir)
-        meta = _check_keys("[problem]", data.get("problem", {}), _PROBLEM_KEYS)
+        meta = check_keys("[problem]", data.get("problem", {}), _PROBLEM_KEYS)
 
-        base: dict[str, dict[str, Any]] = {}
-        for section in SCENARIO_KEYS:
-            table = data.get(section)
-            if table is None:
-                continue
-            if not isinstance(table, Mapping):
-                raise ValidationError(f"[{section}] must be a table; got {table!r}")
-            base[section] = copy.deepcopy(dict(table))
+        base = merge_scenario_tables({}, data)
         shared = base.pop("excitation", {})
         if shared.get("kind", "road") != "road":
             raise ValidationError(
@@ -568,7 +548,7 @@ class OptimizationProblem:
         if not any(r.weight for r in roads):
             raise ValidationError("[[roads]] weights: at least one must be > 0")
 
-        objective = _check_keys("[objective]", data.get("objective"), _OBJECTIVE_KEYS)
+        objective = check_keys("[objective]", data.get("objective"), _OBJECTIVE_KEYS)
         weights = _weights(objective.get("weights"))
         reference = _reference(objective.get("reference", DEFAULT_REFERENCE))
 

@@ -209,13 +209,7 @@ def damper_loops(
         if out is not None:
             files = [str(p) for p in result.save(out)]
             files.append(str(_plot_result(result, Path(out) / "loops.png")))
-    rows = result.summary_rows()
-    if as_json:
-        typer.echo(json.dumps({"model": result.model, "tests": rows, "files": files}))
-        return
-    _print_rows(rows)
-    for f in files:
-        typer.echo(f"wrote {f}")
+    _echo_characterisation(result, files, as_json)
 
 
 def _plot_result(result: Any, path: Path) -> Path:
@@ -241,11 +235,18 @@ def _plot_result(result: Any, path: Path) -> Path:
     return path
 
 
-def _print_rows(rows: list[dict[str, float]]) -> None:
+def _echo_characterisation(result: Any, files: list[str], as_json: bool) -> None:
+    """Print a characterisation's summary rows (or JSON) and the files written."""
+    rows = result.summary_rows()
+    if as_json:
+        typer.echo(json.dumps({"model": result.model, "tests": rows, "files": files}))
+        return
     keys = list(rows[0])
     typer.echo("  ".join(f"{k:>14.14}" for k in keys))
     for r in rows:
         typer.echo("  ".join(f"{r[k]:14.5g}" for k in keys))
+    for f in files:
+        typer.echo(f"wrote {f}")
 
 
 @app.command("matrix")
@@ -267,13 +268,7 @@ def damper_matrix(
         m = _model(model, parameters, hysteresis, vh_variant, force_gain, None)
         result = characterise(m, progress=not as_json)
         files = [str(p) for p in result.save(out)] if out is not None else []
-    rows = result.summary_rows()
-    if as_json:
-        typer.echo(json.dumps({"model": result.model, "tests": rows, "files": files}))
-        return
-    _print_rows(rows)
-    for f in files:
-        typer.echo(f"wrote {f}")
+    _echo_characterisation(result, files, as_json)
 
 
 @app.command("figures")

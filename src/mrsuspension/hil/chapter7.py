@@ -299,8 +299,7 @@ def run_pair(
 
 
 def _static_load(sim: Simulation) -> float:
-    v = sim.vehicle
-    return (v.sprung_mass + v.unsprung_mass) * 9.81
+    return sim.vehicle.static_load
 
 
 def _rel(h: float, o: float) -> float | None:

@@ -33,15 +33,14 @@ from mrsuspension.report.families import (
     vary,
 )
 from mrsuspension.report.toolkit import (
-    FREQUENCY_PANELS,
     SKYHOOK_ACM,
     Chapter,
     Context,
     FigureRecord,
     Jobs,
     family_chapter,
+    plot_selections,
     run_sweep,
-    subplots,
     sweep_study,
 )
 from mrsuspension.scenario import Scenario
@@ -69,7 +68,6 @@ POLICY_CASES: dict[str, dict[str, Any]] = {
     "IV": {"controller": {"law": "policy-iv", "gain": 300.0}},
 }
 # SKYHOOK_ACM (the section 4.4 parameters), HARMONIC and sweep_study: the toolkit's
-_PANELS = FREQUENCY_PANELS
 
 
 # ---------------------------------------------------------------------------------------
@@ -142,31 +140,6 @@ _SIGNALS = {
 # Full-mode frequency responses (too slow for the quick report)
 
 
-def _plot_selection(
-    ds: Any, selections: dict[str, dict[str, Any]], result: StudyResult
-) -> tuple[Any, dict[str, Any]]:
-    """Like :func:`~mrsuspension.report.toolkit.plot_sweep`, but each curve is an ``xarray`` selection over several dims."""
-    f = ds["frequency"].values
-    fig, axes = subplots(2, 2)
-    data: dict[str, Any] = {"frequency [Hz]": [float(v) for v in f]}
-    for label, where in selections.items():
-        sel = ds.sel(where)
-        for ax, (key, ylabel) in zip(axes.ravel(), _PANELS, strict=True):
-            ax.plot(f, sel[key].values, marker="o", ms=3, label=label)
-            ax.set_ylabel(ylabel)
-            data[f"{key} {label}"] = [float(v) for v in sel[key].values]
-        body = sel["T_as"].sel(frequency=slice(0.5, 4.0))
-        data[f"peak T_as {label}"] = float(body.max())
-    for ax in axes.ravel():
-        ax.set_xscale("log")
-        ax.set_xlabel("frequency [Hz]")
-        ax.grid(True, which="both", alpha=0.3)
-    axes[0, 0].legend(fontsize=8)
-    data["study hash"] = result.content_hash
-    data["study run time [s]"] = round(result.run_time, 2)
-    return fig, data
-
-
 def _hysteresis_study(quick: bool) -> StudyResult:
     """Skyhook hi-lo SCM/ACM x hysteretic/mean damper (grid as :func:`sweep_study`)."""
     modes = {
@@ -184,13 +157,12 @@ def _hysteresis_study(quick: bool) -> StudyResult:
 def fig_4_hysteresis(quick: bool = False) -> FigureRecord:
     """Influence of damper hysteresis on the skyhook hi-lo frequency responses."""
     result = _hysteresis_study(quick)
-    ds = result.to_xarray()
     selections = {
         f"{m}, {'hysteretic' if h else 'mean'}": {"mode": m, "damper.hysteresis": h}
         for m in ("SCM", "ACM")
         for h in (True, False)
     }
-    fig, data = _plot_selection(ds, selections, result)
+    fig, data = plot_selections(result, selections, peak_frequency=False)
     return FigureRecord(
         number="4.3b",
         title="Influence of damper hysteresis on the frequency responses of skyhook hi-lo",

@@ -50,6 +50,7 @@ from mrsuspension.report.toolkit import (
 )
 from mrsuspension.report.toolkit import inverse_model_step as step
 from mrsuspension.scenario import Scenario
+from mrsuspension.vehicle import QuarterCar
 
 __all__ = [
     "BASE",
@@ -107,8 +108,7 @@ def _row_measures(result: SimulationResult, start: float) -> dict[str, float]:
     sel = np.asarray(result.time >= start)
     acc = result.z_s_ddot[sel]
     stroke = result.x_d[sel]
-    veh = result.scenario.get("vehicle", {})
-    load = (veh.get("sprung_mass", 563.0) + veh.get("unsprung_mass", 90.0)) * 9.81
+    load = QuarterCar(**result.scenario.get("vehicle", {})).static_load
     return {
         "RMS a_s [m/s^2]": float(np.sqrt(np.mean(acc**2))),
         "peak |a_s| [m/s^2]": float(np.max(np.abs(acc))),

@@ -55,7 +55,6 @@ from __future__ import annotations
 import copy
 import json
 import math
-import os
 import time
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
@@ -64,6 +63,7 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
+from mrsuspension._pool import process_pool, worker_count
 from mrsuspension.errors import ValidationError
 from mrsuspension.report.toolkit import (
     FREQUENCY_PANELS,
@@ -682,17 +682,8 @@ def render(
     rec = FigureRecord(
         spec.number, spec.title, spec.caption + clamp_note(payloads, data), fig, data
     )
-    rec.save(folder, formats)
-    return {
-        "number": rec.number,
-        "title": rec.title,
-        "caption": rec.caption,
-        "files": rec.files,
-        "data": rec.data,
-        "render time [s]": round(time.perf_counter() - start, 3),
-        "render cpu time [s]": round(time.process_time() - cpu, 3),
-        "simulation time [s]": round(sum(p["run time [s]"] for p in payloads.values()), 3),
-    }
+    simulated = sum(p["run time [s]"] for p in payloads.values())
+    return _saved(rec, folder, formats, start, cpu, round(simulated, 3))
 
 
 def _build_special(
@@ -701,6 +692,18 @@ def _build_special(
     """Run a figure function (``builder(quick)``, or ``builder()`` if quick is None) and save."""
     start, cpu = time.perf_counter(), time.process_time()
     rec = builder() if quick is None else builder(quick)
+    return _saved(rec, folder, formats, start, cpu, 0.0)
+
+
+def _saved(
+    rec: FigureRecord,
+    folder: Path,
+    formats: Sequence[str],
+    start: float,
+    cpu: float,
+    simulated: float,
+) -> dict[str, Any]:
+    """Save ``rec`` and return its manifest entry, timed from ``start`` (wall) and ``cpu``."""
     rec.save(folder, formats)
     return {
         "number": rec.number,
@@ -710,7 +713,7 @@ def _build_special(
         "data": rec.data,
         "render time [s]": round(time.perf_counter() - start, 3),
         "render cpu time [s]": round(time.process_time() - cpu, 3),
-        "simulation time [s]": 0.0,
+        "simulation time [s]": simulated,
     }
 
 
@@ -888,7 +891,6 @@ def shock_table(
     from mrsuspension.vehicle import QuarterCar
 
     car = QuarterCar()
-    total = car.sprung_mass + car.unsprung_mass
     nominal = next(v for v, o in table.variants.items() if not o)
     reference = payloads[nominal]["peak_tire_force"]
     road_peaks = {payloads[v].get("road_peak", "after-onset") for v in table.variants}
@@ -901,7 +903,7 @@ def shock_table(
     for value in table.variants:
         p = payloads[value]
         row: dict[str, Any] = {table.column: value}
-        model = [*(p[k] for k in SHOCK), dtr(reference, p["peak_tire_force"], total)]
+        model = [*(p[k] for k in SHOCK), dtr(reference, p["peak_tire_force"], car.total_mass)]
         for k, ours, theirs in zip(TABLE_MEASURES, model, table.given[value], strict=True):
             ag = agreement(k, ours, theirs)
             row[f"{k} model"] = round(float(ours), 3)
@@ -935,7 +937,7 @@ def shock_table(
             f"varying {table.column}; ratios of peaks over a {PULSE_DURATION:g} s record, step "
             f"{step:g} ms. Scenario: {json.dumps(_normalise(table.base), sort_keys=True)}. "
             f"{sar}. DTR against the nominal row, normalised by (m_s0 + m_u) g = "
-            f"{total * 9.81:.0f} N. Each cell: ours, the dissertation's and their ratio (DTR: "
+            f"{car.static_load:.0f} N. Each cell: ours, the dissertation's and their ratio (DTR: "
             "the difference), coloured green within 10 %, amber within 25 %, red beyond (DTR: "
             "within 0.025, 0.05). Model/dissertation ratio over the rows: "
             f"{', '.join(ratios)} (a range that is narrow but far from 1: the trend agrees, "
@@ -1057,7 +1059,8 @@ def build_all(
         Further units to run (e.g. the findings scorecard's); their payloads join
         ``Built.payloads``, shared with the figures' equal units.
     workers : int, optional
-        Pool size (default: the CPU count); 1 runs everything in this process.
+        Pool size (default: the CPU count, at most one per job); 1 runs everything in
+        this process.
     progress : callable, optional
         Called with a message as jobs finish.
 
@@ -1065,7 +1068,7 @@ def build_all(
     -------
     Built
     """
-    from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
+    from concurrent.futures import FIRST_COMPLETED, Future, wait
 
     say = progress or (lambda _m: None)
     formats = ("png",) if quick else ("png", "svg")
@@ -1097,8 +1100,8 @@ def build_all(
     # the longest first: frequency sweeps, then roads
     order = {"freq": 0, "psd": 1, "time": 2, "pulse": 3}
     units.sort(key=lambda u: order[u.kind])
-    n_workers = 1 if in_worker() else (workers or os.cpu_count() or 1)
     total = len(units) + len(todo) + len(special_jobs) + len(calls or {})
+    n_workers = 1 if in_worker() else worker_count(workers, total)
     call_cpu: dict[str, float] = {}
     done = 0
 
@@ -1111,23 +1114,23 @@ def build_all(
         todo_item for todo_item in ((f"{sub}/{s.number}", (sub, s)) for sub, s in todo)
     )
 
-    if n_workers <= 1:
-        for u in units:
-            built.payloads[u] = run_unit(u)
-            tick(f"{u.kind} run")
-        for key, (sub, s) in pending_figs.items():
-            pl = {label: built.payloads[u] for label, u in need[key].items()}
-            built.figures[key] = render(s, pl, out / sub, formats)
-            tick(f"Fig. {s.number}")
-        for sub, builder, q in special_jobs:
-            rec = _build_special(builder, q, out / sub, formats)
-            built.figures[f"{sub}/{rec['number']}"] = rec
-            tick(f"Fig. {rec['number']}")
-        for name, (func, args) in (calls or {}).items():
-            built.calls[name], call_cpu[name] = _call(func, args)
-            tick(name)
-    else:
-        with ProcessPoolExecutor(max_workers=n_workers) as pool:
+    with process_pool(n_workers, total) as pool:
+        if pool is None:
+            for u in units:
+                built.payloads[u] = run_unit(u)
+                tick(f"{u.kind} run")
+            for key, (sub, s) in pending_figs.items():
+                pl = {label: built.payloads[u] for label, u in need[key].items()}
+                built.figures[key] = render(s, pl, out / sub, formats)
+                tick(f"Fig. {s.number}")
+            for sub, builder, q in special_jobs:
+                rec = _build_special(builder, q, out / sub, formats)
+                built.figures[f"{sub}/{rec['number']}"] = rec
+                tick(f"Fig. {rec['number']}")
+            for name, (func, args) in (calls or {}).items():
+                built.calls[name], call_cpu[name] = _call(func, args)
+                tick(name)
+        else:
             futures: dict[Future[Any], tuple[str, Any]] = {}
             for u in units:
                 futures[pool.submit(run_unit, u)] = ("unit", u)

@@ -62,6 +62,7 @@ __all__ = [
     "harmonic_runs",
     "in_worker",
     "inverse_model_step",
+    "plot_selections",
     "plot_sweep",
     "run_sweep",
     "save_figure",
@@ -773,21 +774,56 @@ def plot_sweep(
     True
     >>> import matplotlib.pyplot as plt; plt.close(fig)
     """
+    return plot_selections(result, {label: {dim: value} for value, label in labels.items()})
+
+
+def plot_selections(
+    result: StudyResult,
+    selections: Mapping[str, Mapping[str, Any]],
+    *,
+    peak_frequency: bool = True,
+) -> tuple[Any, dict[str, Any]]:
+    """Like :func:`plot_sweep`, but each curve is an ``xarray`` selection over several dims.
+
+    Parameters
+    ----------
+    result : StudyResult
+        The study, as for :func:`plot_sweep`.
+    selections : mapping
+        Curve label -> ``{dimension: value}`` selecting its runs.
+    peak_frequency : bool, optional
+        Also record the frequency of each curve's peak T_as (default True).
+
+    Returns
+    -------
+    tuple
+        ``(figure, data)`` as from :func:`plot_sweep`.
+
+    Examples
+    --------
+    >>> soft = {"controller": {"law": "passive", "current": 0.0}}
+    >>> result = run_sweep(sweep_study(True, "demo", cases={"damping": {"0 A": soft}}))
+    >>> fig, data = plot_selections(result, {"soft": {"damping": "0 A"}}, peak_frequency=False)
+    >>> sorted(k for k in data if k.startswith("peak"))
+    ['peak T_as soft']
+    >>> import matplotlib.pyplot as plt; plt.close(fig)
+    """
     ds = result.to_xarray()
     f = ds["frequency"].values
     fig, axes = subplots(2, 2)
     data: dict[str, Any] = {"frequency [Hz]": [float(v) for v in f]}
-    for value, label in labels.items():
-        sel = ds.sel({dim: value})
+    for label, where in selections.items():
+        sel = ds.sel(dict(where))
         for ax, (key, ylabel) in zip(axes.ravel(), FREQUENCY_PANELS, strict=True):
             ax.plot(f, sel[key].values, marker="o", ms=3, label=label)
             ax.set_ylabel(ylabel)
             data[f"{key} {label}"] = [float(v) for v in sel[key].values]
         body = sel["T_as"].sel(frequency=slice(0.5, 4.0))
         data[f"peak T_as {label}"] = float(body.max())
-        data[f"peak T_as frequency {label} [Hz]"] = float(
-            body["frequency"].values[int(np.argmax(body.values))]
-        )
+        if peak_frequency:
+            data[f"peak T_as frequency {label} [Hz]"] = float(
+                body["frequency"].values[int(np.argmax(body.values))]
+            )
     for ax in axes.ravel():
         ax.set_xscale("log")
         ax.set_xlabel("frequency [Hz]")

@@ -60,12 +60,18 @@ import numpy as np
 
 from mrsuspension.engine.result import MEASURES_BY_KIND
 from mrsuspension.engine.settings import RunSettings
-from mrsuspension.errors import ValidationError, did_you_mean, read_toml
+from mrsuspension.errors import (
+    ValidationError,
+    check_keys,
+    check_tables,
+    did_you_mean,
+    read_toml,
+)
 from mrsuspension.excitation import EXCITATIONS, log_frequencies
 from mrsuspension.measures.shock import DEFAULT_ROAD_PEAK, RoadPeak, check_road_peak
 from mrsuspension.scenario import SCENARIO_KEYS, Scenario
 
-__all__ = ["MEASURES", "Axis", "Study", "expand_frequencies"]
+__all__ = ["MEASURES", "Axis", "Study", "expand_frequencies", "merge_scenario_tables"]
 
 #: Measures of ``SimulationResult.measures()`` by excitation kind (spec section 9): each
 #: kind's declared ``measures_kind`` looked up in
@@ -115,6 +121,51 @@ def expand_frequencies(value: Any, where: str = "frequencies") -> Any:
             raise ValidationError(f"{where}: {value!r} needs 0 < f_min <= f_max")
         values = np.linspace(lo, hi, int(n))
     return [round(float(v), 12) for v in values]
+
+
+def merge_scenario_tables(
+    base: dict[str, dict[str, Any]], data: Mapping[str, Any]
+) -> dict[str, dict[str, Any]]:
+    """Merge the scenario tables of ``data`` (``[vehicle]``, ``[damper]``, ...) into ``base``.
+
+    Shared by studies and optimisation problems, whose files carry a base scenario's
+    tables beside their own. Each table present is deep-copied and updates the same
+    section of ``base`` key by key.
+
+    Parameters
+    ----------
+    base : dict
+        Section -> table; updated in place.
+    data : mapping
+        The file's tables; those not in ``SCENARIO_KEYS`` are ignored.
+
+    Returns
+    -------
+    dict
+        ``base``.
+
+    Raises
+    ------
+    ValidationError
+        A scenario section that is not a table.
+
+    Examples
+    --------
+    >>> merge_scenario_tables({"vehicle": {"sprung_mass": 422.0}}, {"vehicle": {"tire_damping": 0.0}})
+    {'vehicle': {'sprung_mass': 422.0, 'tire_damping': 0.0}}
+    >>> merge_scenario_tables({}, {"damper": 3})
+    Traceback (most recent call last):
+    ...
+    mrsuspension.errors.ValidationError: [damper] must be a table; got 3
+    """
+    for section in SCENARIO_KEYS:
+        table = data.get(section)
+        if table is None:
+            continue
+        if not isinstance(table, Mapping):
+            raise ValidationError(f"[{section}] must be a table; got {table!r}")
+        base.setdefault(section, {}).update(copy.deepcopy(dict(table)))
+    return base
 
 
 @dataclass(frozen=True)
@@ -303,24 +354,9 @@ class Study:
             cases, and any grid point whose scenario fails its own checks (the message
             names the point).
         """
-        if not isinstance(data, Mapping):
-            raise ValidationError(f"a study must be a table of tables; got {data!r}")
-        for key in data:
-            if key not in _TOP_LEVEL:
-                raise ValidationError(
-                    f"unknown table [{key}] in study.{did_you_mean(str(key), _TOP_LEVEL)} "
-                    f"Valid: {', '.join(_TOP_LEVEL)}."
-                )
+        check_tables("a study", data, _TOP_LEVEL)
         base_path = Path.cwd() if base_dir is None else Path(base_dir)
-        meta = data.get("study", {})
-        if not isinstance(meta, Mapping):
-            raise ValidationError(f"[study] must be a table; got {meta!r}")
-        for key in meta:
-            if key not in _STUDY_KEYS:
-                raise ValidationError(
-                    f"unknown key [study] {key}.{did_you_mean(str(key), _STUDY_KEYS)} "
-                    f"Valid: {', '.join(_STUDY_KEYS)}."
-                )
+        meta = check_keys("[study]", data.get("study", {}), _STUDY_KEYS)
         base: dict[str, dict[str, Any]] = {}
         if "scenario" in meta:
             spath = Path(str(meta["scenario"]))
@@ -329,13 +365,7 @@ class Study:
                 raise ValidationError(f"[study] scenario: file not found: {str(spath)!r}")
             base = copy.deepcopy(Scenario.load(spath).data)
             base = {k: v for k, v in base.items() if v}
-        for section in SCENARIO_KEYS:
-            table = data.get(section)
-            if table is None:
-                continue
-            if not isinstance(table, Mapping):
-                raise ValidationError(f"[{section}] must be a table; got {table!r}")
-            base.setdefault(section, {}).update(copy.deepcopy(dict(table)))
+        merge_scenario_tables(base, data)
         exc = base.get("excitation", {})
         if "frequencies" in exc:
             exc["frequencies"] = expand_frequencies(exc["frequencies"], "[excitation] frequencies")

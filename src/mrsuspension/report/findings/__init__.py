@@ -56,6 +56,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from mrsuspension._pool import pool_map
 from mrsuspension.report.families import Unit
 from mrsuspension.report.findings.checks import (
     ABOUT,
@@ -209,14 +210,7 @@ def run_payloads(
 ) -> dict[tuple[str, Unit], Payload]:
     """Run the given payload keys (one process, or a pool of ``workers``)."""
     todo = list(dict.fromkeys(keys))
-    if not todo:
-        return {}
-    if workers == 1 or len(todo) == 1:
-        return {k: run_key(k) for k in todo}
-    from concurrent.futures import ProcessPoolExecutor
-
-    with ProcessPoolExecutor(max_workers=workers) as pool:
-        return dict(zip(todo, pool.map(run_key, todo), strict=True))
+    return dict(zip(todo, pool_map(run_key, todo, workers=workers), strict=True))
 
 
 def units(quick: bool, claims: Sequence[Claim] | None = None) -> list[Unit]:

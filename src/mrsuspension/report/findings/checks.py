@@ -776,13 +776,12 @@ def dtr_values(
     from mrsuspension.vehicle import QuarterCar
 
     car = QuarterCar()
-    total = car.sprung_mass + car.unsprung_mass
 
     def fn(p: Mapping[str, Payload]) -> Verdict:
         ref = float(p[nominal[0]]["peak_tire_force"])
         parts, bad = [], []
         for k, (_run, stated) in changed.items():
-            d = dtr(ref, float(p[k]["peak_tire_force"]), total)
+            d = dtr(ref, float(p[k]["peak_tire_force"]), car.total_mass)
             parts.append(f"{k} {d:.3g} (dissertation {stated:g})")
             if abs(d - stated) > tol * stated:
                 bad.append(f"{k}: {d:.3g} not within {100 * tol:.0f} % of {stated:g}")
@@ -801,7 +800,7 @@ def dtr_of(nominal: Payload, other: Payload) -> float:
         dtr(
             float(nominal["peak_tire_force"]),
             float(other["peak_tire_force"]),
-            car.sprung_mass + car.unsprung_mass,
+            car.total_mass,
         )
     )
 
