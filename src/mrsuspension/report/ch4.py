@@ -67,7 +67,6 @@ POLICY_CASES: dict[str, dict[str, Any]] = {
     "III": {"controller": {"law": "policy-iii", "gain": 10.0}},
     "IV": {"controller": {"law": "policy-iv", "gain": 300.0}},
 }
-# SKYHOOK_ACM (the section 4.4 parameters), HARMONIC and sweep_study: the toolkit's
 
 
 # ---------------------------------------------------------------------------------------
