@@ -158,7 +158,7 @@ def identify_command(
         typer.Option("--free", help="--time-domain: parameters fixed by default to fit, e.g. n"),
     ] = None,
 ) -> None:
-    """Fit a damper model to the harmonic tests listed in MANIFEST (spec section 10).
+    """Fit a damper model to harmonic tests (MANIFEST) or to one record (--time-domain).
 
     Prints a per-test table (NRMSE, peak-force and energy errors) and the parameters.
 

@@ -24,6 +24,7 @@ MODULES = [
     "mrsuspension.engine.kernel",
     "mrsuspension.engine.lanes",
     "mrsuspension.hil._kernels",
+    "mrsuspension.identify.timedomain",
 ]
 
 
