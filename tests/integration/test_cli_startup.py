@@ -89,3 +89,39 @@ def test_version_and_python_dash_m() -> None:
             [sys.executable, *args], capture_output=True, text=True, check=True, timeout=120
         ).stdout
         assert out.strip() == mrsuspension.__version__
+
+
+SIMULATE_PROBE = """
+import contextlib, gc, json, sys
+from typer.main import get_command
+from mrsuspension.cli import app
+with contextlib.suppress(SystemExit):
+    get_command(app)(["simulate", sys.argv[1], "--json"], prog_name="mrsus")
+print(json.dumps({"modules": sorted(sys.modules), "gc": gc.isenabled()}))
+"""
+
+#: what a plain ``mrsus simulate`` (no --out) has no use for
+NOT_FOR_SIMULATE = (
+    "matplotlib", "pandas", "xarray", "mrsuspension.identify", "mrsuspension.studies",
+    "mrsuspension.optimize", "mrsuspension.report", "mrsuspension.monitor",
+)  # fmt: skip
+
+
+def test_simulate_loads_only_what_it_runs(tmp_path) -> None:  # type: ignore[no-untyped-def]
+    """``mrsus simulate`` of a harmonic run imports no plotting, tables or other commands,
+    and leaves the garbage collector enabled after pausing it while the engine loads."""
+    scenario = tmp_path / "harm.toml"
+    scenario.write_text(
+        '[excitation]\nkind = "harmonic"\nfrequency = 2.0\namplitude = 0.02\n'
+        "[simulation]\nduration = 10.0\n"
+    )
+    out = subprocess.run(
+        [sys.executable, "-c", SIMULATE_PROBE, str(scenario)],
+        capture_output=True, text=True, check=True, timeout=300,
+    ).stdout  # fmt: skip
+    lines = out.strip().splitlines()
+    assert "T_as" in json.loads(lines[-2])
+    probe = json.loads(lines[-1])
+    assert probe["gc"] is True
+    loaded = [m for m in probe["modules"] if m.startswith(NOT_FOR_SIMULATE)]
+    assert loaded == []

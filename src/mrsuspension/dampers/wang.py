@@ -234,7 +234,10 @@ class WangSymmetric(DamperModel):
             vmax = getattr(est, "v_max", V_LIMIT)
             vms = np.linspace(0.0, vmax, 201)
         p = self._p
-        ci = float(self.current_gain(min(i, self.max_current)))
+        # C_i (2.9) in plain Python: this bound only validates dt, and asking the compiled
+        # kernels.current_gain here would load one more cached kernel at every start-up
+        ic = float(self.check_current(min(i, self.max_current)))
+        ci = 1.0 + p[K.W_K2] * (K.sigmoid.py_func(p[K.W_A2] * (ic + p[K.W_I0])) - p[K.W_SA2])
         ft = p[K.W_F0] * (1.0 + np.exp(p[K.W_A1] * vms))
         alpha = p[K.W_A0] / (1.0 + p[K.W_K0] * vms)
         kv = max(p[K.W_K1C], p[K.W_K1E]) * np.exp(-p[K.W_A4] * vms)
