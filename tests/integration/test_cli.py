@@ -185,3 +185,24 @@ def test_study_command_rejects_a_bad_study(tmp_path: Path) -> None:
     code, _, err = run("study", str(bad))
     assert code == 2
     assert "sprung_mass" in err
+
+
+def test_damper_tables_show_units_without_truncation() -> None:
+    code, out, err = run("damper", "loops", "--currents", "0,0.4")
+    assert code == 0, err
+    names, units = out.splitlines()[:2]
+    assert "max compression force" in names
+    assert "equivalent damping" in names
+    assert units.split() == ["[Hz]", "[m]", "[A]", "[m/s]", "[N]", "[N]", "[J]", "[N", "s/m]"]
+
+
+def test_damper_sets_wraps_sources_at_words() -> None:
+    from mrsuspension import parameters
+
+    code, out, _ = run("damper", "sets")
+    assert code == 0
+    words = out.split()
+    for name in parameters.available():
+        for word in parameters.get(name).source.split():
+            assert word in words, word  # no word cut in two
+    assert max(len(line) for line in out.splitlines()) <= 22 + 1 + 16 + 1 + 60
