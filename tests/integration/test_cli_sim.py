@@ -182,7 +182,7 @@ def test_sweep_json_and_out(tmp_path: Path) -> None:
     assert float(table[0]["amplitude [m]"]) == 0.015
     assert "T_dr [-]" in table[0]
     assert "mean_current [A]" in table[0]
-    assert list(table[0])[0] == "frequency [Hz]"
+    assert next(iter(table[0])) == "frequency [Hz]"
 
 
 def test_parse_frequencies() -> None:

@@ -82,7 +82,7 @@ def test_parquet_without_pyarrow_names_the_extra(
 
 
 def test_load_rejects_foreign_files(tmp_path: Path) -> None:
-    with pytest.raises(ValidationError, match="use .parquet or .nc"):
+    with pytest.raises(ValidationError, match=r"use \.parquet or \.nc"):
         SimulationResult.load(tmp_path / "run.csv")
     with pytest.raises(ValidationError, match="no result file"):
         SimulationResult.load(tmp_path / "missing.parquet")
