@@ -275,3 +275,21 @@ def test_a_run_at_the_velocity_clamp_says_so(tmp_path: Path) -> None:
     code, out, err = _invoke("simulate", str(SCENARIOS / "skyhook-hilo-acm-harmonic.toml"))
     assert code == 0, err
     assert "clamp" not in err
+
+
+def test_compile_notice_only_when_the_engine_cache_is_cold(
+    monkeypatch: pytest.MonkeyPatch, tmp_path: Path
+) -> None:
+    from mrsuspension.cli.compiling import COMPILE_NOTICE
+
+    scenario = str(SCENARIOS / "passive-harmonic.toml")
+    code, _, err = _invoke("simulate", scenario)  # warms the cache if needed
+    assert code == 0, err
+    code, _, err = _invoke("simulate", scenario)
+    assert code == 0, err
+    assert COMPILE_NOTICE not in err
+    # an empty cache folder looks cold (numba itself read its setting at import)
+    monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path))
+    code, _, err = _invoke("simulate", scenario)
+    assert code == 0, err
+    assert err.splitlines()[0] == COMPILE_NOTICE

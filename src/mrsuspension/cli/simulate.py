@@ -268,6 +268,7 @@ def simulate_command(
     ``road_peak``, the definition ``--road-peak`` chose for the SAR denominators.
     """
     from mrsuspension._progress import progress_bar
+    from mrsuspension.cli.compiling import notify_if_compiling
     from mrsuspension.excitation import Harmonic
     from mrsuspension.measures.shock import check_road_peak
     from mrsuspension.scenario import Scenario
@@ -278,6 +279,7 @@ def simulate_command(
         if formats is not None and out is None:
             raise ValidationError(f"--format {formats!r} needs --out DIR (the folder to write)")
         scn = Scenario.load(scenario)
+        notify_if_compiling()
         if formats is not None and scn.is_sweep:
             raise ValidationError(
                 f"--format {formats!r} applies to single runs; a swept scenario writes "
@@ -347,6 +349,7 @@ def sweep_command(
     and the current per frequency (``--json``: a list of objects).
     """
     from mrsuspension._progress import progress_bar
+    from mrsuspension.cli.compiling import notify_if_compiling
     from mrsuspension.engine.simulate import measures_of, run_many
     from mrsuspension.scenario import Scenario
 
@@ -357,6 +360,7 @@ def sweep_command(
             raise ValidationError(f"--workers must be >= 1; got {workers}")
         excitations = list(sweep.excitations())
         sims = scn.simulations(excitations)
+        notify_if_compiling()
         with progress_bar(not as_json, "sweep") as progress:
             results = run_many(
                 sims,
