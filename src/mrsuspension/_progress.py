@@ -14,7 +14,12 @@ from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from typing import Protocol, TextIO
 
-__all__ = ["PLAIN_EVERY", "ProgressCallback", "progress_bar"]
+__all__ = [
+    "PLAIN_EVERY",
+    "ProgressCallback",
+    "plain_status",
+    "progress_bar",
+]
 
 #: seconds between two plain progress lines when stderr is not a terminal
 PLAIN_EVERY = 5.0
@@ -122,3 +127,34 @@ def _rich_bar(label: str, stream: TextIO) -> Iterator[Callable[..., None]]:
             bar.update(task, completed=done, total=total, description=description)
 
         yield update
+
+
+def plain_status(
+    stream: TextIO | None = None, *, every: float = PLAIN_EVERY
+) -> Callable[[str], None]:
+    """A ``status(message)`` callback writing ``"<elapsed> s  message"`` lines.
+
+    For a log (stderr not a terminal): the first message at once, then at most one line
+    every ``every`` seconds, so a long job shows it is alive without flooding the log.
+
+    Examples
+    --------
+    >>> import io
+    >>> log = io.StringIO()
+    >>> say = plain_status(log, every=3600.0)
+    >>> say("chapter 2"); say("chapter 3")
+    >>> log.getvalue()
+    '0 s  chapter 2\\n'
+    """
+    out = sys.stderr if stream is None else stream
+    start = time.monotonic()
+    last = [-float("inf")]
+
+    def status(message: str) -> None:
+        now = time.monotonic()
+        if now - last[0] >= every:
+            last[0] = now
+            out.write(f"{now - start:.0f} s  {message}\n")
+            out.flush()
+
+    return status

@@ -185,3 +185,42 @@ def test_study_command_rejects_a_bad_study(tmp_path: Path) -> None:
     code, _, err = run("study", str(bad))
     assert code == 2
     assert "sprung_mass" in err
+
+
+def test_damper_tables_show_units_without_truncation() -> None:
+    code, out, err = run("damper", "loops", "--currents", "0,0.4")
+    assert code == 0, err
+    names, units = out.splitlines()[:2]
+    assert "max compression force" in names
+    assert "equivalent damping" in names
+    assert units.split() == ["[Hz]", "[m]", "[A]", "[m/s]", "[N]", "[N]", "[J]", "[N", "s/m]"]
+
+
+def test_damper_sets_wraps_sources_at_words() -> None:
+    from mrsuspension import parameters
+
+    code, out, _ = run("damper", "sets")
+    assert code == 0
+    words = out.split()
+    for name in parameters.available():
+        for word in parameters.get(name).source.split():
+            assert word in words, word  # no word cut in two
+    assert max(len(line) for line in out.splitlines()) <= 22 + 1 + 16 + 1 + 60
+
+
+def test_reproduce_prints_plain_progress_lines_in_a_log(
+    monkeypatch: pytest.MonkeyPatch, tmp_path: Path
+) -> None:
+    import mrsuspension.report as report
+
+    def fake_build_report(out: Path, *, progress, **_: object) -> Path:  # type: ignore[no-untyped-def]
+        progress("report: 1/2 chapter 2")
+        progress("report: 2/2 chapter 3")  # within PLAIN_EVERY of the first: not written
+        return Path(out) / "index.html"
+
+    monkeypatch.setattr(report, "build_report", fake_build_report)
+    code, out, err = run("reproduce", "--out", str(tmp_path), "--quick")
+    assert code == 0, err
+    assert "0 s  report: 1/2 chapter 2" in err.splitlines()
+    assert "\r" not in err
+    assert "report written to" in out

@@ -108,6 +108,58 @@ def test_simulate_out_writes_files(tmp_path: Path) -> None:
     assert header.startswith("time [s],z_s [m]")
 
 
+def test_simulate_prints_units_and_writes_parquet(tmp_path: Path) -> None:
+    pytest.importorskip("pyarrow")
+    from mrsuspension.engine.result import SimulationResult
+
+    out = tmp_path / "run"
+    scenario = SCENARIOS / "passive-harmonic.toml"
+    code, stdout, err = _invoke("simulate", str(scenario), "--out", str(out), "--format", "parquet")
+    assert code == 0, err
+    lines = {line.split("=")[0].strip(): line for line in stdout.splitlines() if "=" in line}
+    assert lines["mean_current"].rstrip().endswith(" [A]")
+    assert lines["T_as"].rstrip().endswith(" [-]")
+    assert (out / "result.parquet").is_file()
+    assert not (out / "result.csv").exists()
+    back = SimulationResult.load(out / "result.parquet")
+    assert back.units["F_d"] == "N"
+    assert back.scenario["excitation"]["kind"] == "harmonic"
+
+
+@pytest.mark.parametrize(
+    ("args", "fragment"),
+    [
+        (["--format", "xlsx", "--out", "x"], "--format must be a comma list of csv, nc, parquet"),
+        (["--format", "parquet"], "needs --out"),
+    ],
+)
+def test_simulate_format_errors(args: list[str], fragment: str) -> None:
+    code, _, err = _invoke("simulate", str(SCENARIOS / "passive-harmonic.toml"), *args)
+    assert code == 2
+    assert fragment in err
+    assert "Traceback" not in err
+
+
+def test_simulate_parquet_without_pyarrow(monkeypatch: pytest.MonkeyPatch, tmp_path: Path) -> None:
+    import importlib.util
+
+    real = importlib.util.find_spec
+    monkeypatch.setattr(
+        importlib.util, "find_spec", lambda name, *a: None if name == "pyarrow" else real(name, *a)
+    )
+    code, _, err = _invoke(
+        "simulate",
+        str(SCENARIOS / "passive-harmonic.toml"),
+        "--format",
+        "parquet",
+        "--out",
+        str(tmp_path),
+    )
+    assert code == 2
+    assert err.strip().count("\n") == 0
+    assert "pip install 'mrsuspension[data]'" in err
+
+
 def test_sweep_json_and_out(tmp_path: Path) -> None:
     scenario = str(SCENARIOS / "skyhook-hilo-acm-harmonic.toml")
     code, out, err = _invoke("sweep", scenario, "-f", "0.987,1.5,4,12", "--json", "-j", "2")
@@ -127,8 +179,10 @@ def test_sweep_json_and_out(tmp_path: Path) -> None:
     with (folder / "sweep.csv").open() as fh:
         table = list(csv.DictReader(fh))
     assert len(table) == 3
-    assert float(table[0]["amplitude"]) == 0.015
-    assert "T_dr" in table[0]
+    assert float(table[0]["amplitude [m]"]) == 0.015
+    assert "T_dr [-]" in table[0]
+    assert "mean_current [A]" in table[0]
+    assert next(iter(table[0])) == "frequency [Hz]"
 
 
 def test_parse_frequencies() -> None:
@@ -221,3 +275,21 @@ def test_a_run_at_the_velocity_clamp_says_so(tmp_path: Path) -> None:
     code, out, err = _invoke("simulate", str(SCENARIOS / "skyhook-hilo-acm-harmonic.toml"))
     assert code == 0, err
     assert "clamp" not in err
+
+
+def test_compile_notice_only_when_the_engine_cache_is_cold(
+    monkeypatch: pytest.MonkeyPatch, tmp_path: Path
+) -> None:
+    from mrsuspension.cli.compiling import COMPILE_NOTICE
+
+    scenario = str(SCENARIOS / "passive-harmonic.toml")
+    code, _, err = _invoke("simulate", scenario)  # warms the cache if needed
+    assert code == 0, err
+    code, _, err = _invoke("simulate", scenario)
+    assert code == 0, err
+    assert COMPILE_NOTICE not in err
+    # an empty cache folder looks cold (numba itself read its setting at import)
+    monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path))
+    code, _, err = _invoke("simulate", scenario)
+    assert code == 0, err
+    assert err.splitlines()[0] == COMPILE_NOTICE

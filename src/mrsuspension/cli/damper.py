@@ -241,12 +241,26 @@ def _echo_characterisation(result: Any, files: list[str], as_json: bool) -> None
     if as_json:
         typer.echo(json.dumps({"model": result.model, "tests": rows, "files": files}))
         return
-    keys = list(rows[0])
-    typer.echo("  ".join(f"{k:>14.14}" for k in keys))
-    for r in rows:
-        typer.echo("  ".join(f"{r[k]:14.5g}" for k in keys))
+    _print_rows(rows)
     for f in files:
         typer.echo(f"wrote {f}")
+
+
+def _print_rows(rows: list[dict[str, float]]) -> None:
+    """A table with two header lines, names and ``[unit]``, each column as wide as needed."""
+    keys = list(rows[0])
+    heads = [_split_unit(k) for k in keys]
+    widths = [max(10, len(name), len(unit)) for name, unit in heads]
+    for line in zip(*heads, strict=True):
+        typer.echo("  ".join(f"{h:>{w}}" for h, w in zip(line, widths, strict=True)).rstrip())
+    for r in rows:
+        typer.echo("  ".join(f"{r[k]:{w}.5g}" for k, w in zip(keys, widths, strict=True)))
+
+
+def _split_unit(label: str) -> tuple[str, str]:
+    """``("max rebound force", "[N]")`` from ``"max rebound force [N]"``."""
+    name, bracket, unit = label.rpartition(" [")
+    return (name, f"[{unit}") if bracket and unit.endswith("]") else (label, "")
 
 
 @app.command("matrix")
@@ -299,8 +313,13 @@ def damper_sets(
                     )
                 )
                 return
+            import textwrap
+
             for s in sets:
-                typer.echo(f"{s.name:22} {s.model:16} {s.source[:80]}")
+                lines = textwrap.wrap(s.source, width=60) or [""]
+                typer.echo(f"{s.name:22} {s.model:16} {lines[0]}")
+                for more in lines[1:]:
+                    typer.echo(f"{'':22} {'':16} {more}")
             return
         s = parameters.resolve(name, model="")
     if as_json:

@@ -29,15 +29,23 @@ def reproduce(
     quick: Annotated[bool, typer.Option("--quick", help="coarse grids, for a fast check")] = False,
 ) -> None:
     """Regenerate the dissertation's analyses into OUT/index.html (the main job)."""
+    import sys
+
     from rich.console import Console
 
+    from mrsuspension._progress import plain_status
+    from mrsuspension.cli.compiling import notify_if_compiling
     from mrsuspension.report import build_report
 
     console = Console(stderr=True)
     with user_errors():
         chosen = None if chapters is None else _chapters(chapters)
-        with console.status("starting") as status:
-            index = build_report(
-                out, chapters=chosen, quick=quick, progress=lambda m: status.update(m)
-            )
+        notify_if_compiling()
+        if not sys.stderr.isatty():  # a log: plain lines every few seconds, no spinner
+            index = build_report(out, chapters=chosen, quick=quick, progress=plain_status())
+        else:
+            with console.status("starting") as status:
+                index = build_report(
+                    out, chapters=chosen, quick=quick, progress=lambda m: status.update(m)
+                )
     typer.echo(f"report written to {index}")

@@ -28,7 +28,7 @@ if TYPE_CHECKING:
     from mrsuspension.excitation import Harmonic, SteppedSweep
     from mrsuspension.scenario import Scenario
 
-__all__ = ["parse_frequencies", "simulate_command", "sweep_command"]
+__all__ = ["parse_formats", "parse_frequencies", "simulate_command", "sweep_command"]
 
 #: measures shown in the transmissibility plot of a sweep
 SWEEP_PLOT = ("T_as", "T_au", "T_dr", "DLC")
@@ -36,6 +36,9 @@ SWEEP_PLOT = ("T_as", "T_au", "T_dr", "DLC")
 #: not import the engine; ``tests/integration/test_cli_startup.py`` checks they agree)
 DEFAULT_ROAD_PEAK = "after-onset"  # measures.shock.DEFAULT_ROAD_PEAK
 DEFAULT_SWEEP_POINTS = 30  # excitation.DEFAULT_SWEEP_POINTS
+#: ``--format`` of ``mrsus simulate``: result file suffix by format name
+RESULT_FORMATS = {"csv": ".csv", "nc": ".nc", "parquet": ".parquet"}
+DEFAULT_RESULT_FORMATS = "csv,nc"
 
 ScenarioArg = Annotated[
     Path,
@@ -103,15 +106,38 @@ def _write(out: Path, write: Callable[[Path], Any]) -> None:
         raise ValidationError(f"cannot write to {str(out)!r}: {exc}") from None
 
 
+def parse_formats(text: str) -> list[str]:
+    """Parse ``--format``: a comma list of ``csv``, ``nc`` and ``parquet``.
+
+    Examples
+    --------
+    >>> parse_formats("csv, parquet")
+    ['csv', 'parquet']
+    """
+    names = [n.strip().lower() for n in text.split(",") if n.strip()]
+    bad = [n for n in names if n not in RESULT_FORMATS]
+    if bad or not names:
+        raise ValidationError(
+            f"--format must be a comma list of {', '.join(RESULT_FORMATS)}; got {text!r}"
+        )
+    if "parquet" in names:
+        from mrsuspension.engine.result import require_pyarrow
+
+        require_pyarrow()
+    return list(dict.fromkeys(names))
+
+
 def _write_sweep(out: Path, rows: Sequence[Mapping[str, Any]]) -> list[Path]:
-    """``sweep.csv`` and ``sweep.png`` (T_as, T_au, T_dr, DLC against frequency, log x)."""
+    """``sweep.csv`` (headers ``name [unit]``) and ``sweep.png`` (T_as, T_au, T_dr, DLC)."""
+    from mrsuspension.engine.result import measure_label
+
     files = [out / "sweep.csv", out / "sweep.png"]
     keys = list(rows[0])
     with files[0].open("w", newline="") as fh:
-        writer = csv.DictWriter(fh, fieldnames=keys)
-        writer.writeheader()
+        writer = csv.writer(fh)
+        writer.writerow([measure_label(k) for k in keys])
         for row in rows:
-            writer.writerow({k: row[k] for k in keys})
+            writer.writerow([row[k] for k in keys])
     import matplotlib
 
     matplotlib.use("Agg", force=False)
@@ -122,7 +148,7 @@ def _write_sweep(out: Path, rows: Sequence[Mapping[str, Any]]) -> list[Path]:
     for ax, key in zip(axes, SWEEP_PLOT, strict=True):
         values = [r[key] if r[key] is not None else math.nan for r in rows]
         ax.plot(freqs, values, "o-", ms=3, lw=1)
-        ax.set_ylabel(key)
+        ax.set_ylabel(measure_label(key))
         ax.set_xscale("log")
         ax.grid(True, which="both", alpha=0.3)
     axes[-1].set_xlabel("frequency [Hz]")
@@ -132,11 +158,20 @@ def _write_sweep(out: Path, rows: Sequence[Mapping[str, Any]]) -> list[Path]:
     return files
 
 
-def _write_single(out: Path, result: SimulationResult, measures: Mapping[str, Any]) -> list[Path]:
-    """``result.csv`` (+ ``result.json``), ``result.nc`` if xarray is there, plot, measures."""
-    files = [result.save(out / "result.csv"), out / "result.json"]
-    if importlib.util.find_spec("xarray") is not None:
-        files.append(result.save(out / "result.nc"))
+def _write_single(
+    out: Path,
+    result: SimulationResult,
+    measures: Mapping[str, Any],
+    formats: Sequence[str] = ("csv", "nc"),
+) -> list[Path]:
+    """``result.<format>`` per format (csv + ``result.json``; nc if xarray), plot, measures."""
+    files: list[Path] = []
+    for name in formats:
+        if name == "nc" and importlib.util.find_spec("xarray") is None:
+            continue
+        files.append(result.save(out / f"result{RESULT_FORMATS[name]}"))
+        if name == "csv":
+            files.append(out / "result.json")
     import matplotlib.pyplot as plt
 
     fig = result.plot()
@@ -175,9 +210,13 @@ def _spare_teardown() -> None:
 
 
 def _echo_measures(measures: Mapping[str, Any]) -> None:
+    """One ``name = value [unit]`` line per measure (a note such as ``road_peak``: no unit)."""
+    from mrsuspension.engine.result import MEASURE_UNITS
+
     for key, value in measures.items():
         text = "n/a" if value is None else f"{value:.6g}" if isinstance(value, float) else value
-        typer.echo(f"{key:>26} = {text}")
+        unit = f"[{MEASURE_UNITS[key]}]" if key in MEASURE_UNITS else ""
+        typer.echo(f"{key:>26} = {text!s:<12} {unit}".rstrip())
 
 
 def _clamp_note(fractions: Sequence[float | None]) -> None:
@@ -199,10 +238,20 @@ def _clamp_note(fractions: Sequence[float | None]) -> None:
 
 
 def _echo_rows(rows: Sequence[Mapping[str, Any]]) -> None:
+    """A table, one row per run, headers ``name [unit]`` (columns as wide as needed)."""
+    from mrsuspension.engine.result import measure_label
+
     keys = [k for k in rows[0] if k != "amplitude"]
-    typer.echo(" ".join(f"{k:>12}" for k in keys))
+    labels = [measure_label(k) for k in keys]
+    widths = [max(12, len(label)) for label in labels]
+    typer.echo(" ".join(f"{label:>{w}}" for label, w in zip(labels, widths, strict=True)))
     for row in rows:
-        typer.echo(" ".join(f"{'n/a':>12}" if row[k] is None else f"{row[k]:12.5g}" for k in keys))
+        typer.echo(
+            " ".join(
+                f"{'n/a':>{w}}" if row[k] is None else f"{row[k]:{w}.5g}"
+                for k, w in zip(keys, widths, strict=True)
+            )
+        )
 
 
 # -- commands -----------------------------------------------------------------------------
@@ -211,7 +260,17 @@ def simulate_command(
     out: Annotated[
         Path | None,
         typer.Option(
-            "--out", "-o", help="folder for the result (CSV, NetCDF), a plot and measures.json"
+            "--out", "-o", help="folder for the result (see --format), a plot and measures.json"
+        ),
+    ] = None,
+    formats: Annotated[
+        str | None,
+        typer.Option(
+            "--format",
+            help="with --out, a single run's result files: a comma list of csv (+ JSON "
+            "scenario), nc (NetCDF) and parquet (needs the 'data' extra; scenario and units "
+            f"in its metadata) [default: {DEFAULT_RESULT_FORMATS}]",
+            show_default=False,
         ),
     ] = None,
     as_json: JsonOpt = False,
@@ -239,12 +298,22 @@ def simulate_command(
     with user_errors():
         with _collector_paused():
             from mrsuspension._progress import progress_bar
+            from mrsuspension.cli.compiling import notify_if_compiling
             from mrsuspension.excitation import Harmonic
             from mrsuspension.measures.shock import check_road_peak
             from mrsuspension.scenario import Scenario
 
             how = check_road_peak(road_peak)
+            kinds = parse_formats(DEFAULT_RESULT_FORMATS if formats is None else formats)
+            if formats is not None and out is None:
+                raise ValidationError(f"--format {formats!r} needs --out DIR (the folder to write)")
+            notify_if_compiling()  # before the first kernel loads (the scenario's damper)
             scn = Scenario.load(scenario)
+            if formats is not None and scn.is_sweep:
+                raise ValidationError(
+                    f"--format {formats!r} applies to single runs; a swept scenario writes "
+                    "sweep.csv, sweep.png and measures.json"
+                )
         with progress_bar(scn.is_sweep and not as_json, "simulating") as progress:
             results = scn.run(duration=duration, workers=None, progress=progress)
         files: list[Path] = []
@@ -263,7 +332,7 @@ def simulate_command(
         else:
             payload = to_jsonable(results[0].measures(road_peak=how))
             if out is not None:
-                _write(out, lambda d: files.extend(_write_single(d, results[0], payload)))
+                _write(out, lambda d: files.extend(_write_single(d, results[0], payload, kinds)))
     _clamp_note([r.velocity_clamp_fraction for r in results])
     _spare_teardown()
     if as_json:
@@ -310,6 +379,7 @@ def sweep_command(
     and the current per frequency (``--json``: a list of objects).
     """
     from mrsuspension._progress import progress_bar
+    from mrsuspension.cli.compiling import notify_if_compiling
     from mrsuspension.engine.simulate import measures_of, run_many
     from mrsuspension.scenario import Scenario
 
@@ -320,6 +390,7 @@ def sweep_command(
             raise ValidationError(f"--workers must be >= 1; got {workers}")
         excitations = list(sweep.excitations())
         sims = scn.simulations(excitations)
+        notify_if_compiling()
         with progress_bar(not as_json, "sweep") as progress:
             results = run_many(
                 sims,

@@ -32,10 +32,12 @@ def study(
     as_json: JsonOpt = False,
 ) -> None:
     """Run a parameter study (a scenario and a grid of fields) and print or save the measures."""
+    from mrsuspension.cli.compiling import notify_if_compiling
     from mrsuspension.studies import Study, run_study
 
     with user_errors():
         st = Study.load(path)
+        notify_if_compiling()
         result = run_study(
             st,
             executor=scheduler or "local",

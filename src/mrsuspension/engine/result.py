@@ -24,10 +24,14 @@ __all__ = [
     "CLAMP_WARN_FRACTION",
     "MEASURES_BY_KIND",
     "MEASURE_NOTES",
+    "MEASURE_UNITS",
+    "PARQUET_METADATA_KEY",
     "SIGNALS",
     "SimulationDiverged",
     "SimulationResult",
     "VelocityClampWarning",
+    "measure_label",
+    "require_pyarrow",
     "warn_if_clamped",
 ]
 
@@ -57,6 +61,47 @@ MEASURES_BY_KIND: dict[str, tuple[str, ...]] = {
 #: Non-numeric entries of :meth:`SimulationResult.measures` by measures kind (how a
 #: measure was computed, not a measure).
 MEASURE_NOTES: dict[str, tuple[str, ...]] = {"pulse": ("road_peak",)}
+#: Unit of every measure in :data:`MEASURES_BY_KIND` ("-": a dimensionless ratio), and of
+#: the sweep coordinates ``frequency`` and ``amplitude``; used wherever a measure leaves
+#: the program (printouts, ``sweep.csv`` headers, NetCDF ``units``, Parquet metadata).
+MEASURE_UNITS: dict[str, str] = {
+    "frequency": "Hz",
+    "amplitude": "m",
+    "T_as": "-",
+    "T_au": "-",
+    "T_dr": "-",
+    "T_ds": "-",
+    "T_du": "-",
+    "DLC": "-",
+    "gamma": "-",
+    "mean_current": "A",
+    "mean_square_current": "A^2",
+    "vm_clamp_fraction": "-",
+    "SDR_s": "-",
+    "SAR_s": "-",
+    "SDR_u": "-",
+    "SAR_u": "-",
+    "RDR": "-",
+    "peak_tire_force": "N",
+    "rms_body_acceleration": "m/s^2",
+    "wk_rms_body_acceleration": "m/s^2",
+    "vdv": "m/s^1.75",
+    "rms_stroke": "m",
+}
+#: Key of the JSON entry (scenario, ``dt``, units) in a saved Parquet file's schema metadata.
+PARQUET_METADATA_KEY = "mrsuspension"
+
+
+def measure_label(name: str) -> str:
+    """``"name [unit]"`` for a measure with a unit in :data:`MEASURE_UNITS`, else ``name``.
+
+    Examples
+    --------
+    >>> measure_label("vdv"), measure_label("T_as"), measure_label("road_peak")
+    ('vdv [m/s^1.75]', 'T_as [-]', 'road_peak')
+    """
+    unit = MEASURE_UNITS.get(name)
+    return name if unit is None else f"{name} [{unit}]"
 
 
 class SimulationDiverged(MRSuspensionError):
@@ -293,10 +338,22 @@ class SimulationResult(Mapping[str, np.ndarray]):
         return ds
 
     def save(self, path: str | Path) -> Path:
-        """Write to ``.csv`` (with a JSON side file of the scenario), ``.nc`` or ``.parquet``."""
+        """Write to ``.csv`` (with a JSON side file of the scenario), ``.nc`` or ``.parquet``.
+
+        NetCDF keeps the scenario as a JSON attribute and a ``units`` attribute on every
+        variable; Parquet (needs pyarrow, the ``data`` extra) holds the :meth:`to_pandas`
+        table with the scenario, ``dt`` and units as JSON in the schema metadata (key
+        :data:`PARQUET_METADATA_KEY`). :meth:`load` reads either back.
+        """
         path = Path(path)
-        path.parent.mkdir(parents=True, exist_ok=True)
         suffix = path.suffix.lower()
+        if suffix not in (".csv", ".nc", ".parquet"):
+            raise ValidationError(
+                f"cannot save a result as {suffix!r}; use .csv, .nc (NetCDF) or .parquet"
+            )
+        if suffix == ".parquet":
+            require_pyarrow()
+        path.parent.mkdir(parents=True, exist_ok=True)
         if suffix == ".csv":
             header = ",".join(["time [s]", *(f"{k} [{self.units[k]}]" for k in self.signals)])
             table = np.column_stack([self.time, *self.signals.values()])
@@ -306,15 +363,76 @@ class SimulationResult(Mapping[str, np.ndarray]):
             )
         elif suffix == ".nc":
             self.to_xarray().to_netcdf(path)
-        elif suffix == ".parquet":
-            df = self.to_pandas()
-            df.attrs = {}
-            df.to_parquet(path)
         else:
-            raise ValidationError(
-                f"cannot save a result as {suffix!r}; use .csv, .nc (NetCDF) or .parquet"
-            )
+            self._save_parquet(path)
         return path
+
+    def _save_parquet(self, path: Path) -> None:
+        """The :meth:`to_pandas` table, with the scenario, ``dt`` and units as metadata."""
+        import pyarrow as pa
+        import pyarrow.parquet as pq
+
+        df = self.to_pandas()
+        df.attrs = {}
+        table = pa.Table.from_pandas(df)
+        labels = {"time": "time [s]", **{k: f"{k} [{self.units[k]}]" for k in self.signals}}
+        meta = {
+            "scenario": self.scenario,
+            "dt": self.dt,
+            "units": {k: self.units[k] for k in labels},
+            "columns": labels,
+        }
+        entry = {PARQUET_METADATA_KEY.encode(): json.dumps(meta, default=str).encode()}
+        pq.write_table(
+            table.replace_schema_metadata({**(table.schema.metadata or {}), **entry}), path
+        )
+
+    @classmethod
+    def load(cls, path: str | Path) -> SimulationResult:
+        """Read a result written by :meth:`save` as ``.parquet`` or ``.nc``.
+
+        The scenario, ``dt`` and the units come back from the file's metadata.
+
+        Examples
+        --------
+        >>> import tempfile
+        >>> from mrsuspension.engine.simulate import Simulation
+        >>> from mrsuspension.excitation import Harmonic
+        >>> res = Simulation(Harmonic(1.5, 0.025)).run(0.2)
+        >>> with tempfile.TemporaryDirectory() as d:
+        ...     back = SimulationResult.load(res.save(f"{d}/run.parquet"))
+        >>> back.units["F_d"], back.scenario == res.scenario, bool((back.F_d == res.F_d).all())
+        ('N', True, True)
+        """
+        path = Path(path)
+        suffix = path.suffix.lower()
+        if suffix not in (".parquet", ".nc"):
+            raise ValidationError(
+                f"cannot load a result from {suffix!r}; use .parquet or .nc (NetCDF)"
+            )
+        if not path.is_file():
+            raise ValidationError(f"no result file at {str(path)!r}")
+        if suffix == ".parquet":
+            data, units, meta = _read_parquet(path)
+        else:
+            import xarray as xr
+
+            with xr.open_dataset(path) as ds:
+                data = {"time": ds["time"].to_numpy().astype(np.float64)}
+                data.update({str(k): ds[k].to_numpy().astype(np.float64) for k in ds.data_vars})
+                units = {k: str(ds[k].attrs.get("units", "")) for k in data}
+                meta = {
+                    "scenario": json.loads(str(ds.attrs.get("scenario", "{}"))),
+                    "dt": float(ds.attrs.get("dt", 0.0)),
+                }
+        time = data.pop("time")
+        return cls(
+            time=time,
+            signals=data,
+            scenario=dict(meta.get("scenario", {})),
+            dt=float(meta.get("dt", 0.0)),
+            units={"time": "s", **{k: str(units.get(k, "")) for k in data}},
+        )
 
     def plot(self, signals: tuple[str, ...] = ("z_s_ddot", "x_d", "F_d", "F_T", "i_d")) -> Figure:
         """Time histories of some signals, one panel each."""
@@ -333,6 +451,22 @@ class SimulationResult(Mapping[str, np.ndarray]):
         np.atleast_1d(axes)[-1].set_xlabel("time [s]")
         fig.tight_layout()
         return fig
+
+
+def require_pyarrow() -> None:
+    """Raise a one-line :class:`ValidationError` naming the ``data`` extra without pyarrow.
+
+    Examples
+    --------
+    >>> require_pyarrow()  # pyarrow is installed here: nothing happens
+    """
+    import importlib.util
+
+    if importlib.util.find_spec("pyarrow") is None:
+        raise ValidationError(
+            "Parquet output needs pyarrow, which is not installed: "
+            "pip install 'mrsuspension[data]' (or use .csv / .nc)"
+        )
 
 
 def _measures_kind(kind: Any) -> Any:
@@ -358,3 +492,27 @@ def warn_if_clamped(result: SimulationResult) -> None:
             VelocityClampWarning,
             stacklevel=3,
         )
+
+
+def _read_parquet(
+    path: Path,
+) -> tuple[dict[str, npt.NDArray[np.float64]], dict[str, str], dict[str, Any]]:
+    """Signals by name, units and metadata of a Parquet file written by ``save``."""
+    require_pyarrow()
+    import pyarrow.parquet as pq
+
+    table = pq.read_table(path)
+    raw = (table.schema.metadata or {}).get(PARQUET_METADATA_KEY.encode())
+    if raw is None:
+        raise ValidationError(
+            f"{str(path)!r} was not written by SimulationResult.save: its Parquet metadata "
+            f"has no {PARQUET_METADATA_KEY!r} entry"
+        )
+    meta: dict[str, Any] = json.loads(raw)
+    present = set(table.column_names)
+    data = {
+        name: table.column(label).to_numpy().astype(np.float64)
+        for name, label in meta["columns"].items()
+        if label in present
+    }
+    return data, dict(meta["units"]), meta

@@ -194,7 +194,9 @@ def _dataset(study: Study, rows: Sequence[dict[str, Any]], run_time: float) -> x
         sweep = study.scenarios[0].excitation
         coords["amplitude"] = ("frequency", np.asarray(sweep.amplitudes))  # type: ignore[union-attr]
         coords["frequency"] = ("frequency", np.asarray(study.frequencies), {"units": "Hz"})
-    ds = xr.Dataset(data_vars, coords=coords)
+    from mrsuspension.studies.units import add_units
+
+    ds = add_units(xr.Dataset(data_vars, coords=coords))
     ds.attrs["study"] = json.dumps(study.describe(), default=str)
     ds.attrs["content_hash"] = study.content_hash()
     ds.attrs["run_time_s"] = float(run_time)

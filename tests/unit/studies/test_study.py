@@ -142,6 +142,15 @@ def test_run_cache_and_save(tmp_path: Path) -> None:
 
     with xr.open_dataset(nc) as back:
         assert float(back["T_as"].sum()) == pytest.approx(float(ds["T_as"].sum()))
+        units = {k: back[k].attrs.get("units") for k in [*back.data_vars, *back.coords]}
+    assert units == {
+        "T_as": "-",
+        "mean_current": "A",
+        "controller.current": "A",
+        "frequency": "Hz",
+        "amplitude": "m",
+    }
+    assert again.to_xarray()["mean_current"].attrs["units"] == "A"
     df = first.to_pandas()
     assert list(df.columns[:2]) == ["controller.current", "frequency"]
     assert len(df) == 6

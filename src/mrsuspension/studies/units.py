@@ -1,0 +1,80 @@
+"""Units of a study data set: ``units`` attributes for measures and coordinates.
+
+Measures take theirs from :data:`mrsuspension.engine.result.MEASURE_UNITS`; a ``[grid]``
+coordinate from :data:`FIELD_UNITS` (the SI unit of the scenario field it varies). Case
+coordinates (labels) and text fields (``damper.model``) carry no unit.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    import xarray as xr
+
+__all__ = ["FIELD_UNITS", "add_units"]
+
+#: SI unit of the numeric scenario fields a study can vary ("-": dimensionless).
+FIELD_UNITS: dict[str, str] = {
+    "vehicle.sprung_mass": "kg",
+    "vehicle.unsprung_mass": "kg",
+    "vehicle.suspension_stiffness": "N/m",
+    "vehicle.tire_stiffness": "N/m",
+    "vehicle.tire_damping": "N s/m",
+    "vehicle.skyhook_damping": "N s/m",
+    "damper.max_current": "A",
+    "damper.force_gain": "-",
+    "damper.v_min": "m/s",
+    "damper.v_max": "m/s",
+    "damper.damping": "N s/m",
+    "controller.current": "A",
+    "controller.skyhook_damping": "N s/m",
+    "controller.passive_damping": "N s/m",
+    "controller.damping": "N s/m",
+    "controller.c_s": "N s/m",
+    "controller.c_0": "N s/m",
+    "controller.nominal_mass": "kg",
+    "controller.m_s0": "kg",
+    "excitation.frequency": "Hz",
+    "excitation.amplitude": "m",
+    "excitation.transition_frequency": "Hz",
+    "excitation.delay": "s",
+    "excitation.length": "m",
+    "excitation.spacing": "m",
+    "simulation.dt": "s",
+    "simulation.duration": "s",
+    "simulation.output_rate": "Hz",
+}
+
+
+def add_units(ds: xr.Dataset) -> xr.Dataset:
+    """Set the ``units`` attribute of every measure and numeric coordinate it knows.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A study data set (measures as variables; grid fields, cases and ``frequency``
+        as coordinates). Changed in place and returned.
+
+    Examples
+    --------
+    >>> import xarray as xr
+    >>> ds = xr.Dataset(
+    ...     {"T_as": ("vehicle.sprung_mass", [1.2, 1.1])},
+    ...     coords={"vehicle.sprung_mass": [300.0, 400.0]},
+    ... )
+    >>> ds = add_units(ds)
+    >>> ds["T_as"].attrs["units"], ds["vehicle.sprung_mass"].attrs["units"]
+    ('-', 'kg')
+    """
+    from mrsuspension.engine.result import MEASURE_UNITS
+
+    for name in ds.data_vars:
+        unit = MEASURE_UNITS.get(str(name))
+        if unit is not None:
+            ds[name].attrs["units"] = unit
+    for name in ds.coords:
+        unit = MEASURE_UNITS.get(str(name)) or FIELD_UNITS.get(str(name))
+        if unit is not None and ds[name].dtype.kind in "fiu":
+            ds[name].attrs["units"] = unit
+    return ds
