@@ -221,6 +221,8 @@ def prepare_output(
         yield None
         return
     path = Path(path)
+    if path.is_symlink() and path.is_dir():  # write where the link points, keep the link
+        path = path.resolve()
     _check_folder(path, command, force, option)
     created = _make_parents(path.parent, option, path)
     tmp = _temporary_sibling(path, option)

@@ -254,3 +254,15 @@ def test_force_never_replaces_the_current_or_home_folder(
         ):
             pass
     assert (work / "project.toml").read_text() == "precious"
+
+
+def test_a_linked_folder_is_written_through_the_link(tmp_path: Path) -> None:
+    target = tmp_path / "target"
+    target.mkdir()
+    link = tmp_path / "link"
+    link.symlink_to(target)
+    with prepare_output(link, "sweep") as tmp:
+        assert tmp is not None
+        (tmp / "sweep.csv").write_text("1\n")
+    assert link.is_symlink()
+    assert sorted(p.name for p in target.iterdir()) == [MARKER, "sweep.csv"]
