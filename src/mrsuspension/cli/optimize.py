@@ -38,16 +38,27 @@ def optimize_command(
     as_json: Annotated[
         bool, typer.Option("--json", help="print the result as one JSON object")
     ] = False,
+    force: Annotated[
+        bool, typer.Option("--force", help="replace an --out folder holding other output")
+    ] = False,
 ) -> None:
     """Tune scenario fields (e.g. a controller's gains) for a weighted objective over roads."""
+    from mrsuspension._output import prepare_output
+    from mrsuspension.errors import ValidationError
     from mrsuspension.optimize import OptimizationProblem, optimize
 
     with user_errors():
         prob = OptimizationProblem.load(problem)
-        result = optimize(
-            prob, max_evaluations=max_evaluations, workers=workers, progress=not as_json
-        )
-        files = [str(p) for p in result.save(out)] if out is not None else []
+        files: list[str] = []
+        with prepare_output(out, "optimize", force=force) as folder:  # checked before the work
+            result = optimize(
+                prob, max_evaluations=max_evaluations, workers=workers, progress=not as_json
+            )
+            if out is not None and folder is not None:
+                try:
+                    files = [str(out / p.name) for p in result.save(folder)]
+                except OSError as exc:
+                    raise ValidationError(f"cannot write --out {str(out)!r}: {exc}") from None
     if as_json:
         data = result.to_dict()
         data["files"] = files

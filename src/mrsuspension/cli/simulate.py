@@ -370,6 +370,9 @@ def sweep_command(
     workers: Annotated[
         int | None, typer.Option("--workers", "-j", help="processes (default: one per core)")
     ] = None,
+    force: Annotated[
+        bool, typer.Option("--force", help="replace an --out folder holding other output")
+    ] = False,
 ) -> None:
     """Frequency response of a scenario's vehicle, damper and controller.
 
@@ -378,6 +381,7 @@ def sweep_command(
     stderr (none with ``--json``), and prints T_as, T_au, T_dr, T_ds, T_du, DLC, gamma
     and the current per frequency (``--json``: a list of objects).
     """
+    from mrsuspension._output import prepare_output
     from mrsuspension._progress import progress_bar
     from mrsuspension.cli.compiling import notify_if_compiling
     from mrsuspension.engine.simulate import measures_of, run_many
@@ -390,20 +394,24 @@ def sweep_command(
             raise ValidationError(f"--workers must be >= 1; got {workers}")
         excitations = list(sweep.excitations())
         sims = scn.simulations(excitations)
-        notify_if_compiling()
-        with progress_bar(not as_json, "sweep") as progress:
-            results = run_many(
-                sims,
-                dt=scn.dt,
-                output_rate=scn.output_rate,
-                workers=workers,
-                progress=progress,
-                reduce=measures_of,  # measures computed in the workers: little traffic
-            )
-        rows = [to_jsonable(_run_row(e, m)) for e, m in zip(excitations, results, strict=True)]
         files: list[Path] = []
-        if out is not None:
-            _write(out, lambda d: files.extend(_write_sweep(d, rows)))
+        with prepare_output(out, "sweep", force=force) as folder:  # checked before the runs
+            notify_if_compiling()
+            with progress_bar(not as_json, "sweep") as progress:
+                results = run_many(
+                    sims,
+                    dt=scn.dt,
+                    output_rate=scn.output_rate,
+                    workers=workers,
+                    progress=progress,
+                    reduce=measures_of,  # measures computed in the workers: little traffic
+                )
+            rows = [to_jsonable(_run_row(e, m)) for e, m in zip(excitations, results, strict=True)]
+            if out is not None and folder is not None:
+                try:
+                    files = [out / f.name for f in _write_sweep(folder, rows)]
+                except OSError as exc:
+                    raise ValidationError(f"cannot write --out {str(out)!r}: {exc}") from None
     _clamp_note([m.get("vm_clamp_fraction") for m in results])
     if as_json:
         typer.echo(json.dumps(rows))

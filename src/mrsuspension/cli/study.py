@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+import warnings
+from collections.abc import Iterator
+from contextlib import contextmanager
 from pathlib import Path
 from typing import Annotated
 
@@ -31,21 +34,32 @@ def study(
     ] = False,
     as_json: JsonOpt = False,
 ) -> None:
-    """Run a parameter study (a scenario and a grid of fields) and print or save the measures."""
+    """Run a parameter study (a scenario and a grid of fields) and print or save the measures.
+
+    Results are cached by the study and the package code (``mrsus cache info``); a
+    result read from the cache is announced on stderr (``from cache: FILE``). ``--out``
+    is checked before any computing and written only when the study has finished.
+    """
+    from mrsuspension._output import prepare_output_file
     from mrsuspension.cli.compiling import notify_if_compiling
     from mrsuspension.studies import Study, run_study
 
     with user_errors():
         st = Study.load(path)
-        notify_if_compiling()
-        result = run_study(
-            st,
-            executor=scheduler or "local",
-            workers=workers,
-            progress=not as_json,
-            cache_dir=False if no_cache else None,
-        )
-        saved = result.save(out) if out is not None else None
+        with prepare_output_file(out, suffixes=(".nc", ".csv")) as target, _cache_warnings():
+            notify_if_compiling()
+            result = run_study(
+                st,
+                executor=scheduler or "local",
+                workers=workers,
+                progress=not as_json,
+                cache_dir=False if no_cache else None,
+            )
+            if target is not None:
+                result.save(target)
+    if result.from_cache:
+        typer.echo(f"from cache: {result.cache_file}", err=True)
+    saved = out
     df = result.to_pandas()
     if as_json:
         typer.echo(df.to_json(orient="records"))
@@ -53,3 +67,20 @@ def study(
     typer.echo(df.to_string(index=False))
     if saved is not None:
         typer.echo(f"wrote {saved}")
+
+
+@contextmanager
+def _cache_warnings() -> Iterator[None]:
+    """Print the study cache's warnings as one ``warning:`` line each on stderr."""
+    from mrsuspension.studies.run import StudyCacheWarning
+
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", StudyCacheWarning)
+        try:
+            yield
+        finally:
+            for w in caught:
+                if issubclass(w.category, StudyCacheWarning):
+                    typer.echo(f"warning: {w.message}", err=True)
+                else:  # not ours: as Python would show it
+                    warnings.showwarning(w.message, w.category, w.filename, w.lineno)

@@ -1,4 +1,8 @@
-"""Running a study: a local process pool or a Dask cluster, cached by content hash.
+"""Running a study: a local process pool or a Dask cluster, cached by content and code.
+
+The cache key (:func:`cache_key`) hashes the study's content and a fingerprint of the
+package code that computes it (:func:`code_fingerprint`), so editing a measure or the
+engine in an editable install misses the cache instead of returning stale numbers.
 
 Every run is reduced to its measures in the worker (``result.measures(road_peak=...)``),
 so only a few numbers travel back. Results are a :class:`StudyResult` wrapping an
@@ -9,9 +13,11 @@ variables = measures), saved as NetCDF (``.nc``) or CSV.
 from __future__ import annotations
 
 import functools
+import hashlib
 import json
 import os
 import time
+import warnings
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -32,9 +38,88 @@ if TYPE_CHECKING:
     import pandas as pd
     import xarray as xr
 
-__all__ = ["StudyResult", "default_cache_dir", "run_study"]
+__all__ = [
+    "StudyCacheWarning",
+    "StudyResult",
+    "cache_key",
+    "code_fingerprint",
+    "default_cache_dir",
+    "run_study",
+]
 
 Progress = Callable[[int, int], None]
+
+#: subpackages a study's computation never reaches: left out of :func:`code_fingerprint`
+_NOT_COMPUTING = frozenset({"cli", "monitor", "report", "hil", "identify"})
+#: the files that make up the code (and the parameter sets shipped as data)
+_CODE_SUFFIXES = frozenset({".py", ".toml"})
+_fingerprint: str | None = None  # a pure function of the installed files: once per process
+
+
+class StudyCacheWarning(UserWarning):
+    """A cached study result could not be read; it is recomputed and replaced."""
+
+
+def code_fingerprint() -> str:
+    """sha256 of the package code a study's computation can reach.
+
+    Hashes the relative path and bytes of every ``.py`` and ``.toml`` file of the
+    ``mrsuspension`` package except ``cli/``, ``monitor/``, ``report/``, ``hil/`` and
+    ``identify/``. Computed once per process (about 550 kB to read).
+
+    Returns
+    -------
+    str
+        64 hexadecimal digits.
+
+    Examples
+    --------
+    >>> len(code_fingerprint())
+    64
+    """
+    global _fingerprint
+    if _fingerprint is None:
+        root = Path(__file__).resolve().parents[1]
+        digest = hashlib.sha256()
+        files = sorted(
+            (p.relative_to(root).as_posix(), p)
+            for p in root.rglob("*")
+            if p.suffix in _CODE_SUFFIXES
+            and p.is_file()
+            and p.relative_to(root).parts[0] not in _NOT_COMPUTING
+            and "__pycache__" not in p.parts
+        )
+        for rel, p in files:
+            digest.update(rel.encode() + b"\0" + p.read_bytes() + b"\0")
+        _fingerprint = digest.hexdigest()
+    return _fingerprint
+
+
+def cache_key(study: Study) -> str:
+    """The study's cache key: its :meth:`~Study.content_hash` and :func:`code_fingerprint`.
+
+    Parameters
+    ----------
+    study : Study
+        The study.
+
+    Returns
+    -------
+    str
+        64 hexadecimal digits; the cache file is ``{key}.nc``.
+
+    Examples
+    --------
+    >>> from mrsuspension.studies import Study
+    >>> study = Study.from_dict({
+    ...     "excitation": {"kind": "harmonic", "frequency": 5.0, "amplitude": 0.01},
+    ...     "grid": {"controller.current": [0.0, 0.2]},
+    ... })
+    >>> cache_key(study) != study.content_hash()
+    True
+    """
+    text = f"{study.content_hash()}:{code_fingerprint()}"
+    return hashlib.sha256(text.encode()).hexdigest()
 
 
 def default_cache_dir() -> Path:
@@ -60,6 +145,8 @@ class StudyResult:
         True when read back from the cache instead of computed.
     run_time : float
         Wall time of the computation [s] (of the original run when cached).
+    cache_file : Path, optional
+        The cache file it was read from or written to (None without a cache).
     """
 
     study: Study
@@ -67,6 +154,7 @@ class StudyResult:
     content_hash: str
     from_cache: bool = False
     run_time: float = 0.0
+    cache_file: Path | None = None
 
     def __getitem__(self, measure: str) -> xr.DataArray:
         return self.dataset[measure]
@@ -199,6 +287,7 @@ def _dataset(study: Study, rows: Sequence[dict[str, Any]], run_time: float) -> x
     ds = add_units(xr.Dataset(data_vars, coords=coords))
     ds.attrs["study"] = json.dumps(study.describe(), default=str)
     ds.attrs["content_hash"] = study.content_hash()
+    ds.attrs["code_fingerprint"] = code_fingerprint()
     ds.attrs["run_time_s"] = float(run_time)
     if study.has_pulses:
         ds.attrs["road_peak"] = study.road_peak  # the SAR_s / SAR_u denominators
@@ -232,13 +321,21 @@ def run_study(
         A rich progress bar on stderr (True, default), none (False), or a
         ``progress(done, total)`` callback.
     cache_dir : path, None or False
-        Folder of cached results, keyed by :meth:`Study.content_hash`; None: the
-        :func:`default_cache_dir`; False: no cache.
+        Folder of cached results, keyed by :func:`cache_key` (the study and the code);
+        None: the :func:`default_cache_dir`; False: no cache. The folder is checked
+        before any computing; an unreadable cache file is recomputed and replaced, with
+        a :class:`StudyCacheWarning` naming it.
 
     Returns
     -------
     StudyResult
-        ``from_cache`` tells whether it was read back rather than computed.
+        ``from_cache`` tells whether it was read back rather than computed, and
+        ``cache_file`` from (or to) which file.
+
+    Raises
+    ------
+    ValidationError
+        The cache folder is not a folder or cannot be written (before any computing).
 
     Examples
     --------
@@ -259,15 +356,18 @@ def run_study(
     cache_file: Path | None = None
     if cache_dir is not False:
         folder = default_cache_dir() if cache_dir is None or cache_dir is True else Path(cache_dir)
-        cache_file = folder / f"{digest}.nc"
-        if cache_file.is_file():
-            import xarray as xr
-
-            with xr.open_dataset(cache_file) as cached:
-                ds = cached.load()
+        cache_file = folder / f"{cache_key(study)}.nc"
+        cached = _read_cache(cache_file)
+        if cached is not None:
             return StudyResult(
-                study, ds, digest, from_cache=True, run_time=float(ds.attrs.get("run_time_s", 0))
+                study,
+                cached,
+                digest,
+                from_cache=True,
+                run_time=float(cached.attrs.get("run_time_s", 0)),
+                cache_file=cache_file,
             )
+        _check_cache_folder(folder)
     jobs = [
         Job(sim, settings)
         for sim, settings in zip(study.simulations(), study.run_settings(), strict=True)
@@ -281,8 +381,49 @@ def run_study(
     elapsed = time.perf_counter() - start
     ds = _dataset(study, rows, elapsed)
     if cache_file is not None:
-        cache_file.parent.mkdir(parents=True, exist_ok=True)
-        tmp = cache_file.with_suffix(f".{os.getpid()}.tmp")
+        _write_cache(ds, cache_file)
+    return StudyResult(study, ds, digest, from_cache=False, run_time=elapsed, cache_file=cache_file)
+
+
+# -- the cache ----------------------------------------------------------------------------
+def _read_cache(path: Path) -> xr.Dataset | None:
+    """The cached dataset, or None (missing; unreadable: warned, to be replaced)."""
+    if not path.is_file():
+        return None
+    import xarray as xr
+
+    try:
+        with xr.open_dataset(path) as cached:
+            return cached.load()
+    except Exception as exc:  # any unreadable file is recomputed
+        warnings.warn(
+            f"the study cache file {path} is unreadable ({type(exc).__name__}); recomputing "
+            "and replacing it (mrsus cache clear empties the cache)",
+            StudyCacheWarning,
+            stacklevel=3,
+        )
+        return None
+
+
+def _check_cache_folder(folder: Path) -> None:
+    """Raise before any computing if the cache folder cannot hold a new file."""
+    from mrsuspension._output import check_writable_folder
+
+    check_writable_folder(
+        folder, "the study cache folder", hint="set MRSUSPENSION_CACHE or use --no-cache"
+    )
+
+
+def _write_cache(ds: xr.Dataset, path: Path) -> None:
+    """Write through a temporary sibling and rename: readers never see half a file."""
+    tmp = path.with_suffix(f".{os.getpid()}.tmp")
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
         ds.to_netcdf(tmp)
-        tmp.replace(cache_file)
-    return StudyResult(study, ds, digest, from_cache=False, run_time=elapsed)
+        tmp.replace(path)
+    except OSError as exc:  # the result is computed: keep it, say the cache missed it
+        warnings.warn(
+            f"could not write the study cache file {path} ({exc})", StudyCacheWarning, stacklevel=3
+        )
+    finally:
+        tmp.unlink(missing_ok=True)

@@ -1,0 +1,305 @@
+"""Where commands write their results: checked before the work, committed whole.
+
+One policy for every output folder (``mrsus sweep --out``, ``optimize --out``) and output
+file (``mrsus study --out``):
+
+* the path is checked **before any computing**: a file in the way, a parent that is a
+  file, a folder that cannot be written are a :class:`~mrsuspension.errors.ValidationError`
+  naming the option and the path;
+* results are written into a temporary hidden sibling and moved into place only when
+  the command succeeds, so a failed or interrupted run leaves nothing behind and two runs
+  writing one folder never interleave files;
+* a folder carries a marker (:data:`MARKER`, the command's name): a folder holding
+  another command's output, or files not written by ``mrsus``, is refused unless
+  ``force`` (which replaces it); the same command's folder is replaced.
+
+The cache folder of the studies is checked with :func:`check_writable_folder`.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import tempfile
+from collections.abc import Iterator, Sequence
+from contextlib import contextmanager
+from pathlib import Path
+
+from mrsuspension.errors import ValidationError
+
+__all__ = ["MARKER", "check_writable_folder", "prepare_output", "prepare_output_file"]
+
+#: the file naming the command that wrote a folder
+MARKER = ".mrsus-output.json"
+
+
+def _first_existing(path: Path) -> Path:
+    """``path`` or its nearest existing ancestor."""
+    for candidate in (path, *path.parents):
+        if candidate.exists() or candidate.is_symlink():
+            return candidate
+    return Path(path.anchor or ".")  # pragma: no cover - the root always exists
+
+
+def check_writable_folder(
+    folder: str | Path, what: str, *, hint: str = "", shown: str | Path | None = None
+) -> None:
+    """Raise unless ``folder`` is, or can be created as, a folder this process can write.
+
+    Nothing is created. ``what`` names the folder in the message (an option such as
+    ``"--out"``, or ``"the study cache folder"``); ``hint`` is appended to it.
+
+    Parameters
+    ----------
+    folder : path
+        The folder to check.
+    what : str
+        What the folder is, for the message.
+    hint : str, optional
+        How to fix it, appended to the message.
+    shown : path, optional
+        The path the user gave, named in the message (default: ``folder``); e.g. the
+        output file whose folder this is.
+
+    Raises
+    ------
+    ValidationError
+        ``folder`` is a file, a parent of it is a file, or the nearest existing folder is
+        not writable.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     _ = (pathlib.Path(d) / "f").write_text("x")
+    ...     check_writable_folder(pathlib.Path(d) / "new" / "folder", "--out")
+    ...     try:
+    ...         check_writable_folder(pathlib.Path(d) / "f" / "sub", "--out")
+    ...     except ValidationError as exc:
+    ...         print(str(exc).endswith("is a file, not a folder"))
+    True
+    """
+    folder = Path(folder)
+    name = str(folder if shown is None else shown)
+    tail = f"; {hint}" if hint else ""
+    existing = _first_existing(folder)
+    if not existing.is_dir():
+        if existing == folder and shown is None:
+            raise ValidationError(f"{what} {name!r} is a file, not a folder{tail}")
+        raise ValidationError(
+            f"{what} {name!r} cannot be created: {str(existing)!r} is a file, not a folder{tail}"
+        )
+    if not os.access(existing, os.W_OK | os.X_OK):
+        raise ValidationError(
+            f"{what} {name!r} cannot be written: {str(existing)!r} is read-only{tail}"
+        )
+
+
+def _refuse_dangerous(path: Path, option: str) -> None:
+    """``--force`` never replaces the root, the home folder or a folder holding the cwd."""
+    resolved = path.resolve()
+    cwd = Path.cwd().resolve()
+    if resolved == cwd or resolved in cwd.parents or resolved == Path.home().resolve():
+        raise ValidationError(
+            f"{option} {str(path)!r} is the current folder, a parent of it or the home "
+            "folder: refusing to replace it even with --force; give a new folder"
+        )
+
+
+def _marked_command(folder: Path) -> str | None:
+    """The command named by the folder's marker (None: no marker or unreadable)."""
+    try:
+        data = json.loads((folder / MARKER).read_text())
+    except (OSError, ValueError):
+        return None
+    command = data.get("command") if isinstance(data, dict) else None
+    return command if isinstance(command, str) else None
+
+
+def _check_folder(path: Path, command: str, force: bool, option: str) -> None:
+    if path.exists() and not path.is_dir():
+        raise ValidationError(f"{option} {str(path)!r} is a file, not a folder; give a folder")
+    if path.is_dir() and any(path.iterdir()):
+        owner = _marked_command(path)
+        if owner != command and not force:
+            held = (
+                f"holds the output of 'mrsus {owner}'"
+                if owner
+                else "is not empty and was not written by mrsus"
+            )
+            raise ValidationError(
+                f"{option} {str(path)!r} {held}; give another folder or --force to replace it"
+            )
+        if owner != command:
+            _refuse_dangerous(path, option)
+    check_writable_folder(path.parent, option, shown=path)
+
+
+def _make_parents(folder: Path, option: str, shown: Path) -> list[Path]:
+    """Create ``folder`` and its missing parents; the created ones, deepest first."""
+    created = [p for p in (folder, *folder.parents) if not p.exists()]
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise ValidationError(f"{option} {str(shown)!r} cannot be created: {exc}") from None
+    return created
+
+
+def _remove_empty(folders: Sequence[Path]) -> None:
+    for folder in folders:
+        try:
+            folder.rmdir()
+        except OSError:
+            break
+
+
+def _temporary_sibling(path: Path, option: str) -> Path:
+    try:
+        return Path(tempfile.mkdtemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent))
+    except OSError as exc:
+        raise ValidationError(f"{option} {str(path)!r} cannot be written: {exc}") from None
+
+
+def _commit_folder(tmp: Path, path: Path) -> None:
+    """Move ``tmp`` to ``path``, replacing what was there (moved aside first)."""
+    try:
+        os.replace(tmp, path)  # path missing or an empty folder
+        return
+    except OSError:
+        if not path.exists():
+            raise
+    old = Path(tempfile.mkdtemp(prefix=f".{path.name}.", suffix=".old", dir=path.parent))
+    os.replace(path, old / path.name)
+    os.replace(tmp, path)
+    shutil.rmtree(old, ignore_errors=True)
+
+
+@contextmanager
+def prepare_output(
+    path: str | Path | None, command: str, *, force: bool = False, option: str = "--out"
+) -> Iterator[Path | None]:
+    """Check an output folder, yield a temporary folder, and move it into place on success.
+
+    Enter it **before** the work: the checks (see the module docstring) run on entering.
+    Write every output into the yielded folder; when the block ends normally it gets the
+    :data:`MARKER` and replaces ``path``; when it raises (or is interrupted) the temporary
+    folder and any parent created for it are removed and ``path`` is untouched.
+
+    Parameters
+    ----------
+    path : path or None
+        The output folder (None: no output; yields None and does nothing).
+    command : str
+        The command writing it (``"sweep"``), recorded in the marker.
+    force : bool
+        Replace a folder holding another command's output or files not written by mrsus.
+    option : str
+        The option's name, for messages.
+
+    Yields
+    ------
+    Path or None
+        The temporary folder to write into.
+
+    Raises
+    ------
+    ValidationError
+        The path is a file, cannot be written, or holds something else and not ``force``.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     out = pathlib.Path(d) / "results"
+    ...     with prepare_output(out, "sweep") as tmp:
+    ...         _ = (tmp / "sweep.csv").write_text("frequency\\n1.0\\n")
+    ...     sorted(p.name for p in out.iterdir())
+    ['.mrsus-output.json', 'sweep.csv']
+    """
+    if path is None:
+        yield None
+        return
+    path = Path(path)
+    if path.is_symlink() and path.is_dir():  # write where the link points, keep the link
+        path = path.resolve()
+    _check_folder(path, command, force, option)
+    created = _make_parents(path.parent, option, path)
+    tmp = _temporary_sibling(path, option)
+    try:
+        yield tmp
+        from mrsuspension import __version__
+
+        (tmp / MARKER).write_text(json.dumps({"command": command, "version": __version__}) + "\n")
+        _commit_folder(tmp, path)
+    except BaseException:
+        shutil.rmtree(tmp, ignore_errors=True)
+        _remove_empty(created)
+        raise
+
+
+@contextmanager
+def prepare_output_file(
+    path: str | Path | None, *, suffixes: Sequence[str], option: str = "--out"
+) -> Iterator[Path | None]:
+    """Check an output file, yield a temporary path, and move it into place on success.
+
+    Like :func:`prepare_output` for a single file (and sidecars written beside it, such
+    as ``result.json`` next to ``result.csv``): every file written into the temporary
+    path's folder replaces its namesake beside ``path`` when the block ends normally.
+
+    Parameters
+    ----------
+    path : path or None
+        The output file (None: no output; yields None).
+    suffixes : sequence of str
+        The valid suffixes (``(".nc", ".csv")``), checked first.
+    option : str
+        The option's name, for messages.
+
+    Yields
+    ------
+    Path or None
+        Where to write the file (same name, in a temporary hidden folder).
+
+    Raises
+    ------
+    ValidationError
+        A wrong suffix, a folder in the way, or a folder that cannot be written.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     out = pathlib.Path(d) / "study.csv"
+    ...     with prepare_output_file(out, suffixes=(".nc", ".csv")) as tmp:
+    ...         _ = tmp.write_text("a\\n1\\n")
+    ...     out.read_text()
+    'a\\n1\\n'
+    """
+    if path is None:
+        yield None
+        return
+    path = Path(path)
+    if path.is_dir():
+        raise ValidationError(
+            f"{option} {str(path)!r} is a folder; give a file name ending with "
+            f"{' or '.join(suffixes)}"
+        )
+    if path.suffix.lower() not in suffixes:
+        raise ValidationError(
+            f"{option} {str(path)!r} must end with {' or '.join(suffixes)}; got "
+            f"{path.suffix or 'no suffix'!r}"
+        )
+    check_writable_folder(path.parent, option, shown=path)
+    created = _make_parents(path.parent, option, path)
+    tmp = _temporary_sibling(path, option)
+    try:
+        yield tmp / path.name
+        for written in sorted(tmp.iterdir()):
+            os.replace(written, path.parent / written.name)
+        tmp.rmdir()
+    except BaseException:
+        shutil.rmtree(tmp, ignore_errors=True)
+        _remove_empty(created)
+        raise
