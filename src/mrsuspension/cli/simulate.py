@@ -19,7 +19,7 @@ import typer
 
 from mrsuspension._jsonsafe import to_jsonable
 from mrsuspension.cli.errors import user_errors
-from mrsuspension.errors import ValidationError
+from mrsuspension.errors import ValidationError, check_count, check_output_folder, check_range
 
 if TYPE_CHECKING:
     from mrsuspension.engine.result import SimulationResult
@@ -80,7 +80,10 @@ def parse_frequencies(text: str) -> list[float]:
             ) from None
         from mrsuspension.excitation import log_frequencies
 
-        return [float(f) for f in log_frequencies(n, lo, hi)]
+        try:
+            return [float(f) for f in log_frequencies(n, lo, hi)]
+        except ValidationError as exc:
+            raise ValidationError(f"--frequencies/-f {text!r}: {exc}") from None
     try:
         values = [float(v) for v in text.split(",") if v.strip()]
     except ValueError:
@@ -89,6 +92,7 @@ def parse_frequencies(text: str) -> list[float]:
         ) from None
     if not values:
         raise ValidationError("--frequencies needs at least one frequency [Hz]")
+    check_range("--frequencies", values, 0.0, None, unit="Hz", low_inclusive=False)
     return values
 
 
@@ -215,6 +219,8 @@ def simulate_command(
 
     with user_errors():
         how = check_road_peak(road_peak)
+        if out is not None:
+            check_output_folder("--out", out)
         scn = Scenario.load(scenario)
         with progress_bar(scn.is_sweep and not as_json, "simulating") as progress:
             results = scn.run(duration=duration, workers=None, progress=progress)
@@ -283,11 +289,13 @@ def sweep_command(
     from mrsuspension.engine.simulate import measures_of, run_many
     from mrsuspension.scenario import Scenario
 
-    with user_errors():
+    with user_errors({"frequency": "--frequencies"}):
+        if workers is not None:
+            check_count("--workers", workers)
+        if out is not None:
+            check_output_folder("--out", out)
         scn = Scenario.load(scenario)
         sweep = _sweep_for(scn, frequencies, amplitude)
-        if workers is not None and workers < 1:
-            raise ValidationError(f"--workers must be >= 1; got {workers}")
         excitations = list(sweep.excitations())
         sims = scn.simulations(excitations)
         with progress_bar(not as_json, "sweep") as progress:

@@ -8,6 +8,7 @@ from typing import Annotated
 import typer
 
 from mrsuspension.cli.errors import user_errors
+from mrsuspension.errors import ValidationError, check_count
 
 __all__ = ["study"]
 
@@ -33,9 +34,17 @@ def study(
 ) -> None:
     """Run a parameter study (a scenario and a grid of fields) and print or save the measures."""
     from mrsuspension.studies import Study, run_study
+    from mrsuspension.studies.study import check_scheduler
 
     with user_errors():
+        if workers is not None:
+            check_count("--workers", workers)
+        if out is not None and (out.is_dir() or out.suffix.lower() not in (".nc", ".csv")):
+            what = "a folder" if out.is_dir() else "not a .nc or .csv file"
+            raise ValidationError(f"--out {str(out)!r} is {what}: expected a .nc or .csv file")
         st = Study.load(path)
+        if scheduler is not None:
+            scheduler = check_scheduler(scheduler)
         result = run_study(
             st,
             executor=scheduler or "local",
