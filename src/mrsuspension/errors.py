@@ -18,7 +18,12 @@ if TYPE_CHECKING:  # numpy is imported where used: `import mrsuspension.errors` 
 __all__ = [
     "MRSuspensionError",
     "ValidationError",
+    "check_count",
+    "check_input_file",
+    "check_input_folder",
     "check_keys",
+    "check_output_folder",
+    "check_port",
     "check_tables",
     "did_you_mean",
     "read_toml",
@@ -219,12 +224,104 @@ def read_toml(path: str | Path, what: str) -> dict[str, Any]:
     ...
     mrsuspension.errors.ValidationError: scenario file not found: 'no/such.toml'
     """
-    path = Path(path)
-    if not path.is_file():
-        raise ValidationError(f"{what} file not found: {str(path)!r}")
+    path = check_input_file(f"{what} file", path)
     try:
         return tomllib.loads(path.read_text(encoding="utf-8"))
     except tomllib.TOMLDecodeError as exc:
         raise ValidationError(f"{what} file {str(path)!r} is not valid TOML: {exc}") from None
     except (OSError, UnicodeDecodeError) as exc:
         raise ValidationError(f"cannot read {what} file {str(path)!r}: {exc}") from None
+
+
+def check_port(name: str, port: object, *, any_free: bool = False) -> int:
+    """A TCP/UDP port number in 1-65535 (0 too with ``any_free``: the system picks one).
+
+    Examples
+    --------
+    >>> check_port("--port", 8765)
+    8765
+    >>> check_port("--port", 70000)
+    Traceback (most recent call last):
+    ...
+    mrsuspension.errors.ValidationError: --port must be an integer in [1, 65535]; got 70000
+    """
+    low = 0 if any_free else 1
+    if isinstance(port, bool) or not isinstance(port, int) or not low <= port <= 65535:
+        note = " (0: any free port)" if any_free else ""
+        raise ValidationError(f"{name} must be an integer in [{low}, 65535]{note}; got {port!r}")
+    return port
+
+
+def check_count(name: str, value: object, minimum: int = 1) -> int:
+    """An integer count (workers, points, starts) of at least ``minimum``.
+
+    Examples
+    --------
+    >>> check_count("--workers", 0)
+    Traceback (most recent call last):
+    ...
+    mrsuspension.errors.ValidationError: --workers must be an integer >= 1; got 0
+    """
+    if isinstance(value, bool) or not isinstance(value, int) or value < minimum:
+        raise ValidationError(f"{name} must be an integer >= {minimum}; got {value!r}")
+    return value
+
+
+def check_input_file(what: str, path: str | Path) -> Path:
+    """``path`` as a :class:`~pathlib.Path` to an existing file (not a folder).
+
+    ``what`` names it in the message (``"scenario file"``, ``"--parameters"``).
+
+    Examples
+    --------
+    >>> check_input_file("scenario file", ".")
+    Traceback (most recent call last):
+    ...
+    mrsuspension.errors.ValidationError: scenario file '.' is a folder, expected a file
+    """
+    path = Path(path)
+    if path.is_dir():
+        raise ValidationError(f"{what} {str(path)!r} is a folder, expected a file")
+    if not path.is_file():
+        raise ValidationError(f"{what} not found: {str(path)!r}")
+    return path
+
+
+def check_input_folder(what: str, path: str | Path) -> Path:
+    """``path`` as a :class:`~pathlib.Path` to an existing folder (not a file).
+
+    Examples
+    --------
+    >>> check_input_folder("--road-dir", "no/such/folder")
+    Traceback (most recent call last):
+    ...
+    mrsuspension.errors.ValidationError: --road-dir not found: 'no/such/folder'
+    """
+    path = Path(path)
+    if path.exists() and not path.is_dir():
+        raise ValidationError(f"{what} {str(path)!r} is a file, expected a folder")
+    if not path.is_dir():
+        raise ValidationError(f"{what} not found: {str(path)!r}")
+    return path
+
+
+def check_output_folder(what: str, path: str | Path) -> Path:
+    """``path`` as a :class:`~pathlib.Path` that is a folder or can become one.
+
+    Checked before a long run writes into it: an existing file, or a file among its
+    parents, is refused. The folder itself is created by the writer.
+
+    Examples
+    --------
+    >>> check_output_folder("--out", "results/new")
+    PosixPath('results/new')
+    """
+    path = Path(path)
+    for p in (path, *path.parents):
+        if p.exists():
+            if not p.is_dir():
+                raise ValidationError(
+                    f"{what} {str(path)!r}: {str(p)!r} is a file, expected a folder"
+                )
+            break
+    return path

@@ -74,11 +74,11 @@ def test_inverse_recovers_current() -> None:
     [
         (
             ("damper", "force", "-v", "0.1", "-i", "0.7"),
-            "drive current must be in [0, 0.5] A; got 0.7",
+            "--current must be in [0, 0.5] A; got 0.7",
         ),
         (
             ("damper", "force", "-v", "0.1", "-i", "-0.1"),
-            "drive current must be in [0, 0.5] A; got -0.1",
+            "--current must be in [0, 0.5] A; got -0.1",
         ),
         (("damper", "force", "-v", "nan"), "velocity must be finite"),
         (("damper", "force", "-v", "abc"), "--velocity must be a number"),
@@ -95,7 +95,7 @@ def test_inverse_recovers_current() -> None:
         (("damper", "force", "-v", "0.1,0.2", "-i", "0.1,0.2,0.3"), "equal lengths"),
         (
             ("damper", "force", "-v", "0.1", "--peak-velocity", "9"),
-            "peak_velocity must be in [0, 5] m/s",
+            "--peak-velocity must be in [0, 5] m/s",
         ),
         (("damper", "force", "-v", "0.1", "-p", "missing.toml"), "does not exist"),
         (("damper", "sets", "nope"), "unknown parameter set 'nope'"),
@@ -159,7 +159,7 @@ def test_installed_entry_point_runs() -> None:
         [exe, "damper", "force", "-v", "0.1", "-i", "2"], capture_output=True, text=True
     )
     assert bad.returncode == 2
-    assert bad.stderr.startswith("error: drive current")
+    assert bad.stderr.startswith("error: --current")
 
 
 def test_study_command_runs_the_example_study(tmp_path: Path) -> None:

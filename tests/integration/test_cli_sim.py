@@ -71,7 +71,7 @@ def test_simulate_pulse_and_road_json() -> None:
     )
     assert code == 2
     assert not out
-    assert err.strip() == "error: road_peak must be one of 'after-onset', 'onset'; got 'first'."
+    assert err.strip() == "error: --road-peak must be one of 'after-onset', 'onset'; got 'first'."
     code, out, err = _invoke(
         "simulate", str(SCENARIOS / "ideal-skyhook-road.toml"), "--json", "--duration", "3"
     )

@@ -99,7 +99,7 @@ def _bad_files(folder: Path, record_file: Path) -> dict[str, Path]:
          "the record has no coil input"),
         ("good", [*ARGS, "--model", "bingham"], "no driver gain was given; pass --gain"),
         ("good", [*ARGS, "--model", "spencr"], "Did you mean 'spencer'"),
-        ("good", [*ARGS, "--validation-fraction", "0.95"], "validation_fraction"),
+        ("good", [*ARGS, "--validation-fraction", "0.95"], "--validation-fraction"),
     ],
 )  # fmt: skip
 def test_cli_bad_data_one_line_no_traceback(

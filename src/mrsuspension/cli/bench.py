@@ -8,6 +8,7 @@ from typing import Annotated
 import typer
 
 from mrsuspension.cli.errors import user_errors
+from mrsuspension.errors import check_count
 
 __all__ = ["bench"]
 
@@ -28,6 +29,9 @@ def bench(
 
     from mrsuspension.bench import run_benchmarks
 
+    with user_errors():
+        if workers is not None:
+            check_count("--workers", workers)
     console = Console(stderr=True)
     with user_errors(), console.status("benchmarking") as status:
         res = run_benchmarks(quick=quick, workers=workers, say=lambda m: status.update(m))

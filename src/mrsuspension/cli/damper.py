@@ -9,9 +9,21 @@ from typing import Annotated, Any
 import typer
 
 from mrsuspension.cli.errors import user_errors
-from mrsuspension.errors import ValidationError
+from mrsuspension.errors import ValidationError, check_output_folder, check_range
 
 __all__ = ["app"]
+
+#: bounds of the kinematic inputs ``damper force``/``inverse`` accept: an automotive
+#: damper's stroke is well within 1 m (the characterisation's amplitude limit), its
+#: velocity within 10 m/s (the identified sets reach 0.4-1.5 m/s; the peak-velocity
+#: estimators clamp at 5 m/s) and its acceleration within 1000 m/s^2 (100 g); a target
+#: force beyond 100 kN is far past any MR damper (the dissertation's peaks at ~3 kN)
+MAX_STROKE = 1.0  # [m]
+MAX_VELOCITY = 10.0  # [m/s]
+MAX_ACCELERATION = 1000.0  # [m/s^2]
+MAX_FORCE = 1e5  # [N]
+#: library fields named differently on the command line
+_ALIASES = {"target_force": "--force", "drive current": "--current"}
 
 #: ``mrsus damper ...``
 app = typer.Typer(
@@ -32,7 +44,17 @@ def _floats(name: str, text: str) -> list[float]:
         ) from None
     if not values:
         raise ValidationError(f"--{name} needs at least one number")
+    limit = {"stroke": (MAX_STROKE, "m"), "velocity": (MAX_VELOCITY, "m/s"),
+             "acceleration": (MAX_ACCELERATION, "m/s^2"), "force": (MAX_FORCE, "N")}.get(name)  # fmt: skip
+    if limit is not None:
+        check_range(f"--{name}", values, -limit[0], limit[0], unit=limit[1])
     return values
+
+
+def _peak(peak_velocity: float | None) -> None:
+    """``--peak-velocity`` must be > 0 (its upper bound is the model's)."""
+    if peak_velocity is not None:
+        check_range("--peak-velocity", peak_velocity, 0.0, None, unit="m/s", low_inclusive=False)
 
 
 ModelOpt = Annotated[
@@ -121,7 +143,8 @@ def damper_force(
     """
     import numpy as np
 
-    with user_errors():
+    with user_errors(_ALIASES):
+        _peak(peak_velocity)
         m = _model(model, parameters, hysteresis, vh_variant, force_gain, estimator, peak_velocity)
         arrays = [np.asarray(_floats(n, t)) for n, t in
                   (("stroke", stroke), ("velocity", velocity), ("acceleration", acceleration), ("current", current))]  # fmt: skip
@@ -159,10 +182,17 @@ def damper_inverse(
     force_gain: GainOpt = None,
     as_json: JsonOpt = False,
 ) -> None:
-    """Inverse model (spec section 2.3): current that makes the symmetric model produce F*."""
+    """Inverse model (spec section 2.3): current that makes the symmetric model produce F*.
+
+    Only |F*| is used: the damper's force takes the sign of its passive hysteron, so a
+    negative target gives the current of its magnitude (said on stderr). A target beyond
+    the force at i_max gives i_max (saturated, said on stderr); one below the passive
+    force gives 0 A.
+    """
     import numpy as np
 
-    with user_errors():
+    with user_errors(_ALIASES):
+        _peak(peak_velocity)
         m = _model("wang-symmetric", parameters, hysteresis, "2.13", force_gain, None)
         arrays = [np.asarray(_floats(n, t)) for n, t in
                   (("force", force), ("velocity", velocity), ("acceleration", acceleration))]  # fmt: skip
@@ -173,9 +203,24 @@ def damper_inverse(
                 "comma-separated inputs must have one value or equal lengths"
             ) from None
         i = m.inverse_current(f, v, a, peak_velocity=peak_velocity)
+    saturated = (i >= m.max_current) & (np.abs(f) > 0)
+    if np.any(f < 0):
+        typer.echo(
+            "note: only |F*| is used: the damper's force takes the sign of its passive "
+            "hysteron (spec section 2.3)",
+            err=True,
+        )
+    if np.any(saturated):
+        which = ", ".join(f"{x:g}" for x in f[saturated])
+        typer.echo(
+            f"note: F* = {which} N is out of reach: the current saturates at i_max = "
+            f"{m.max_current:g} A (the damper's largest force there is smaller)",
+            err=True,
+        )
     if as_json:
         typer.echo(json.dumps({"target_force": f.tolist(), "velocity": v.tolist(),
-                               "acceleration": a.tolist(), "current": i.tolist()}))  # fmt: skip
+                               "acceleration": a.tolist(), "current": i.tolist(),
+                               "saturated": saturated.tolist()}))  # fmt: skip
         return
     for row in zip(f, v, a, i, strict=True):
         typer.echo(f"F*={row[0]:g} N  v={row[1]:g} m/s  a={row[2]:g} m/s2  ->  i={row[3]:.6g} A")
@@ -201,7 +246,9 @@ def damper_loops(
     """Steady-state F-v and F-x loops of one harmonic test at several currents."""
     from mrsuspension.characterisation import TestCondition, characterise
 
-    with user_errors():
+    with user_errors({"drive current": "--currents"}):
+        if out is not None:
+            check_output_folder("--out", out)
         m = _model(model, parameters, hysteresis, vh_variant, force_gain, None)
         conds = [TestCondition(frequency, amplitude, i) for i in _floats("currents", currents)]
         result = characterise(m, conds)
@@ -279,6 +326,8 @@ def damper_matrix(
     from mrsuspension.characterisation import characterise
 
     with user_errors():
+        if out is not None:
+            check_output_folder("--out", out)
         m = _model(model, parameters, hysteresis, vh_variant, force_gain, None)
         result = characterise(m, progress=not as_json)
         files = [str(p) for p in result.save(out)] if out is not None else []
@@ -292,6 +341,8 @@ def damper_figures(
     """Regenerate the Chapter 2 figures (2.3-2.11) and their index page."""
     from mrsuspension.cli.report import reproduce
 
+    with user_errors():
+        check_output_folder("--out", out)
     reproduce(out=out, chapters="2", quick=False)
 
 

@@ -22,7 +22,13 @@ import typer
 
 from mrsuspension._jsonsafe import to_jsonable
 from mrsuspension.cli.errors import user_errors
-from mrsuspension.errors import ValidationError, check_range
+from mrsuspension.errors import (
+    ValidationError,
+    check_input_file,
+    check_output_folder,
+    check_port,
+    check_range,
+)
 from mrsuspension.hil.rigs import rig_syntax
 
 __all__ = [
@@ -122,8 +128,10 @@ def hil_run_command(
     from mrsuspension.scenario import Scenario
 
     with user_errors():
-        if not scenario.exists():
-            raise ValidationError(f"scenario file {scenario} does not exist")
+        check_input_file("scenario file", scenario)
+        check_port("--port", port)
+        if out is not None:
+            check_output_folder("--out", out)
         if normalise_mode(realtime) == "unpaced":
             raise ValidationError(
                 f"--realtime {realtime!r}: `hil run` runs in real time; valid: auto, fifo, spin, off"
@@ -354,17 +362,18 @@ def hil_validate_command(
     from mrsuspension.hil.rigs import make_rig
     from mrsuspension.report.ch7 import validate_chapter7
 
-    with user_errors():
+    with user_errors({"sprung_mass": "--masses", "frequency": "--frequencies"}):
+        check_input_file("scenario file", scenario)
+        if out is not None:
+            check_output_folder("--out", out)
         chosen = parse_what(what)
         case_list = parse_cases(cases)
         freq_list = parse_frequencies(frequencies)
         mass_list = parse_masses(masses) or None
         if realtime is not None:
             normalise_mode(realtime)
-        if not scenario.exists():
-            raise ValidationError(f"scenario file {scenario} does not exist")
-        if road_duration is not None and not (math.isfinite(road_duration) and road_duration > 0):
-            raise ValidationError(f"--road-duration must be > 0 s; got {road_duration:g}")
+        if road_duration is not None:
+            check_range("--road-duration", road_duration, 0.0, 1e5, unit="s", low_inclusive=False)
         sim = _simulation_of(scenario)
         the_rig = make_rig(rig, sim.damper)
         data = validate_chapter7(
@@ -489,6 +498,7 @@ def rig_emulator_command(
     signal.signal(signal.SIGTERM, interrupt)
 
     with user_errors():
+        check_port("--port", port, any_free=True)
         spec = rig_kind(rig, kinds=[k for k in RIGS.values() if k.local]).name
         model = make_damper(
             damper, **({"vh_variant": VEHICLE_VH_VARIANT} if damper.startswith("wang-") else {})

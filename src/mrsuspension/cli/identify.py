@@ -15,7 +15,14 @@ from typing import Annotated, Any
 
 import typer
 
-from mrsuspension.errors import MRSuspensionError, ValidationError
+from mrsuspension.cli.errors import option_named, user_errors
+from mrsuspension.errors import (
+    MRSuspensionError,
+    ValidationError,
+    check_count,
+    check_output_folder,
+    check_range,
+)
 
 __all__ = ["app", "identify_command"]
 
@@ -193,6 +200,13 @@ def identify_command(
             err=True,
         )  # fmt: skip
         raise typer.Exit(2)
+    with user_errors({"points per cycle": "--points"}):
+        check_count("--seed", seed, 0)
+        if gain is not None:
+            # a coil driver's transconductance is of order 0.1-2 A/V
+            check_range("--gain", gain, 0.0, 1e3, unit="A/V", low_inclusive=False)
+        if out is not None:
+            check_output_folder("--out", out)
     if time_domain:
         _time_domain(
             manifest, model, out=out, as_json=as_json, columns=columns, units=units,
@@ -228,7 +242,8 @@ def identify_command(
                 result = identify(manifest, model, progress=lambda m: status.update(m), **kwargs)
         files = [str(p) for p in result.save(out, plots=plots)] if out is not None else []
     except MRSuspensionError as exc:
-        typer.echo(f"error: {exc}", err=True)
+        aliases = {"points per cycle": "--points"}
+        typer.echo(f"error: {option_named(' '.join(str(exc).split()), aliases)}", err=True)
         raise typer.Exit(2) from None
     failed = not result.parameter_sets  # every fit failed: the output says why
     if as_json:
@@ -306,7 +321,8 @@ def _time_domain(
                 )
         files = [str(p) for p in result.save(out, plots=plots)] if out is not None else []
     except MRSuspensionError as exc:
-        typer.echo(f"error: {exc}", err=True)
+        aliases = {"points per cycle": "--points"}
+        typer.echo(f"error: {option_named(' '.join(str(exc).split()), aliases)}", err=True)
         raise typer.Exit(2) from None
     if as_json:
         data = result.to_dict()

@@ -13,6 +13,7 @@ from typing import Annotated
 import typer
 
 from mrsuspension.cli.errors import user_errors
+from mrsuspension.errors import check_count, check_output_folder
 
 __all__ = ["optimize_command"]
 
@@ -48,6 +49,12 @@ def optimize_command(
     from mrsuspension.optimize import OptimizationProblem, optimize
 
     with user_errors():
+        if workers is not None:
+            check_count("--workers", workers)
+        if max_evaluations is not None:
+            check_count("--max-evaluations", max_evaluations)
+        if out is not None:
+            check_output_folder("--out", out)
         prob = OptimizationProblem.load(problem)
         files: list[str] = []
         with prepare_output(out, "optimize", force=force) as folder:  # checked before the work

@@ -8,6 +8,7 @@ from typing import Annotated
 import typer
 
 from mrsuspension.cli.errors import user_errors
+from mrsuspension.errors import check_output_folder
 
 __all__ = ["reproduce"]
 
@@ -39,6 +40,7 @@ def reproduce(
 
     console = Console(stderr=True)
     with user_errors():
+        check_output_folder("--out", out)
         chosen = None if chapters is None else _chapters(chapters)
         notify_if_compiling()
         if not sys.stderr.isatty():  # a log: plain lines every few seconds, no spinner

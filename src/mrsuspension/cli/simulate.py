@@ -21,7 +21,7 @@ import typer
 
 from mrsuspension._jsonsafe import to_jsonable
 from mrsuspension.cli.errors import user_errors
-from mrsuspension.errors import ValidationError
+from mrsuspension.errors import ValidationError, check_count, check_output_folder, check_range
 
 if TYPE_CHECKING:
     from mrsuspension.engine.result import SimulationResult
@@ -85,7 +85,10 @@ def parse_frequencies(text: str) -> list[float]:
             ) from None
         from mrsuspension.excitation import log_frequencies
 
-        return [float(f) for f in log_frequencies(n, lo, hi)]
+        try:
+            return [float(f) for f in log_frequencies(n, lo, hi)]
+        except ValidationError as exc:
+            raise ValidationError(f"--frequencies/-f {text!r}: {exc}") from None
     try:
         values = [float(v) for v in text.split(",") if v.strip()]
     except ValueError:
@@ -94,6 +97,7 @@ def parse_frequencies(text: str) -> list[float]:
         ) from None
     if not values:
         raise ValidationError("--frequencies needs at least one frequency [Hz]")
+    check_range("--frequencies", values, 0.0, None, unit="Hz", low_inclusive=False)
     return values
 
 
@@ -307,6 +311,8 @@ def simulate_command(
             kinds = parse_formats(DEFAULT_RESULT_FORMATS if formats is None else formats)
             if formats is not None and out is None:
                 raise ValidationError(f"--format {formats!r} needs --out DIR (the folder to write)")
+            if out is not None:
+                check_output_folder("--out", out)
             notify_if_compiling()  # before the first kernel loads (the scenario's damper)
             scn = Scenario.load(scenario)
             if formats is not None and scn.is_sweep:
@@ -387,11 +393,13 @@ def sweep_command(
     from mrsuspension.engine.simulate import measures_of, run_many
     from mrsuspension.scenario import Scenario
 
-    with user_errors():
+    with user_errors({"frequency": "--frequencies"}):
+        if workers is not None:
+            check_count("--workers", workers)
+        if out is not None:
+            check_output_folder("--out", out)
         scn = Scenario.load(scenario)
         sweep = _sweep_for(scn, frequencies, amplitude)
-        if workers is not None and workers < 1:
-            raise ValidationError(f"--workers must be >= 1; got {workers}")
         excitations = list(sweep.excitations())
         sims = scn.simulations(excitations)
         files: list[Path] = []

@@ -11,6 +11,7 @@ from typing import Annotated
 import typer
 
 from mrsuspension.cli.errors import user_errors
+from mrsuspension.errors import check_count
 
 __all__ = ["study"]
 
@@ -43,9 +44,14 @@ def study(
     from mrsuspension._output import prepare_output_file
     from mrsuspension.cli.compiling import notify_if_compiling
     from mrsuspension.studies import Study, run_study
+    from mrsuspension.studies.study import check_scheduler
 
     with user_errors():
+        if workers is not None:
+            check_count("--workers", workers)
         st = Study.load(path)
+        if scheduler is not None:
+            scheduler = check_scheduler(scheduler)
         with prepare_output_file(out, suffixes=(".nc", ".csv")) as target, _cache_warnings():
             notify_if_compiling()
             result = run_study(

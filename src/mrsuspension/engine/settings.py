@@ -8,6 +8,7 @@ nothing but :mod:`mrsuspension.errors`, so any module may import it.
 
 from __future__ import annotations
 
+import os
 from dataclasses import dataclass
 from typing import Any
 
@@ -21,6 +22,8 @@ __all__ = [
     "MAX_DT",
     "MAX_DURATION",
     "RunSettings",
+    "check_memory",
+    "memory_limit",
     "run_settings",
 ]
 
@@ -163,14 +166,15 @@ class RunSettings:
         >>> RunSettings(output_rate=100.0).check_for(Harmonic(60.0, 0.001))
         Traceback (most recent call last):
         ...
-        mrsuspension.errors.ValidationError: output_rate = 100 Hz cannot record the excitation's 60 Hz: it needs output_rate > 120 Hz (twice the highest frequency)
+        mrsuspension.errors.ValidationError: output_rate = 100 Hz cannot record the excitation's 60 Hz (its measures would be aliased): set output_rate > 120 Hz (twice the highest frequency; at most 1/dt = 10000 Hz, else lower dt)
         """
         top = getattr(excitation, "highest_frequency", None)
         if top is not None and not float(top) < 0.5 * self.output_rate:
             raise ValidationError(
                 f"output_rate = {self.output_rate:g} Hz cannot record the excitation's "
-                f"{float(top):g} Hz: it needs output_rate > {2.0 * float(top):g} Hz (twice the "
-                "highest frequency)"
+                f"{float(top):g} Hz (its measures would be aliased): set output_rate > "
+                f"{2.0 * float(top):g} Hz (twice the highest frequency; at most 1/dt = "
+                f"{1.0 / self.dt:g} Hz, else lower dt)"
             )
         return self
 
@@ -186,6 +190,51 @@ class RunSettings:
         if self.duration is not None:
             out["duration"] = self.duration
         return out
+
+
+def memory_limit() -> float:
+    """Bytes one run may allocate for its arrays: half the machine's RAM (``os.sysconf``).
+
+    Falls back to 8 GiB where the RAM size is not known.
+
+    Examples
+    --------
+    >>> memory_limit() > 0
+    True
+    """
+    try:
+        return 0.5 * os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
+    except (AttributeError, ValueError, OSError):  # pragma: no cover - not POSIX
+        return 8.0 * 2**30
+
+
+def check_memory(duration: float, values: float, *, name: str = "duration") -> None:
+    """Refuse a run whose arrays (``values`` floats of 8 bytes) exceed :func:`memory_limit`.
+
+    Checked before anything is allocated, so that a long ``duration`` fails at once with
+    the estimate instead of running out of memory.
+
+    Raises
+    ------
+    ValidationError
+        Naming ``name``, the duration, the estimate and the limit.
+
+    Examples
+    --------
+    >>> check_memory(10.0, 1e6)  # 8 MB
+    >>> check_memory(1e5, 1e15)  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    mrsuspension.errors.ValidationError: duration = 100000 s needs about 7.45e+06 GiB of memory ...
+    """
+    need = 8.0 * float(values)
+    limit = memory_limit()
+    if need > limit:
+        raise ValidationError(
+            f"{name} = {duration:g} s needs about {need / 2**30:.3g} GiB of memory (samples x "
+            f"signals x 8 bytes), more than the {limit / 2**30:.3g} GiB allowed (half this "
+            "machine's RAM): shorten the duration, raise dt or lower output_rate"
+        )
 
 
 def _number(name: str, value: object) -> float:

@@ -26,7 +26,7 @@ from mrsuspension.engine.result import (
     VelocityClampWarning,
     warn_if_clamped,
 )
-from mrsuspension.engine.settings import DEFAULT_DT, RunSettings, run_settings
+from mrsuspension.engine.settings import DEFAULT_DT, RunSettings, check_memory, run_settings
 from mrsuspension.errors import ValidationError, check_range
 from mrsuspension.vehicle import QuarterCar
 
@@ -115,6 +115,7 @@ class Simulation:
     estimator: PeakVelocityEstimator | None = None
 
     def __post_init__(self) -> None:
+        self._check_types()
         check_range("max_current", self.max_current, 0.0, self.damper.max_current, unit="A")
         symmetric_wang = isinstance(self.damper, WangSymmetric) and (
             self.damper.values.get("k5", 0.0) == 0.0 and self.damper.values.get("k6", 0.0) == 0.0
@@ -124,6 +125,34 @@ class Simulation:
                 f"controller {self.controller.law!r} uses the inverse model (spec section 2.3) "
                 f"and needs the 'wang-symmetric' damper model; got {self.damper.name!r}"
             )
+
+    def _check_types(self) -> None:
+        """Each argument is the object it names (a name string points to its factory)."""
+        from mrsuspension.control.registry import CONTROLLERS
+        from mrsuspension.dampers import DAMPERS
+        from mrsuspension.errors import did_you_mean
+
+        road = ("displacement", "velocity", "acceleration", "describe", "duration")
+        if not all(hasattr(self.excitation, a) for a in road):
+            raise ValidationError(
+                "excitation must be a road input (e.g. Harmonic(1.5, 0.025), RoundedPulse, "
+                f"IsoRoad from mrsuspension.excitation); got {self.excitation!r}"
+            )
+        for arg, kind, names, factory in (
+            ("controller", Controller, CONTROLLERS, "mrsuspension.control.make_controller"),
+            ("damper", DamperModel, DAMPERS, "mrsuspension.dampers.make_damper"),
+            ("vehicle", QuarterCar, None, "mrsuspension.vehicle.QuarterCar"),
+        ):
+            value = getattr(self, arg)
+            if isinstance(value, kind):
+                continue
+            hint = f"build one with {factory}(...)"
+            if isinstance(value, str) and names is not None:
+                hint = (
+                    f"build one by name with {factory}(name);{did_you_mean(value, names)} "
+                    f"Valid names: {', '.join(sorted(names))}"
+                )
+            raise ValidationError(f"{arg} must be a {kind.__name__} object; got {value!r}: {hint}")
 
     # -- helpers ---------------------------------------------------------------------
     @property
@@ -270,6 +299,7 @@ class Simulation:
         (True, 1001)
         """
         settings = run_settings(settings, duration=duration, dt=dt, output_rate=output_rate)
+        settings.check_for(self.excitation)
         duration, dt, output_rate = settings.duration, settings.dt, settings.output_rate
         dt, n, decimate = self.plan(duration, dt, output_rate, check_stability)
         zr, zrd = self.road_samples(n, dt)
@@ -320,6 +350,8 @@ class Simulation:
         decimate = max(1, round(1.0 / (rate * dt)))
         # whole output intervals covering the duration (the record ends at or after it)
         n = max(1, math.ceil(duration / (dt * decimate) - 1e-9)) * decimate
+        # the record (N_REC signals per sample) and the road at every half step
+        check_memory(duration, (n // decimate + 1) * EK.N_REC + 2 * (2 * n + 1))
         return RunPlan(dt, n, decimate)
 
     def road_samples(self, n: int, dt: float) -> tuple[np.ndarray, np.ndarray]:
@@ -671,6 +703,8 @@ def run_many(
     sims = list(simulations)
     if not sims:
         return []
+    for sim in sims:  # before any work: a record that would alias the excitation
+        plan.check_for(sim.excitation)
     n_workers = worker_count(workers, len(sims))
     if lanes:
         batches = LN.plan_batches(sims, plan.dt, plan.duration, n_workers)

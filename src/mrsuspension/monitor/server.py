@@ -6,6 +6,7 @@ the rig check and :func:`serve`. The command functions live in :mod:`mrsuspensio
 
 from __future__ import annotations
 
+import errno
 import ipaddress
 import secrets
 import sys
@@ -13,12 +14,17 @@ import webbrowser
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from mrsuspension.errors import ValidationError
+from mrsuspension.errors import (
+    ValidationError,
+    check_input_folder,
+    check_output_folder,
+    check_port,
+)
 
 if TYPE_CHECKING:
     from mrsuspension.monitor.app import AttachedRun
 
-__all__ = ["check_bind", "check_rig", "is_loopback", "serve"]
+__all__ = ["check_bind", "check_free", "check_rig", "is_loopback", "serve"]
 
 
 def is_loopback(host: str) -> bool:
@@ -78,6 +84,42 @@ def check_rig(spec: str) -> str:
     return normalise_rig_spec(spec)
 
 
+def check_free(host: str, port: int) -> None:
+    """Refuse a ``host``/``port`` the monitor cannot bind (in use, or no such address).
+
+    Probed with the options uvicorn binds with (``SO_REUSEADDR``), before the server
+    starts, so that the error is one line rather than uvicorn's log and exit code 3.
+
+    Examples
+    --------
+    >>> import socket
+    >>> with socket.socket() as taken:
+    ...     taken.bind(("127.0.0.1", 0))
+    ...     taken.listen()
+    ...     check_free("127.0.0.1", taken.getsockname()[1])  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    mrsuspension.errors.ValidationError: --port ...: cannot listen on 127.0.0.1: ...
+    """
+    import socket
+
+    try:
+        infos = socket.getaddrinfo(host, port, type=socket.SOCK_STREAM)
+    except OSError as exc:
+        raise ValidationError(f"--host {host!r}: no such address ({exc})") from None
+    family, kind, proto, _, address = infos[0]
+    try:
+        with socket.socket(family, kind, proto) as probe:
+            probe.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
+            probe.bind(address)
+            probe.listen()
+    except OSError as exc:
+        why = "the port is in use" if exc.errno == errno.EADDRINUSE else exc.strerror
+        raise ValidationError(
+            f"--port {port}: cannot listen on {host}: {why}; choose another --port"
+        ) from None
+
+
 def serve(
     host: str,
     port: int,
@@ -98,9 +140,13 @@ def serve(
     stdout carries JSON).
     """
     check_bind(host, token)
+    check_port("--port", port)
     rig = check_rig(rig)
-    if road_dir is not None and not road_dir.is_dir():
-        raise ValidationError(f"--road-dir {road_dir} is not a directory")
+    if road_dir is not None:
+        check_input_folder("--road-dir", road_dir)
+    if workdir is not None:
+        check_output_folder("--workdir", workdir)
+    check_free(host, port)
     import uvicorn
 
     from mrsuspension.monitor.app import create_app

@@ -71,7 +71,61 @@ from mrsuspension.excitation import EXCITATIONS, log_frequencies
 from mrsuspension.measures.shock import DEFAULT_ROAD_PEAK, RoadPeak, check_road_peak
 from mrsuspension.scenario import SCENARIO_KEYS, Scenario
 
-__all__ = ["MEASURES", "Axis", "Study", "expand_frequencies", "merge_scenario_tables"]
+__all__ = [
+    "MEASURES",
+    "Axis",
+    "Study",
+    "check_scheduler",
+    "expand_frequencies",
+    "merge_scenario_tables",
+]
+
+#: seconds ``check_scheduler`` waits for a Dask scheduler to accept a connection
+SCHEDULER_TIMEOUT = 5.0
+_ADDRESS = re.compile(r"^(?:tcp://)?(\[[^\]]+\]|[^:/\s]+):([0-9]+)/?$")
+
+
+def check_scheduler(address: str, timeout: float = SCHEDULER_TIMEOUT) -> str:
+    """A Dask scheduler address (``tcp://host:port`` or ``host:port``) that accepts connections.
+
+    Parsed, and connected to with a ``timeout`` [s] (5 s by default, instead of Dask's
+    own 30 s), before a study is sent to it. Returns the ``tcp://host:port`` form.
+
+    Raises
+    ------
+    ValidationError
+        A malformed address, a port out of 1-65535, or a scheduler that does not answer.
+
+    Examples
+    --------
+    >>> check_scheduler("my-cluster")
+    Traceback (most recent call last):
+    ...
+    mrsuspension.errors.ValidationError: --scheduler 'my-cluster' is not a Dask scheduler address: expected tcp://host:port or host:port (e.g. tcp://10.0.0.5:8786)
+    """
+    import socket
+
+    from mrsuspension.errors import check_port
+
+    match = _ADDRESS.match(address.strip())
+    if match is None:
+        raise ValidationError(
+            f"--scheduler {address!r} is not a Dask scheduler address: expected "
+            "tcp://host:port or host:port (e.g. tcp://10.0.0.5:8786)"
+        )
+    host, port = match.group(1), int(match.group(2))
+    check_port(f"--scheduler {address!r}: the port", port)
+    try:
+        with socket.create_connection((host.strip("[]"), port), timeout=timeout):
+            pass
+    except OSError as exc:
+        why = "no answer" if isinstance(exc, TimeoutError) else exc.strerror or str(exc)
+        raise ValidationError(
+            f"--scheduler {address!r}: cannot reach a scheduler at {host}:{port} within "
+            f"{timeout:g} s ({why})"
+        ) from None
+    return f"tcp://{host}:{port}"
+
 
 #: Measures of ``SimulationResult.measures()`` by excitation kind (spec section 9): each
 #: kind's declared ``measures_kind`` looked up in
