@@ -42,6 +42,20 @@ def _first_existing(path: Path) -> Path:
     return Path(path.anchor or ".")  # pragma: no cover - the root always exists
 
 
+def check_output_folder(what: str, path: str | Path) -> Path:
+    """``path`` as a :class:`~pathlib.Path` that is, or can be created as, a writable
+    folder (:func:`check_writable_folder`), checked before a long run writes into it.
+
+    Examples
+    --------
+    >>> check_output_folder("--out", "results/new")
+    PosixPath('results/new')
+    """
+    path = Path(path)
+    check_writable_folder(path, what)
+    return path
+
+
 def check_writable_folder(
     folder: str | Path, what: str, *, hint: str = "", shown: str | Path | None = None
 ) -> None:

@@ -22,7 +22,6 @@ __all__ = [
     "check_input_file",
     "check_input_folder",
     "check_keys",
-    "check_output_folder",
     "check_port",
     "check_tables",
     "did_you_mean",
@@ -302,26 +301,4 @@ def check_input_folder(what: str, path: str | Path) -> Path:
         raise ValidationError(f"{what} {str(path)!r} is a file, expected a folder")
     if not path.is_dir():
         raise ValidationError(f"{what} not found: {str(path)!r}")
-    return path
-
-
-def check_output_folder(what: str, path: str | Path) -> Path:
-    """``path`` as a :class:`~pathlib.Path` that is a folder or can become one.
-
-    Checked before a long run writes into it: an existing file, or a file among its
-    parents, is refused. The folder itself is created by the writer.
-
-    Examples
-    --------
-    >>> check_output_folder("--out", "results/new")
-    PosixPath('results/new')
-    """
-    path = Path(path)
-    for p in (path, *path.parents):
-        if p.exists():
-            if not p.is_dir():
-                raise ValidationError(
-                    f"{what} {str(path)!r}: {str(p)!r} is a file, expected a folder"
-                )
-            break
     return path

@@ -8,8 +8,9 @@ from typing import Annotated, Any
 
 import typer
 
+from mrsuspension._output import check_output_folder
 from mrsuspension.cli.errors import user_errors
-from mrsuspension.errors import ValidationError, check_output_folder, check_range
+from mrsuspension.errors import ValidationError, check_range
 
 __all__ = ["app"]
 

@@ -21,11 +21,11 @@ from typing import Annotated, Any
 import typer
 
 from mrsuspension._jsonsafe import to_jsonable
+from mrsuspension._output import check_output_folder
 from mrsuspension.cli.errors import user_errors
 from mrsuspension.errors import (
     ValidationError,
     check_input_file,
-    check_output_folder,
     check_port,
     check_range,
 )

@@ -15,12 +15,12 @@ from typing import Annotated, Any
 
 import typer
 
+from mrsuspension._output import check_output_folder
 from mrsuspension.cli.errors import option_named, user_errors
 from mrsuspension.errors import (
     MRSuspensionError,
     ValidationError,
     check_count,
-    check_output_folder,
     check_range,
 )
 

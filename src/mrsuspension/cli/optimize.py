@@ -12,8 +12,9 @@ from typing import Annotated
 
 import typer
 
+from mrsuspension._output import check_output_folder
 from mrsuspension.cli.errors import user_errors
-from mrsuspension.errors import check_count, check_output_folder
+from mrsuspension.errors import check_count
 
 __all__ = ["optimize_command"]
 

@@ -7,8 +7,8 @@ from typing import Annotated
 
 import typer
 
+from mrsuspension._output import check_output_folder
 from mrsuspension.cli.errors import user_errors
-from mrsuspension.errors import check_output_folder
 
 __all__ = ["reproduce"]
 

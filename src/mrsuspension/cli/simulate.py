@@ -20,8 +20,9 @@ from typing import TYPE_CHECKING, Annotated, Any
 import typer
 
 from mrsuspension._jsonsafe import to_jsonable
+from mrsuspension._output import check_output_folder
 from mrsuspension.cli.errors import user_errors
-from mrsuspension.errors import ValidationError, check_count, check_output_folder, check_range
+from mrsuspension.errors import ValidationError, check_count, check_range
 
 if TYPE_CHECKING:
     from mrsuspension.engine.result import SimulationResult

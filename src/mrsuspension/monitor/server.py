@@ -14,10 +14,10 @@ import webbrowser
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from mrsuspension._output import check_output_folder
 from mrsuspension.errors import (
     ValidationError,
     check_input_folder,
-    check_output_folder,
     check_port,
 )
 
