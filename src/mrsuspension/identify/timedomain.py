@@ -242,6 +242,8 @@ class TimeDomainModel(ABC):
 
     name: ClassVar[str]
     damper: ClassVar[type[DamperModel]]
+    #: keyword arguments of ``damper`` besides the parameter set (e.g. its estimator)
+    damper_options: ClassVar[Mapping[str, Any]] = {}
     default_set: ClassVar[str]
     #: "voltage" (Spencer's published damper) or "current"
     driven_by: ClassVar[Literal["current", "voltage"]] = "current"
@@ -297,7 +299,7 @@ class TimeDomainModel(ABC):
             max_current=max(self.start_set.max_current, max_current),
             velocity_range=self.start_set.velocity_range,
         )  # fmt: skip
-        return self.damper(pset)
+        return self.damper(pset, **self.damper_options)
 
     def lag_rate(self, values: Mapping[str, float]) -> float:
         """Rate of the current lag applied outside the kernel (0: the kernel has it)."""
@@ -545,21 +547,13 @@ class WangLag(TimeDomainModel):
 
     name: ClassVar[str] = "wang"
     damper: ClassVar[type[DamperModel]] = WangSymmetric
+    damper_options: ClassVar[Mapping[str, Any]] = {"estimator": "cycle-rms"}
     default_set: ClassVar[str] = "wang-symmetric-low"
     _NAMES = ("a0", "a1", "a2", "a3", "a4", "I0", "I1", "k0", "k1", "k2", "k3", "k4", "F0")
 
     def fit_names(self) -> tuple[str, ...]:
         self.fixed_notes = {}
         return (*self._NAMES, "eta")
-
-    def build(self, values: Mapping[str, float], max_current: float) -> DamperModel:
-        vals = {k: v for k, v in values.items() if k in self.damper.parameter_rules}
-        pset = _parameters.ParameterSet(
-            name=f"{self.name}-fit", model=self.damper.name, values=vals,
-            max_current=max(self.start_set.max_current, max_current),
-            velocity_range=self.start_set.velocity_range,
-        )  # fmt: skip
-        return WangSymmetric(pset, estimator="cycle-rms")
 
     def to_values(self, fit: Mapping[str, float]) -> dict[str, float]:
         out = {k: float(v) for k, v in self.start_set.values.items()}
