@@ -43,7 +43,7 @@ from __future__ import annotations
 import math
 import warnings
 from collections.abc import Mapping
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field, is_dataclass, replace
 from pathlib import Path
 from typing import Any, ClassVar
 
@@ -193,8 +193,8 @@ def isotropic_coherence(
 
     For a homogeneous, isotropic random surface whose single-track PSD is the power law
     ``Gd(n) ~ n^-w``, the cross-spectral density of two parallel tracks a distance ``b``
-    apart is real and ``G_lr(n) = gamma(n) Gd(n)`` with (Kamash and Robson, 1978; Robson,
-    1979)::
+    apart is real and ``G_lr(n) = gamma(n) Gd(n)`` with (Kamash and Robson, 1978; the
+    isotropy hypothesis of Dodds and Robson, 1973)::
 
         gamma(n) = 2 (x/2)^nu K_nu(x) / Gamma(nu),   x = 2 pi n b,   nu = w/2,
 
@@ -226,8 +226,8 @@ def isotropic_coherence(
     ----------
     K. M. A. Kamash and J. D. Robson, "The application of isotropy in road surface
     modelling", Journal of Sound and Vibration 57(1), 89-100, 1978.
-    J. D. Robson, "Road surface description and vehicle response", International Journal
-    of Vehicle Design 1(1), 25-35, 1979.
+    C. J. Dodds and J. D. Robson, "The description of road surface roughness", Journal of
+    Sound and Vibration 31, 1973.
 
     Examples
     --------
@@ -525,7 +525,12 @@ class WheelRoads:
         else:
             speed = _speed(speed_kmh)
             if own is not None and own != speed:
-                excitation = replace(excitation, speed_kmh=speed)  # type: ignore[type-var]
+                if not is_dataclass(excitation):
+                    raise ValidationError(
+                        f"cannot drive a {type(excitation).__name__} at another speed; give "
+                        f"speed_kmh={own!r} (its own) or build it for {speed:g} km/h"
+                    )
+                excitation = replace(excitation, speed_kmh=speed)
         return cls(
             excitation,
             excitation if layout == FULL_CAR_CORNERS else None,
@@ -569,8 +574,8 @@ class WheelRoads:
         (Mixing ``L`` with an independent track, ``gamma L + sqrt(1 - gamma^2) I``, has
         the same expected spectra but random line amplitudes: a 500 m right track then
         misses ISO 8608's level by up to 40 % in an octave band, and on 40 km the measured
-        coherence strays up to 0.02-0.05 from the model against 0.01-0.016 here.) Both profiles are periodic over their length;
-        a half car rides the left track.
+        coherence strays up to 0.02-0.05 from the model against 0.012-0.021 here.) Both
+        profiles are periodic over their length; a half car rides the left track.
 
         Parameters
         ----------

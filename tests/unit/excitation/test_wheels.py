@@ -116,7 +116,7 @@ class TestTwoTrack:
     @pytest.mark.parametrize("road", ["C", "rough"])
     def test_measured_coherence_matches_the_model(self, road):
         # 20 km: the scatter of the Welch estimate over 0.05-2 cycle/m is what limits the
-        # agreement (max deviation 0.018-0.030 over seeds 0-9; at 5 km 0.03-0.065)
+        # agreement (max deviation 0.016-0.033 over seeds 0-9; at 5 km 0.028-0.063)
         roads = WheelRoads.two_track(road, GEOMETRY, 72.0, length=20000.0, spacing=0.2, seed=0)
         left, right = roads.left.elevation, roads.right.elevation
         n, msc = coherence(left, right, fs=1 / 0.2, nperseg=512)
