@@ -47,7 +47,7 @@ __all__ = [
 ]
 
 # the half and full cars (vehicle/body.py) load on first use
-__getattr__, _lazy_dir = lazy_namespace(
+__getattr__, __dir__ = lazy_namespace(
     __name__,
     dict.fromkeys(
         ("CORNERS_FULL", "CORNERS_HALF", "FullCar", "HalfCar"), "mrsuspension.vehicle.body"
