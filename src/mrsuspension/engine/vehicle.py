@@ -29,8 +29,10 @@ import numpy as np
 import numpy.typing as npt
 
 from mrsuspension.control import Controller, Passive
+from mrsuspension.control.kernel import F_EXTERNAL
 from mrsuspension.dampers import DamperModel, WangSymmetric
 from mrsuspension.dampers.wang import VEHICLE_VH_VARIANT
+from mrsuspension.engine import kernel as EK
 from mrsuspension.engine import vehicle_kernel as VX
 from mrsuspension.engine.result import SIGNALS, SimulationDiverged, SimulationResult
 from mrsuspension.engine.settings import DEFAULT_DT, check_memory
@@ -46,6 +48,7 @@ __all__ = [
     "VehicleArrays",
     "VehicleResult",
     "VehicleSimulation",
+    "VehicleStepper",
     "WheelInput",
 ]
 
@@ -580,6 +583,24 @@ class VehicleSimulation:
             y[VX.NB + VX.NQ * i + 2] = zr0[i]
         return y
 
+    def stepper(self, dt: float = DEFAULT_DT, *, external: str | None = None) -> VehicleStepper:
+        """Tick-by-tick access to the same compiled step (a real-time or HiL loop).
+
+        ``external`` names a corner whose damper force is given at every tick (the
+        measured force of a physical damper on the rig); the other corners are simulated.
+
+        Examples
+        --------
+        >>> from mrsuspension.excitation import Harmonic
+        >>> from mrsuspension.vehicle import HalfCar
+        >>> road = SameRoadAtEveryWheel(Harmonic(2.0, 0.01), ("front", "rear"))
+        >>> st = VehicleSimulation(HalfCar(), road).stepper(1e-4, external="rear")
+        >>> out = st.step([0.0, 0.0], [0.1, 0.1], damper_force=120.0)
+        >>> out["F_d.rear"], sorted(out)[:3]
+        (120.0, ['F_T.front', 'F_T.rear', 'F_d.front'])
+        """
+        return VehicleStepper(self, dt, external=external)
+
     def run(
         self, duration: float | None = None, *, dt: float = DEFAULT_DT, output_rate: float = 1000.0
     ) -> VehicleResult:
@@ -689,3 +710,133 @@ class VehicleSimulation:
             time=time, signals=signals, scenario=scenario, dt=dt, units=units,
             corners=self.corners, corner_scenarios=corner_scenarios,
         )  # fmt: skip
+
+
+class VehicleStepper:
+    """The vehicle's compiled step, one tick at a time (the HiL loop's physics).
+
+    The roads at the start, middle and end of the tick are given by the caller, one value
+    per wheel (pass the start values only for a road held over the tick). With
+    ``external``, that corner's damper force is not computed by its model but given at
+    every tick and held over it (one physical damper on the rig, the others simulated).
+    Stepping with the roads of :meth:`VehicleSimulation.run` reproduces it bit for bit.
+
+    Examples
+    --------
+    >>> from mrsuspension.excitation import Harmonic
+    >>> from mrsuspension.vehicle import FullCar
+    >>> road = SameRoadAtEveryWheel(Harmonic(2.0, 0.01), FullCar.corners)
+    >>> st = VehicleSimulation(FullCar(), road).stepper(1e-4)
+    >>> out = st.step([0.001] * 4, [0.0] * 4)
+    >>> round(st.time, 6), out["heave"] > 0.0
+    (0.0001, True)
+    """
+
+    def __init__(
+        self, simulation: VehicleSimulation, dt: float, *, external: str | None = None
+    ) -> None:
+        self.simulation = simulation
+        self.dt = simulation.check_dt(dt)
+        self.external = None if external is None else simulation.vehicle.corner_index(external)
+        self.reset()
+
+    def reset(
+        self, road: npt.ArrayLike | None = None, road_velocity: npt.ArrayLike | None = None
+    ) -> None:
+        """Back to static equilibrium on the given wheel roads (default 0); fresh internals."""
+        n = len(self.simulation.corners)
+        zr = self._wheels("road", road)
+        zrd = self._wheels("road_velocity", road_velocity)
+        self.arrays = self.simulation.arrays(self.dt)
+        if self.external is not None:
+            self.arrays.force_source[self.external] = F_EXTERNAL
+        self._args = self.arrays.args()
+        self.y = self.simulation.initial_state(zr)
+        self.time = 0.0
+        self._zr = np.zeros((n, 3))
+        self._zrd = np.zeros((n, 3))
+        self._scratch = np.zeros((3, self.y.size))
+        self._work = np.zeros((n + 1, 8))
+        self._zr[:, 0], self._zrd[:, 0] = zr, zrd
+        a = self.arrays
+        VX.start(
+            self.y, self._zr, self._zrd, 0, a.vehicle, a.corner_vehicles, a.force_source,
+            a.damper_kind, a.damper_params, a.damper_state, a.damper_estimator_kind,
+            a.damper_estimator_params, a.damper_estimator_state, a.controller_kind,
+            a.controller_params, a.memory, self._scratch, self._work,
+        )  # fmt: skip
+
+    def _wheels(self, name: str, value: npt.ArrayLike | None) -> np.ndarray:
+        n = len(self.simulation.corners)
+        if value is None:
+            return np.zeros(n)
+        arr = check_range(name, value, -10.0, 10.0, unit="m" if name == "road" else "m/s")
+        if arr.shape != (n,):
+            raise ValidationError(
+                f"{name} must have one value per wheel ({n}); got shape {arr.shape}"
+            )
+        return arr.astype(float)
+
+    def step(
+        self,
+        road: npt.ArrayLike,
+        road_velocity: npt.ArrayLike,
+        *,
+        road_mid: tuple[npt.ArrayLike, npt.ArrayLike] | None = None,
+        road_end: tuple[npt.ArrayLike, npt.ArrayLike] | None = None,
+        damper_force: float | None = None,
+    ) -> dict[str, float]:
+        """Advance one tick; returns the body's and every corner's signals by name.
+
+        Raises
+        ------
+        ValidationError
+            For roads of the wrong shape or out of range, or a ``damper_force`` missing
+            (with ``external``) or given without it.
+        SimulationDiverged
+            When the state is no longer finite.
+        """
+        mem = self.arrays.memory
+        if self.external is not None:
+            if damper_force is None or not math.isfinite(damper_force):
+                raise ValidationError(
+                    f"a stepper with an external corner needs a finite damper_force each tick; got {damper_force!r}"
+                )
+            mem[self.external, EK.M_FEXT] = damper_force
+        elif damper_force is not None:
+            raise ValidationError("damper_force is only accepted with external=<corner>")
+        zr, zrd = self._zr, self._zrd
+        zr[:, 0] = self._wheels("road", road)
+        zrd[:, 0] = self._wheels("road_velocity", road_velocity)
+        mid = road_mid if road_mid is not None else (zr[:, 0], zrd[:, 0])
+        zr[:, 1], zrd[:, 1] = self._wheels("road", mid[0]), self._wheels("road_velocity", mid[1])
+        end = road_end if road_end is not None else (zr[:, 1], zrd[:, 1])
+        zr[:, 2], zrd[:, 2] = self._wheels("road", end[0]), self._wheels("road_velocity", end[1])
+        VX.step(self.y, self.dt, zr, zrd, 0, *self._args, self._scratch, self._work)
+        self.time += self.dt
+        y = self.y
+        if not np.all(np.isfinite(y)):
+            raise SimulationDiverged(
+                f"vehicle stepper diverged at t = {self.time:.4f} s: state is not finite",
+                self.time,
+                "state",
+                math.nan,
+            )
+        out = {"time": self.time}
+        for name, col in VX_BODY_STATE.items():
+            out[name] = float(y[col])
+        for name, col in (("heave_ddot", 3), ("pitch_ddot", 4), ("roll_ddot", 5)):
+            out[name] = float(self._scratch[1, col])
+        for i, c in enumerate(self.simulation.corners):
+            q = VX.NB + VX.NQ * i
+            out[f"z_u.{c}"] = float(y[q])
+            out[f"z_u_dot.{c}"] = float(y[q + 1])
+            out[f"F_d.{c}"] = float(mem[i, EK.M_FD])
+            out[f"F_T.{c}"] = float(mem[i, EK.M_FT])
+            out[f"i_d.{c}"] = float(mem[i, EK.M_ID])
+            out[f"z_s_ddot.{c}"] = float(mem[i, EK.M_AS])
+        return out
+
+
+#: the body's states in ``y``
+VX_BODY_STATE = {"heave": 0, "pitch": 1, "roll": 2, "heave_dot": 3, "pitch_dot": 4, "roll_dot": 5}

@@ -144,3 +144,37 @@ def test_dt_convergence_is_fourth_order() -> None:
     print(f"\nerrors {errors}, ratios {ratios} (4th order: 16)")
     orders = [math.log2(r) for r in ratios]
     assert all(3.5 < p < 4.5 for p in orders), orders
+
+
+# -- the step a HiL loop calls ------------------------------------------------------------
+def test_stepper_reproduces_run_bit_for_bit() -> None:
+    car = FullCar()
+    road = _road(car, Harmonic(2.0, 0.01))
+    sim = VehicleSimulation(car, road, controllers=HiLo(1, mode="ACM"))
+    dt, n = 1e-4, 2000
+    res = sim.run(n * dt, dt=dt, output_rate=1.0 / dt)
+    t = np.arange(2 * n + 1) * (0.5 * dt)
+    zr, zrd = road.displacement(t), road.velocity(t)
+    st = sim.stepper(dt)
+    st.reset(zr[:, 0], zrd[:, 0])
+    for k in range(n):
+        j = 2 * k
+        out = st.step(zr[:, j], zrd[:, j], road_mid=(zr[:, j + 1], zrd[:, j + 1]),
+                      road_end=(zr[:, j + 2], zrd[:, j + 2]))  # fmt: skip
+    for name in ("heave", "pitch", "roll", "z_u.rear_left", "F_d.front_right", "i_d.front_left"):
+        assert out[name] == res[name][-1], name
+
+
+def test_stepper_takes_a_measured_force_at_one_corner() -> None:
+    car = HalfCar()
+    sim = VehicleSimulation(car, SameRoadAtEveryWheel(Harmonic(2.0, 0.01), car.corners))
+    st = sim.stepper(1e-4, external="rear")
+    out = st.step([0.0, 0.0], [0.1, 0.1], damper_force=250.0)
+    assert out["F_d.rear"] == 250.0
+    assert out["F_d.front"] != 250.0
+    with pytest.raises(ValidationError, match="needs a finite damper_force"):
+        st.step([0.0, 0.0], [0.1, 0.1])
+    with pytest.raises(ValidationError, match="Did you mean 'rear'"):
+        sim.stepper(1e-4, external="reer")
+    with pytest.raises(ValidationError, match=r"road must have one value per wheel \(2\)"):
+        st.step([0.0], [0.0], damper_force=0.0)
