@@ -151,6 +151,36 @@ class SameRoadAtEveryWheel:
         tt = self._times(t)
         return np.stack([np.asarray(self.excitation.velocity(row), dtype=float) for row in tt])
 
+    def sample_grid(self, n: int, step: float, start: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
+        """``(z_r, z_r')`` of every wheel at ``start + k * step``, ``k < n``: shape
+        ``(corners, n)``; the excitation's fast grid where it has one, computed once per
+        distinct delay (left and right wheels of an axle share it).
+
+        Examples
+        --------
+        >>> from mrsuspension.excitation import Harmonic
+        >>> road = SameRoadAtEveryWheel(Harmonic(1.0, 0.01), ("front", "rear"), (0.0, 0.1))
+        >>> z, v = road.sample_grid(5, 0.05)
+        >>> bool(np.allclose(z, road.displacement(np.arange(5) * 0.05), rtol=0, atol=1e-15))
+        True
+        """
+        delays = self.delays or (0.0,) * len(self.corners)
+        grid = getattr(self.excitation, "sample_grid", None)
+        z = np.empty((len(self.corners), n))
+        v = np.empty((len(self.corners), n))
+        done: dict[float, int] = {}
+        for i, d in enumerate(delays):
+            if d in done:
+                z[i], v[i] = z[done[d]], v[done[d]]
+                continue
+            if grid is not None:
+                z[i], v[i] = grid(n, float(step), float(start) - d)
+            else:
+                t = float(start) - d + np.arange(n) * step
+                z[i], v[i] = self.excitation.displacement(t), self.excitation.velocity(t)
+            done[d] = i
+        return z, v
+
     def acceleration(self, t: npt.ArrayLike) -> np.ndarray:
         """``z_r,i''(t)`` [m/s^2], shape ``(corners, len(t))``."""
         tt = self._times(t)
@@ -523,9 +553,9 @@ class VehicleSimulation:
             self.corner_simulation(c).kernel_arrays(dt, check_stability=False) for c in car.corners
         ]
         vp = np.zeros(VX.B_SIZE + VX.CORNER_SIZE * n)
-        vp[VX.B_M] = car.sprung_mass
-        vp[VX.B_IY] = car.pitch_inertia
-        vp[VX.B_IX] = getattr(car, "roll_inertia", 1.0)  # the half car has no roll (y = 0)
+        vp[VX.B_INV_M] = 1.0 / car.sprung_mass
+        vp[VX.B_INV_IY] = 1.0 / car.pitch_inertia
+        vp[VX.B_INV_IX] = 1.0 / getattr(car, "roll_inertia", 1.0)  # half car: no roll (y = 0)
         vp[VX.B_NC] = n
         x, y = car.corner_positions()
         bar = car.anti_roll_rates()
@@ -534,7 +564,7 @@ class VehicleSimulation:
         for i in range(n):
             o = VX.B_SIZE + VX.CORNER_SIZE * i
             vp[o + VX.C_X], vp[o + VX.C_Y] = x[i], y[i]
-            vp[o + VX.C_MU] = car.unsprung_masses[i]
+            vp[o + VX.C_INV_MU] = 1.0 / car.unsprung_masses[i]
             vp[o + VX.C_KS] = car.suspension_stiffnesses[i]
             vp[o + VX.C_KT] = car.tire_stiffnesses[i]
             vp[o + VX.C_CT] = car.tire_dampings[i]
@@ -648,10 +678,15 @@ class VehicleSimulation:
         nc = len(self.corners)
         rows = n // decimate + 1
         check_memory(duration, rows * (VX.REC_BODY + VX.REC_CORNER * nc) + 2 * nc * (2 * n + 1))
-        t_half = np.arange(2 * n + 1) * (0.5 * dt)
-        zr = np.ascontiguousarray(self.excitation.displacement(t_half), dtype=float)
-        zrd = np.ascontiguousarray(self.excitation.velocity(t_half), dtype=float)
-        if zr.shape != (nc, t_half.size) or zrd.shape != zr.shape:
+        grid = getattr(self.excitation, "sample_grid", None)
+        if grid is not None:  # the wheel input's fast grid
+            zr, zrd = grid(2 * n + 1, 0.5 * dt)
+        else:
+            t_half = np.arange(2 * n + 1) * (0.5 * dt)
+            zr, zrd = self.excitation.displacement(t_half), self.excitation.velocity(t_half)
+        zr = np.ascontiguousarray(zr, dtype=float)
+        zrd = np.ascontiguousarray(zrd, dtype=float)
+        if zr.shape != (nc, 2 * n + 1) or zrd.shape != zr.shape:
             raise ValidationError(
                 f"the wheel input must return ({nc}, len(t)) arrays; got {zr.shape} and {zrd.shape}"
             )
@@ -696,12 +731,18 @@ class VehicleSimulation:
         units = {"time": "s", **{k: u for k, (u, _) in BODY_SIGNALS.items()}}
         scenario = self.describe()
         corner_scenarios = {}
+        acc = getattr(self.excitation, "acceleration", None)
+        if acc is not None:
+            road_acc = np.asarray(acc(time), dtype=float)
+        else:
+            road_acc = np.array([_CornerRoad(self.excitation, i).acceleration(time)
+                                 for i in range(len(self.corners))])  # fmt: skip
         for i, c in enumerate(self.corners):
             b = VX.REC_BODY + VX.REC_CORNER * i
             sig = {k: rec[b + col] for k, col in _CORNER_COLUMNS.items()}
             sig["x_d"] = sig["z_u"] - sig["z_s"]
             sig["v_d"] = sig["z_u_dot"] - sig["z_s_dot"]
-            sig["z_r_ddot"] = _CornerRoad(self.excitation, i).acceleration(time)
+            sig["z_r_ddot"] = road_acc[i]
             for k, v in sig.items():
                 signals[f"{k}.{c}"] = v
                 units[f"{k}.{c}"] = SIGNALS[k][0]

@@ -17,7 +17,7 @@ The damper kernels (:mod:`mrsuspension.dampers.kernels`) and the control laws
 (:mod:`mrsuspension.control.kernel`) are the quarter car's; the sliding-mode reference
 model (3.18) is integrated per corner with the corner's wheel.
 
-Arrays of the compiled step (numba compiles over arrays; :class:`VehicleArrays` names
+Arrays of the compiled step (numba compiles over arrays; :class:`~mrsuspension.engine.vehicle.VehicleArrays` names
 them): ``vp`` the vehicle (``B_*`` then ``CORNER_SIZE`` values per corner, ``C_*``);
 ``cvp`` every corner's quarter-car parameters (rows: :mod:`mrsuspension.vehicle.kernel`
 ``V_*``, for the control laws); per corner rows of the damper's, estimators' and
@@ -51,12 +51,13 @@ invalidate_if_changed(
     __file__, DK.__file__, _shaping.__file__, CK.__file__, VK.__file__, EK.__file__
 )
 
-# vp: body then corners
-B_M, B_IY, B_IX, B_NC = 0, 1, 2, 3
+# vp: body then corners; reciprocal masses and inertias (they leave the divisions off the
+# chain of dependent operations from one RK4 stage to the next, as in engine/kernel.py)
+B_INV_M, B_INV_IY, B_INV_IX, B_NC = 0, 1, 2, 3
 B_SIZE = 4
-# per corner (at B_SIZE + c * CORNER_SIZE): x, y from the CG [m], m_u, k_s, k_t, c_t,
+# per corner (at B_SIZE + c * CORNER_SIZE): x, y from the CG [m], 1/m_u, k_s, k_t, c_t,
 # static tire deflection dx_u, static tire load W, anti-roll rate k_bar/t^2, partner
-C_X, C_Y, C_MU, C_KS, C_KT, C_CT, C_DXU, C_W, C_BAR, C_PARTNER = range(10)
+C_X, C_Y, C_INV_MU, C_KS, C_KT, C_CT, C_DXU, C_W, C_BAR, C_PARTNER = range(10)
 CORNER_SIZE = 10
 NB = 6  # body states: z, theta, phi and their rates
 NQ = 4  # states per corner: z_u, z_u', z_0, z_0'
@@ -130,7 +131,7 @@ def rates(
         ft = 0.0 if ft < 0.0 else ft
         ft = ft if delta > 0.0 else 0.0
         dy[q] = vu
-        dy[q + 1] = (ft - vp[o + C_W] - fs) / vp[o + C_MU]
+        dy[q + 1] = (ft - vp[o + C_W] - fs) * vp[o + C_INV_MU]
         if CK.needs_reference(ck[c]):  # single-DOF reference (3.18) on this corner's wheel
             dy[q + 2] = v0
             dy[q + 3] = (
@@ -147,9 +148,9 @@ def rates(
     dy[0] = y[3]
     dy[1] = y[4]
     dy[2] = y[5]
-    dy[3] = fz / vp[B_M]
-    dy[4] = my / vp[B_IY]
-    dy[5] = mx / vp[B_IX]
+    dy[3] = fz * vp[B_INV_M]
+    dy[4] = my * vp[B_INV_IY]
+    dy[5] = mx * vp[B_INV_IX]
 
 
 @njit(cache=True, inline="always")
@@ -170,7 +171,7 @@ def _finish(
         mem[c, EK.M_AD] = dy[q + 1] - a_s
 
 
-@njit(cache=True, **NO_REFCOUNT)
+@njit(cache=True, inline="always", **NO_REFCOUNT)
 def step(
     y: np.ndarray,
     dt: float,
