@@ -178,3 +178,13 @@ def test_stepper_takes_a_measured_force_at_one_corner() -> None:
         sim.stepper(1e-4, external="reer")
     with pytest.raises(ValidationError, match=r"road must have one value per wheel \(2\)"):
         st.step([0.0], [0.0], damper_force=0.0)
+
+
+def test_docs_page_example_runs() -> None:
+    import re
+    from pathlib import Path
+
+    page = Path(__file__).resolve().parents[3] / "docs" / "vehicles.md"
+    blocks = re.findall(r"```python\n(.*?)```", page.read_text(), flags=re.DOTALL)
+    assert blocks
+    exec(compile("\n".join(blocks), str(page), "exec"), {})
