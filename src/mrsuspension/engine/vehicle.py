@@ -23,7 +23,7 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import Any, Protocol, runtime_checkable
+from typing import TYPE_CHECKING, Any, Protocol, runtime_checkable
 
 import numpy as np
 import numpy.typing as npt
@@ -39,6 +39,9 @@ from mrsuspension.engine.settings import DEFAULT_DT, check_memory
 from mrsuspension.engine.simulate import Simulation
 from mrsuspension.errors import ValidationError, check_range, unknown_name
 from mrsuspension.vehicle.body import CORNERS_FULL, CORNERS_HALF, FullCar, HalfCar, VehicleBody
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
 
 __all__ = [
     "BODY_SIGNALS",
@@ -350,6 +353,10 @@ class VehicleResult(SimulationResult):
         return SimulationResult(
             time=self.time, signals=signals, scenario=dict(self.corner_scenarios[name]), dt=self.dt
         )
+
+    def plot(self, signals: tuple[str, ...] = ("heave_ddot", "pitch_ddot", "roll_ddot")) -> Figure:
+        """Time histories of some signals, one panel each (default: body accelerations)."""
+        return super().plot(signals)
 
     def measures(self, **kwargs: Any) -> dict[str, Any]:
         """Every corner's quarter-car measures, keyed ``"<measure>.<corner>"``.

@@ -10,7 +10,7 @@ import pytest
 from mrsuspension.control import HiLo, Passive, SlidingMode, make_controller
 from mrsuspension.control.registry import CONTROLLERS
 from mrsuspension.dampers import LinearViscous
-from mrsuspension.engine import Simulation
+from mrsuspension.engine import Simulation, SimulationDiverged
 from mrsuspension.engine.vehicle import SameRoadAtEveryWheel, VehicleSimulation
 from mrsuspension.errors import ValidationError
 from mrsuspension.excitation import Harmonic, RoundedPulse
@@ -78,6 +78,42 @@ def test_decoupled_corners_reproduce_the_quarter_car(cls, exc, controller) -> No
             print(f"\n{cls.__name__} {c} {exc.frequency} Hz {type(controller).__name__}: "
                   f"{key} {m[key]:.5f} vs quarter car {ref[key]:.5f} ({rel:.1e})")  # fmt: skip
             assert rel < 5e-3, (c, key)
+
+
+def test_decoupled_published_car_corners_are_their_quarter_cars() -> None:
+    """The published car with I_y = m a b (a != b): front and rear corners differ, each
+    moves as its own quarter car (static share of the body, its wheel, spring and tire)."""
+    car = FullCar().decoupled()
+    exc = Harmonic(1.5, 0.02)
+    road = _road(car, exc)
+    res = VehicleSimulation(car, road, controllers=HiLo(1, mode="ACM")).run(road.duration)
+    for c in ("front_left", "rear_right"):
+        qc = car.corner_quarter_car(c)
+        ref = Simulation(exc, vehicle=qc, controller=HiLo(1, mode="ACM")).run().measures()
+        m = res.corner(c).measures()
+        for key in ("T_as", "DLC"):
+            rel = abs(m[key] / ref[key] - 1.0)
+            print(
+                f"\npublished car, decoupled, {c}: {key} {m[key]:.5f} vs {ref[key]:.5f} ({rel:.1e})"
+            )
+            assert rel < 5e-3, (c, key)
+
+
+def test_runaway_says_when_and_which_signal() -> None:
+    class Ramp:  # the front wheel's road climbs 30 m/s: its wheel leaves the 10 m range
+        corners = ("front", "rear")
+        duration = None
+
+        def displacement(self, t: np.ndarray) -> np.ndarray:
+            return np.outer([30.0, 0.0], np.atleast_1d(t))
+
+        def velocity(self, t: np.ndarray) -> np.ndarray:
+            return np.outer([30.0, 0.0], np.ones(np.size(t)))
+
+    with pytest.raises(SimulationDiverged, match=r"diverged at t = 0\.3.* z_u\.front = 10"):
+        VehicleSimulation(HalfCar(), Ramp()).run(1.0)
+    with pytest.raises(ValidationError, match="duration is required"):
+        VehicleSimulation(HalfCar(), Ramp()).run()
 
 
 # -- every controller family per corner ------------------------------------------------
