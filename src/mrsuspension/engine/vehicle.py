@@ -35,7 +35,7 @@ from mrsuspension.dampers.wang import VEHICLE_VH_VARIANT
 from mrsuspension.engine import kernel as EK
 from mrsuspension.engine import vehicle_kernel as VX
 from mrsuspension.engine.result import SIGNALS, SimulationDiverged, SimulationResult
-from mrsuspension.engine.settings import DEFAULT_DT, check_memory
+from mrsuspension.engine.settings import DEFAULT_DT, RunSettings, check_memory, run_settings
 from mrsuspension.engine.simulate import Simulation
 from mrsuspension.errors import ValidationError, check_range, unknown_name
 from mrsuspension.vehicle.body import CORNERS_FULL, CORNERS_HALF, FullCar, HalfCar, VehicleBody
@@ -639,7 +639,12 @@ class VehicleSimulation:
         return VehicleStepper(self, dt, external=external)
 
     def run(
-        self, duration: float | None = None, *, dt: float = DEFAULT_DT, output_rate: float = 1000.0
+        self,
+        duration: float | None = None,
+        *,
+        dt: float | None = None,
+        output_rate: float | None = None,
+        settings: RunSettings | None = None,
     ) -> VehicleResult:
         """Simulate for ``duration`` seconds (default: the wheel input's own duration).
 
@@ -647,15 +652,21 @@ class VehicleSimulation:
         ----------
         duration : float, optional
             Simulated time [s].
-        dt : float
-            Fixed RK4 step [s] (1e-4, spec section 7); checked for stability.
-        output_rate : float
-            Samples per second kept in the result (1 kHz; at most 1/dt).
+        dt : float, optional
+            Fixed RK4 step [s] (default 1e-4, spec section 7); checked for stability.
+        output_rate : float, optional
+            Samples per second kept in the result (default 1 kHz; at most 1/dt).
+        settings : RunSettings, optional
+            ``duration``, ``dt`` and ``output_rate`` in one object (instead of the three
+            keywords; giving both is an error), as :meth:`Simulation.run
+            <mrsuspension.engine.Simulation.run>`.
 
         Raises
         ------
         ValidationError
-            Settings out of range or a ``dt`` too large for this vehicle.
+            Settings out of range, a ``dt`` too large for this vehicle, a record that
+            would alias the wheel input's excitation, or a wheel input returning arrays of
+            the wrong shape or non-finite values.
         SimulationDiverged
             When a state or force leaves the physical range (says when and which).
 
@@ -667,19 +678,22 @@ class VehicleSimulation:
         >>> res = sim.run(0.5, dt=2e-4, output_rate=100.0)
         >>> res.time.size, res.units["pitch"]
         (51, 'rad')
+        >>> sim.run(settings=RunSettings(dt=2e-4, duration=0.5, output_rate=100.0)).time.size
+        51
         """
-        dt = self.check_dt(dt)
-        if duration is None:
+        plan = run_settings(settings, duration=duration, dt=dt, output_rate=output_rate)
+        plan.check_for(getattr(self.excitation, "excitation", self.excitation))
+        dt = self.check_dt(plan.dt)
+        if plan.duration is not None:
+            duration = plan.duration
+        else:
             d = self.excitation.duration
             if d is None:
                 raise ValidationError(
                     "duration is required: the wheel input has no duration of its own"
                 )
-            duration = float(d)
-        duration = float(check_range("duration", duration, 0.0, 1e5, unit="s", low_inclusive=False))
-        rate = float(
-            check_range("output_rate", output_rate, 0.0, None, unit="Hz", low_inclusive=False)
-        )
+            duration = float(check_range("duration", d, 0.0, 1e5, unit="s", low_inclusive=False))
+        rate = plan.output_rate
         decimate = max(1, round(1.0 / (rate * dt)))
         n = max(1, math.ceil(duration / (dt * decimate) - 1e-9)) * decimate
         nc = len(self.corners)
