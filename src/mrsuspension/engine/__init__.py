@@ -8,8 +8,8 @@ controller outputs, compiled with numba.
 * :class:`KernelArrays` - the compiled step's arrays by name
   (:meth:`Simulation.kernel_arrays`);
 * :class:`VehicleSimulation` - a half or full car with a damper and a controller at every
-  corner on a :class:`WheelInput` (e.g. :class:`SameRoadAtEveryWheel`), loaded on first
-  use (:mod:`mrsuspension.engine.vehicle`).
+  corner on a :class:`WheelInput` (e.g. :class:`SameRoadAtEveryWheel`), and
+  :func:`run_vehicles` for batches, loaded on first use (:mod:`mrsuspension.engine.vehicle`).
 
 The engine inlines the laws and layouts of :mod:`mrsuspension.control.kernel` and
 :mod:`mrsuspension.vehicle.kernel`; neither imports the engine.
@@ -38,10 +38,17 @@ if TYPE_CHECKING:
         VehicleResult,
         VehicleSimulation,
         WheelInput,
+        run_vehicles,
     )
 
 # the vehicle models compile their own step: load them on first use
-_VEHICLE = ("SameRoadAtEveryWheel", "VehicleResult", "VehicleSimulation", "WheelInput")
+_VEHICLE = (
+    "SameRoadAtEveryWheel",
+    "VehicleResult",
+    "VehicleSimulation",
+    "WheelInput",
+    "run_vehicles",
+)
 __getattr__, __dir__ = lazy_namespace(
     __name__, dict.fromkeys(_VEHICLE, "mrsuspension.engine.vehicle"), globals()
 )
@@ -63,4 +70,5 @@ __all__ = [
     "WheelInput",
     "measures_of",
     "run_many",
+    "run_vehicles",
 ]

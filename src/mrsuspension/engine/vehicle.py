@@ -21,7 +21,7 @@ Examples
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, Protocol, runtime_checkable
 
@@ -53,6 +53,7 @@ __all__ = [
     "VehicleSimulation",
     "VehicleStepper",
     "WheelInput",
+    "run_vehicles",
 ]
 
 
@@ -902,3 +903,55 @@ class VehicleStepper:
 
 #: the body's states in ``y``
 VX_BODY_STATE = {"heave": 0, "pitch": 1, "roll": 2, "heave_dot": 3, "pitch_dot": 4, "roll_dot": 5}
+
+
+def _run_vehicle(
+    args: tuple[VehicleSimulation, RunSettings, Callable[[VehicleResult], Any] | None],
+) -> Any:
+    sim, plan, reduce = args
+    result = sim.run(settings=plan)
+    return result if reduce is None else reduce(result)
+
+
+def run_vehicles(
+    simulations: Sequence[VehicleSimulation],
+    *,
+    duration: float | None = None,
+    dt: float | None = None,
+    output_rate: float | None = None,
+    settings: RunSettings | None = None,
+    workers: int | None = None,
+    progress: Callable[[int, int], None] | None = None,
+    reduce: Callable[[VehicleResult], Any] | None = None,
+) -> list[Any]:
+    """Run many vehicle simulations across processes (default: one per core), in order.
+
+    The vehicle counterpart of :func:`~mrsuspension.engine.run_many`: the same
+    ``settings`` (or ``duration``, ``dt``, ``output_rate``) for every run,
+    ``progress(done, total)`` as runs finish and ``reduce`` (a module-level function)
+    applied to each result in its worker; ``workers=1`` runs in this process.
+
+    Examples
+    --------
+    >>> from mrsuspension.excitation import Harmonic
+    >>> from mrsuspension.vehicle import HalfCar
+    >>> sims = [VehicleSimulation(HalfCar(), SameRoadAtEveryWheel(Harmonic(f, 0.01), ("front", "rear")))
+    ...         for f in (1.0, 2.0)]
+    >>> [r.time.size for r in run_vehicles(sims, duration=0.2, workers=1)]
+    [201, 201]
+    """
+    from mrsuspension._pool import pool_map, worker_count
+
+    plan = run_settings(settings, duration=duration, dt=dt, output_rate=output_rate)
+    sims = list(simulations)
+    for sim in sims:
+        if not isinstance(sim, VehicleSimulation):
+            raise ValidationError(f"run_vehicles takes VehicleSimulation objects; got {sim!r}")
+    if not sims:
+        return []
+    return pool_map(
+        _run_vehicle,
+        [(sim, plan, reduce) for sim in sims],
+        workers=worker_count(workers, len(sims)),
+        progress=progress,
+    )

@@ -224,3 +224,16 @@ def test_docs_page_example_runs() -> None:
     blocks = re.findall(r"```python\n(.*?)```", page.read_text(), flags=re.DOTALL)
     assert blocks
     exec(compile("\n".join(blocks), str(page), "exec"), {})
+
+
+def test_batches_run_across_processes_in_order() -> None:
+    from mrsuspension.engine.vehicle import run_vehicles
+
+    car = HalfCar()
+    sims = [VehicleSimulation(car, _road(car, Harmonic(f, 0.01))) for f in (1.0, 3.0, 5.0)]
+    alone = [s.run(0.3) for s in sims]
+    batch = run_vehicles(sims, duration=0.3, workers=2)
+    for a, b in zip(alone, batch, strict=True):
+        assert np.array_equal(a["F_T.rear"], b["F_T.rear"])
+    with pytest.raises(ValidationError, match="takes VehicleSimulation objects"):
+        run_vehicles([Simulation(Harmonic(1.0, 0.01))])
