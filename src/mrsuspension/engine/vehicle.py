@@ -199,7 +199,14 @@ class SameRoadAtEveryWheel:
         return float(base) + (max(self.delays) if self.delays else 0.0)
 
     def describe(self) -> dict[str, Any]:
-        """Plain data: the excitation's description, the corners and the delays."""
+        """Plain data: the excitation's description, the corners and the delays.
+
+        Examples
+        --------
+        >>> from mrsuspension.excitation import Harmonic
+        >>> SameRoadAtEveryWheel(Harmonic(2.0, 0.01), ("front", "rear")).describe()["delays"]
+        [0.0, 0.0]
+        """
         return {
             "kind": "same-road-at-every-wheel",
             "excitation": self.excitation.describe(),
@@ -517,7 +524,16 @@ class VehicleSimulation:
         return out
 
     def check_dt(self, dt: float) -> float:
-        """Validate ``dt``: positive, at most 10 ms and stable for this vehicle."""
+        """Validate ``dt``: positive, at most 10 ms and stable for this vehicle.
+
+        Examples
+        --------
+        >>> from mrsuspension.excitation import Harmonic
+        >>> from mrsuspension.vehicle import HalfCar
+        >>> sim = VehicleSimulation(HalfCar(), SameRoadAtEveryWheel(Harmonic(2.0, 0.01), ("front", "rear")))
+        >>> sim.check_dt(1e-4)
+        0.0001
+        """
         dt = float(check_range("dt", dt, 0.0, 0.01, unit="s", low_inclusive=False))
         limit = self.max_stable_dt()
         if dt > limit:
@@ -528,7 +544,17 @@ class VehicleSimulation:
         return dt
 
     def describe(self) -> dict[str, Any]:
-        """Plain-data description: vehicle, wheel input, and every corner's set-up."""
+        """Plain-data description: vehicle, wheel input, and every corner's set-up.
+
+        Examples
+        --------
+        >>> from mrsuspension.excitation import Harmonic
+        >>> from mrsuspension.vehicle import HalfCar
+        >>> sim = VehicleSimulation(HalfCar(), SameRoadAtEveryWheel(Harmonic(2.0, 0.01), ("front", "rear")))
+        >>> d = sim.describe()
+        >>> d["vehicle"]["model"], d["corners"]["rear"]["controller"]["law"]
+        ('half-car', 'passive')
+        """
         desc = getattr(self.excitation, "describe", None)
         return {
             "vehicle": self.vehicle.describe(),
@@ -604,7 +630,17 @@ class VehicleSimulation:
     def initial_state(self, zr0: np.ndarray) -> np.ndarray:
         """Static equilibrium on the roads ``zr0`` at the wheels: wheels on their road,
         the body through the axles' mean heights (pitch) and tilted by the mean left-right
-        difference (roll, exactly 0 when both sides are the same)."""
+        difference (roll, exactly 0 when both sides are the same).
+
+        Examples
+        --------
+        >>> from mrsuspension.excitation import Harmonic
+        >>> from mrsuspension.vehicle import HalfCar
+        >>> car = HalfCar(cg_to_front=1.0, cg_to_rear=1.0)
+        >>> sim = VehicleSimulation(car, SameRoadAtEveryWheel(Harmonic(2.0, 0.01), car.corners))
+        >>> sim.initial_state(np.array([0.0, 0.02]))[:2].tolist()  # heave, pitch
+        [0.01, 0.01]
+        """
         car = self.vehicle
         n = len(self.corners)
         y = np.zeros(VX.NB + VX.NQ * n)
@@ -806,7 +842,17 @@ class VehicleStepper:
     def reset(
         self, road: npt.ArrayLike | None = None, road_velocity: npt.ArrayLike | None = None
     ) -> None:
-        """Back to static equilibrium on the given wheel roads (default 0); fresh internals."""
+        """Back to static equilibrium on the given wheel roads (default 0); fresh internals.
+
+        Examples
+        --------
+        >>> from mrsuspension.excitation import Harmonic
+        >>> from mrsuspension.vehicle import HalfCar
+        >>> st = VehicleSimulation(HalfCar(), SameRoadAtEveryWheel(Harmonic(2.0, 0.01), ("front", "rear"))).stepper()
+        >>> st.reset([0.01, 0.01])
+        >>> round(float(st.y[0]), 6), st.time
+        (0.01, 0.0)
+        """
         n = len(self.simulation.corners)
         zr = self._wheels("road", road)
         zrd = self._wheels("road_velocity", road_velocity)

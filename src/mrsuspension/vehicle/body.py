@@ -262,6 +262,11 @@ class VehicleBody:
 
         An axle carries ``m_s g b / L`` (front) or ``m_s g a / L`` (rear), split equally
         between its wheels (the centre of gravity on the centre line).
+
+        Examples
+        --------
+        >>> HalfCar.from_quarter_car(QuarterCar()).static_sprung_loads().round(1).tolist()
+        [5523.0, 5523.0]
         """
         share = {
             "front": self.cg_to_rear / self.wheelbase,
@@ -278,7 +283,13 @@ class VehicleBody:
         return self.static_sprung_loads() + self.unsprung_masses * GRAVITY
 
     def static_tire_deflections(self) -> np.ndarray:
-        """``W_i / k_t,i`` [m]: the tire's static compression (lift-off below it)."""
+        """``W_i / k_t,i`` [m]: the tire's static compression (lift-off below it).
+
+        Examples
+        --------
+        >>> (HalfCar.from_quarter_car(QuarterCar()).static_tire_deflections() * 100).round(2).tolist()
+        [2.25, 2.25]
+        """
         return self.static_tire_loads() / self.tire_stiffnesses
 
     def corner_quarter_car(self, corner: str) -> QuarterCar:
@@ -323,7 +334,13 @@ class VehicleBody:
         return np.zeros(len(self.corners))
 
     def body_transform(self) -> np.ndarray:
-        """``T`` with ``z_s = T q_body``: the body's motion at the corners (corners x body)."""
+        """``T`` with ``z_s = T q_body``: the body's motion at the corners (corners x body).
+
+        Examples
+        --------
+        >>> HalfCar(cg_to_front=1.0, cg_to_rear=1.5).body_transform().tolist()
+        [[1.0, -1.0], [1.0, 1.5]]
+        """
         x, y = self.corner_positions()
         cols = [np.ones_like(x), -x, y][: len(self.body_dofs)]
         return np.column_stack(cols)
