@@ -41,6 +41,7 @@ from mrsuspension.errors import ValidationError, check_range, unknown_name
 from mrsuspension.vehicle.body import CORNERS_FULL, CORNERS_HALF, FullCar, HalfCar, VehicleBody
 
 if TYPE_CHECKING:
+    import xarray as xr
     from matplotlib.figure import Figure
 
 __all__ = [
@@ -361,6 +362,29 @@ class VehicleResult(SimulationResult):
         return SimulationResult(
             time=self.time, signals=signals, scenario=dict(self.corner_scenarios[name]), dt=self.dt
         )
+
+    def to_xarray(self) -> xr.Dataset:
+        """The signals as an xarray Dataset over ``time``, with units and descriptions.
+
+        Examples
+        --------
+        >>> from mrsuspension.excitation import Harmonic
+        >>> from mrsuspension.vehicle import HalfCar
+        >>> sim = VehicleSimulation(HalfCar(), SameRoadAtEveryWheel(Harmonic(2.0, 0.01), ("front", "rear")))
+        >>> ds = sim.run(0.1).to_xarray()
+        >>> ds["F_T.rear"].attrs["long_name"], ds["pitch"].attrs["units"]
+        ('tire force (total, 0 when lifted off) at rear', 'rad')
+        """
+        ds = super().to_xarray()
+        for name in ds.data_vars:
+            key = str(name)
+            if key in BODY_SIGNALS:
+                ds[key].attrs["long_name"] = BODY_SIGNALS[key][1]
+            elif "." in key:
+                base, corner = key.split(".", 1)
+                if base in SIGNALS:
+                    ds[key].attrs["long_name"] = f"{SIGNALS[base][1]} at {corner}"
+        return ds
 
     def plot(self, signals: tuple[str, ...] = ("heave_ddot", "pitch_ddot", "roll_ddot")) -> Figure:
         """Time histories of some signals, one panel each (default: body accelerations)."""
