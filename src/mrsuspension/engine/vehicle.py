@@ -242,7 +242,8 @@ class _CornerRoad:
         if base is not None and hasattr(base, "describe"):
             return dict(base.describe())  # same kind (and measures) as the quarter car's
         describe = getattr(self.wheels, "describe", None)
-        return {"kind": "road", **(describe() if describe else {})}
+        # a road per wheel without one quarter-car excitation: the road measures
+        return {"kind": "road", "wheels": describe() if describe else repr(self.wheels)}
 
     @property
     def duration(self) -> float:

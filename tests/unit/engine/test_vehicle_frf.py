@@ -107,3 +107,12 @@ def test_simulated_response_matches_closed_form(cls: type[HalfCar | FullCar]) ->
         print(f"  {name:<16} {err:.2e}")
     bad = {k: v for k, v in errors.items() if v > TOLERANCE}
     assert not bad, bad
+
+
+def test_any_wheel_input_gets_the_road_measures_per_corner() -> None:
+    car = HalfCar()
+    wheels = HarmonicWheels(car.corners, 3.0, phasors(car, 3.0))
+    res = VehicleSimulation(car, wheels).run(1.0)
+    m = res.measures()
+    assert m["DLC.front"] > 0.0
+    assert "rms_body_acceleration.rear" in m
