@@ -6,7 +6,10 @@ controller outputs, compiled with numba.
 * :func:`run_many` - batches across processes (one per core by default);
 * :class:`RunSettings` - ``dt``, ``duration`` and ``output_rate`` of a run;
 * :class:`KernelArrays` - the compiled step's arrays by name
-  (:meth:`Simulation.kernel_arrays`).
+  (:meth:`Simulation.kernel_arrays`);
+* :class:`VehicleSimulation` - a half or full car with a damper and a controller at every
+  corner on a :class:`WheelInput` (e.g. :class:`SameRoadAtEveryWheel`), and
+  :func:`run_vehicles` for batches, loaded on first use (:mod:`mrsuspension.engine.vehicle`).
 
 The engine inlines the laws and layouts of :mod:`mrsuspension.control.kernel` and
 :mod:`mrsuspension.vehicle.kernel`; neither imports the engine.
@@ -14,6 +17,9 @@ The engine inlines the laws and layouts of :mod:`mrsuspension.control.kernel` an
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
+from mrsuspension._lazy import lazy_namespace
 from mrsuspension.engine.arrays import KernelArrays, RunPlan
 from mrsuspension.engine.result import SIGNALS, SimulationDiverged, SimulationResult
 from mrsuspension.engine.settings import RunSettings
@@ -26,6 +32,27 @@ from mrsuspension.engine.simulate import (
     run_many,
 )
 
+if TYPE_CHECKING:
+    from mrsuspension.engine.vehicle import (
+        SameRoadAtEveryWheel,
+        VehicleResult,
+        VehicleSimulation,
+        WheelInput,
+        run_vehicles,
+    )
+
+# the vehicle models compile their own step: load them on first use
+_VEHICLE = (
+    "SameRoadAtEveryWheel",
+    "VehicleResult",
+    "VehicleSimulation",
+    "WheelInput",
+    "run_vehicles",
+)
+__getattr__, __dir__ = lazy_namespace(
+    __name__, dict.fromkeys(_VEHICLE, "mrsuspension.engine.vehicle"), globals()
+)
+
 __all__ = [
     "DEFAULT_DT",
     "SIGNALS",
@@ -33,10 +60,15 @@ __all__ = [
     "RoadInput",
     "RunPlan",
     "RunSettings",
+    "SameRoadAtEveryWheel",
     "Simulation",
     "SimulationDiverged",
     "SimulationResult",
     "Stepper",
+    "VehicleResult",
+    "VehicleSimulation",
+    "WheelInput",
     "measures_of",
     "run_many",
+    "run_vehicles",
 ]

@@ -25,14 +25,35 @@ from __future__ import annotations
 
 import math
 from dataclasses import asdict, dataclass, replace
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import numpy.typing as npt
 
+from mrsuspension._lazy import lazy_namespace
 from mrsuspension.errors import ValidationError, check_finite
 
-__all__ = ["GRAVITY", "QuarterCar", "linear_frequency_response"]
+if TYPE_CHECKING:
+    from mrsuspension.vehicle.body import CORNERS_FULL, CORNERS_HALF, FullCar, HalfCar
+
+__all__ = [
+    "CORNERS_FULL",
+    "CORNERS_HALF",
+    "GRAVITY",
+    "FullCar",
+    "HalfCar",
+    "QuarterCar",
+    "linear_frequency_response",
+]
+
+# the half and full cars (vehicle/body.py) load on first use
+__getattr__, __dir__ = lazy_namespace(
+    __name__,
+    dict.fromkeys(
+        ("CORNERS_FULL", "CORNERS_HALF", "FullCar", "HalfCar"), "mrsuspension.vehicle.body"
+    ),
+    globals(),
+)
 
 #: Gravitational acceleration [m/s^2] (MODEL_SPEC section 1).
 GRAVITY = 9.81

@@ -23,6 +23,7 @@ MODULES = [
     "mrsuspension.control.kernel",
     "mrsuspension.engine.kernel",
     "mrsuspension.engine.lanes",
+    "mrsuspension.engine.vehicle_kernel",
     "mrsuspension.hil._kernels",
     "mrsuspension.identify.timedomain",
 ]

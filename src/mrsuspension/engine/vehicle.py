@@ -1,0 +1,1028 @@
+"""The half and full car in the engine: an MR damper and a controller at every corner.
+
+:class:`VehicleSimulation` runs a :class:`~mrsuspension.vehicle.HalfCar` or
+:class:`~mrsuspension.vehicle.FullCar` on a :class:`WheelInput` (a road per wheel, e.g.
+:class:`SameRoadAtEveryWheel`) with any damper model and controller at every corner; the
+compiled step is :mod:`mrsuspension.engine.vehicle_kernel` (the quarter car's damper
+kernels and control laws, corner by corner). Results are :class:`VehicleResult`: body
+heave, pitch and roll and every corner's quarter-car signals, with units.
+
+Examples
+--------
+>>> from mrsuspension.excitation import Harmonic
+>>> from mrsuspension.vehicle import FullCar
+>>> car = FullCar()
+>>> road = SameRoadAtEveryWheel.at_speed(Harmonic(1.5, 0.01), car, speed=20.0)
+>>> res = VehicleSimulation(car, road).run(1.0, dt=2e-4)
+>>> float(res.time[-1]), res.corners[0]
+(1.0, 'front_left')
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any, Protocol, runtime_checkable
+
+import numpy as np
+import numpy.typing as npt
+
+from mrsuspension.control import Controller, Passive
+from mrsuspension.control.kernel import F_EXTERNAL
+from mrsuspension.dampers import DamperModel, WangSymmetric
+from mrsuspension.dampers.wang import VEHICLE_VH_VARIANT
+from mrsuspension.engine import kernel as EK
+from mrsuspension.engine import vehicle_kernel as VX
+from mrsuspension.engine.result import SIGNALS, SimulationDiverged, SimulationResult
+from mrsuspension.engine.settings import DEFAULT_DT, RunSettings, check_memory, run_settings
+from mrsuspension.engine.simulate import Simulation
+from mrsuspension.errors import ValidationError, check_range, unknown_name
+from mrsuspension.vehicle.body import CORNERS_FULL, CORNERS_HALF, FullCar, HalfCar, VehicleBody
+
+if TYPE_CHECKING:
+    import xarray as xr
+    from matplotlib.figure import Figure
+
+__all__ = [
+    "BODY_SIGNALS",
+    "CORNERS_FULL",
+    "CORNERS_HALF",
+    "SameRoadAtEveryWheel",
+    "VehicleArrays",
+    "VehicleResult",
+    "VehicleSimulation",
+    "VehicleStepper",
+    "WheelInput",
+    "run_vehicles",
+]
+
+
+@runtime_checkable
+class WheelInput(Protocol):
+    """A road input per wheel: what :class:`VehicleSimulation` needs from an excitation.
+
+    ``corners`` names the wheels (the vehicle's :attr:`~VehicleBody.corners`, in that
+    order); ``displacement(t)`` and ``velocity(t)`` return ``(len(corners), len(t))``
+    arrays [m, m/s], up positive; ``duration`` is the input's natural length [s] (None:
+    unbounded).
+    """
+
+    @property
+    def corners(self) -> tuple[str, ...]: ...
+
+    def displacement(self, t: npt.ArrayLike) -> np.ndarray: ...
+    def velocity(self, t: npt.ArrayLike) -> np.ndarray: ...
+
+    @property
+    def duration(self) -> float | None: ...
+
+
+@dataclass(frozen=True)
+class SameRoadAtEveryWheel:
+    """One quarter-car excitation at every wheel, each optionally delayed.
+
+    ``z_r,i(t) = z_r(t - tau_i)``: with equal delays on the left and right wheels this is
+    the "identical left/right input" case; :meth:`at_speed` delays the rear wheels by
+    wheelbase / speed.
+
+    Parameters
+    ----------
+    excitation : RoadInput
+        A quarter-car road input (:mod:`mrsuspension.excitation`: ``Harmonic``,
+        ``RoundedPulse``, ``IsoRoad``...).
+    corners : tuple of str
+        The wheels, in the vehicle's order (``CORNERS_FULL`` or ``CORNERS_HALF``).
+    delays : sequence of float, optional
+        Delay of every wheel [s], >= 0 (default: none).
+
+    Examples
+    --------
+    >>> from mrsuspension.excitation import Harmonic
+    >>> road = SameRoadAtEveryWheel(Harmonic(1.0, 0.01), ("front", "rear"), delays=(0.0, 0.25))
+    >>> np.round(road.displacement([0.25]), 12).ravel().tolist()
+    [0.01, 0.0]
+    """
+
+    excitation: Any
+    corners: tuple[str, ...]
+    delays: tuple[float, ...] | None = None
+
+    def __post_init__(self) -> None:
+        corners = tuple(self.corners)
+        if not corners or not all(isinstance(c, str) for c in corners):
+            raise ValidationError(f"corners must be a tuple of corner names; got {self.corners!r}")
+        object.__setattr__(self, "corners", corners)
+        if not all(hasattr(self.excitation, a) for a in ("displacement", "velocity")):
+            raise ValidationError(
+                "excitation must be a road input (e.g. Harmonic(1.5, 0.025) from "
+                f"mrsuspension.excitation); got {self.excitation!r}"
+            )
+        if self.delays is not None:
+            d = check_range("delays", self.delays, 0.0, 1e4, unit="s")
+            if d.shape != (len(corners),):
+                raise ValidationError(
+                    f"delays must have one value per corner ({len(corners)}); got {self.delays!r}"
+                )
+            object.__setattr__(self, "delays", tuple(float(v) for v in d))
+
+    @classmethod
+    def at_speed(cls, excitation: Any, vehicle: VehicleBody, speed: float) -> SameRoadAtEveryWheel:
+        """The road under a vehicle driving at ``speed`` [m/s]: rear wheels ``L / speed`` late.
+
+        Examples
+        --------
+        >>> from mrsuspension.excitation import Harmonic
+        >>> r = SameRoadAtEveryWheel.at_speed(Harmonic(1.0, 0.01), HalfCar(), speed=23.48)
+        >>> [round(d, 6) for d in r.delays]
+        [0.0, 0.1]
+        """
+        v = float(check_range("speed", speed, 0.0, 200.0, unit="m/s", low_inclusive=False))
+        x, _ = vehicle.corner_positions()
+        return cls(excitation, vehicle.corners, tuple(float(d) for d in (x.max() - x) / v))
+
+    def _times(self, t: npt.ArrayLike) -> np.ndarray:
+        t = np.atleast_1d(np.asarray(t, dtype=float))
+        d = np.zeros(len(self.corners)) if self.delays is None else np.asarray(self.delays)
+        return t[None, :] - d[:, None]
+
+    def displacement(self, t: npt.ArrayLike) -> np.ndarray:
+        """``z_r,i(t)`` [m], shape ``(corners, len(t))``."""
+        tt = self._times(t)
+        return np.stack([np.asarray(self.excitation.displacement(row), dtype=float) for row in tt])
+
+    def velocity(self, t: npt.ArrayLike) -> np.ndarray:
+        """``z_r,i'(t)`` [m/s], shape ``(corners, len(t))``."""
+        tt = self._times(t)
+        return np.stack([np.asarray(self.excitation.velocity(row), dtype=float) for row in tt])
+
+    def sample_grid(self, n: int, step: float, start: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
+        """``(z_r, z_r')`` of every wheel at ``start + k * step``, ``k < n``: shape
+        ``(corners, n)``; the excitation's fast grid where it has one, computed once per
+        distinct delay (left and right wheels of an axle share it).
+
+        Examples
+        --------
+        >>> from mrsuspension.excitation import Harmonic
+        >>> road = SameRoadAtEveryWheel(Harmonic(1.0, 0.01), ("front", "rear"), (0.0, 0.1))
+        >>> z, v = road.sample_grid(5, 0.05)
+        >>> bool(np.allclose(z, road.displacement(np.arange(5) * 0.05), rtol=0, atol=1e-15))
+        True
+        """
+        delays = self.delays or (0.0,) * len(self.corners)
+        grid = getattr(self.excitation, "sample_grid", None)
+        z = np.empty((len(self.corners), n))
+        v = np.empty((len(self.corners), n))
+        done: dict[float, int] = {}
+        for i, d in enumerate(delays):
+            if d in done:
+                z[i], v[i] = z[done[d]], v[done[d]]
+                continue
+            if grid is not None:
+                z[i], v[i] = grid(n, float(step), float(start) - d)
+            else:
+                t = float(start) - d + np.arange(n) * step
+                z[i], v[i] = self.excitation.displacement(t), self.excitation.velocity(t)
+            done[d] = i
+        return z, v
+
+    def acceleration(self, t: npt.ArrayLike) -> np.ndarray:
+        """``z_r,i''(t)`` [m/s^2], shape ``(corners, len(t))``."""
+        tt = self._times(t)
+        return np.stack([np.asarray(self.excitation.acceleration(row), dtype=float) for row in tt])
+
+    @property
+    def duration(self) -> float | None:
+        """The excitation's duration plus the largest delay [s] (None: unbounded)."""
+        base = getattr(self.excitation, "duration", None)
+        if base is None:
+            return None
+        return float(base) + (max(self.delays) if self.delays else 0.0)
+
+    def describe(self) -> dict[str, Any]:
+        """Plain data: the excitation's description, the corners and the delays.
+
+        Examples
+        --------
+        >>> from mrsuspension.excitation import Harmonic
+        >>> SameRoadAtEveryWheel(Harmonic(2.0, 0.01), ("front", "rear")).describe()["delays"]
+        [0.0, 0.0]
+        """
+        return {
+            "kind": "same-road-at-every-wheel",
+            "excitation": self.excitation.describe(),
+            "corners": list(self.corners),
+            "delays": list(self.delays) if self.delays else [0.0] * len(self.corners),
+        }
+
+
+@dataclass(frozen=True)
+class _CornerRoad:
+    """One wheel of a :class:`WheelInput` as a quarter-car road input (for checks and
+    the per-corner result)."""
+
+    wheels: Any
+    index: int
+
+    def displacement(self, t: npt.ArrayLike) -> np.ndarray:
+        return np.asarray(self.wheels.displacement(t), dtype=float)[self.index]
+
+    def velocity(self, t: npt.ArrayLike) -> np.ndarray:
+        return np.asarray(self.wheels.velocity(t), dtype=float)[self.index]
+
+    def acceleration(self, t: npt.ArrayLike) -> np.ndarray:
+        acc = getattr(self.wheels, "acceleration", None)
+        if acc is not None:
+            return np.asarray(acc(t), dtype=float)[self.index]
+        tt = np.atleast_1d(np.asarray(t, dtype=float))
+        return np.gradient(self.velocity(tt), tt) if tt.size > 1 else np.zeros(tt.size)
+
+    def describe(self) -> dict[str, Any]:
+        base = getattr(self.wheels, "excitation", None)
+        if base is not None and hasattr(base, "describe"):
+            return dict(base.describe())  # same kind (and measures) as the quarter car's
+        describe = getattr(self.wheels, "describe", None)
+        # a road per wheel without one quarter-car excitation: the road measures
+        return {"kind": "road", "wheels": describe() if describe else repr(self.wheels)}
+
+    @property
+    def duration(self) -> float:
+        d = self.wheels.duration
+        return math.inf if d is None else float(d)
+
+
+@dataclass(frozen=True, eq=False)
+class VehicleArrays:
+    """The vehicle step's arrays by name (rows: corners), in the kernels' order.
+
+    ``vehicle`` (``vp``), ``corner_vehicles`` (``cvp``: every corner's quarter car),
+    ``force_source`` (``fk``), ``damper_kind`` (``dk``), ``damper_params`` (``dp``),
+    ``damper_state`` (``ds``), the damper estimator's ``dek, dep, des``, the
+    controller's ``ck, cp`` and its estimator's ``cek, cep, ces``, and ``memory``
+    (``mem``, the quarter car's ``M_*`` layout per corner). See
+    :class:`~mrsuspension.engine.arrays.KernelArrays` for the quarter car's.
+    """
+
+    vehicle: np.ndarray
+    corner_vehicles: np.ndarray
+    force_source: np.ndarray
+    damper_kind: np.ndarray
+    damper_params: np.ndarray
+    damper_state: np.ndarray
+    damper_estimator_kind: np.ndarray
+    damper_estimator_params: np.ndarray
+    damper_estimator_state: np.ndarray
+    controller_kind: np.ndarray
+    controller_params: np.ndarray
+    controller_estimator_kind: np.ndarray
+    controller_estimator_params: np.ndarray
+    controller_estimator_state: np.ndarray
+    memory: np.ndarray
+
+    def args(self) -> tuple[Any, ...]:
+        """The arrays in the order of :func:`~mrsuspension.engine.vehicle_kernel.step` and
+        :func:`~mrsuspension.engine.vehicle_kernel.run` (``vp`` to ``mem``)."""
+        return (
+            self.vehicle, self.corner_vehicles, self.force_source, self.damper_kind,
+            self.damper_params, self.damper_state, self.damper_estimator_kind,
+            self.damper_estimator_params, self.damper_estimator_state, self.controller_kind,
+            self.controller_params, self.controller_estimator_kind,
+            self.controller_estimator_params, self.controller_estimator_state, self.memory,
+        )  # fmt: skip
+
+
+def _stack(rows: Sequence[np.ndarray], dtype: Any = float) -> np.ndarray:
+    """Rows of different lengths padded with zeros into one C-contiguous 2-D array."""
+    width = max(1, *(np.size(r) for r in rows))
+    out = np.zeros((len(rows), width), dtype=dtype)
+    for i, r in enumerate(rows):
+        out[i, : np.size(r)] = r
+    return out
+
+
+#: Body signals of a vehicle result: name -> (unit, description).
+BODY_SIGNALS: dict[str, tuple[str, str]] = {
+    "heave": ("m", "body heave at the centre of gravity (up)"),
+    "pitch": ("rad", "body pitch (nose down +, ISO 8855)"),
+    "roll": ("rad", "body roll (left side up +, ISO 8855)"),
+    "heave_dot": ("m/s", "heave velocity"),
+    "pitch_dot": ("rad/s", "pitch rate"),
+    "roll_dot": ("rad/s", "roll rate"),
+    "heave_ddot": ("m/s^2", "heave acceleration"),
+    "pitch_ddot": ("rad/s^2", "pitch acceleration"),
+    "roll_ddot": ("rad/s^2", "roll acceleration"),
+}
+_BODY_COLUMNS = {
+    "heave": VX.RB_Z, "pitch": VX.RB_PITCH, "roll": VX.RB_ROLL, "heave_dot": VX.RB_VZ,
+    "pitch_dot": VX.RB_VPITCH, "roll_dot": VX.RB_VROLL, "heave_ddot": VX.RB_AZ,
+    "pitch_ddot": VX.RB_APITCH, "roll_ddot": VX.RB_AROLL,
+}  # fmt: skip
+#: Per-corner signals (named ``"<signal>.<corner>"``) and their quarter-car names.
+_CORNER_COLUMNS = {
+    "z_s": VX.RC_ZS, "z_s_dot": VX.RC_VS, "z_s_ddot": VX.RC_AS, "z_u": VX.RC_ZU, "z_u_dot": VX.RC_VU,
+    "z_u_ddot": VX.RC_AU, "z_r": VX.RC_ZR, "z_r_dot": VX.RC_VR, "F_d": VX.RC_FD, "F_T": VX.RC_FT,
+    "i_d": VX.RC_ID, "i_z": VX.RC_IZ, "z_c": VX.RC_ZC, "F_target": VX.RC_TARGET, "v_m": VX.RC_VM,
+    "z_s0": VX.RC_Z0,
+}  # fmt: skip
+
+
+@dataclass(frozen=True)
+class VehicleResult(SimulationResult):
+    """Time histories of a half- or full-car run: body and per-corner signals with units.
+
+    Body signals are :data:`BODY_SIGNALS` (``heave``, ``pitch``, ``roll`` and their
+    rates and accelerations); every corner has the quarter car's signals (``z_s`` the
+    body at the corner, ``z_u``, ``z_r``, ``x_d`` the stroke, ``v_d``, ``F_d``, ``F_T``,
+    ``i_d``, ...) named ``"<signal>.<corner>"``, e.g. ``result["F_T.rear_left"]``.
+    :meth:`corner` gives one corner as a quarter-car
+    :class:`~mrsuspension.engine.result.SimulationResult` (with its measures). Exports
+    (``to_pandas``, ``to_xarray``, ``save``) are the quarter car's.
+    """
+
+    corners: tuple[str, ...] = ()
+    corner_scenarios: Mapping[str, dict[str, Any]] = field(default_factory=dict)
+
+    def __repr__(self) -> str:
+        return f"VehicleResult({self.time.size} samples, {self.time[-1]:.3g} s, corners={self.corners})"
+
+    def corner(self, name: str) -> SimulationResult:
+        """One corner as a quarter-car result (``z_s`` is the body's motion there).
+
+        Examples
+        --------
+        >>> from mrsuspension.excitation import Harmonic
+        >>> from mrsuspension.vehicle import HalfCar
+        >>> sim = VehicleSimulation(HalfCar(), SameRoadAtEveryWheel(Harmonic(2.0, 0.01), ("front", "rear")))
+        >>> front = sim.run(0.5, dt=2e-4).corner("front")
+        >>> float(front.time[-1]), "F_T" in front
+        (0.5, True)
+        """
+        if name not in self.corners:
+            raise unknown_name("corner", str(name), self.corners)
+        signals = {k.split(".")[0]: v for k, v in self.signals.items() if k.endswith(f".{name}")}
+        return SimulationResult(
+            time=self.time, signals=signals, scenario=dict(self.corner_scenarios[name]), dt=self.dt
+        )
+
+    def to_xarray(self) -> xr.Dataset:
+        """The signals as an xarray Dataset over ``time``, with units and descriptions.
+
+        Examples
+        --------
+        >>> from mrsuspension.excitation import Harmonic
+        >>> from mrsuspension.vehicle import HalfCar
+        >>> sim = VehicleSimulation(HalfCar(), SameRoadAtEveryWheel(Harmonic(2.0, 0.01), ("front", "rear")))
+        >>> ds = sim.run(0.1).to_xarray()
+        >>> ds["F_T.rear"].attrs["long_name"], ds["pitch"].attrs["units"]
+        ('tire force (total, 0 when lifted off) at rear', 'rad')
+        """
+        ds = super().to_xarray()
+        for name in ds.data_vars:
+            key = str(name)
+            if key in BODY_SIGNALS:
+                ds[key].attrs["long_name"] = BODY_SIGNALS[key][1]
+            elif "." in key:
+                base, corner = key.split(".", 1)
+                if base in SIGNALS:
+                    ds[key].attrs["long_name"] = f"{SIGNALS[base][1]} at {corner}"
+        return ds
+
+    def plot(self, signals: tuple[str, ...] = ("heave_ddot", "pitch_ddot", "roll_ddot")) -> Figure:
+        """Time histories of some signals, one panel each (default: body accelerations)."""
+        return super().plot(signals)
+
+    def measures(self, **kwargs: Any) -> dict[str, Any]:
+        """Every corner's quarter-car measures, keyed ``"<measure>.<corner>"``.
+
+        Takes the keywords of :meth:`SimulationResult.measures
+        <mrsuspension.engine.result.SimulationResult.measures>`.
+        """
+        out: dict[str, Any] = {}
+        for c in self.corners:
+            for k, v in self.corner(c).measures(**kwargs).items():
+                out[f"{k}.{c}"] = v
+        return out
+
+
+def _per_corner(
+    what: str, value: Any, kind: type, corners: tuple[str, ...], default: Any
+) -> list[Any]:
+    """One object for every corner from an object or a ``{corner: object}`` mapping."""
+    if isinstance(value, Mapping):
+        for key in value:
+            if key not in corners:
+                raise unknown_name("corner", str(key), corners)
+        chosen = [value.get(c, default) for c in corners]
+    else:
+        chosen = [value] * len(corners)
+    for c, v in zip(corners, chosen, strict=True):
+        if not isinstance(v, kind):
+            raise ValidationError(
+                f"{what} for corner {c!r} must be a {kind.__name__} object; got {v!r}"
+            )
+    return chosen
+
+
+@dataclass(frozen=True)
+class VehicleSimulation:
+    """A half or full car with a damper and a controller at every corner on a wheel input.
+
+    Parameters
+    ----------
+    vehicle : HalfCar or FullCar
+        The vehicle (its :attr:`~VehicleBody.corners` name the wheels).
+    excitation : WheelInput
+        Road per wheel, e.g. :class:`SameRoadAtEveryWheel`; its ``corners`` must be the
+        vehicle's, in order.
+    dampers : DamperModel or mapping of corner to DamperModel, optional
+        One model for every corner or ``{corner: model}`` (corners left out get the
+        default): the dissertation's symmetric model with the vehicle ``v_h`` variant, as
+        the quarter car's :class:`~mrsuspension.engine.simulate.Simulation`.
+    controllers : Controller or mapping of corner to Controller, optional
+        Likewise (default: passive at 0 A). Each corner runs its own instance on the
+        body's motion at that corner.
+    max_current : float
+        Drive-current limit i_max [A] of every corner (0.5).
+
+    Raises
+    ------
+    ValidationError
+        An unknown corner name, a wheel input for other corners, or a damper or
+        controller the quarter car would refuse.
+
+    Examples
+    --------
+    >>> from mrsuspension.control import HiLo
+    >>> from mrsuspension.excitation import Harmonic
+    >>> from mrsuspension.vehicle import FullCar
+    >>> car = FullCar()
+    >>> road = SameRoadAtEveryWheel.at_speed(Harmonic(1.5, 0.01), car, speed=15.0)
+    >>> sim = VehicleSimulation(car, road, controllers={"front_left": HiLo(1)})
+    >>> res = sim.run(1.0, dt=2e-4)
+    >>> bool(res["i_d.front_left"].max() > 0.0), float(res["i_d.rear_right"].max())
+    (True, 0.0)
+    >>> VehicleSimulation(car, road, controllers={"front_lef": HiLo(1)})
+    Traceback (most recent call last):
+    ...
+    mrsuspension.errors.ValidationError: unknown corner 'front_lef'. Did you mean 'front_left'? Valid: front_left, front_right, rear_left, rear_right.
+    """
+
+    vehicle: VehicleBody
+    excitation: WheelInput
+    dampers: DamperModel | Mapping[str, DamperModel] = field(
+        default_factory=lambda: WangSymmetric(vh_variant=VEHICLE_VH_VARIANT)
+    )
+    controllers: Controller | Mapping[str, Controller] = field(default_factory=Passive)
+    max_current: float = 0.5
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.vehicle, HalfCar | FullCar):
+            raise ValidationError(
+                f"vehicle must be a HalfCar or FullCar object; got {self.vehicle!r}"
+            )
+        corners = self.vehicle.corners
+        wheels = getattr(self.excitation, "corners", None)
+        if not isinstance(self.excitation, WheelInput) or wheels is None:
+            raise ValidationError(
+                "excitation must be a wheel input (corners, displacement(t), velocity(t), "
+                f"duration), e.g. SameRoadAtEveryWheel(Harmonic(1.5, 0.025), {corners}); "
+                f"got {self.excitation!r}"
+            )
+        for w in wheels:
+            if w not in corners:
+                raise unknown_name("corner", str(w), corners)
+        if tuple(wheels) != corners:
+            raise ValidationError(
+                f"excitation corners must be the vehicle's, in order {corners}; got {tuple(wheels)}"
+            )
+        default_damper = WangSymmetric(vh_variant=VEHICLE_VH_VARIANT)
+        dampers = _per_corner("damper", self.dampers, DamperModel, corners, default_damper)
+        controllers = _per_corner("controller", self.controllers, Controller, corners, Passive())
+        # every corner as the quarter car checks it (current limit, inverse-model needs)
+        sims = tuple(
+            Simulation(_CornerRoad(self.excitation, i), self.vehicle.corner_quarter_car(c),
+                       dampers[i], controllers[i], self.max_current)
+            for i, c in enumerate(corners)
+        )  # fmt: skip
+        object.__setattr__(self, "_corners", sims)
+
+    @property
+    def corners(self) -> tuple[str, ...]:
+        """The vehicle's corner names."""
+        return self.vehicle.corners
+
+    def corner_simulation(self, corner: str) -> Simulation:
+        """The quarter-car simulation of one corner (its damper, controller, wheel road).
+
+        Examples
+        --------
+        >>> from mrsuspension.excitation import Harmonic
+        >>> from mrsuspension.vehicle import HalfCar
+        >>> sim = VehicleSimulation(HalfCar(), SameRoadAtEveryWheel(Harmonic(2.0, 0.01), ("front", "rear")))
+        >>> sim.corner_simulation("rear").vehicle.unsprung_mass
+        49.7
+        """
+        sims: tuple[Simulation, ...] = self.__dict__["_corners"]
+        return sims[self.vehicle.corner_index(corner)]
+
+    def max_stable_dt(self) -> float:
+        """Largest stable RK4 step [s]: the stiffest corner's (anti-roll bars included).
+
+        Examples
+        --------
+        >>> from mrsuspension.excitation import Harmonic
+        >>> from mrsuspension.vehicle import FullCar
+        >>> sim = VehicleSimulation(FullCar(), SameRoadAtEveryWheel(Harmonic(2.0, 0.01), FullCar.corners))
+        >>> sim.max_stable_dt() > 1e-4
+        True
+        """
+        out = math.inf
+        bar = self.vehicle.anti_roll_rates()
+        for i, c in enumerate(self.corners):
+            sim = self.corner_simulation(c)
+            car = sim.vehicle
+            rate = sim.stiffness_rate()
+            omega = math.sqrt(
+                (car.suspension_stiffness + 2.0 * bar[i] + car.tire_stiffness) / car.unsprung_mass
+            )
+            out = min(out, 2.5 / max(rate, omega))
+        return out
+
+    def check_dt(self, dt: float) -> float:
+        """Validate ``dt``: positive, at most 10 ms and stable for this vehicle.
+
+        Examples
+        --------
+        >>> from mrsuspension.excitation import Harmonic
+        >>> from mrsuspension.vehicle import HalfCar
+        >>> sim = VehicleSimulation(HalfCar(), SameRoadAtEveryWheel(Harmonic(2.0, 0.01), ("front", "rear")))
+        >>> sim.check_dt(1e-4)
+        0.0001
+        """
+        dt = float(check_range("dt", dt, 0.0, 0.01, unit="s", low_inclusive=False))
+        limit = self.max_stable_dt()
+        if dt > limit:
+            raise ValidationError(
+                f"dt = {dt:g} s is too large for stability: the stiffest corner of this vehicle "
+                f"needs dt <= {limit:.3g} s"
+            )
+        return dt
+
+    def describe(self) -> dict[str, Any]:
+        """Plain-data description: vehicle, wheel input, and every corner's set-up.
+
+        Examples
+        --------
+        >>> from mrsuspension.excitation import Harmonic
+        >>> from mrsuspension.vehicle import HalfCar
+        >>> sim = VehicleSimulation(HalfCar(), SameRoadAtEveryWheel(Harmonic(2.0, 0.01), ("front", "rear")))
+        >>> d = sim.describe()
+        >>> d["vehicle"]["model"], d["corners"]["rear"]["controller"]["law"]
+        ('half-car', 'passive')
+        """
+        desc = getattr(self.excitation, "describe", None)
+        return {
+            "vehicle": self.vehicle.describe(),
+            "excitation": desc() if desc is not None else repr(self.excitation),
+            "max_current": self.max_current,
+            "corners": {
+                c: {
+                    "damper": self.corner_simulation(c).damper.describe(),
+                    "controller": self.corner_simulation(c).controller.describe(),
+                }
+                for c in self.corners
+            },
+        }
+
+    def arrays(self, dt: float) -> VehicleArrays:
+        """The compiled step's arrays at step ``dt`` (fresh states), by name.
+
+        Examples
+        --------
+        >>> from mrsuspension.excitation import Harmonic
+        >>> from mrsuspension.vehicle import FullCar
+        >>> sim = VehicleSimulation(FullCar(), SameRoadAtEveryWheel(Harmonic(2.0, 0.01), FullCar.corners))
+        >>> a = sim.arrays(1e-4)
+        >>> a.memory.shape, a.corner_vehicles.shape
+        ((4, 12), (4, 8))
+        """
+        car = self.vehicle
+        n = len(car.corners)
+        ka = [
+            self.corner_simulation(c).kernel_arrays(dt, check_stability=False) for c in car.corners
+        ]
+        vp = np.zeros(VX.B_SIZE + VX.CORNER_SIZE * n)
+        vp[VX.B_INV_M] = 1.0 / car.sprung_mass
+        vp[VX.B_INV_IY] = 1.0 / car.pitch_inertia
+        vp[VX.B_INV_IX] = 1.0 / getattr(car, "roll_inertia", 1.0)  # half car: no roll (y = 0)
+        vp[VX.B_NC] = n
+        x, y = car.corner_positions()
+        bar = car.anti_roll_rates()
+        dxu = car.static_tire_deflections()
+        weight = car.static_tire_loads()
+        for i in range(n):
+            o = VX.B_SIZE + VX.CORNER_SIZE * i
+            vp[o + VX.C_X], vp[o + VX.C_Y] = x[i], y[i]
+            vp[o + VX.C_INV_MU] = 1.0 / car.unsprung_masses[i]
+            vp[o + VX.C_KS] = car.suspension_stiffnesses[i]
+            vp[o + VX.C_KT] = car.tire_stiffnesses[i]
+            vp[o + VX.C_CT] = car.tire_dampings[i]
+            vp[o + VX.C_DXU] = dxu[i]
+            vp[o + VX.C_W] = weight[i]
+            vp[o + VX.C_BAR] = bar[i]
+            vp[o + VX.C_PARTNER] = i ^ 1 if n == 4 else i  # left/right pairs of the full car
+        ints = np.int64
+        return VehicleArrays(
+            vehicle=vp,
+            corner_vehicles=_stack([a.vehicle for a in ka]),
+            force_source=np.array([a.force_source for a in ka], dtype=ints),
+            damper_kind=np.array([a.damper_kind for a in ka], dtype=ints),
+            damper_params=_stack([a.damper_params for a in ka]),
+            damper_state=_stack([a.damper_state for a in ka]),
+            damper_estimator_kind=np.array([a.damper_estimator_kind for a in ka], dtype=ints),
+            damper_estimator_params=_stack([a.damper_estimator_params for a in ka]),
+            damper_estimator_state=_stack([a.damper_estimator_state for a in ka]),
+            controller_kind=np.array([a.controller_kind for a in ka], dtype=ints),
+            controller_params=_stack([a.controller_params for a in ka]),
+            controller_estimator_kind=np.array(
+                [a.controller_estimator_kind for a in ka], dtype=ints
+            ),
+            controller_estimator_params=_stack([a.controller_estimator_params for a in ka]),
+            controller_estimator_state=_stack([a.controller_estimator_state for a in ka]),
+            memory=_stack([a.memory for a in ka]),
+        )
+
+    def initial_state(self, zr0: np.ndarray) -> np.ndarray:
+        """Static equilibrium on the roads ``zr0`` at the wheels: wheels on their road,
+        the body through the axles' mean heights (pitch) and tilted by the mean left-right
+        difference (roll, exactly 0 when both sides are the same).
+
+        Examples
+        --------
+        >>> from mrsuspension.excitation import Harmonic
+        >>> from mrsuspension.vehicle import HalfCar
+        >>> car = HalfCar(cg_to_front=1.0, cg_to_rear=1.0)
+        >>> sim = VehicleSimulation(car, SameRoadAtEveryWheel(Harmonic(2.0, 0.01), car.corners))
+        >>> sim.initial_state(np.array([0.0, 0.02]))[:2].tolist()  # heave, pitch
+        [0.01, 0.01]
+        """
+        car = self.vehicle
+        n = len(self.corners)
+        y = np.zeros(VX.NB + VX.NQ * n)
+        if isinstance(car, FullCar):
+            front, rear = 0.5 * (zr0[0] + zr0[1]), 0.5 * (zr0[2] + zr0[3])
+            y[2] = 0.5 * ((zr0[0] - zr0[1]) / car.front_track + (zr0[2] - zr0[3]) / car.rear_track)
+        else:
+            front, rear = zr0[0], zr0[1]
+        a, b, wheelbase = car.cg_to_front, car.cg_to_rear, car.wheelbase
+        y[0] = (b * front + a * rear) / wheelbase  # z - a theta = front, z + b theta = rear
+        y[1] = (rear - front) / wheelbase
+        for i in range(n):
+            y[VX.NB + VX.NQ * i] = zr0[i]
+            y[VX.NB + VX.NQ * i + 2] = zr0[i]
+        return y
+
+    def stepper(self, dt: float = DEFAULT_DT, *, external: str | None = None) -> VehicleStepper:
+        """Tick-by-tick access to the same compiled step (a real-time or HiL loop).
+
+        ``external`` names a corner whose damper force is given at every tick (the
+        measured force of a physical damper on the rig); the other corners are simulated.
+
+        Examples
+        --------
+        >>> from mrsuspension.excitation import Harmonic
+        >>> from mrsuspension.vehicle import HalfCar
+        >>> road = SameRoadAtEveryWheel(Harmonic(2.0, 0.01), ("front", "rear"))
+        >>> st = VehicleSimulation(HalfCar(), road).stepper(1e-4, external="rear")
+        >>> out = st.step([0.0, 0.0], [0.1, 0.1], damper_force=120.0)
+        >>> out["F_d.rear"], sorted(out)[:3]
+        (120.0, ['F_T.front', 'F_T.rear', 'F_d.front'])
+        """
+        return VehicleStepper(self, dt, external=external)
+
+    def run(
+        self,
+        duration: float | None = None,
+        *,
+        dt: float | None = None,
+        output_rate: float | None = None,
+        settings: RunSettings | None = None,
+    ) -> VehicleResult:
+        """Simulate for ``duration`` seconds (default: the wheel input's own duration).
+
+        Parameters
+        ----------
+        duration : float, optional
+            Simulated time [s].
+        dt : float, optional
+            Fixed RK4 step [s] (default 1e-4, spec section 7); checked for stability.
+        output_rate : float, optional
+            Samples per second kept in the result (default 1 kHz; at most 1/dt).
+        settings : RunSettings, optional
+            ``duration``, ``dt`` and ``output_rate`` in one object (instead of the three
+            keywords; giving both is an error), as :meth:`Simulation.run
+            <mrsuspension.engine.Simulation.run>`.
+
+        Raises
+        ------
+        ValidationError
+            Settings out of range, a ``dt`` too large for this vehicle, a record that
+            would alias the wheel input's excitation, or a wheel input returning arrays of
+            the wrong shape or non-finite values.
+        SimulationDiverged
+            When a state or force leaves the physical range (says when and which).
+
+        Examples
+        --------
+        >>> from mrsuspension.excitation import Harmonic
+        >>> from mrsuspension.vehicle import HalfCar
+        >>> sim = VehicleSimulation(HalfCar(), SameRoadAtEveryWheel(Harmonic(2.0, 0.01), ("front", "rear")))
+        >>> res = sim.run(0.5, dt=2e-4, output_rate=100.0)
+        >>> res.time.size, res.units["pitch"]
+        (51, 'rad')
+        >>> sim.run(settings=RunSettings(dt=2e-4, duration=0.5, output_rate=100.0)).time.size
+        51
+        """
+        plan = run_settings(settings, duration=duration, dt=dt, output_rate=output_rate)
+        plan.check_for(getattr(self.excitation, "excitation", self.excitation))
+        dt = self.check_dt(plan.dt)
+        if plan.duration is not None:
+            duration = plan.duration
+        else:
+            d = self.excitation.duration
+            if d is None:
+                raise ValidationError(
+                    "duration is required: the wheel input has no duration of its own"
+                )
+            duration = float(check_range("duration", d, 0.0, 1e5, unit="s", low_inclusive=False))
+        rate = plan.output_rate
+        decimate = max(1, round(1.0 / (rate * dt)))
+        n = max(1, math.ceil(duration / (dt * decimate) - 1e-9)) * decimate
+        nc = len(self.corners)
+        rows = n // decimate + 1
+        check_memory(duration, rows * (VX.REC_BODY + VX.REC_CORNER * nc) + 2 * nc * (2 * n + 1))
+        grid = getattr(self.excitation, "sample_grid", None)
+        if grid is not None:  # the wheel input's fast grid
+            zr, zrd = grid(2 * n + 1, 0.5 * dt)
+        else:
+            t_half = np.arange(2 * n + 1) * (0.5 * dt)
+            zr, zrd = self.excitation.displacement(t_half), self.excitation.velocity(t_half)
+        zr = np.ascontiguousarray(zr, dtype=float)
+        zrd = np.ascontiguousarray(zrd, dtype=float)
+        if zr.shape != (nc, 2 * n + 1) or zrd.shape != zr.shape:
+            raise ValidationError(
+                f"the wheel input must return ({nc}, len(t)) arrays; got {zr.shape} and {zrd.shape}"
+            )
+        if not (np.all(np.isfinite(zr)) and np.all(np.isfinite(zrd))):
+            raise ValidationError("the wheel input returned a NaN or infinite road value")
+        a = self.arrays(dt)
+        y = self.initial_state(zr[:, 0])
+        rec = np.zeros((rows, VX.REC_BODY + VX.REC_CORNER * nc))
+        scratch = np.zeros((3, y.size))
+        work = np.zeros((nc + 1, 8))
+        status, k, idx, value = VX.run(
+            y, n, dt, zr, zrd, *a.args(), decimate, rec, VX.LIMITS, scratch, work
+        )
+        if status != VX.D_OK:
+            raise self._divergence(status, k * dt, idx, value, dt)
+        time = np.arange(rows) * (decimate * dt)
+        return self.result_from_record(time, rec, dt)
+
+    def _divergence(
+        self, status: int, t: float, idx: int, value: float, dt: float
+    ) -> SimulationDiverged:
+        if status == VX.D_STATE:
+            if idx < VX.NB:
+                name = tuple(BODY_SIGNALS)[idx]
+            else:
+                c, q = divmod(idx - VX.NB, VX.NQ)
+                name = f"{('z_u', 'z_u_dot', 'z_s0', 'z_s0_dot')[q]}.{self.corners[c]}"
+        else:
+            name = f"{'F_d' if status == VX.D_FORCE else 'F_T'}.{self.corners[idx]}"
+        return SimulationDiverged(
+            f"vehicle simulation diverged at t = {t:.4f} s: {name} = {value:.3g} is out of range. "
+            f"Check dt (= {dt:g} s; stable limit {self.max_stable_dt():.3g} s) and the inputs.",
+            t,
+            name,
+            value,
+        )
+
+    def result_from_record(self, time: np.ndarray, record: np.ndarray, dt: float) -> VehicleResult:
+        """The result from the kernels' record (columns ``RB_*``, then ``RC_*`` per corner)."""
+        rec = np.ascontiguousarray(record.T)
+        signals: dict[str, np.ndarray] = {k: rec[col] for k, col in _BODY_COLUMNS.items()}
+        units = {"time": "s", **{k: u for k, (u, _) in BODY_SIGNALS.items()}}
+        scenario = self.describe()
+        corner_scenarios = {}
+        acc = getattr(self.excitation, "acceleration", None)
+        if acc is not None:
+            road_acc = np.asarray(acc(time), dtype=float)
+        else:
+            road_acc = np.array([_CornerRoad(self.excitation, i).acceleration(time)
+                                 for i in range(len(self.corners))])  # fmt: skip
+        for i, c in enumerate(self.corners):
+            b = VX.REC_BODY + VX.REC_CORNER * i
+            sig = {k: rec[b + col] for k, col in _CORNER_COLUMNS.items()}
+            sig["x_d"] = sig["z_u"] - sig["z_s"]
+            sig["v_d"] = sig["z_u_dot"] - sig["z_s_dot"]
+            sig["z_r_ddot"] = road_acc[i]
+            for k, v in sig.items():
+                signals[f"{k}.{c}"] = v
+                units[f"{k}.{c}"] = SIGNALS[k][0]
+            corner_scenarios[c] = self.corner_simulation(c).describe()
+        return VehicleResult(
+            time=time, signals=signals, scenario=scenario, dt=dt, units=units,
+            corners=self.corners, corner_scenarios=corner_scenarios,
+        )  # fmt: skip
+
+
+class VehicleStepper:
+    """The vehicle's compiled step, one tick at a time (the HiL loop's physics).
+
+    The roads at the start, middle and end of the tick are given by the caller, one value
+    per wheel (pass the start values only for a road held over the tick). With
+    ``external``, that corner's damper force is not computed by its model but given at
+    every tick and held over it (one physical damper on the rig, the others simulated).
+    Stepping with the roads of :meth:`VehicleSimulation.run` reproduces it bit for bit.
+
+    Examples
+    --------
+    >>> from mrsuspension.excitation import Harmonic
+    >>> from mrsuspension.vehicle import FullCar
+    >>> road = SameRoadAtEveryWheel(Harmonic(2.0, 0.01), FullCar.corners)
+    >>> st = VehicleSimulation(FullCar(), road).stepper(1e-4)
+    >>> out = st.step([0.001] * 4, [0.0] * 4)
+    >>> round(st.time, 6), out["heave"] > 0.0
+    (0.0001, True)
+    """
+
+    def __init__(
+        self, simulation: VehicleSimulation, dt: float, *, external: str | None = None
+    ) -> None:
+        self.simulation = simulation
+        self.dt = simulation.check_dt(dt)
+        self.external = None if external is None else simulation.vehicle.corner_index(external)
+        self.reset()
+
+    def reset(
+        self, road: npt.ArrayLike | None = None, road_velocity: npt.ArrayLike | None = None
+    ) -> None:
+        """Back to static equilibrium on the given wheel roads (default 0); fresh internals.
+
+        Examples
+        --------
+        >>> from mrsuspension.excitation import Harmonic
+        >>> from mrsuspension.vehicle import HalfCar
+        >>> st = VehicleSimulation(HalfCar(), SameRoadAtEveryWheel(Harmonic(2.0, 0.01), ("front", "rear"))).stepper()
+        >>> st.reset([0.01, 0.01])
+        >>> round(float(st.y[0]), 6), st.time
+        (0.01, 0.0)
+        """
+        n = len(self.simulation.corners)
+        zr = self._wheels("road", road)
+        zrd = self._wheels("road_velocity", road_velocity)
+        self.arrays = self.simulation.arrays(self.dt)
+        if self.external is not None:
+            self.arrays.force_source[self.external] = F_EXTERNAL
+        self._args = self.arrays.args()
+        self.y = self.simulation.initial_state(zr)
+        self.time = 0.0
+        self._zr = np.zeros((n, 3))
+        self._zrd = np.zeros((n, 3))
+        self._scratch = np.zeros((3, self.y.size))
+        self._work = np.zeros((n + 1, 8))
+        self._zr[:, 0], self._zrd[:, 0] = zr, zrd
+        a = self.arrays
+        VX.start(
+            self.y, self._zr, self._zrd, 0, a.vehicle, a.corner_vehicles, a.force_source,
+            a.damper_kind, a.damper_params, a.damper_state, a.damper_estimator_kind,
+            a.damper_estimator_params, a.damper_estimator_state, a.controller_kind,
+            a.controller_params, a.memory, self._scratch, self._work,
+        )  # fmt: skip
+
+    def _wheels(self, name: str, value: npt.ArrayLike | None) -> np.ndarray:
+        n = len(self.simulation.corners)
+        if value is None:
+            return np.zeros(n)
+        arr = check_range(name, value, -10.0, 10.0, unit="m" if name == "road" else "m/s")
+        if arr.shape != (n,):
+            raise ValidationError(
+                f"{name} must have one value per wheel ({n}); got shape {arr.shape}"
+            )
+        return arr.astype(float)
+
+    def step(
+        self,
+        road: npt.ArrayLike,
+        road_velocity: npt.ArrayLike,
+        *,
+        road_mid: tuple[npt.ArrayLike, npt.ArrayLike] | None = None,
+        road_end: tuple[npt.ArrayLike, npt.ArrayLike] | None = None,
+        damper_force: float | None = None,
+    ) -> dict[str, float]:
+        """Advance one tick; returns the body's and every corner's signals by name.
+
+        Raises
+        ------
+        ValidationError
+            For roads of the wrong shape or out of range, or a ``damper_force`` missing
+            (with ``external``) or given without it.
+        SimulationDiverged
+            When the state is no longer finite.
+        """
+        mem = self.arrays.memory
+        if self.external is not None:
+            if damper_force is None or not math.isfinite(damper_force):
+                raise ValidationError(
+                    f"a stepper with an external corner needs a finite damper_force each tick; got {damper_force!r}"
+                )
+            mem[self.external, EK.M_FEXT] = damper_force
+        elif damper_force is not None:
+            raise ValidationError("damper_force is only accepted with external=<corner>")
+        zr, zrd = self._zr, self._zrd
+        zr[:, 0] = self._wheels("road", road)
+        zrd[:, 0] = self._wheels("road_velocity", road_velocity)
+        mid = road_mid if road_mid is not None else (zr[:, 0], zrd[:, 0])
+        zr[:, 1], zrd[:, 1] = self._wheels("road", mid[0]), self._wheels("road_velocity", mid[1])
+        end = road_end if road_end is not None else (zr[:, 1], zrd[:, 1])
+        zr[:, 2], zrd[:, 2] = self._wheels("road", end[0]), self._wheels("road_velocity", end[1])
+        VX.step(self.y, self.dt, zr, zrd, 0, *self._args, self._scratch, self._work)
+        self.time += self.dt
+        y = self.y
+        if not np.all(np.isfinite(y)):
+            raise SimulationDiverged(
+                f"vehicle stepper diverged at t = {self.time:.4f} s: state is not finite",
+                self.time,
+                "state",
+                math.nan,
+            )
+        out = {"time": self.time}
+        for name, col in VX_BODY_STATE.items():
+            out[name] = float(y[col])
+        for name, col in (("heave_ddot", 3), ("pitch_ddot", 4), ("roll_ddot", 5)):
+            out[name] = float(self._scratch[1, col])
+        for i, c in enumerate(self.simulation.corners):
+            q = VX.NB + VX.NQ * i
+            out[f"z_u.{c}"] = float(y[q])
+            out[f"z_u_dot.{c}"] = float(y[q + 1])
+            out[f"F_d.{c}"] = float(mem[i, EK.M_FD])
+            out[f"F_T.{c}"] = float(mem[i, EK.M_FT])
+            out[f"i_d.{c}"] = float(mem[i, EK.M_ID])
+            out[f"z_s_ddot.{c}"] = float(mem[i, EK.M_AS])
+        return out
+
+
+#: the body's states in ``y``
+VX_BODY_STATE = {"heave": 0, "pitch": 1, "roll": 2, "heave_dot": 3, "pitch_dot": 4, "roll_dot": 5}
+
+
+def _run_vehicle(
+    args: tuple[VehicleSimulation, RunSettings, Callable[[VehicleResult], Any] | None],
+) -> Any:
+    sim, plan, reduce = args
+    result = sim.run(settings=plan)
+    return result if reduce is None else reduce(result)
+
+
+def run_vehicles(
+    simulations: Sequence[VehicleSimulation],
+    *,
+    duration: float | None = None,
+    dt: float | None = None,
+    output_rate: float | None = None,
+    settings: RunSettings | None = None,
+    workers: int | None = None,
+    progress: Callable[[int, int], None] | None = None,
+    reduce: Callable[[VehicleResult], Any] | None = None,
+) -> list[Any]:
+    """Run many vehicle simulations across processes (default: one per core), in order.
+
+    The vehicle counterpart of :func:`~mrsuspension.engine.run_many`: the same
+    ``settings`` (or ``duration``, ``dt``, ``output_rate``) for every run,
+    ``progress(done, total)`` as runs finish and ``reduce`` (a module-level function)
+    applied to each result in its worker; ``workers=1`` runs in this process.
+
+    Examples
+    --------
+    >>> from mrsuspension.excitation import Harmonic
+    >>> from mrsuspension.vehicle import HalfCar
+    >>> sims = [VehicleSimulation(HalfCar(), SameRoadAtEveryWheel(Harmonic(f, 0.01), ("front", "rear")))
+    ...         for f in (1.0, 2.0)]
+    >>> [r.time.size for r in run_vehicles(sims, duration=0.2, workers=1)]
+    [201, 201]
+    """
+    from mrsuspension._pool import pool_map, worker_count
+
+    plan = run_settings(settings, duration=duration, dt=dt, output_rate=output_rate)
+    sims = list(simulations)
+    for sim in sims:
+        if not isinstance(sim, VehicleSimulation):
+            raise ValidationError(f"run_vehicles takes VehicleSimulation objects; got {sim!r}")
+    if not sims:
+        return []
+    return pool_map(
+        _run_vehicle,
+        [(sim, plan, reduce) for sim in sims],
+        workers=worker_count(workers, len(sims)),
+        progress=progress,
+    )

@@ -1,0 +1,394 @@
+"""The half and full car's compiled step: an MR damper and a controller at every corner.
+
+The vehicle's equations are those of :mod:`mrsuspension.vehicle.body` (a rigid body on
+a suspended wheel at every corner, tire lift-off at every wheel). A step follows the
+quarter car's (:mod:`mrsuspension.engine.kernel`) corner by corner:
+
+1. at every corner, latch the damper internals from the sampled stroke and velocity with
+   the previous step's ``a_d``, update the controller's peak velocity and run the
+   controller on the corner's quarter-car view ``[z_s,i, z_s,i', z_u,i, z_u,i', z_0,i,
+   z_0,i']`` (the body's motion at the corner; :func:`~mrsuspension.engine.kernel.apply_control`),
+   so every controller family acts per corner; the drive current is held over the step;
+2. classical RK4 over the step with each wheel's road at ``t``, ``t + dt/2``, ``t + dt``;
+3. evaluate the rates at the new state (record, next step's ``a_d``) and advance every
+   damper's internal dynamics.
+
+The damper kernels (:mod:`mrsuspension.dampers.kernels`) and the control laws
+(:mod:`mrsuspension.control.kernel`) are the quarter car's; the sliding-mode reference
+model (3.18) is integrated per corner with the corner's wheel.
+
+Arrays of the compiled step (numba compiles over arrays; :class:`~mrsuspension.engine.vehicle.VehicleArrays` names
+them): ``vp`` the vehicle (``B_*`` then ``CORNER_SIZE`` values per corner, ``C_*``);
+``cvp`` every corner's quarter-car parameters (rows: :mod:`mrsuspension.vehicle.kernel`
+``V_*``, for the control laws); per corner rows of the damper's, estimators' and
+controller's arrays (padded to the longest); ``mem`` one row per corner with the quarter
+car's layout (``engine.kernel.M_*``). State ``y``: ``[z, theta, phi, z', theta', phi']``
+then ``[z_u, z_u', z_0, z_0']`` per corner.
+
+:mod:`mrsuspension.engine.vehicle` runs it (``VehicleSimulation``); the step is kept apart
+so that editing the Python side does not recompile it (about a minute).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+from mrsuspension import shaping as _shaping
+from mrsuspension._numba_cache import invalidate_if_changed
+from mrsuspension.control import kernel as CK
+from mrsuspension.control.kernel import EST_SHARED, F_EXTERNAL, F_MODEL, P_C0, P_CS, P_MS0
+from mrsuspension.dampers import kernels as DK
+from mrsuspension.dampers.kernels import NO_REFCOUNT
+from mrsuspension.engine import kernel as EK
+from mrsuspension.vehicle import kernel as VK
+from mrsuspension.vehicle.kernel import V_KS
+
+__all__ = ["check_limits", "rates", "record", "run", "start", "step"]
+
+# the cached entry points inline the damper, shaping, controller, vehicle and engine kernels
+invalidate_if_changed(
+    __file__, DK.__file__, _shaping.__file__, CK.__file__, VK.__file__, EK.__file__
+)
+
+# vp: body then corners; reciprocal masses and inertias (they leave the divisions off the
+# chain of dependent operations from one RK4 stage to the next, as in engine/kernel.py)
+B_INV_M, B_INV_IY, B_INV_IX, B_NC = 0, 1, 2, 3
+B_SIZE = 4
+# per corner (at B_SIZE + c * CORNER_SIZE): x, y from the CG [m], 1/m_u, k_s, k_t, c_t,
+# static tire deflection dx_u, static tire load W, anti-roll rate k_bar/t^2, partner
+C_X, C_Y, C_INV_MU, C_KS, C_KT, C_CT, C_DXU, C_W, C_BAR, C_PARTNER = range(10)
+CORNER_SIZE = 10
+NB = 6  # body states: z, theta, phi and their rates
+NQ = 4  # states per corner: z_u, z_u', z_0, z_0'
+
+# recorded signals: body columns, then REC_CORNER columns per corner
+RB_Z, RB_PITCH, RB_ROLL, RB_VZ, RB_VPITCH, RB_VROLL, RB_AZ, RB_APITCH, RB_AROLL = range(9)
+REC_BODY = 9
+RC_ZS, RC_VS, RC_AS, RC_ZU, RC_VU, RC_AU, RC_ZR, RC_VR, RC_FD, RC_FT = range(10)
+RC_ID, RC_IZ, RC_ZC, RC_TARGET, RC_VM, RC_Z0 = range(10, 16)
+REC_CORNER = 16
+
+#: Divergence limits: |z| [m] (and |angle| [rad]), |rate| [m/s, rad/s], |F_d| [N], F_T [N].
+LIMITS = np.array([10.0, 100.0, 1e6, 1e7])
+D_OK, D_STATE, D_FORCE, D_TIRE = EK.D_OK, EK.D_STATE, EK.D_FORCE, EK.D_TIRE
+
+
+@njit(cache=True, inline="always")
+def _corner_body(y: np.ndarray, x: float, yy: float) -> tuple[float, float]:
+    """The body's displacement and velocity at a corner ``(x, y)``: ``z - x theta + y phi``."""
+    return y[0] - x * y[1] + yy * y[2], y[3] - x * y[4] + yy * y[5]
+
+
+@njit(cache=True, inline="always")
+def rates(
+    y: np.ndarray,
+    zr: np.ndarray,
+    zrd: np.ndarray,
+    j: int,
+    vp: np.ndarray,
+    cvp: np.ndarray,
+    fk: np.ndarray,
+    dk: np.ndarray,
+    dp: np.ndarray,
+    ds: np.ndarray,
+    ck: np.ndarray,
+    cp: np.ndarray,
+    mem: np.ndarray,
+    dy: np.ndarray,
+    work: np.ndarray,
+) -> None:
+    """Time derivatives of ``y`` into ``dy`` with the road at column ``j`` of ``zr``/``zrd``.
+
+    ``work`` (``corners x 3``) receives every corner's stroke, ``F_d`` and ``F_T``.
+    """
+    nc = int(vp[B_NC])
+    for c in range(nc):  # strokes first: the anti-roll bars couple the corners
+        o = B_SIZE + c * CORNER_SIZE
+        zs, _ = _corner_body(y, vp[o + C_X], vp[o + C_Y])
+        work[c, 0] = y[NB + NQ * c] - zs
+    fz = my = mx = 0.0
+    for c in range(nc):
+        o = B_SIZE + c * CORNER_SIZE
+        x, yy = vp[o + C_X], vp[o + C_Y]
+        zs, vs = _corner_body(y, x, yy)
+        q = NB + NQ * c
+        zu, vu, z0, v0 = y[q], y[q + 1], y[q + 2], y[q + 3]
+        xd = work[c, 0]
+        vd = vu - vs
+        f = fk[c]
+        if f == F_MODEL:
+            fd = DK.damper_force(dk[c], dp[c], ds[c], xd, vd, mem[c, EK.M_ID])
+        elif f == F_EXTERNAL:
+            fd = mem[c, EK.M_FEXT]
+        else:  # an ideal dissipative damper (the ideal reference laws)
+            fd = CK.ideal_force(f, cp[c], vs, xd, vd)
+        partner = int(vp[o + C_PARTNER])
+        fs = vp[o + C_KS] * xd + fd + vp[o + C_BAR] * (xd - work[partner, 0])
+        # tire: zero when lifted off (delta <= 0), never pulls (spec section 4)
+        delta = zr[c, j] - zu + vp[o + C_DXU]
+        ft = vp[o + C_KT] * delta + vp[o + C_CT] * (zrd[c, j] - vu)
+        ft = 0.0 if ft < 0.0 else ft
+        ft = ft if delta > 0.0 else 0.0
+        dy[q] = vu
+        dy[q + 1] = (ft - vp[o + C_W] - fs) * vp[o + C_INV_MU]
+        if CK.needs_reference(ck[c]):  # single-DOF reference (3.18) on this corner's wheel
+            dy[q + 2] = v0
+            dy[q + 3] = (
+                -cp[c, P_C0] * (v0 - vu) - cp[c, P_CS] * v0 - cvp[c, V_KS] * (z0 - zu)
+            ) / cp[c, P_MS0]
+        else:
+            dy[q + 2] = 0.0
+            dy[q + 3] = 0.0
+        fz += fs
+        my -= x * fs
+        mx += yy * fs
+        work[c, 1] = fd
+        work[c, 2] = ft
+    dy[0] = y[3]
+    dy[1] = y[4]
+    dy[2] = y[5]
+    dy[3] = fz * vp[B_INV_M]
+    dy[4] = my * vp[B_INV_IY]
+    dy[5] = mx * vp[B_INV_IX]
+
+
+@njit(cache=True, inline="always")
+def _finish(
+    y: np.ndarray, dy: np.ndarray, vp: np.ndarray, mem: np.ndarray, work: np.ndarray
+) -> None:
+    """Store the rates and forces at the state ``y`` in ``mem`` (record, next ``a_d``)."""
+    for c in range(int(vp[B_NC])):
+        o = B_SIZE + c * CORNER_SIZE
+        x, yy = vp[o + C_X], vp[o + C_Y]
+        q = NB + NQ * c
+        a_s = dy[3] - x * dy[4] + yy * dy[5]
+        mem[c, EK.M_AS] = a_s
+        mem[c, EK.M_AU] = dy[q + 1]
+        mem[c, EK.M_A0] = dy[q + 3]
+        mem[c, EK.M_FD] = work[c, 1]
+        mem[c, EK.M_FT] = work[c, 2]
+        mem[c, EK.M_AD] = dy[q + 1] - a_s
+
+
+@njit(cache=True, inline="always", **NO_REFCOUNT)
+def step(
+    y: np.ndarray,
+    dt: float,
+    zr: np.ndarray,
+    zrd: np.ndarray,
+    j: int,
+    vp: np.ndarray,
+    cvp: np.ndarray,
+    fk: np.ndarray,
+    dk: np.ndarray,
+    dp: np.ndarray,
+    ds: np.ndarray,
+    dek: np.ndarray,
+    dep: np.ndarray,
+    des: np.ndarray,
+    ck: np.ndarray,
+    cp: np.ndarray,
+    cek: np.ndarray,
+    cep: np.ndarray,
+    ces: np.ndarray,
+    mem: np.ndarray,
+    scratch: np.ndarray,
+    work: np.ndarray,
+) -> None:
+    """Advance ``y`` by one step; each wheel's road at columns ``j, j+1, j+2`` of
+    ``zr``/``zrd`` (t, t + dt/2, t + dt). ``scratch``: 5 rows of ``len(y)``; ``work``:
+    ``corners x 8``."""
+    nc = int(vp[B_NC])
+    n = y.size
+    view = work[nc]  # the corner's quarter-car view (6 values)
+    for c in range(nc):
+        o = B_SIZE + c * CORNER_SIZE
+        zs, vs = _corner_body(y, vp[o + C_X], vp[o + C_Y])
+        q = NB + NQ * c
+        xd = y[q] - zs
+        vd = y[q + 1] - vs
+        ad = mem[c, EK.M_AD]
+        DK.damper_sample(dk[c], dp[c], ds[c], dek[c], dep[c], des[c], xd, vd, ad, mem[c, EK.M_ID])
+        if cek[c] == EST_SHARED:
+            vm = ds[c, DK.WS_VM]
+        else:
+            vm = DK.estimator_update(cek[c], cep[c], ces[c], xd, vd, ad)
+        mem[c, EK.M_VM] = vm
+        view[0], view[1], view[2], view[3], view[4], view[5] = (
+            zs, vs, y[q], y[q + 1], y[q + 2], y[q + 3]
+        )  # fmt: skip
+        EK.apply_control(ck[c], cp[c], cvp[c], dp[c], view, ad, vm, mem[c])
+        work[c, 3] = xd
+        work[c, 4] = vd
+    yt = scratch[0]
+    k = scratch[1]
+    acc = scratch[2]
+    # classical RK4: k1 at t, k2 and k3 at t + dt/2, k4 at t + dt
+    rates(y, zr, zrd, j, vp, cvp, fk, dk, dp, ds, ck, cp, mem, k, work)
+    for i in range(n):
+        acc[i] = k[i]
+        yt[i] = y[i] + 0.5 * dt * k[i]
+    rates(yt, zr, zrd, j + 1, vp, cvp, fk, dk, dp, ds, ck, cp, mem, k, work)
+    for i in range(n):
+        acc[i] += 2.0 * k[i]
+        yt[i] = y[i] + 0.5 * dt * k[i]
+    rates(yt, zr, zrd, j + 1, vp, cvp, fk, dk, dp, ds, ck, cp, mem, k, work)
+    for i in range(n):
+        acc[i] += 2.0 * k[i]
+        yt[i] = y[i] + dt * k[i]
+    rates(yt, zr, zrd, j + 2, vp, cvp, fk, dk, dp, ds, ck, cp, mem, k, work)
+    c6 = dt / 6.0
+    for i in range(n):
+        y[i] += c6 * (acc[i] + k[i])
+    rates(y, zr, zrd, j + 2, vp, cvp, fk, dk, dp, ds, ck, cp, mem, k, work)
+    _finish(y, k, vp, mem, work)
+    for c in range(nc):
+        DK.damper_advance(dk[c], dp[c], ds[c], work[c, 3], work[c, 4], mem[c, EK.M_ID], dt)
+
+
+@njit(cache=True, inline="always")
+def start(
+    y: np.ndarray,
+    zr: np.ndarray,
+    zrd: np.ndarray,
+    j: int,
+    vp: np.ndarray,
+    cvp: np.ndarray,
+    fk: np.ndarray,
+    dk: np.ndarray,
+    dp: np.ndarray,
+    ds: np.ndarray,
+    dek: np.ndarray,
+    dep: np.ndarray,
+    des: np.ndarray,
+    ck: np.ndarray,
+    cp: np.ndarray,
+    mem: np.ndarray,
+    scratch: np.ndarray,
+    work: np.ndarray,
+) -> None:
+    """Initial accelerations and forces (for the record and the first step's ``a_d``)."""
+    for c in range(int(vp[B_NC])):
+        o = B_SIZE + c * CORNER_SIZE
+        zs, vs = _corner_body(y, vp[o + C_X], vp[o + C_Y])
+        q = NB + NQ * c
+        DK.damper_sample(
+            dk[c], dp[c], ds[c], dek[c], dep[c], des[c], y[q] - zs, y[q + 1] - vs, 0.0,
+            mem[c, EK.M_ID],
+        )  # fmt: skip
+    rates(y, zr, zrd, j, vp, cvp, fk, dk, dp, ds, ck, cp, mem, scratch[1], work)
+    _finish(y, scratch[1], vp, mem, work)
+
+
+@njit(cache=True, inline="always")
+def record(
+    rec: np.ndarray,
+    row: int,
+    y: np.ndarray,
+    zr: np.ndarray,
+    zrd: np.ndarray,
+    j: int,
+    vp: np.ndarray,
+    mem: np.ndarray,
+    dy: np.ndarray,
+) -> None:
+    """Row ``row`` of the record: body columns ``RB_*``, then ``RC_*`` per corner (``dy``:
+    the rates at ``y``, for the body's accelerations)."""
+    for i in range(NB):
+        rec[row, i] = y[i]
+    rec[row, RB_AZ] = dy[3]
+    rec[row, RB_APITCH] = dy[4]
+    rec[row, RB_AROLL] = dy[5]
+    nc = int(vp[B_NC])
+    for c in range(nc):
+        o = B_SIZE + c * CORNER_SIZE
+        zs, vs = _corner_body(y, vp[o + C_X], vp[o + C_Y])
+        q = NB + NQ * c
+        b = REC_BODY + REC_CORNER * c
+        rec[row, b + RC_ZS] = zs
+        rec[row, b + RC_VS] = vs
+        rec[row, b + RC_AS] = mem[c, EK.M_AS]
+        rec[row, b + RC_ZU] = y[q]
+        rec[row, b + RC_VU] = y[q + 1]
+        rec[row, b + RC_AU] = mem[c, EK.M_AU]
+        rec[row, b + RC_ZR] = zr[c, j]
+        rec[row, b + RC_VR] = zrd[c, j]
+        rec[row, b + RC_FD] = mem[c, EK.M_FD]
+        rec[row, b + RC_FT] = mem[c, EK.M_FT]
+        rec[row, b + RC_ID] = mem[c, EK.M_ID]
+        rec[row, b + RC_IZ] = mem[c, EK.M_IZ]
+        rec[row, b + RC_ZC] = mem[c, EK.M_ZC]
+        rec[row, b + RC_TARGET] = mem[c, EK.M_TARGET]
+        rec[row, b + RC_VM] = mem[c, EK.M_VM]
+        rec[row, b + RC_Z0] = y[q + 2]
+
+
+@njit(cache=True, inline="always")
+def check_limits(
+    y: np.ndarray, vp: np.ndarray, mem: np.ndarray, limits: np.ndarray
+) -> tuple[int, int, float]:
+    """``(status, index, value)`` of the first state (index into ``y``) or force (index:
+    the corner) out of ``limits`` (``D_OK``: none)."""
+    for i in range(y.size):
+        v = y[i]
+        rate = i >= 3 if i < NB else (i - NB) % 2 == 1
+        if not (abs(v) <= (limits[1] if rate else limits[0])):
+            return D_STATE, i, v
+    for c in range(int(vp[B_NC])):
+        if not abs(mem[c, EK.M_FD]) <= limits[2]:
+            return D_FORCE, c, mem[c, EK.M_FD]
+        if not mem[c, EK.M_FT] <= limits[3]:
+            return D_TIRE, c, mem[c, EK.M_FT]
+    return D_OK, 0, 0.0
+
+
+@njit(cache=True, **NO_REFCOUNT)
+def run(
+    y: np.ndarray,
+    n_steps: int,
+    dt: float,
+    zr: np.ndarray,
+    zrd: np.ndarray,
+    vp: np.ndarray,
+    cvp: np.ndarray,
+    fk: np.ndarray,
+    dk: np.ndarray,
+    dp: np.ndarray,
+    ds: np.ndarray,
+    dek: np.ndarray,
+    dep: np.ndarray,
+    des: np.ndarray,
+    ck: np.ndarray,
+    cp: np.ndarray,
+    cek: np.ndarray,
+    cep: np.ndarray,
+    ces: np.ndarray,
+    mem: np.ndarray,
+    decimate: int,
+    rec: np.ndarray,
+    limits: np.ndarray,
+    scratch: np.ndarray,
+    work: np.ndarray,
+) -> tuple[int, int, int, float]:
+    """``n_steps`` steps with every wheel's road sampled every dt/2 (``2 n + 1`` columns).
+
+    Records row 0 (initial state) and every ``decimate`` steps. Returns ``(status, step,
+    index, value)`` as :func:`mrsuspension.engine.kernel.run`.
+    """
+    start(y, zr, zrd, 0, vp, cvp, fk, dk, dp, ds, dek, dep, des, ck, cp, mem, scratch, work)
+    record(rec, 0, y, zr, zrd, 0, vp, mem, scratch[1])
+    row = 1
+    for s in range(n_steps):
+        j = 2 * s
+        step(
+            y, dt, zr, zrd, j, vp, cvp, fk, dk, dp, ds, dek, dep, des, ck, cp, cek, cep, ces,
+            mem, scratch, work,
+        )  # fmt: skip
+        status, q, value = check_limits(y, vp, mem, limits)
+        if status != D_OK:
+            return status, s + 1, q, value
+        if (s + 1) % decimate == 0 and row < rec.shape[0]:
+            record(rec, row, y, zr, zrd, j + 2, vp, mem, scratch[1])  # the step's last rates
+            row += 1
+    return D_OK, n_steps, 0, 0.0
