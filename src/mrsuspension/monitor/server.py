@@ -146,15 +146,16 @@ def serve(
         check_input_folder("--road-dir", road_dir)
     if workdir is not None:
         check_output_folder("--workdir", workdir)
-    check_free(host, port)
     import uvicorn
 
     from mrsuspension.monitor.app import create_app
 
+    # the app checks --realtime/--isolate: every option is judged before the port's use
     app = create_app(
         token=token, workdir=workdir, rig=rig, attach=attach, road_dir=road_dir,
         realtime=realtime, isolate=isolate,
     )  # fmt: skip
+    check_free(host, port)
     shown = "localhost" if is_loopback(host) else host
     url = f"http://{shown}:{port}/" + (f"?token={token}" if token else "")
     print(
