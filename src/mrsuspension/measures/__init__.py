@@ -16,7 +16,8 @@ random road                 :func:`psd` (Welch, 512 Hz, 8192, Hann, 50 %),
                             :func:`dlc` (mean load), :func:`rms`
 ISO 2631-1 (beyond seed)    :func:`wk_weighting`, :func:`wk_filter`,
                             :func:`weighted_rms`, :func:`vdv`,
-                            :func:`wk_response`
+                            :func:`wk_response`; Wd/We: :func:`frequency_weighting`,
+                            :func:`weighting_filter`, :func:`weighting_sos`
 ==========================  =====================================================
 
 Examples
@@ -34,10 +35,17 @@ from __future__ import annotations
 
 from mrsuspension.measures._checks import Window
 from mrsuspension.measures.iso2631 import (
+    WD_CONSTANTS,
+    WE_CONSTANTS,
+    WEIGHTINGS,
     WK_CONSTANTS,
     WK_FILTER_RATE,
+    check_weighting,
+    frequency_weighting,
     vdv,
     weighted_rms,
+    weighting_filter,
+    weighting_sos,
     wk_filter,
     wk_response,
     wk_sos,
@@ -82,6 +90,9 @@ __all__ = [
     "PSD_FS",
     "PSD_NPERSEG",
     "ROAD_PEAKS",
+    "WD_CONSTANTS",
+    "WEIGHTINGS",
+    "WE_CONSTANTS",
     "WK_CONSTANTS",
     "WK_FILTER_RATE",
     "G",
@@ -96,10 +107,12 @@ __all__ = [
     "Window",
     "asymmetry_ratio",
     "check_road_peak",
+    "check_weighting",
     "current_statistics",
     "dlc",
     "dtr",
     "force_tracking_error",
+    "frequency_weighting",
     "harmonic_measures",
     "peak",
     "psd",
@@ -110,6 +123,8 @@ __all__ = [
     "transmissibility",
     "vdv",
     "weighted_rms",
+    "weighting_filter",
+    "weighting_sos",
     "wk_filter",
     "wk_response",
     "wk_sos",
