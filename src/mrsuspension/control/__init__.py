@@ -30,6 +30,9 @@ One module per family (:mod:`~mrsuspension.control.passive`,
 :mod:`~mrsuspension.control.registry`. Adding a law touches this package only (see
 ``docs/develop.md``).
 
+Vehicle pieces the engine calls: :mod:`~mrsuspension.control.sensing` (body velocity
+from an accelerometer, stroke sensor).
+
 Examples
 --------
 >>> make_controller("skyhook-hilo", mode="ACM")
@@ -49,20 +52,24 @@ from mrsuspension.control.registry import (
     law_options,
     make_controller,
 )
+from mrsuspension.control.sensing import BandPassObserver, LeakyIntegrator, StrokeSensor
 from mrsuspension.control.sliding import SlidingMode
 
 __all__ = [
     "CONTROLLERS",
     "POLICY_GAINS",
+    "BandPassObserver",
     "ControlOption",
     "Controller",
     "HiLo",
     "IdealOnOff",
     "IdealSkyhook",
     "InverseHiLo",
+    "LeakyIntegrator",
     "OnOffADFG",
     "Passive",
     "SlidingMode",
+    "StrokeSensor",
     "controller_class",
     "law_options",
     "make_controller",
