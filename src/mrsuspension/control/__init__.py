@@ -31,7 +31,8 @@ One module per family (:mod:`~mrsuspension.control.passive`,
 ``docs/develop.md``).
 
 Vehicle pieces the engine calls: :mod:`~mrsuspension.control.sensing` (body velocity
-from an accelerometer, stroke sensor).
+from an accelerometer, stroke sensor) and :mod:`~mrsuspension.control.modal` (modal
+skyhook for the half and full car, with hi-lo clipping per corner).
 
 Examples
 --------
@@ -45,6 +46,7 @@ from mrsuspension.control.base import Controller, ControlOption
 from mrsuspension.control.hilo import POLICY_GAINS, HiLo
 from mrsuspension.control.ideal import IdealOnOff, IdealSkyhook
 from mrsuspension.control.inverse import InverseHiLo
+from mrsuspension.control.modal import ModalSkyhook
 from mrsuspension.control.passive import OnOffADFG, Passive
 from mrsuspension.control.registry import (
     CONTROLLERS,
@@ -66,6 +68,7 @@ __all__ = [
     "IdealSkyhook",
     "InverseHiLo",
     "LeakyIntegrator",
+    "ModalSkyhook",
     "OnOffADFG",
     "Passive",
     "SlidingMode",
