@@ -30,6 +30,10 @@ One module per family (:mod:`~mrsuspension.control.passive`,
 :mod:`~mrsuspension.control.registry`. Adding a law touches this package only (see
 ``docs/develop.md``).
 
+Vehicle pieces the engine calls: :mod:`~mrsuspension.control.sensing` (body velocity
+from an accelerometer, stroke sensor) and :mod:`~mrsuspension.control.modal` (modal
+skyhook for the half and full car, with hi-lo clipping per corner).
+
 Examples
 --------
 >>> make_controller("skyhook-hilo", mode="ACM")
@@ -42,6 +46,7 @@ from mrsuspension.control.base import Controller, ControlOption
 from mrsuspension.control.hilo import POLICY_GAINS, HiLo
 from mrsuspension.control.ideal import IdealOnOff, IdealSkyhook
 from mrsuspension.control.inverse import InverseHiLo
+from mrsuspension.control.modal import ModalSkyhook
 from mrsuspension.control.passive import OnOffADFG, Passive
 from mrsuspension.control.registry import (
     CONTROLLERS,
@@ -49,20 +54,25 @@ from mrsuspension.control.registry import (
     law_options,
     make_controller,
 )
+from mrsuspension.control.sensing import BandPassObserver, LeakyIntegrator, StrokeSensor
 from mrsuspension.control.sliding import SlidingMode
 
 __all__ = [
     "CONTROLLERS",
     "POLICY_GAINS",
+    "BandPassObserver",
     "ControlOption",
     "Controller",
     "HiLo",
     "IdealOnOff",
     "IdealSkyhook",
     "InverseHiLo",
+    "LeakyIntegrator",
+    "ModalSkyhook",
     "OnOffADFG",
     "Passive",
     "SlidingMode",
+    "StrokeSensor",
     "controller_class",
     "law_options",
     "make_controller",

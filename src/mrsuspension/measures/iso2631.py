@@ -1,7 +1,8 @@
-"""ISO 2631-1 frequency weighting Wk (vertical whole-body vibration), weighted RMS and VDV.
+"""ISO 2631-1 frequency weightings Wk, Wd and We, weighted RMS and VDV.
 
-Beyond the dissertation (spec section 9). The Wk weighting is the product of four
-analog filters (ISO 2631-1:1997, Annex A), with ``s = j 2 pi f`` and ``w_i = 2 pi f_i``:
+Beyond the dissertation (spec section 9). The Wk weighting (vertical, seat surface) is
+the product of four analog filters (ISO 2631-1:1997, Annex A), with ``s = j 2 pi f`` and
+``w_i = 2 pi f_i``:
 
 * band limiting, high-pass ``s^2 / (s^2 + s w1/Q1 + w1^2)``, f1 = 0.4 Hz, Q1 = 1/sqrt(2);
 * band limiting, low-pass ``w2^2 / (s^2 + s w2/Q2 + w2^2)``, f2 = 100 Hz, Q2 = 1/sqrt(2);
@@ -9,6 +10,11 @@ analog filters (ISO 2631-1:1997, Annex A), with ``s = j 2 pi f`` and ``w_i = 2 p
   f3 = f4 = 12.5 Hz, Q4 = 0.63;
 * upward step ``(1 + s/(Q5 w5) + s^2/w5^2) / (1 + s/(Q6 w6) + s^2/w6^2) (w5/w6)^2``,
   f5 = 2.37 Hz, Q5 = 0.91, f6 = 3.35 Hz, Q6 = 0.91.
+
+Wd (horizontal x/y, seat surface; Table 1) and We (rotational rx/ry/rz; Table 2) have the
+same band limits and no upward step (f5 = f6 = infinity in Table A.2): Wd has
+f3 = f4 = 2 Hz, Q4 = 0.63; We has f3 = f4 = 1 Hz, Q4 = 0.63. Every function below takes
+``weighting="Wk"`` (default), ``"Wd"`` or ``"We"`` (:data:`WEIGHTINGS`).
 
 In the time domain each section is mapped by the bilinear transform with its corner
 frequencies pre-warped, so every corner sits at its analog frequency for any sampling
@@ -34,10 +40,17 @@ from mrsuspension.errors import ValidationError, check_finite, check_range
 from mrsuspension.measures._checks import FloatArray, rate, signal
 
 __all__ = [
+    "WD_CONSTANTS",
+    "WEIGHTINGS",
+    "WE_CONSTANTS",
     "WK_CONSTANTS",
     "WK_FILTER_RATE",
+    "check_weighting",
+    "frequency_weighting",
     "vdv",
     "weighted_rms",
+    "weighting_filter",
+    "weighting_sos",
     "wk_filter",
     "wk_response",
     "wk_sos",
@@ -59,6 +72,52 @@ WK_CONSTANTS: dict[str, float] = {
     "Q6": 0.91,
 }
 
+#: Wd filter constants (horizontal x/y, seat surface), ISO 2631-1 Table A.2: no upward
+#: step (f5 = f6 = infinity). |Wd| = 1.011 @1 Hz, 0.890 @2 Hz, 0.512 @4 Hz (Table 3).
+WD_CONSTANTS: dict[str, float] = {
+    "f1": 0.4,
+    "f2": 100.0,
+    "Q1": 1.0 / math.sqrt(2.0),
+    "Q2": 1.0 / math.sqrt(2.0),
+    "f3": 2.0,
+    "f4": 2.0,
+    "Q4": 0.63,
+}
+
+#: We filter constants (rotational rx/ry/rz, seat surface), ISO 2631-1 Table A.2: no
+#: upward step (f5 = f6 = infinity).
+WE_CONSTANTS: dict[str, float] = {
+    "f1": 0.4,
+    "f2": 100.0,
+    "Q1": 1.0 / math.sqrt(2.0),
+    "Q2": 1.0 / math.sqrt(2.0),
+    "f3": 1.0,
+    "f4": 1.0,
+    "Q4": 0.63,
+}
+
+#: weighting name -> its Table A.2 constants (a table without ``f5`` has no upward step)
+WEIGHTINGS: dict[str, dict[str, float]] = {
+    "Wk": WK_CONSTANTS,
+    "Wd": WD_CONSTANTS,
+    "We": WE_CONSTANTS,
+}
+
+
+def check_weighting(weighting: object) -> str:
+    """``weighting`` if it names one of :data:`WEIGHTINGS`, else a :class:`ValidationError`.
+
+    Examples
+    --------
+    >>> check_weighting("Wd")
+    'Wd'
+    """
+    if not isinstance(weighting, str) or weighting not in WEIGHTINGS:
+        raise ValidationError(
+            f"weighting must be one of {', '.join(WEIGHTINGS)}; got {weighting!r}"
+        )
+    return weighting
+
 
 #: Lowest rate [Hz] the weighted measures filter at: slower records are upsampled to it
 #: (by an integer factor). At 2 kHz the digital Wk is within 0.03 dB of the analog one
@@ -74,15 +133,36 @@ def wk_weighting(freq: npt.ArrayLike) -> FloatArray:
     >>> np.round(wk_weighting([1.0, 4.0, 6.3, 20.0]), 3)
     array([0.482, 0.967, 1.054, 0.636])
     """
+    return frequency_weighting(freq, "Wk")
+
+
+def frequency_weighting(freq: npt.ArrayLike, weighting: str = "Wk") -> FloatArray:
+    """Magnitude ``|W(f)|`` of an ISO 2631-1 weighting (Annex A) at ``freq`` [Hz].
+
+    Parameters
+    ----------
+    freq : array_like
+        Frequencies [Hz], >= 0.
+    weighting : {"Wk", "Wd", "We"}
+        Wk vertical, Wd horizontal (x, y), We rotational (:data:`WEIGHTINGS`).
+
+    Examples
+    --------
+    >>> np.round(frequency_weighting([1.0, 2.0, 4.0, 8.0], "Wd"), 3)  # Table 3
+    array([1.011, 0.89 , 0.512, 0.253])
+    """
+    c = WEIGHTINGS[check_weighting(weighting)]
     f = check_finite("freq", freq)
     if np.any(f < 0):
         raise ValidationError("freq must be >= 0 Hz")
-    c = WK_CONSTANTS
     s = 2j * np.pi * f
-    w1, w2, w3, w4, w5, w6 = (2 * np.pi * c[k] for k in ("f1", "f2", "f3", "f4", "f5", "f6"))
+    w1, w2, w3, w4 = (2 * np.pi * c[k] for k in ("f1", "f2", "f3", "f4"))
     high = s**2 / (s**2 + s * w1 / c["Q1"] + w1**2)
     low = w2**2 / (s**2 + s * w2 / c["Q2"] + w2**2)
     transition = (1 + s / w3) / (1 + s / (c["Q4"] * w4) + (s / w4) ** 2)
+    if "f5" not in c:
+        return np.asarray(np.abs(high * low * transition), dtype=float)
+    w5, w6 = (2 * np.pi * c[k] for k in ("f5", "f6"))
     step = (1 + s / (c["Q5"] * w5) + (s / w5) ** 2) / (1 + s / (c["Q6"] * w6) + (s / w6) ** 2)
     return np.asarray(np.abs(high * low * transition * step * (w5 / w6) ** 2), dtype=float)
 
@@ -102,13 +182,26 @@ def wk_sos(fs: float) -> FloatArray:
     >>> wk_sos(1000.0).shape
     (4, 6)
     """
+    return weighting_sos(fs, "Wk")
+
+
+def weighting_sos(fs: float, weighting: str = "Wk") -> FloatArray:
+    """Second-order sections of a digital ISO 2631-1 weighting at ``fs`` [Hz] (> 200 Hz).
+
+    As :func:`wk_sos` for ``weighting`` in :data:`WEIGHTINGS` (Wd and We: 3 sections).
+
+    Examples
+    --------
+    >>> weighting_sos(1000.0, "Wd").shape
+    (3, 6)
+    """
+    c = WEIGHTINGS[check_weighting(weighting)]
     rate_hz = rate("fs", fs)
     if rate_hz <= _min_fs():
         raise ValidationError(
             f"fs must be > {_min_fs():g} Hz (twice the Wk band limit f2 = "
             f"{WK_CONSTANTS['f2']:g} Hz) for the Wk filter; got {rate_hz:g} Hz: resample first"
         )
-    c = WK_CONSTANTS
 
     def warp(f_hz: float) -> float:  # pre-warped analog corner [rad/s]
         return 2.0 * rate_hz * math.tan(math.pi * f_hz / rate_hz)
@@ -116,10 +209,14 @@ def wk_sos(fs: float) -> FloatArray:
     def poles(w: float, q: float) -> list[complex]:  # roots of s^2 + s w/q + w^2
         return [complex(r) for r in np.roots([1.0, w / q, w * w])]
 
-    w1, w2, w3, w4, w5, w6 = (warp(c[k]) for k in ("f1", "f2", "f3", "f4", "f5", "f6"))
+    w1, w2, w3, w4 = (warp(c[k]) for k in ("f1", "f2", "f3", "f4"))
     zeros: list[complex] = [0j, 0j]  # high-pass
-    pole_list = poles(w1, c["Q1"]) + poles(w2, c["Q2"]) + poles(w4, c["Q4"]) + poles(w6, c["Q6"])
-    zeros += [complex(-w3), *poles(w5, c["Q5"])]
+    pole_list = poles(w1, c["Q1"]) + poles(w2, c["Q2"]) + poles(w4, c["Q4"])
+    zeros += [complex(-w3)]
+    if "f5" in c:  # the upward step (Wk)
+        w5, w6 = warp(c["f5"]), warp(c["f6"])
+        pole_list += poles(w6, c["Q6"])
+        zeros += poles(w5, c["Q5"])
     # gains of the monic forms: high-pass 1, low-pass w2^2, transition w4^2/w3, and the
     # step (1 + s/(Q5 w5) + s^2/w5^2)/(1 + s/(Q6 w6) + s^2/w6^2) (w5/w6)^2 is monic/monic
     gain = w2**2 * w4**2 / w3
@@ -140,16 +237,19 @@ def _upsampling(fs: float) -> int:
     return max(1, math.ceil(WK_FILTER_RATE / rate_hz - 1e-9))
 
 
-def _weighted(acc: npt.ArrayLike, fs: float) -> tuple[FloatArray, float, int]:
-    """``(a_w, rate, factor)``: the Wk-weighted signal at ``rate = factor fs`` >= 2 kHz."""
+def _weighted(
+    acc: npt.ArrayLike, fs: float, weighting: str = "Wk"
+) -> tuple[FloatArray, float, int]:
+    """``(a_w, rate, factor)``: the weighted signal at ``rate = factor fs`` >= 2 kHz."""
     from scipy.signal import resample_poly, sosfilt  # scipy loads on first use
 
+    check_weighting(weighting)
     a = signal("acc", acc)
     factor = _upsampling(fs)
     if factor > 1:
         a = np.asarray(resample_poly(a, factor, 1), dtype=float)
     high = float(fs) * factor
-    return np.asarray(sosfilt(wk_sos(high), a), dtype=float), high, factor
+    return np.asarray(sosfilt(weighting_sos(high, weighting), a), dtype=float), high, factor
 
 
 def wk_filter(acc: npt.ArrayLike, fs: float) -> FloatArray:
@@ -171,6 +271,24 @@ def wk_filter(acc: npt.ArrayLike, fs: float) -> FloatArray:
     0.97
     """
     aw, _, factor = _weighted(acc, fs)
+    return np.ascontiguousarray(aw[::factor])
+
+
+def weighting_filter(acc: npt.ArrayLike, fs: float, weighting: str = "Wk") -> FloatArray:
+    """``acc`` [m/s^2 or rad/s^2] at ``fs`` [Hz] through an ISO 2631-1 weighting.
+
+    As :func:`wk_filter` (same upsampling to :data:`WK_FILTER_RATE`) for ``weighting``
+    in :data:`WEIGHTINGS`; the output has the input's unit.
+
+    Examples
+    --------
+    >>> fs = 1000.0
+    >>> t = np.arange(0.0, 30.0, 1 / fs)
+    >>> aw = weighting_filter(np.sin(2 * np.pi * 2.0 * t), fs, "Wd")
+    >>> round(float(np.max(np.abs(aw[-2000:]))), 2)  # |Wd(2 Hz)| = 0.890
+    0.89
+    """
+    aw, _, factor = _weighted(acc, fs, weighting)
     return np.ascontiguousarray(aw[::factor])
 
 
@@ -205,11 +323,12 @@ def wk_response(freq: npt.ArrayLike, fs: float) -> FloatArray:
     return np.asarray(np.interp(f, np.fft.rfftfreq(n, 1.0 / rate_hz), spectrum), dtype=float)
 
 
-def weighted_rms(acc: npt.ArrayLike, fs: float) -> float:
-    """Wk-weighted RMS acceleration ``a_w`` [m/s^2] over the whole record (ISO 2631-1 6.4.2).
+def weighted_rms(acc: npt.ArrayLike, fs: float, *, weighting: str = "Wk") -> float:
+    """Weighted RMS acceleration ``a_w`` [m/s^2] over the whole record (ISO 2631-1 6.4.2).
 
     Filtered at :data:`WK_FILTER_RATE` or more (see :func:`wk_filter`), so a 512 Hz
-    record gives the same ``a_w`` as a 1 kHz one.
+    record gives the same ``a_w`` as a 1 kHz one. ``weighting`` is ``"Wk"`` (default),
+    ``"Wd"`` or ``"We"`` (a rotational acceleration [rad/s^2] gives ``a_w`` in rad/s^2).
 
     Examples
     --------
@@ -218,7 +337,7 @@ def weighted_rms(acc: npt.ArrayLike, fs: float) -> float:
     >>> round(weighted_rms(np.sin(2 * np.pi * 6.3 * t), fs) * math.sqrt(2), 2)  # |Wk(6.3)|
     1.05
     """
-    aw, _, _ = _weighted(acc, fs)
+    aw, _, _ = _weighted(acc, fs, weighting)
     return float(np.sqrt(np.mean(aw * aw)))
 
 

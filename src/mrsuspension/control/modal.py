@@ -1,0 +1,367 @@
+"""Modal skyhook for the half and full car: heave, pitch and roll damping to the sky.
+
+Conventions (MODEL_SPEC section 1, ISO 8855): ``x`` forward, ``y`` left, ``z`` up from
+the body's centre of gravity; heave ``z`` and its velocity ``v_z`` [m/s] up; pitch
+``theta`` [rad] and its rate ``q`` [rad/s] positive nose **down** (right-handed about
+``+y``); roll ``phi`` [rad] and its rate ``p`` [rad/s] positive with the **left** side up
+(right-handed about ``+x``). A body point at ``(x_i, y_i)`` then moves, for small angles,
+
+    z_i = z - x_i theta + y_i phi,      v_i = v_z - x_i q + y_i p      (corner_velocity)
+
+and upward corner forces ``F_i`` on the body give the heave force and the moments
+
+    F_z = sum F_i,    M_theta = -sum x_i F_i,    M_phi = sum y_i F_i,
+
+i.e. ``w = J F`` with the rows of ``J`` being ``1``, ``-x_i`` and ``y_i``.
+
+**Distribution.** Modal skyhook asks for ``F_z = -c_z v_z``, ``M_theta = -c_theta q`` and
+``M_phi = -c_phi p``. The corner forces that produce exactly that wrench with the least
+``sum F_i^2`` are ``F = J^T (J J^T)^-1 w`` (the minimum-norm solution; for the full car it
+puts no force into the warp mode, which no body mode sees; for the half car ``J`` is
+2 x 2 and the solution is unique). For a car with each axle symmetric about the centre
+line (``y`` = +-track/2), ``sum y_i = sum x_i y_i = 0`` and roll decouples; if moreover
+the CG is midway (``sum x_i = 0``), ``J J^T`` is diagonal and
+
+    F_i = -c_z v_z / n + c_theta q x_i / sum x^2 - c_phi p y_i / sum y^2.
+
+With ``c_z = n c_s``, ``c_theta = c_s sum x^2``, ``c_phi = c_s sum y^2`` this is per-corner
+skyhook ``F_i = -c_s v_i`` (:meth:`ModalSkyhook.corner_equivalent`).
+
+**Semi-active clipping.** A damper can only push the body up (``F_d > 0``) in
+compression (``v_d > 0``) and down in rebound (spec section 1), so the corner is switched
+to the high current when ``F_i v_d > 0``: the switching condition is ``z_c = -F_i v_d``,
+high current when ``z_c < 0`` as in the hi-lo policies (:mod:`mrsuspension.control.hilo`:
+skyhook ``F* = -c_s z_s'`` gives ``z_c = c_s z_s' v_d``, the sign of policy I's
+``z_s' v_d``) and the sliding-mode law's ``z_c = -F_h F_c``.
+
+Kernels are ``@njit(inline="always")`` scalars over small arrays for the vehicle engine;
+:class:`ModalSkyhook` holds the gains and currents with validation.
+
+Examples
+--------
+>>> sky = ModalSkyhook(heave=4000.0, pitch=3000.0, roll=1000.0)
+>>> dist = distribution_matrix([1.2, 1.2, -1.6, -1.6], [0.75, -0.75, 0.75, -0.75])
+>>> f = sky.forces(dist, heave_velocity=0.1, pitch_rate=0.0, roll_rate=0.0)
+>>> np.round(f, 3).tolist()  # the front, nearer the CG, takes more: no pitch moment
+[-114.286, -114.286, -85.714, -85.714]
+>>> round(float(f.sum()), 9), round(float(-(f * [1.2, 1.2, -1.6, -1.6]).sum()), 9)
+(-400.0, 0.0)
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import numpy.typing as npt
+from numba import njit
+
+from mrsuspension.errors import ValidationError, check_finite, check_range
+
+__all__ = [
+    "CORNERS_FULL",
+    "CORNERS_HALF",
+    "MP_SIZE",
+    "ModalSkyhook",
+    "clipped_force",
+    "corner_velocity",
+    "distribution_matrix",
+    "hilo_current",
+    "modal_forces",
+    "modal_hilo",
+    "switching_condition",
+]
+
+FloatArray = npt.NDArray[np.float64]
+
+#: full-car corner names, in the order of the distribution matrix's rows
+CORNERS_FULL = ("front_left", "front_right", "rear_left", "rear_right")
+#: half-car corner names
+CORNERS_HALF = ("front", "rear")
+
+# modal-skyhook parameter vector (ModalSkyhook.params)
+MP_CZ, MP_CTHETA, MP_CPHI, MP_ILOW, MP_IHIGH = range(5)
+#: length of :meth:`ModalSkyhook.params`
+MP_SIZE = 5
+
+
+# --- kernels ---------------------------------------------------------------------------
+
+
+@njit(cache=True, inline="always")
+def corner_velocity(vz: float, q: float, p: float, x: float, y: float) -> float:
+    """Vertical velocity [m/s] of the body point ``(x, y)`` [m]: ``v_z - x q + y p``.
+
+    ``vz`` heave velocity [m/s] (up), ``q`` pitch rate [rad/s] (nose down), ``p`` roll
+    rate [rad/s] (left side up); small angles.
+
+    Examples
+    --------
+    >>> corner_velocity(0.0, 0.1, 0.0, 1.2, 0.75)  # pitching nose down: the front sinks
+    -0.12
+    """
+    return vz - x * q + y * p
+
+
+@njit(cache=True, inline="always")
+def modal_forces(
+    out: np.ndarray, dist: np.ndarray, mp: np.ndarray, vz: float, q: float, p: float
+) -> None:
+    """Write the corner forces [N] (up on the body) of modal skyhook into ``out``.
+
+    ``out[i] = dist[i, 0] F_z + dist[i, 1] M_theta + dist[i, 2] M_phi`` with
+    ``(F_z, M_theta, M_phi) = (-c_z v_z, -c_theta q, -c_phi p)``; ``dist`` from
+    :func:`distribution_matrix`, ``mp`` from :meth:`ModalSkyhook.params`.
+
+    Examples
+    --------
+    >>> dist = distribution_matrix([1.3, -1.5])
+    >>> out = np.zeros(2)
+    >>> modal_forces(out, dist, ModalSkyhook(2000.0, 0.0, 0.0).params(), 0.1, 0.0, 0.0)
+    >>> np.round(out, 6).tolist()  # F_z = -200 N split so that 1.3 F_f = 1.5 F_r
+    [-107.142857, -92.857143]
+    """
+    fz = -mp[MP_CZ] * vz
+    mt = -mp[MP_CTHETA] * q
+    mr = -mp[MP_CPHI] * p
+    for i in range(out.size):
+        out[i] = dist[i, 0] * fz + dist[i, 1] * mt + dist[i, 2] * mr
+
+
+@njit(cache=True, inline="always")
+def switching_condition(force: float, vd: float) -> float:
+    """``z_c = -F v_d``: negative when the damper can produce the desired force ``F`` [N].
+
+    ``vd`` is the damper velocity [m/s] (compression positive); high current when
+    ``z_c < 0`` (spec section 6).
+
+    Examples
+    --------
+    >>> switching_condition(100.0, 0.2), switching_condition(100.0, -0.2)
+    (-20.0, 20.0)
+    """
+    return -force * vd
+
+
+@njit(cache=True, inline="always")
+def hilo_current(zc: float, low: float, high: float) -> float:
+    """``high`` [A] when ``zc < 0`` (the force is achievable), else ``low`` [A].
+
+    Examples
+    --------
+    >>> hilo_current(-1.0, 0.0, 0.5), hilo_current(0.0, 0.0, 0.5)
+    (0.5, 0.0)
+    """
+    return high if zc < 0.0 else low
+
+
+@njit(cache=True, inline="always")
+def clipped_force(force: float, vd: float) -> float:
+    """The desired force [N] through an ideal dissipative damper: ``F`` if ``F v_d > 0``, else 0.
+
+    Examples
+    --------
+    >>> clipped_force(100.0, 0.2), clipped_force(100.0, -0.2)
+    (100.0, 0.0)
+    """
+    return force if force * vd > 0.0 else 0.0
+
+
+@njit(cache=True, inline="always")
+def modal_hilo(
+    current: np.ndarray, zc: np.ndarray, forces: np.ndarray, vd: np.ndarray, mp: np.ndarray
+) -> None:
+    """Per corner: ``zc[i] = -forces[i] vd[i]`` and the hi-lo ``current[i]`` [A].
+
+    Examples
+    --------
+    >>> i, z = np.zeros(2), np.zeros(2)
+    >>> mp = ModalSkyhook(1.0, 1.0, 1.0, low_current=0.05).params()
+    >>> modal_hilo(i, z, np.array([100.0, 100.0]), np.array([0.1, -0.1]), mp)
+    >>> i.tolist(), z.tolist()
+    ([0.5, 0.05], [-10.0, 10.0])
+    """
+    for k in range(forces.size):
+        z = switching_condition(forces[k], vd[k])
+        zc[k] = z
+        current[k] = hilo_current(z, mp[MP_ILOW], mp[MP_IHIGH])
+
+
+# --- Python-facing ---------------------------------------------------------------------
+
+
+def distribution_matrix(x: npt.ArrayLike, y: npt.ArrayLike | None = None) -> FloatArray:
+    """The ``(n, 3)`` matrix taking ``(F_z, M_theta, M_phi)`` to corner forces ``F_i`` [N].
+
+    ``D = J^T (J J^T)^-1`` with rows of ``J``: ``1``, ``-x_i``, ``y_i`` (module docstring);
+    without ``y`` (half car) the roll column is zero and ``J`` is 2 x n.
+
+    Parameters
+    ----------
+    x : array_like
+        Corner positions forward of the CG [m] (front positive), in the corner order
+        (:data:`CORNERS_FULL` or :data:`CORNERS_HALF`).
+    y : array_like, optional
+        Corner positions left of the CG [m].
+
+    Examples
+    --------
+    >>> distribution_matrix([1.3, -1.5]).round(6).tolist()  # half car: exact inverse
+    [[0.535714, -0.357143, 0.0], [0.464286, 0.357143, 0.0]]
+    """
+    xs = check_finite("x", x).ravel()
+    rows = [np.ones_like(xs), -xs]
+    if y is not None:
+        ys = check_finite("y", y).ravel()
+        if ys.size != xs.size:
+            raise ValidationError(
+                f"x and y must give every corner; got {xs.size} x and {ys.size} y positions"
+            )
+        rows.append(ys)
+    if xs.size < len(rows):
+        raise ValidationError(f"modal skyhook needs at least {len(rows)} corners; got {xs.size}")
+    j = np.vstack(rows)
+    gram = j @ j.T
+    if np.linalg.cond(gram) > 1e12:
+        what = "x positions must differ" if y is None else "corners must not lie on one line"
+        raise ValidationError(
+            f"corner positions cannot produce every modal force ({what}); "
+            f"got x={xs.tolist()}" + ("" if y is None else f", y={ys.tolist()}")
+        )
+    dist = np.zeros((xs.size, 3))
+    dist[:, : len(rows)] = j.T @ np.linalg.inv(gram)
+    return dist
+
+
+@dataclass(frozen=True)
+class ModalSkyhook:
+    """Modal skyhook gains and hi-lo currents.
+
+    Parameters
+    ----------
+    heave : float
+        Heave skyhook damping ``c_z`` [N s/m] (>= 0).
+    pitch : float
+        Pitch skyhook damping ``c_theta`` [N m s/rad] (>= 0).
+    roll : float
+        Roll skyhook damping ``c_phi`` [N m s/rad] (>= 0; unused by the half car).
+    low_current : float
+        Current when the desired force is not achievable [A] (default 0).
+    high_current : float
+        Current when it is [A] (default 0.5 A, the simulations' ``i_max``, spec
+        section 3).
+
+    Examples
+    --------
+    >>> ModalSkyhook(27000.0, 40000.0, 15000.0).params().tolist()
+    [27000.0, 40000.0, 15000.0, 0.0, 0.5]
+    >>> ModalSkyhook(-1.0, 0.0, 0.0)
+    Traceback (most recent call last):
+    ...
+    mrsuspension.errors.ValidationError: heave must be in [0, inf) N s/m; got -1 N s/m
+    """
+
+    heave: float
+    pitch: float
+    roll: float = 0.0
+    low_current: float = 0.0
+    high_current: float = 0.5
+
+    def __post_init__(self) -> None:
+        check_range("heave", self.heave, 0.0, None, unit="N s/m")
+        check_range("pitch", self.pitch, 0.0, None, unit="N m s/rad")
+        check_range("roll", self.roll, 0.0, None, unit="N m s/rad")
+        check_range("low_current", self.low_current, 0.0, None, unit="A")
+        check_range("high_current", self.high_current, float(self.low_current), None, unit="A")
+
+    @classmethod
+    def corner_equivalent(
+        cls,
+        x: npt.ArrayLike,
+        y: npt.ArrayLike | None = None,
+        skyhook_damping: float = 6750.0,
+        **currents: float,
+    ) -> ModalSkyhook:
+        """Gains equal to per-corner skyhook ``c_s`` [N s/m] on a symmetric car.
+
+        ``c_z = n c_s``, ``c_theta = c_s sum x^2``, ``c_phi = c_s sum y^2``; the default
+        ``c_s`` is the spec's skyhook reference, 6750 N s/m (section 5).
+
+        Examples
+        --------
+        >>> ModalSkyhook.corner_equivalent([1.0, -1.0], skyhook_damping=1000.0).pitch
+        2000.0
+        """
+        c_s = float(check_range("skyhook_damping", skyhook_damping, 0.0, None, unit="N s/m"))
+        xs = check_finite("x", x).ravel()
+        ys = np.zeros(0) if y is None else check_finite("y", y).ravel()
+        return cls(
+            heave=c_s * xs.size,
+            pitch=c_s * float(np.sum(xs * xs)),
+            roll=c_s * float(np.sum(ys * ys)),
+            **currents,
+        )
+
+    def params(self) -> FloatArray:
+        """The kernel parameter vector (``MP_*`` layout, :data:`MP_SIZE` values).
+
+        Examples
+        --------
+        >>> ModalSkyhook(1.0, 2.0, 3.0).params().size
+        5
+        """
+        out = np.zeros(MP_SIZE)
+        out[MP_CZ], out[MP_CTHETA], out[MP_CPHI] = self.heave, self.pitch, self.roll
+        out[MP_ILOW], out[MP_IHIGH] = self.low_current, self.high_current
+        return out
+
+    def forces(
+        self,
+        dist: npt.ArrayLike,
+        *,
+        heave_velocity: float,
+        pitch_rate: float,
+        roll_rate: float = 0.0,
+    ) -> FloatArray:
+        """Desired corner forces [N] (up on the body) for body rates (see module docstring).
+
+        ``dist`` from :func:`distribution_matrix`; ``heave_velocity`` [m/s],
+        ``pitch_rate`` and ``roll_rate`` [rad/s].
+
+        Examples
+        --------
+        >>> d = distribution_matrix([1.0, -1.0])
+        >>> ModalSkyhook(0.0, 1000.0).forces(d, heave_velocity=0.0, pitch_rate=0.1).tolist()
+        [50.0, -50.0]
+        """
+        d = check_finite("dist", dist)
+        if d.ndim != 2 or d.shape[1] != 3:
+            raise ValidationError(
+                f"dist must be an (n, 3) distribution matrix; got shape {d.shape}"
+            )
+        rates = check_finite("body rates", [heave_velocity, pitch_rate, roll_rate])
+        out = np.zeros(d.shape[0])
+        modal_forces(out, np.ascontiguousarray(d), self.params(), *(float(r) for r in rates))
+        return out
+
+    def currents(
+        self, forces: npt.ArrayLike, damper_velocity: npt.ArrayLike
+    ) -> tuple[FloatArray, FloatArray]:
+        """``(currents [A], z_c)`` per corner for desired ``forces`` [N] and ``v_d`` [m/s].
+
+        Examples
+        --------
+        >>> i, zc = ModalSkyhook(1.0, 1.0).currents([-50.0, 50.0], [-0.1, -0.1])
+        >>> i.tolist()
+        [0.5, 0.0]
+        """
+        f = check_finite("forces", forces).ravel()
+        vd = check_finite("damper_velocity", damper_velocity).ravel()
+        if f.size != vd.size:
+            raise ValidationError(
+                f"forces and damper_velocity must have one value per corner; "
+                f"got {f.size} and {vd.size}"
+            )
+        current, zc = np.zeros(f.size), np.zeros(f.size)
+        modal_hilo(current, zc, f, vd, self.params())
+        return current, zc
