@@ -34,7 +34,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from typing import Any, Protocol
+from typing import TYPE_CHECKING, Any, Protocol
 
 import numpy as np
 from numba import njit
@@ -46,15 +46,19 @@ from mrsuspension.control.kernel import EST_SHARED, F_MODEL, P_C0, P_CS, P_MS0
 from mrsuspension.dampers import kernels as DK
 from mrsuspension.dampers.kernels import NO_REFCOUNT
 from mrsuspension.engine import kernel as EK
+from mrsuspension.engine import reduced as RD
 from mrsuspension.engine.arrays import KernelArrays, RunPlan
 from mrsuspension.engine.result import SimulationDiverged, SimulationResult
 from mrsuspension.errors import ValidationError
 from mrsuspension.vehicle import kernel as VK
 from mrsuspension.vehicle.kernel import V_CSKY, V_CT, V_DXU, V_G, V_KS, V_KT, V_MS, V_MU
 
+if TYPE_CHECKING:
+    from mrsuspension.measures import RoadPeak
+
 # the cached kernels below inline the damper, shaping, controller, vehicle and step kernels
 invalidate_if_changed(
-    __file__, DK.__file__, EK.__file__, _shaping.__file__, CK.__file__, VK.__file__
+    __file__, DK.__file__, EK.__file__, RD.__file__, _shaping.__file__, CK.__file__, VK.__file__
 )
 
 __all__ = [
@@ -77,6 +81,8 @@ class LaneRun(Protocol):
 
     @property
     def excitation(self) -> Any: ...
+
+    def describe(self) -> dict[str, Any]: ...
 
     def check_dt(self, dt: float) -> float: ...
 
@@ -222,6 +228,22 @@ def lane_stages(
 
 
 @njit(cache=True, inline="always")
+def _output(
+    reduced: bool, rec: np.ndarray, rec_row: int, row: int, j: int, acc: np.ndarray,
+    starts: np.ndarray, shifts: np.ndarray, thresholds: np.ndarray, trace: np.ndarray,
+    y: np.ndarray, zr: float, zrd: float, mem: np.ndarray,
+) -> None:  # fmt: skip
+    """Output sample ``row`` of run ``j``: a record row, or (``reduced``) its accumulators
+    (:func:`~mrsuspension.engine.reduced.accumulate`) and, with a ``trace``, ``z_s''``."""
+    if reduced:
+        RD.accumulate(acc[j], row, starts[j], shifts[j], thresholds[j], y, zr, mem)
+        if trace.size > 0:
+            trace[rec_row] = mem[EK.M_AS]
+    else:
+        EK.record(rec, rec_row, y, zr, zrd, mem)
+
+
+@njit(cache=True, inline="always")
 def _start_lane(
     q: int, j: int, y: np.ndarray, mem: np.ndarray, ds: np.ndarray, des: np.ndarray,
     ces: np.ndarray, ds0: np.ndarray, des0: np.ndarray, ces0: np.ndarray, road_off: np.ndarray,
@@ -229,7 +251,8 @@ def _start_lane(
     dk: int, dp: np.ndarray, dek: int, dep: np.ndarray, ck: int, cp: np.ndarray, cek: int,
     cep: np.ndarray, scratch: np.ndarray,
 ) -> None:  # fmt: skip
-    """Fresh state for run ``j`` in lane ``q``, its initial rates and record row 0."""
+    """Fresh state for run ``j`` in lane ``q`` and its initial rates (then :func:`_output`
+    writes its output row 0; apart because numba inlines calls of at most 30 arguments)."""
     o = road_off[j]
     y[0], y[1], y[2], y[3], y[4], y[5] = zr[o], 0.0, zr[o], 0.0, zr[o], 0.0
     mem[:] = 0.0
@@ -244,7 +267,6 @@ def _start_lane(
         y, zr[o], zrd[o], vp, F_MODEL, dk, dp, ds, dek, dep, des, ck, cp, cek, cep, ces, mem,
         scratch,
     )  # fmt: skip
-    EK.record(rec, rec_off[j], y, zr[o], zrd[o], mem)
 
 
 @njit(cache=True, error_model="numpy", **NO_REFCOUNT)
@@ -255,7 +277,9 @@ def run_lanes_kernel(
     des0: np.ndarray, ck: int, cp: np.ndarray, cek: int, cep: np.ndarray, ces0: np.ndarray,
     limits: np.ndarray, consts: np.ndarray, ys: np.ndarray, mems: np.ndarray,
     dss: np.ndarray, dess: np.ndarray, cess: np.ndarray, lin: np.ndarray, lout: np.ndarray,
-    lane_run: np.ndarray, lane_k: np.ndarray, scratch: np.ndarray,
+    lane_run: np.ndarray, lane_k: np.ndarray, scratch: np.ndarray, reduced: bool,
+    acc: np.ndarray, starts: np.ndarray, shifts: np.ndarray, thresholds: np.ndarray,
+    trace: np.ndarray,
 ) -> None:  # fmt: skip
     """Every run of one configuration, :data:`LANES` at a time (see the module docstring).
 
@@ -265,6 +289,12 @@ def run_lanes_kernel(
     value)`` as :func:`~mrsuspension.engine.kernel.run` returns them. The rest is work
     space: per-lane state rows (``ys``, ``mems``, ``dss``, ``dess``, ``cess``, initialised
     from ``ds0``, ``des0``, ``ces0``), the lane arrays and the lane bookkeeping.
+
+    With ``reduced``, nothing is recorded (``rec`` may be empty): each output sample of
+    run ``j`` goes to its accumulators ``acc[j]`` (steady window from row
+    ``starts[j]``, tire force less ``shifts[j]``, clamp at ``thresholds[j]``; see
+    :mod:`~mrsuspension.engine.reduced`) and, when ``trace`` is not empty, its ``z_s''``
+    to ``trace`` at the record's offsets.
     """
     runs = n_steps.shape[0]
     n = LANES
@@ -278,6 +308,11 @@ def run_lanes_kernel(
             _start_lane(
                 q, nxt, ys[q], mems[q], dss[q], dess[q], cess[q], ds0, des0, ces0, road_off,
                 zr, zrd, rec_off, rec, vp, dk, dp, dek, dep, ck, cp, cek, cep, scratch,
+            )  # fmt: skip
+            o = road_off[nxt]
+            _output(
+                reduced, rec, rec_off[nxt], 0, nxt, acc, starts, shifts, thresholds, trace,
+                ys[q], zr[o], zrd[o], mems[q],
             )  # fmt: skip
             lane_run[q] = nxt
             lane_k[q] = 0
@@ -337,7 +372,11 @@ def run_lanes_kernel(
             done = code != EK.D_OK or k == n_steps[j]
             if code == EK.D_OK and k % decimate == 0:
                 o = road_off[j] + 2 * k
-                EK.record(rec, rec_off[j] + k // decimate, y, zr[o], zrd[o], mem)
+                r = k // decimate
+                _output(
+                    reduced, rec, rec_off[j] + r, r, j, acc, starts, shifts, thresholds, trace,
+                    y, zr[o], zrd[o], mem,
+                )  # fmt: skip
             if not done:
                 continue
             status[j, 0] = code
@@ -350,6 +389,11 @@ def run_lanes_kernel(
                 _start_lane(
                     q, nxt, y, mem, dss[q], dess[q], cess[q], ds0, des0, ces0, road_off, zr,
                     zrd, rec_off, rec, vp, dk, dp, dek, dep, ck, cp, cek, cep, scratch,
+                )  # fmt: skip
+                o = road_off[nxt]
+                _output(
+                    reduced, rec, rec_off[nxt], 0, nxt, acc, starts, shifts, thresholds, trace,
+                    y, zr[o], zrd[o], mem,
                 )  # fmt: skip
                 lane_run[q] = nxt
                 lane_k[q] = 0
@@ -400,18 +444,23 @@ def run_lanes(
     dt: float = 1e-4,
     output_rate: float = 1000.0,
     check_stability: bool = True,
-) -> list[SimulationResult | SimulationDiverged]:
+    measures: bool = False,
+    road_peak: RoadPeak = "after-onset",
+) -> list[Any]:
     """Run simulations that share a :func:`lane_key` together in the lane kernel.
 
     Same arguments and results as :meth:`Simulation.run` for each simulation, in order;
     a run that diverges gives its :class:`SimulationDiverged` in its place (not raised,
-    so that the others are kept).
+    so that the others are kept). With ``measures=True`` each run gives its measures
+    instead (:meth:`SimulationResult.measures` with ``road_peak``), reduced inside the
+    kernel without writing a time history (:mod:`~mrsuspension.engine.reduced`).
 
     Raises
     ------
     ValidationError
         When the simulations do not share one lane key, or as :meth:`Simulation.run`
-        for bad ``duration``, ``dt`` or ``output_rate``.
+        for bad ``duration``, ``dt`` or ``output_rate`` (and, with ``measures``, as
+        :meth:`SimulationResult.measures`).
 
     Examples
     --------
@@ -422,6 +471,9 @@ def run_lanes(
     >>> results = run_lanes(sims, duration=1.0)
     >>> single = sims[1].run(1.0)
     >>> bool(abs(results[1].z_s - single.z_s).max() < 1e-12)
+    True
+    >>> m = run_lanes(sims, duration=20.0, measures=True)
+    >>> bool(abs(m[1]["T_as"] / sims[1].run(20.0).measures()["T_as"] - 1.0) < 1e-9)
     True
     """
     sims = list(simulations)
@@ -436,6 +488,9 @@ def run_lanes(
             "run_lanes needs simulations that differ only in their excitation, with the "
             "dissertation's damper model (see lane_key); use run_many for any mix"
         )
+    reductions = (
+        [RD.reduction_of(s, p) for s, p in zip(sims, plans, strict=True)] if measures else []
+    )
     roads = [s.road_samples(n, dt) for s, (_, n, _) in zip(sims, plans, strict=True)]
     steps = np.array([n for _, n, _ in plans], dtype=np.int64)
     road_len = 2 * steps + 1
@@ -444,8 +499,20 @@ def run_lanes(
     rec_off = np.concatenate([[0], np.cumsum(rows)[:-1]]).astype(np.int64)
     zr = np.concatenate([r[0] for r in roads])
     zrd = np.concatenate([r[1] for r in roads])
-    rec = np.zeros((int(rows.sum()), EK.N_REC))
+    del roads
     status = np.zeros((len(sims), 4))
+    if measures:
+        rec = np.zeros((0, EK.N_REC))
+        acc = RD.new_accumulators(len(sims))
+        starts = np.array([r.window_start for r in reductions], dtype=np.int64)
+        shifts = np.array([r.shift for r in reductions])
+        thresholds = np.array([r.threshold for r in reductions])
+        trace = np.zeros(int(rows.sum()) if any(r.trace for r in reductions) else 0)
+    else:
+        rec = np.zeros((int(rows.sum()), EK.N_REC))
+        acc = np.zeros((0, RD.N_ACC))
+        starts = np.zeros(0, dtype=np.int64)
+        shifts = thresholds = trace = np.zeros(0)
     a = sims[0].kernel_arrays(dt, check_stability=False)
     ds0, des0 = a.damper_state, a.damper_estimator_state
     ces0 = a.controller_estimator_state
@@ -459,17 +526,23 @@ def run_lanes(
         np.zeros((w, EK.MEM_SIZE)), np.zeros((w, ds0.size)), np.zeros((w, des0.size)),
         np.zeros((w, ces0.size)), np.zeros(N_IN * w), np.zeros(N_OUT * w),
         np.full(w, -1, dtype=np.int64), np.zeros(w, dtype=np.int64), np.zeros(EK.SCRATCH_SIZE),
+        measures, acc, starts, shifts, thresholds, trace,
     )  # fmt: skip
     run_lanes_kernel(*args)
-    out: list[SimulationResult | SimulationDiverged] = []
+    del zr, zrd, args
+    out: list[Any] = []
     for j, sim in enumerate(sims):
         code, k, idx, value = status[j]
         if int(code) != EK.D_OK:
             out.append(sim.divergence(int(code), int(k) * dt, int(idx), float(value), dt))
-            continue
-        block = rec[rec_off[j] : rec_off[j] + rows[j]]
-        time = np.arange(rows[j]) * (decimate * dt)
-        out.append(sim.result_from_record(time, block, dt))
+        elif measures:
+            red = reductions[j]
+            own = trace[rec_off[j] : rec_off[j] + rows[j]] if red.trace else trace[:0]
+            out.append(RD.finish(red, acc[j], own, sim.excitation.acceleration, road_peak))
+        else:
+            block = rec[rec_off[j] : rec_off[j] + rows[j]]
+            time = np.arange(rows[j]) * (decimate * dt)
+            out.append(sim.result_from_record(time, block, dt))
     return out
 
 

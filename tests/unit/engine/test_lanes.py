@@ -212,7 +212,7 @@ def test_run_many_with_lanes_matches_without(monkeypatch: pytest.MonkeyPatch) ->
         sims, workers=1, reduce=measures_of, lanes=True, progress=lambda d, t: seen.append((d, t))
     )
     assert batches == [len(sims) - 1]  # the linear damper's run went on its own
-    without = run_many(sims, workers=1, reduce=measures_of)  # the default: no lanes
+    without = run_many(sims, workers=1, reduce=measures_of, lanes=False)
     assert batches == [len(sims) - 1]
     assert seen[-1] == (len(sims), len(sims))
     for a, b in zip(with_lanes, without, strict=True):

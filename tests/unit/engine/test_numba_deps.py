@@ -23,6 +23,7 @@ MODULES = [
     "mrsuspension.control.kernel",
     "mrsuspension.engine.kernel",
     "mrsuspension.engine.lanes",
+    "mrsuspension.engine.reduced",
     "mrsuspension.hil._kernels",
     "mrsuspension.identify.timedomain",
 ]
