@@ -64,13 +64,16 @@ class RoadInput(Protocol):
     def duration(self) -> float: ...
 
 
-def road_grid(excitation: RoadInput, n: int, step: float) -> tuple[np.ndarray, np.ndarray]:
-    """The road (z_r, z_r') at ``k * step``, ``k < n``: the excitation's fast grid if it has one."""
+def road_grid(
+    excitation: RoadInput, n: int, step: float, start: float = 0.0
+) -> tuple[np.ndarray, np.ndarray]:
+    """The road (z_r, z_r') at ``start + k * step``, ``k < n``: the excitation's fast grid
+    if it has one."""
     grid = getattr(excitation, "sample_grid", None)
     if grid is not None:
-        zr, zrd = grid(n, step)
+        zr, zrd = grid(n, step, start=start) if start else grid(n, step)
     else:  # any object with displacement() and velocity() will do
-        t = np.arange(n) * step
+        t = start + np.arange(n) * step if start else np.arange(n) * step
         zr, zrd = excitation.displacement(t), excitation.velocity(t)
     return np.ascontiguousarray(zr, dtype=float), np.ascontiguousarray(zrd, dtype=float)
 
@@ -360,8 +363,9 @@ class Simulation:
         check_memory(duration, (n // decimate + 1) * EK.N_REC + 2 * (2 * n + 1))
         return RunPlan(dt, n, decimate)
 
-    def road_samples(self, n: int, dt: float) -> tuple[np.ndarray, np.ndarray]:
-        """The road ``(z_r, z_r')`` at every half step of an ``n``-step run (checked finite).
+    def road_samples(self, n: int, dt: float, *, start: int = 0) -> tuple[np.ndarray, np.ndarray]:
+        """The road ``(z_r, z_r')`` at every half step of ``n`` steps from step ``start``
+        (checked finite).
 
         Raises
         ------
@@ -375,7 +379,7 @@ class Simulation:
         >>> zr.shape
         (5,)
         """
-        zr, zrd = road_grid(self.excitation, 2 * n + 1, 0.5 * dt)
+        zr, zrd = road_grid(self.excitation, 2 * n + 1, 0.5 * dt, start * dt)
         if not (np.all(np.isfinite(zr)) and np.all(np.isfinite(zrd))):
             raise ValidationError("the excitation produced non-finite road values")
         return zr, zrd
