@@ -23,7 +23,12 @@ themselves. The numerical differences from :meth:`Simulation.run` are that exp, 
 within 1.5 ulp of libm's, and fused multiply-adds in the stages: results agree to
 round-off (measured over 3 s runs of every controller, relative to each signal's range:
 ``z_s`` within 2.2e-13, ``F_d`` within 1.8e-11, ``i_d`` within 3.3e-11; the benchmark
-sweep's measures within 5e-12), not bit for bit.
+sweep's measures within 5e-12), not bit for bit. The road comes to each lane in chunks
+of :data:`ROAD_CHUNK` steps, sampled from the chunk's start time: the same grid up to
+round-off in the sample times.
+
+With ``measures=True`` (:func:`run_lanes`) the runs write no time history: the lanes
+accumulate their measures (:mod:`~mrsuspension.engine.reduced`).
 
 Eligible: the dissertation's damper model (:class:`~mrsuspension.dampers.WangSymmetric`
 and the asymmetric variant) with any controller acting through it; runs that differ only
@@ -587,8 +592,9 @@ def run_lanes(
 
 #: fewest runs worth a lane group (the stages cost the same for idle lanes)
 MIN_GROUP = LANES // 2
-#: most steps in one lane batch: its roads (every half step) and records are held at
-#: once, about 40 bytes per step (400 MB here); larger groups are split
+#: most steps in one lane batch: a batch that records holds its records at once, about
+#: 13 bytes per step at the default output rate (130 MB here; the roads come in chunks
+#: of ROAD_CHUNK steps per lane); larger groups are split
 MAX_BATCH_STEPS = 10_000_000
 
 
@@ -601,7 +607,7 @@ def plan_batches(
     batches. A group is split (into batches of similar total length and at least
     :data:`MIN_GROUP` runs) only as far as needed to give each of ``parts`` workers a
     batch (the fewer the batches, the better the lanes are used) and to keep each batch
-    under :data:`MAX_BATCH_STEPS` steps (memory). Every other run is a batch of its own.
+    under :data:`MAX_BATCH_STEPS` steps (records' memory). Every other run is a batch of its own.
     Each index appears once.
 
     Examples

@@ -387,7 +387,8 @@ def harmonic_measures(
     force = win["F_d"]
     current = None
     if i_d is not None:
-        current = (float(np.mean(win["i_d"])), float(np.mean(win["i_d"] * win["i_d"])))
+        stats = current_statistics(win["i_d"])
+        current = (stats["mean_current"], stats["mean_square_current"])
     return harmonic_from_moments(
         squares,
         tire_force_variance=float(np.var(win["F_T"])),
