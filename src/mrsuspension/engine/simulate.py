@@ -844,6 +844,7 @@ def measure_many(
     groups: dict[RunSettings, list[int]] = {}
     for j, plan in enumerate(settings):
         groups.setdefault(plan, []).append(j)
+    # a ProcessPoolExecutor's size (how many parts plan_batches should split groups into)
     parts = getattr(pool, "_max_workers", 1) if pool is not None else 1
     tasks: list[tuple[bool, Any]] = []
     where: list[list[int]] = []
