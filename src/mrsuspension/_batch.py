@@ -14,11 +14,12 @@ from concurrent.futures import Executor
 from dataclasses import dataclass
 from typing import Any
 
-from mrsuspension._pool import pool_map, process_pool
+from mrsuspension._pool import process_pool
 from mrsuspension.engine.settings import RunSettings
 from mrsuspension.engine.simulate import (
     Simulation,
     SimulationDiverged,
+    measure_many,
     measures_of,
     run_quietly,
 )
@@ -57,5 +58,10 @@ def job_of(scenario: Scenario) -> Job:
 
 
 def run_jobs(jobs: Sequence[Job], pool: Executor | None) -> list[dict[str, Any] | None]:
-    """Measures of each job, in order (None for a diverged run); ``pool`` None: here."""
-    return pool_map(measure_job, jobs, pool=pool, workers=1)
+    """Measures of each job, in order (None for a diverged run); ``pool`` None: here.
+
+    Jobs that differ only in their excitation step together in lanes, and every run is
+    reduced to its measures inside the kernel (:func:`~mrsuspension.engine.simulate.measure_many`).
+    """
+    values = measure_many([j.simulation for j in jobs], [j.settings for j in jobs], pool=pool)
+    return [None if isinstance(v, SimulationDiverged) else v for v in values]

@@ -15,6 +15,12 @@ Baselines are written here in plain Python, independent of the package's kernels
   controller, previous-step ``a_d``) in plain Python; it must agree with the engine to
   round-off, which the benchmark checks.
 
+The sweep (60 frequencies x 4 controllers) runs as :func:`~mrsuspension.engine.run_many`
+runs it (runs of one model in lanes, measures reduced in the kernels), against the
+run-by-run baseline (each run recorded, then post-processed: ``lanes=False`` with
+:func:`post_processed`), in alternation; both must give the same measures
+(``sweep_measures_max_relative_difference``).
+
 Times are the best of three interleaved rounds (each: the engine four times, then plain
 Python, scipy RK45 and LSODA once): on a virtual machine the host takes the CPU now and
 then and the speed drifts, which only ever adds time, and interleaving keeps the drift
@@ -32,7 +38,7 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["run_benchmarks"]
+__all__ = ["max_relative_difference", "post_processed", "run_benchmarks"]
 
 F, A = 1.5, 0.025
 W = 2.0 * math.pi * F
@@ -211,6 +217,33 @@ def _fresh_compile(sim: Any) -> float:
     return time.perf_counter() - t0
 
 
+def post_processed(result: Any) -> dict[str, Any]:
+    """``result.measures()`` from the record: the run-by-run baseline's reducer.
+
+    A function of its own, so that :func:`~mrsuspension.engine.run_many` does not
+    recognise it as :func:`~mrsuspension.engine.measures_of` and reduce in the kernels.
+    """
+    out: dict[str, Any] = result.measures()
+    return out
+
+
+def max_relative_difference(rows: list[dict[str, Any]], reference: list[dict[str, Any]]) -> float:
+    """Largest ``|a - b| / |b|`` over the numeric measures of two lists of measures.
+
+    Examples
+    --------
+    >>> max_relative_difference([{"T_as": 1.0, "gamma": None}], [{"T_as": 2.0, "gamma": None}])
+    0.5
+    """
+    worst = 0.0
+    for a, b in zip(rows, reference, strict=True):
+        for key, ref in b.items():
+            value = a[key]
+            if isinstance(ref, int | float) and isinstance(value, int | float) and ref != value:
+                worst = max(worst, abs(value - ref) / abs(ref) if ref else math.inf)
+    return worst
+
+
 def run_benchmarks(
     *,
     quick: bool = False,
@@ -289,13 +322,22 @@ def run_benchmarks(
         for c in controllers
         for f in fs
     ]
-    t0 = time.perf_counter()
-    rows = run_many(sims, reduce=measures_of, workers=workers)
-    sweep_s = time.perf_counter() - t0
-    say("the same sweep in lane batches (run_many(lanes=True))")
-    t0 = time.perf_counter()
-    run_many(sims, reduce=measures_of, workers=workers, lanes=True)
-    sweep_lanes_s = time.perf_counter() - t0
+    # the sweep as run_many runs it (lanes, measures reduced in the kernels) against the
+    # run-by-run baseline (each run recorded, then post-processed), in interleaved rounds
+    swept: dict[str, list[float]] = {"sweep": [], "run_by_run": []}
+    rows: list[Any] = []
+    baseline: list[Any] = []
+    for r in range(_ROUNDS):
+        say(f"sweep round {r + 1}/{_ROUNDS}: {len(sims)} runs in lanes with in-kernel measures, "
+            "then run by run with post-processed measures")  # fmt: skip
+        t0 = time.perf_counter()
+        rows = run_many(sims, reduce=measures_of, workers=workers)
+        swept["sweep"].append(time.perf_counter() - t0)
+        t0 = time.perf_counter()
+        baseline = run_many(sims, reduce=post_processed, workers=workers, lanes=False)
+        swept["run_by_run"].append(time.perf_counter() - t0)
+    sweep_s, run_by_run_s = min(swept["sweep"]), min(swept["run_by_run"])
+    difference = max_relative_difference(rows, baseline)
     steps = sum(round(s.excitation.duration / 1e-4) for s in sims)
     cores = min(len(sims), workers or os.cpu_count() or 1)
     return {
@@ -315,10 +357,19 @@ def run_benchmarks(
         "sweep_runs": len(rows),
         "sweep_steps": steps,
         "sweep_s": sweep_s,
-        # the same sweep with runs of one controller stepped together (engine.lanes)
-        "sweep_lanes_s": sweep_lanes_s,
-        "lanes_speedup": sweep_s / sweep_lanes_s,
+        "sweep_s_median": float(np.median(swept["sweep"])),
+        # core time per run and step: comparable with single_run_ns_per_step
+        "sweep_ns_per_run_step": sweep_s * cores / steps * 1e9,
         "sweep_workers": cores,
+        # the same sweep run by run (lanes=False) with post-processed measures: the baseline
+        "sweep_run_by_run_s": run_by_run_s,
+        "sweep_run_by_run_s_median": float(np.median(swept["run_by_run"])),
+        "sweep_speedup": run_by_run_s / sweep_s,
+        # in-kernel against post-processed measures, over every run and measure
+        "sweep_measures_max_relative_difference": difference,
+        # earlier names of the two figures (lanes were opt-in, run by run the default)
+        "sweep_lanes_s": sweep_s,
+        "lanes_speedup": run_by_run_s / sweep_s,
         "sweep_ns_per_step_per_core": sweep_s * cores / steps * 1e9,
         # the sweep's time if each core ran its share at the single run's cost per step
         "sweep_at_single_run_speed_s": steps * single / n_single / cores,

@@ -21,8 +21,11 @@ def test_bench_quick_json() -> None:
         "compile_s",
         "sweep_lanes_s",
         "lanes_speedup",
+        "sweep_ns_per_run_step",
+        "sweep_run_by_run_s",
     ):
         assert key in data
+    assert data["sweep_measures_max_relative_difference"] <= 1e-9
     # the plain-Python RK4 is the engine's algorithm written independently: same numbers
     assert data["python_rk4_max_difference_m"] < 1e-12
     assert data["scipy_relative_rms_difference"] < 0.05

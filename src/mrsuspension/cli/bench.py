@@ -54,12 +54,13 @@ def bench(
     )
     typer.echo(
         f"sweep: {res['sweep_runs']} runs, {res['sweep_steps'] / 1e6:.1f} M steps in {res['sweep_s']:.2f} s "
-        f"on {res['sweep_workers']} processes ({res['sweep_ns_per_step_per_core']:.0f} ns per step "
+        f"on {res['sweep_workers']} processes ({res['sweep_ns_per_run_step']:.0f} ns per run and step "
         f"per core; {res['sweep_at_single_run_speed_s']:.2f} s at the single run's speed)"
     )
     typer.echo(
-        f"  in lane batches (run_many(lanes=True)): {res['sweep_lanes_s']:.2f} s, "
-        f"{res['lanes_speedup']:.2f}x"
+        f"  vs run by run with post-processed measures: {res['sweep_speedup']:.2f}x "
+        f"({res['sweep_run_by_run_s']:.2f} s; measures within "
+        f"{res['sweep_measures_max_relative_difference']:.1e} relative)"
     )
     compiled = "skipped" if res["compile_s"] is None else f"{res['compile_s']:.1f} s"
     typer.echo(f"compile (fresh, no cache): {compiled}; first call: {res['first_call_s']:.2f} s")

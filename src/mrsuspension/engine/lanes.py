@@ -23,7 +23,12 @@ themselves. The numerical differences from :meth:`Simulation.run` are that exp, 
 within 1.5 ulp of libm's, and fused multiply-adds in the stages: results agree to
 round-off (measured over 3 s runs of every controller, relative to each signal's range:
 ``z_s`` within 2.2e-13, ``F_d`` within 1.8e-11, ``i_d`` within 3.3e-11; the benchmark
-sweep's measures within 5e-12), not bit for bit.
+sweep's measures within 5e-12), not bit for bit. The road comes to each lane in chunks
+of :data:`ROAD_CHUNK` steps, sampled from the chunk's start time: the same grid up to
+round-off in the sample times.
+
+With ``measures=True`` (:func:`run_lanes`) the runs write no time history: the lanes
+accumulate their measures (:mod:`~mrsuspension.engine.reduced`).
 
 Eligible: the dissertation's damper model (:class:`~mrsuspension.dampers.WangSymmetric`
 and the asymmetric variant) with any controller acting through it; runs that differ only
@@ -34,7 +39,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from typing import Any, Protocol
+from typing import TYPE_CHECKING, Any, Protocol
 
 import numpy as np
 from numba import njit
@@ -46,21 +51,26 @@ from mrsuspension.control.kernel import EST_SHARED, F_MODEL, P_C0, P_CS, P_MS0
 from mrsuspension.dampers import kernels as DK
 from mrsuspension.dampers.kernels import NO_REFCOUNT
 from mrsuspension.engine import kernel as EK
+from mrsuspension.engine import reduced as RD
 from mrsuspension.engine.arrays import KernelArrays, RunPlan
 from mrsuspension.engine.result import SimulationDiverged, SimulationResult
 from mrsuspension.errors import ValidationError
 from mrsuspension.vehicle import kernel as VK
 from mrsuspension.vehicle.kernel import V_CSKY, V_CT, V_DXU, V_G, V_KS, V_KT, V_MS, V_MU
 
+if TYPE_CHECKING:
+    from mrsuspension.measures import RoadPeak
+
 # the cached kernels below inline the damper, shaping, controller, vehicle and step kernels
 invalidate_if_changed(
-    __file__, DK.__file__, EK.__file__, _shaping.__file__, CK.__file__, VK.__file__
+    __file__, DK.__file__, EK.__file__, RD.__file__, _shaping.__file__, CK.__file__, VK.__file__
 )
 
 __all__ = [
     "LANES",
     "MAX_BATCH_STEPS",
     "MIN_GROUP",
+    "ROAD_CHUNK",
     "LaneRun",
     "lane_key",
     "plan_batches",
@@ -78,13 +88,17 @@ class LaneRun(Protocol):
     @property
     def excitation(self) -> Any: ...
 
+    def describe(self) -> dict[str, Any]: ...
+
     def check_dt(self, dt: float) -> float: ...
 
     def plan(
         self, duration: float | None, dt: float, output_rate: float, check_stability: bool
     ) -> RunPlan: ...
 
-    def road_samples(self, n: int, dt: float) -> tuple[np.ndarray, np.ndarray]: ...
+    def road_samples(
+        self, n: int, dt: float, *, start: int = 0
+    ) -> tuple[np.ndarray, np.ndarray]: ...
 
     def kernel_arrays(self, dt: float, *, check_stability: bool = True) -> KernelArrays: ...
 
@@ -222,16 +236,32 @@ def lane_stages(
 
 
 @njit(cache=True, inline="always")
+def _output(
+    reduced: bool, rec: np.ndarray, rec_row: int, row: int, j: int, acc: np.ndarray,
+    starts: np.ndarray, shifts: np.ndarray, thresholds: np.ndarray, trace: np.ndarray,
+    y: np.ndarray, zr: float, zrd: float, mem: np.ndarray,
+) -> None:  # fmt: skip
+    """Output sample ``row`` of run ``j``: a record row, or (``reduced``) its accumulators
+    (:func:`~mrsuspension.engine.reduced.accumulate`) and, with a ``trace``, ``z_s''``."""
+    if reduced:
+        RD.accumulate(acc[j], row, starts[j], shifts[j], thresholds[j], y, zr, mem)
+        if trace.size > 0:
+            trace[rec_row] = mem[EK.M_AS]
+    else:
+        EK.record(rec, rec_row, y, zr, zrd, mem)
+
+
+@njit(cache=True, inline="always")
 def _start_lane(
-    q: int, j: int, y: np.ndarray, mem: np.ndarray, ds: np.ndarray, des: np.ndarray,
-    ces: np.ndarray, ds0: np.ndarray, des0: np.ndarray, ces0: np.ndarray, road_off: np.ndarray,
-    zr: np.ndarray, zrd: np.ndarray, rec_off: np.ndarray, rec: np.ndarray, vp: np.ndarray,
+    j: int, y: np.ndarray, mem: np.ndarray, ds: np.ndarray, des: np.ndarray, ces: np.ndarray,
+    ds0: np.ndarray, des0: np.ndarray, ces0: np.ndarray, zr: float, zrd: float, vp: np.ndarray,
     dk: int, dp: np.ndarray, dek: int, dep: np.ndarray, ck: int, cp: np.ndarray, cek: int,
     cep: np.ndarray, scratch: np.ndarray,
 ) -> None:  # fmt: skip
-    """Fresh state for run ``j`` in lane ``q``, its initial rates and record row 0."""
-    o = road_off[j]
-    y[0], y[1], y[2], y[3], y[4], y[5] = zr[o], 0.0, zr[o], 0.0, zr[o], 0.0
+    """Fresh state for run ``j`` on a road starting at ``(zr, zrd)`` and its initial rates
+    (then :func:`_output` writes its output row 0; apart because numba inlines calls of
+    at most 30 arguments)."""
+    y[0], y[1], y[2], y[3], y[4], y[5] = zr, 0.0, zr, 0.0, zr, 0.0
     mem[:] = 0.0
     # element loops: a slice copy would need numba's allocator (for overlapping arrays)
     for m in range(ds.size):
@@ -241,49 +271,86 @@ def _start_lane(
     for m in range(ces.size):
         ces[m] = ces0[m]
     EK.start(
-        y, zr[o], zrd[o], vp, F_MODEL, dk, dp, ds, dek, dep, des, ck, cp, cek, cep, ces, mem,
-        scratch,
-    )  # fmt: skip
-    EK.record(rec, rec_off[j], y, zr[o], zrd[o], mem)
+        y, zr, zrd, vp, F_MODEL, dk, dp, ds, dek, dep, des, ck, cp, cek, cep, ces, mem, scratch
+    )
 
 
 @njit(cache=True, error_model="numpy", **NO_REFCOUNT)
 def run_lanes_kernel(
-    n_steps: np.ndarray, road_off: np.ndarray, zr: np.ndarray, zrd: np.ndarray,
+    n_steps: np.ndarray, base: np.ndarray, zr: np.ndarray, zrd: np.ndarray,
     rec_off: np.ndarray, rec: np.ndarray, decimate: int, status: np.ndarray, dt: float,
     vp: np.ndarray, dk: int, dp: np.ndarray, ds0: np.ndarray, dek: int, dep: np.ndarray,
     des0: np.ndarray, ck: int, cp: np.ndarray, cek: int, cep: np.ndarray, ces0: np.ndarray,
     limits: np.ndarray, consts: np.ndarray, ys: np.ndarray, mems: np.ndarray,
     dss: np.ndarray, dess: np.ndarray, cess: np.ndarray, lin: np.ndarray, lout: np.ndarray,
-    lane_run: np.ndarray, lane_k: np.ndarray, scratch: np.ndarray,
+    lane_run: np.ndarray, lane_k: np.ndarray, scratch: np.ndarray, reduced: bool,
+    acc: np.ndarray, starts: np.ndarray, shifts: np.ndarray, thresholds: np.ndarray,
+    trace: np.ndarray, need: np.ndarray, ctl: np.ndarray,
 ) -> None:  # fmt: skip
     """Every run of one configuration, :data:`LANES` at a time (see the module docstring).
 
-    Run ``j`` has ``n_steps[j]`` steps, its road (every half step) at
-    ``zr/zrd[road_off[j]:]`` and its record rows (every ``decimate`` steps, row 0 the
-    initial state) at ``rec[rec_off[j]:]``. ``status[j]`` gets ``(status, step, index,
-    value)`` as :func:`~mrsuspension.engine.kernel.run` returns them. The rest is work
-    space: per-lane state rows (``ys``, ``mems``, ``dss``, ``dess``, ``cess``, initialised
-    from ``ds0``, ``des0``, ``ces0``), the lane arrays and the lane bookkeeping.
+    Resumable: it returns whenever a lane needs road samples, and is called again (same
+    arguments) until ``ctl[1]`` (runs in progress) is 0. Each lane ``q`` holds a chunk of
+    its run's road (``zr[q]``, ``zrd[q]``: every half step of :data:`ROAD_CHUNK` steps
+    from step ``base[q]``); ``need[q] = j`` asks the caller for run ``j``'s chunk from
+    step ``base[q]`` (then set it back to -1). ``ctl`` holds the next run to start, the
+    runs in progress and whether the lanes were set up.
+
+    Run ``j`` has ``n_steps[j]`` steps and its record rows (every ``decimate`` steps, row
+    0 the initial state) at ``rec[rec_off[j]:]``. ``status[j]`` gets ``(status, step,
+    index, value)`` as :func:`~mrsuspension.engine.kernel.run` returns them. The rest is
+    work space: per-lane state rows (``ys``, ``mems``, ``dss``, ``dess``, ``cess``,
+    initialised from ``ds0``, ``des0``, ``ces0``), the lane arrays and the lane
+    bookkeeping (``lane_k[q]`` -1: a run waiting for its first chunk).
+
+    With ``reduced``, nothing is recorded (``rec`` may be empty): each output sample of
+    run ``j`` goes to its accumulators ``acc[j]`` (steady window from row
+    ``starts[j]``, tire force less ``shifts[j]``, clamp at ``thresholds[j]``; see
+    :mod:`~mrsuspension.engine.reduced`) and, when ``trace`` is not empty, its ``z_s''``
+    to ``trace`` at the record's offsets.
     """
     runs = n_steps.shape[0]
     n = LANES
+    chunk = (zr.shape[1] - 1) // 2
     reference = CK.needs_reference(ck)
     k1c, k1e = dp[DK.W_K1C], dp[DK.W_K1E]
-    nxt = 0
-    active = 0
-    for q in range(LANES):
-        lane_run[q] = -1
-        if nxt < runs:
+    if ctl[2] == 0:  # first call: a run for each lane, whose first chunk the caller fills
+        ctl[2] = 1
+        for q in range(LANES):
+            lane_run[q] = -1
+            need[q] = -1
+            if ctl[0] < runs:
+                lane_run[q] = ctl[0]
+                lane_k[q] = -1
+                base[q] = 0
+                need[q] = ctl[0]
+                ctl[0] += 1
+                ctl[1] += 1
+        return
+    nxt = ctl[0]
+    active = ctl[1]
+    for q in range(LANES):  # runs whose first chunk has come
+        j = lane_run[q]
+        if j >= 0 and lane_k[q] < 0:
             _start_lane(
-                q, nxt, ys[q], mems[q], dss[q], dess[q], cess[q], ds0, des0, ces0, road_off,
-                zr, zrd, rec_off, rec, vp, dk, dp, dek, dep, ck, cp, cek, cep, scratch,
+                j, ys[q], mems[q], dss[q], dess[q], cess[q], ds0, des0, ces0, zr[q, 0],
+                zrd[q, 0], vp, dk, dp, dek, dep, ck, cp, cek, cep, scratch,
             )  # fmt: skip
-            lane_run[q] = nxt
+            _output(
+                reduced, rec, rec_off[j], 0, j, acc, starts, shifts, thresholds, trace, ys[q],
+                zr[q, 0], zrd[q, 0], mems[q],
+            )  # fmt: skip
             lane_k[q] = 0
-            nxt += 1
-            active += 1
     while active > 0:
+        wait = False
+        for q in range(LANES):
+            j = lane_run[q]
+            if j >= 0 and lane_k[q] - base[q] == chunk:
+                base[q] += chunk
+                need[q] = j
+                wait = True
+        if wait:
+            break
         for q in range(LANES):
             j = lane_run[q]
             if j < 0:
@@ -311,10 +378,10 @@ def run_lanes_kernel(
             lin[I_FB * n + q] = ds[DK.WS_FB]
             lin[I_KDCI * n + q] = dp[DK.W_KD] * ds[DK.WS_CI]
             lin[I_DEC * n + q] = ds[DK.WS_DECAY]
-            o = road_off[j] + 2 * lane_k[q]
-            lin[I_R0 * n + q], lin[I_D0 * n + q] = zr[o], zrd[o]
-            lin[I_R1 * n + q], lin[I_D1 * n + q] = zr[o + 1], zrd[o + 1]
-            lin[I_R2 * n + q], lin[I_D2 * n + q] = zr[o + 2], zrd[o + 2]
+            o = 2 * (lane_k[q] - base[q])
+            lin[I_R0 * n + q], lin[I_D0 * n + q] = zr[q, o], zrd[q, o]
+            lin[I_R1 * n + q], lin[I_D1 * n + q] = zr[q, o + 1], zrd[q, o + 1]
+            lin[I_R2 * n + q], lin[I_D2 * n + q] = zr[q, o + 2], zrd[q, o + 2]
         lane_stages(lin, lout, dt, k1c, k1e, consts, reference)
         for q in range(LANES):
             j = lane_run[q]
@@ -336,8 +403,12 @@ def run_lanes_kernel(
             code, idx, value = EK.check_limits(y, mem, limits)
             done = code != EK.D_OK or k == n_steps[j]
             if code == EK.D_OK and k % decimate == 0:
-                o = road_off[j] + 2 * k
-                EK.record(rec, rec_off[j] + k // decimate, y, zr[o], zrd[o], mem)
+                o = 2 * (k - base[q])
+                r = k // decimate
+                _output(
+                    reduced, rec, rec_off[j] + r, r, j, acc, starts, shifts, thresholds, trace,
+                    y, zr[q, o], zrd[q, o], mem,
+                )  # fmt: skip
             if not done:
                 continue
             status[j, 0] = code
@@ -346,15 +417,23 @@ def run_lanes_kernel(
             status[j, 3] = value
             lane_run[q] = -1
             active -= 1
-            if nxt < runs:
-                _start_lane(
-                    q, nxt, y, mem, dss[q], dess[q], cess[q], ds0, des0, ces0, road_off, zr,
-                    zrd, rec_off, rec, vp, dk, dp, dek, dep, ck, cp, cek, cep, scratch,
-                )  # fmt: skip
+            if nxt < runs:  # the lane's next run, once the caller has filled its chunk
                 lane_run[q] = nxt
-                lane_k[q] = 0
+                lane_k[q] = -1
+                base[q] = 0
+                need[q] = nxt
+                wait = True
                 nxt += 1
                 active += 1
+        if wait:
+            break
+    ctl[0] = nxt
+    ctl[1] = active
+
+
+#: steps of road each lane holds at a time (every half step: 2 x 16 385 values, 256 kB):
+#: the roads of a batch are never held at once (fresh memory measured 0.14-0.86 ms per MB)
+ROAD_CHUNK = 16_384
 
 
 def _constants(vp: np.ndarray, cp: np.ndarray) -> np.ndarray:
@@ -400,18 +479,23 @@ def run_lanes(
     dt: float = 1e-4,
     output_rate: float = 1000.0,
     check_stability: bool = True,
-) -> list[SimulationResult | SimulationDiverged]:
+    measures: bool = False,
+    road_peak: RoadPeak = "after-onset",
+) -> list[Any]:
     """Run simulations that share a :func:`lane_key` together in the lane kernel.
 
     Same arguments and results as :meth:`Simulation.run` for each simulation, in order;
     a run that diverges gives its :class:`SimulationDiverged` in its place (not raised,
-    so that the others are kept).
+    so that the others are kept). With ``measures=True`` each run gives its measures
+    instead (:meth:`SimulationResult.measures` with ``road_peak``), reduced inside the
+    kernel without writing a time history (:mod:`~mrsuspension.engine.reduced`).
 
     Raises
     ------
     ValidationError
         When the simulations do not share one lane key, or as :meth:`Simulation.run`
-        for bad ``duration``, ``dt`` or ``output_rate``.
+        for bad ``duration``, ``dt`` or ``output_rate`` (and, with ``measures``, as
+        :meth:`SimulationResult.measures`).
 
     Examples
     --------
@@ -422,6 +506,9 @@ def run_lanes(
     >>> results = run_lanes(sims, duration=1.0)
     >>> single = sims[1].run(1.0)
     >>> bool(abs(results[1].z_s - single.z_s).max() < 1e-12)
+    True
+    >>> m = run_lanes(sims, duration=20.0, measures=True)
+    >>> bool(abs(m[1]["T_as"] / sims[1].run(20.0).measures()["T_as"] - 1.0) < 1e-9)
     True
     """
     sims = list(simulations)
@@ -436,22 +523,37 @@ def run_lanes(
             "run_lanes needs simulations that differ only in their excitation, with the "
             "dissertation's damper model (see lane_key); use run_many for any mix"
         )
-    roads = [s.road_samples(n, dt) for s, (_, n, _) in zip(sims, plans, strict=True)]
+    reductions = (
+        [RD.reduction_of(s, p) for s, p in zip(sims, plans, strict=True)] if measures else []
+    )
     steps = np.array([n for _, n, _ in plans], dtype=np.int64)
-    road_len = 2 * steps + 1
-    road_off = np.concatenate([[0], np.cumsum(road_len)[:-1]]).astype(np.int64)
     rows = steps // decimate + 1
     rec_off = np.concatenate([[0], np.cumsum(rows)[:-1]]).astype(np.int64)
-    zr = np.concatenate([r[0] for r in roads])
-    zrd = np.concatenate([r[1] for r in roads])
-    rec = np.zeros((int(rows.sum()), EK.N_REC))
     status = np.zeros((len(sims), 4))
+    if measures:
+        rec = np.zeros((0, EK.N_REC))
+        acc = RD.new_accumulators(len(sims))
+        starts = np.array([r.window_start for r in reductions], dtype=np.int64)
+        shifts = np.array([r.shift for r in reductions])
+        thresholds = np.array([r.threshold for r in reductions])
+        trace = np.zeros(int(rows.sum()) if any(r.trace for r in reductions) else 0)
+    else:
+        rec = np.zeros((int(rows.sum()), EK.N_REC))
+        acc = np.zeros((0, RD.N_ACC))
+        starts = np.zeros(0, dtype=np.int64)
+        shifts = thresholds = trace = np.zeros(0)
     a = sims[0].kernel_arrays(dt, check_stability=False)
     ds0, des0 = a.damper_state, a.damper_estimator_state
     ces0 = a.controller_estimator_state
     w = LANES
+    chunk = min(ROAD_CHUNK, int(steps.max()))
+    base = np.zeros(w, dtype=np.int64)
+    zr = np.zeros((w, 2 * chunk + 1))
+    zrd = np.zeros((w, 2 * chunk + 1))
+    need = np.full(w, -1, dtype=np.int64)
+    ctl = np.zeros(3, dtype=np.int64)
     args = (
-        steps, road_off, zr, zrd, rec_off, rec, decimate, status, dt, a.vehicle, a.damper_kind,
+        steps, base, zr, zrd, rec_off, rec, decimate, status, dt, a.vehicle, a.damper_kind,
         a.damper_params, ds0, a.damper_estimator_kind, a.damper_estimator_params, des0,
         a.controller_kind, a.controller_params, a.controller_estimator_kind,
         a.controller_estimator_params, ces0, EK.LIMITS,
@@ -459,24 +561,40 @@ def run_lanes(
         np.zeros((w, EK.MEM_SIZE)), np.zeros((w, ds0.size)), np.zeros((w, des0.size)),
         np.zeros((w, ces0.size)), np.zeros(N_IN * w), np.zeros(N_OUT * w),
         np.full(w, -1, dtype=np.int64), np.zeros(w, dtype=np.int64), np.zeros(EK.SCRATCH_SIZE),
+        measures, acc, starts, shifts, thresholds, trace, need, ctl,
     )  # fmt: skip
-    run_lanes_kernel(*args)
-    out: list[SimulationResult | SimulationDiverged] = []
+    while True:
+        run_lanes_kernel(*args)
+        waiting = np.flatnonzero(need >= 0)
+        if waiting.size == 0:
+            break
+        for q in waiting:  # the road chunks the lanes asked for
+            j, start = int(need[q]), int(base[q])
+            count = min(chunk, int(steps[j]) - start)
+            road = sims[j].road_samples(count, dt, start=start)
+            zr[q, : 2 * count + 1], zrd[q, : 2 * count + 1] = road
+            need[q] = -1
+    out: list[Any] = []
     for j, sim in enumerate(sims):
         code, k, idx, value = status[j]
         if int(code) != EK.D_OK:
             out.append(sim.divergence(int(code), int(k) * dt, int(idx), float(value), dt))
-            continue
-        block = rec[rec_off[j] : rec_off[j] + rows[j]]
-        time = np.arange(rows[j]) * (decimate * dt)
-        out.append(sim.result_from_record(time, block, dt))
+        elif measures:
+            red = reductions[j]
+            own = trace[rec_off[j] : rec_off[j] + rows[j]] if red.trace else trace[:0]
+            out.append(RD.finish(red, acc[j], own, sim.excitation.acceleration, road_peak))
+        else:
+            block = rec[rec_off[j] : rec_off[j] + rows[j]]
+            time = np.arange(rows[j]) * (decimate * dt)
+            out.append(sim.result_from_record(time, block, dt))
     return out
 
 
 #: fewest runs worth a lane group (the stages cost the same for idle lanes)
 MIN_GROUP = LANES // 2
-#: most steps in one lane batch: its roads (every half step) and records are held at
-#: once, about 40 bytes per step (400 MB here); larger groups are split
+#: most steps in one lane batch: a batch that records holds its records at once, about
+#: 13 bytes per step at the default output rate (130 MB here; the roads come in chunks
+#: of ROAD_CHUNK steps per lane); larger groups are split
 MAX_BATCH_STEPS = 10_000_000
 
 
@@ -489,7 +607,7 @@ def plan_batches(
     batches. A group is split (into batches of similar total length and at least
     :data:`MIN_GROUP` runs) only as far as needed to give each of ``parts`` workers a
     batch (the fewer the batches, the better the lanes are used) and to keep each batch
-    under :data:`MAX_BATCH_STEPS` steps (memory). Every other run is a batch of its own.
+    under :data:`MAX_BATCH_STEPS` steps (records' memory). Every other run is a batch of its own.
     Each index appears once.
 
     Examples

@@ -31,7 +31,10 @@ __all__ = [
     "SimulationResult",
     "VelocityClampWarning",
     "measure_label",
+    "measures_context",
+    "pulse_measures",
     "require_pyarrow",
+    "road_measures",
     "warn_if_clamped",
 ]
 
@@ -255,12 +258,9 @@ class SimulationResult(Mapping[str, np.ndarray]):
         ('after-onset', 4.85)
         """
         from mrsuspension.measures import check_road_peak
-        from mrsuspension.vehicle import QuarterCar
 
         how = check_road_peak(road_peak)
-        exc = self.scenario.get("excitation", {})
-        kind = _measures_kind(exc.get("kind"))
-        static_load = QuarterCar(**self.scenario.get("vehicle", {})).static_load
+        kind, exc, static_load = measures_context(self.scenario)
         out: dict[str, Any] = self._kind_measures(kind, exc, static_load, how)
         out["vm_clamp_fraction"] = self.velocity_clamp_fraction
         return out
@@ -287,31 +287,27 @@ class SimulationResult(Mapping[str, np.ndarray]):
                 i_d=self.i_d,
             )
         if kind == "pulse":
-            out: dict[str, Any] = dict(
-                M.shock_ratios(
-                    self.z_s,
-                    self.z_u,
-                    self.z_r,
-                    self.z_s_ddot,
-                    self.z_u_ddot,
-                    self.z_r_ddot,
-                    self.x_d,
-                    road_peak=how,
-                )
+            ratios = M.shock_ratios(
+                self.z_s,
+                self.z_u,
+                self.z_r,
+                self.z_s_ddot,
+                self.z_u_ddot,
+                self.z_r_ddot,
+                self.x_d,
+                road_peak=how,
             )
-            out["peak_tire_force"] = float(np.max(self.F_T))
-            out["road_peak"] = how
-            return out
+            return pulse_measures(ratios, float(np.max(self.F_T)), how)
         if kind == "road":
-            fs = 1.0 / float(self.time[1] - self.time[0])
-            return {
-                "DLC": M.dlc(self.F_T),
-                "rms_body_acceleration": M.rms(self.z_s_ddot),
-                "wk_rms_body_acceleration": M.weighted_rms(self.z_s_ddot, fs),
-                "vdv": M.vdv(self.z_s_ddot, fs),
-                "rms_stroke": M.rms(self.x_d - np.mean(self.x_d)),
-                "mean_current": float(np.mean(self.i_d)),
-            }
+            x_d = self.x_d
+            return road_measures(
+                tire_force_mean=float(np.mean(self.F_T)),
+                tire_force_variance=float(np.var(self.F_T)),
+                body_acceleration=self.z_s_ddot,
+                fs=1.0 / float(self.time[1] - self.time[0]),
+                stroke_variance=float(np.mean((x_d - np.mean(x_d)) ** 2)),
+                mean_current=float(np.mean(self.i_d)),
+            )
         raise ValidationError(f"no measures defined for excitation kind {kind!r}")
 
     # -- exports -----------------------------------------------------------------------
@@ -451,6 +447,83 @@ class SimulationResult(Mapping[str, np.ndarray]):
         np.atleast_1d(axes)[-1].set_xlabel("time [s]")
         fig.tight_layout()
         return fig
+
+
+def measures_context(scenario: Mapping[str, Any]) -> tuple[Any, Mapping[str, Any], float]:
+    """``(measures kind, excitation description, static load [N])`` of a scenario.
+
+    What :meth:`SimulationResult.measures` and the engine's in-kernel reduction
+    (:mod:`mrsuspension.engine.reduced`) both start from.
+
+    Examples
+    --------
+    >>> from mrsuspension.engine import Simulation
+    >>> from mrsuspension.excitation import Harmonic
+    >>> kind, exc, load = measures_context(Simulation(Harmonic(1.0, 0.01)).describe())
+    >>> kind, exc["frequency"], round(load, 2)
+    ('harmonic', 1.0, 6405.93)
+    """
+    from mrsuspension.vehicle import QuarterCar
+
+    exc = scenario.get("excitation", {})
+    static_load = QuarterCar(**scenario.get("vehicle", {})).static_load
+    return _measures_kind(exc.get("kind")), exc, static_load
+
+
+def pulse_measures(ratios: Mapping[str, float], peak_tire_force: float, how: str) -> dict[str, Any]:
+    """The pulse measures: the shock ratios, ``peak_tire_force`` [N] and ``road_peak``.
+
+    Examples
+    --------
+    >>> pulse_measures({"SDR_s": 0.5}, 9000.0, "onset")
+    {'SDR_s': 0.5, 'peak_tire_force': 9000.0, 'road_peak': 'onset'}
+    """
+    out: dict[str, Any] = dict(ratios)
+    out["peak_tire_force"] = peak_tire_force
+    out["road_peak"] = how
+    return out
+
+
+def road_measures(
+    *,
+    tire_force_mean: float,
+    tire_force_variance: float,
+    body_acceleration: npt.ArrayLike,
+    fs: float,
+    stroke_variance: float,
+    mean_current: float,
+) -> dict[str, Any]:
+    """The road measures from the record's moments and its body acceleration.
+
+    ``DLC`` is the tire force's std over its mean (:func:`~mrsuspension.measures.dlc`
+    without a static load), ``rms_stroke`` the std of ``x_d``; the ISO 2631 measures
+    filter the body acceleration ``z_s''`` sampled at ``fs`` [Hz].
+
+    Examples
+    --------
+    >>> acc = np.sin(np.linspace(0.0, 200.0, 20_000))
+    >>> m = road_measures(tire_force_mean=6400.0, tire_force_variance=6400.0**2 * 1e-4,
+    ...                   body_acceleration=acc, fs=1000.0, stroke_variance=1e-4,
+    ...                   mean_current=0.1)
+    >>> round(m["DLC"], 6), round(m["rms_stroke"], 6)
+    (0.01, 0.01)
+    """
+    from mrsuspension import measures as M
+
+    if tire_force_mean <= 0.0:
+        raise ValidationError(
+            f"mean tire force must be > 0 N to normalise the DLC; got {tire_force_mean:g} N "
+            "(give static_load)"
+        )
+    acc = np.asarray(body_acceleration, dtype=float)
+    return {
+        "DLC": float(np.sqrt(tire_force_variance)) / tire_force_mean,
+        "rms_body_acceleration": float(np.sqrt(np.mean(acc * acc))),
+        "wk_rms_body_acceleration": M.weighted_rms(acc, fs),
+        "vdv": M.vdv(acc, fs),
+        "rms_stroke": float(np.sqrt(stroke_variance)),
+        "mean_current": mean_current,
+    }
 
 
 def require_pyarrow() -> None:

@@ -6,8 +6,9 @@ from __future__ import annotations
 import math
 import warnings
 from collections.abc import Callable, Sequence
+from concurrent.futures import Executor
 from dataclasses import dataclass, field
-from typing import Any, Protocol
+from typing import TYPE_CHECKING, Any, Protocol
 
 import numpy as np
 import numpy.typing as npt
@@ -33,14 +34,19 @@ from mrsuspension.vehicle import QuarterCar
 __all__ = [
     "DEFAULT_DT",
     "KernelArrays",
+    "MeasuresOf",
     "RoadInput",
     "RunPlan",
     "Simulation",
     "SimulationDiverged",
     "Stepper",
+    "measure_many",
     "measures_of",
     "run_many",
 ]
+
+if TYPE_CHECKING:
+    from mrsuspension.measures import RoadPeak
 
 #: RK4's stability limit on the negative real axis is about 2.785; keep a margin.
 _RK4_LIMIT = 2.5
@@ -58,13 +64,16 @@ class RoadInput(Protocol):
     def duration(self) -> float: ...
 
 
-def road_grid(excitation: RoadInput, n: int, step: float) -> tuple[np.ndarray, np.ndarray]:
-    """The road (z_r, z_r') at ``k * step``, ``k < n``: the excitation's fast grid if it has one."""
+def road_grid(
+    excitation: RoadInput, n: int, step: float, start: float = 0.0
+) -> tuple[np.ndarray, np.ndarray]:
+    """The road (z_r, z_r') at ``start + k * step``, ``k < n``: the excitation's fast grid
+    if it has one."""
     grid = getattr(excitation, "sample_grid", None)
     if grid is not None:
-        zr, zrd = grid(n, step)
+        zr, zrd = grid(n, step, start=start) if start else grid(n, step)
     else:  # any object with displacement() and velocity() will do
-        t = np.arange(n) * step
+        t = start + np.arange(n) * step if start else np.arange(n) * step
         zr, zrd = excitation.displacement(t), excitation.velocity(t)
     return np.ascontiguousarray(zr, dtype=float), np.ascontiguousarray(zrd, dtype=float)
 
@@ -354,8 +363,9 @@ class Simulation:
         check_memory(duration, (n // decimate + 1) * EK.N_REC + 2 * (2 * n + 1))
         return RunPlan(dt, n, decimate)
 
-    def road_samples(self, n: int, dt: float) -> tuple[np.ndarray, np.ndarray]:
-        """The road ``(z_r, z_r')`` at every half step of an ``n``-step run (checked finite).
+    def road_samples(self, n: int, dt: float, *, start: int = 0) -> tuple[np.ndarray, np.ndarray]:
+        """The road ``(z_r, z_r')`` at every half step of ``n`` steps from step ``start``
+        (checked finite).
 
         Raises
         ------
@@ -369,7 +379,7 @@ class Simulation:
         >>> zr.shape
         (5,)
         """
-        zr, zrd = road_grid(self.excitation, 2 * n + 1, 0.5 * dt)
+        zr, zrd = road_grid(self.excitation, 2 * n + 1, 0.5 * dt, start * dt)
         if not (np.all(np.isfinite(zr)) and np.all(np.isfinite(zrd))):
             raise ValidationError("the excitation produced non-finite road values")
         return zr, zrd
@@ -598,14 +608,54 @@ class Stepper:
 
 
 def measures_of(result: SimulationResult) -> dict[str, Any]:
-    """``result.measures()``: a picklable reducer for :func:`run_many` (sweeps)."""
+    """``result.measures()``: a picklable reducer for :func:`run_many` (sweeps).
+
+    :func:`run_many` recognises it (and :class:`MeasuresOf`) and then reduces each run to
+    its measures inside the kernel, without writing its time history
+    (:mod:`~mrsuspension.engine.reduced`).
+    """
     return result.measures()
 
 
-def _run_one(
-    args: tuple[Simulation, RunSettings, Callable[[SimulationResult], Any] | None],
-) -> Any:
+@dataclass(frozen=True)
+class MeasuresOf:
+    """``result.measures(road_peak=...)`` as a :func:`run_many` reducer (picklable).
+
+    Like :func:`measures_of` with a choice of ``road_peak``; :func:`run_many` reduces
+    runs given it inside the kernel.
+
+    Examples
+    --------
+    >>> from mrsuspension.excitation import RoundedPulse
+    >>> sims = [Simulation(RoundedPulse(0.02, 1.0))]
+    >>> (m,) = run_many(sims, dt=5e-4, workers=1, reduce=MeasuresOf("onset"))
+    >>> m["road_peak"]
+    'onset'
+    """
+
+    road_peak: RoadPeak = "after-onset"
+
+    def __call__(self, result: SimulationResult) -> dict[str, Any]:
+        return result.measures(road_peak=self.road_peak)
+
+
+Reducer = Callable[[SimulationResult], Any]
+
+
+def _in_kernel(reduce: Reducer | None) -> MeasuresOf | None:
+    """The measures a reducer asks for, when the kernels can reduce to them (else None)."""
+    if reduce is measures_of:
+        return MeasuresOf()
+    return reduce if isinstance(reduce, MeasuresOf) else None
+
+
+def _run_one(args: tuple[Simulation, RunSettings, Reducer | None]) -> Any:
     sim, settings, reduce = args
+    wanted = _in_kernel(reduce)
+    if wanted is not None:
+        from mrsuspension.engine.reduced import run_measures
+
+        return run_measures(sim, settings, road_peak=wanted.road_peak)
     result = run_quietly(sim, settings)
     return result if reduce is None else reduce(result)
 
@@ -618,25 +668,48 @@ def run_quietly(sim: Simulation, settings: RunSettings) -> SimulationResult:
         return sim.run(settings=settings)
 
 
-def _run_batch(
-    args: tuple[list[Simulation], RunSettings, Callable[[SimulationResult], Any] | None],
-) -> list[Any]:
+def _run_batch(args: tuple[list[Simulation], RunSettings, Reducer | None]) -> list[Any]:
     """A lane batch (:func:`~mrsuspension.engine.lanes.run_lanes`), reduced; raises the
     first divergence, as a run on its own would."""
-    sims, settings, reduce = args
-    results = LN.run_lanes(
-        sims, duration=settings.duration, dt=settings.dt, output_rate=settings.output_rate
-    )
+    results = _lane_batch(args)
     for r in results:
         if isinstance(r, SimulationDiverged):
             raise r
-    return results if reduce is None else [reduce(r) for r in results]  # type: ignore[arg-type]
+    return results
+
+
+def _lane_batch(args: tuple[list[Simulation], RunSettings, Reducer | None]) -> list[Any]:
+    """A lane batch's values, a :class:`SimulationDiverged` in place of each diverged run."""
+    sims, settings, reduce = args
+    wanted = _in_kernel(reduce)
+    results = LN.run_lanes(
+        sims,
+        duration=settings.duration,
+        dt=settings.dt,
+        output_rate=settings.output_rate,
+        measures=wanted is not None,
+        road_peak=wanted.road_peak if wanted is not None else "after-onset",
+    )
+    if reduce is None or wanted is not None:
+        return results
+    return [r if isinstance(r, SimulationDiverged) else reduce(r) for r in results]
 
 
 def _run_task(args: tuple[bool, Any]) -> list[Any]:
     """One task of :func:`run_many`: a single run (as a one-item list) or a lane batch."""
     lanes, arg = args
     return _run_batch(arg) if lanes else [_run_one(arg)]
+
+
+def _run_task_keep(args: tuple[bool, Any]) -> list[Any]:
+    """:func:`_run_task` giving a :class:`SimulationDiverged` in place of a diverged run."""
+    lanes, arg = args
+    if lanes:
+        return _lane_batch(arg)
+    try:
+        return [_run_one(arg)]
+    except SimulationDiverged as err:
+        return [err]
 
 
 _LANES_WARM = False
@@ -664,8 +737,8 @@ def run_many(
     settings: RunSettings | None = None,
     workers: int | None = None,
     progress: Callable[[int, int], None] | None = None,
-    reduce: Callable[[SimulationResult], Any] | None = None,
-    lanes: bool = False,
+    reduce: Reducer | None = None,
+    lanes: bool = True,
 ) -> list[Any]:
     """Run many simulations, across processes (default: one per CPU core).
 
@@ -673,19 +746,20 @@ def run_many(
     finish. ``workers=1`` runs in this process. ``reduce`` (a module-level function, so
     it can be sent to the workers) maps each result before it is returned, e.g.
     :func:`measures_of` for sweeps, which keeps the traffic between processes small.
-    Runs do not warn about time at the peak-velocity clamp; each result (and its
-    measures) carries it as ``vm_clamp_fraction`` for the caller to report. Every run
+    Given :func:`measures_of` (or a :class:`MeasuresOf`), the kernels reduce each run to
+    its measures while stepping and write no time history
+    (:mod:`~mrsuspension.engine.reduced`; equal to the post-processed measures to
+    round-off). Runs do not warn about time at the peak-velocity clamp; each result (and
+    its measures) carries it as ``vm_clamp_fraction`` for the caller to report. Every run
     uses the same ``settings`` (a :class:`~mrsuspension.engine.settings.RunSettings`),
     or the ``duration``, ``dt`` and ``output_rate`` keywords (not both).
 
-    With ``lanes=True``, runs that differ only in their excitation (a sweep) and use the
-    dissertation's damper model are stepped together in vector instructions
+    Runs that differ only in their excitation (a sweep) and use the dissertation's damper
+    model are stepped together in vector instructions
     (:mod:`mrsuspension.engine.lanes`), at least
-    :data:`~mrsuspension.engine.lanes.MIN_GROUP` at a time. In one process that is
-    1.3-1.4x the throughput of single runs; across the 2-vCPU test VM's processes the
-    gain varied from none to 1.2x, so it is not the default. Lane results agree with
-    :meth:`Simulation.run` to round-off (the lanes compute exp differently), not bit for
-    bit. Progress is then reported per batch.
+    :data:`~mrsuspension.engine.lanes.MIN_GROUP` at a time; ``lanes=False`` runs each on
+    its own. Lane results agree with :meth:`Simulation.run` to round-off (the lanes
+    compute exp differently), not bit for bit. Progress is then reported per batch.
 
     Examples
     --------
@@ -703,11 +777,26 @@ def run_many(
     sims = list(simulations)
     if not sims:
         return []
+    n_workers = worker_count(workers, len(sims))
+    tasks, batches = _tasks(sims, plan, reduce, lanes, n_workers)
+    values = pool_map(
+        _run_task,
+        tasks,
+        workers=n_workers,
+        progress=progress,
+        weights=[len(b) for b in batches],
+    )
+    return _in_order(len(sims), batches, values)
+
+
+def _tasks(
+    sims: list[Simulation], plan: RunSettings, reduce: Reducer | None, lanes: bool, parts: int
+) -> tuple[list[tuple[bool, Any]], list[list[int]]]:
+    """The tasks of a batch of runs with equal settings, and the runs of each task."""
     for sim in sims:  # before any work: a record that would alias the excitation
         plan.check_for(sim.excitation)
-    n_workers = worker_count(workers, len(sims))
     if lanes:
-        batches = LN.plan_batches(sims, plan.dt, plan.duration, n_workers)
+        batches = LN.plan_batches(sims, plan.dt, plan.duration, parts)
     else:
         batches = [[j] for j in range(len(sims))]
     tasks = [
@@ -716,17 +805,52 @@ def run_many(
         else (True, ([sims[j] for j in b], plan, reduce))
         for b in batches
     ]
-    if n_workers > 1 and any(len(b) > 1 for b in batches):
+    if parts > 1 and any(len(b) > 1 for b in batches):
         _warm_lanes(sims[next(b for b in batches if len(b) > 1)[0]], plan.dt)
-    values = pool_map(
-        _run_task,
-        tasks,
-        workers=n_workers,
-        progress=progress,
-        weights=[len(b) for b in batches],
-    )
-    results: list[Any] = [None] * len(sims)
+    return tasks, batches
+
+
+def _in_order(n: int, batches: list[list[int]], values: list[list[Any]]) -> list[Any]:
+    results: list[Any] = [None] * n
     for batch, value in zip(batches, values, strict=True):
         for j, v in zip(batch, value, strict=True):
             results[j] = v
     return results
+
+
+def measure_many(
+    simulations: Sequence[Simulation],
+    settings: Sequence[RunSettings],
+    *,
+    pool: Executor | None = None,
+    road_peak: RoadPeak = "after-onset",
+) -> list[dict[str, Any] | SimulationDiverged]:
+    """The measures of each run (its own settings), reduced in the kernels, lanes first.
+
+    Runs with equal settings share lane batches (:func:`run_many`); a diverged run gives
+    its :class:`SimulationDiverged` in its place. ``pool``: an open process pool (e.g.
+    :func:`mrsuspension._pool.process_pool`) to run on; None: this process.
+
+    Examples
+    --------
+    >>> from mrsuspension.excitation import RoundedPulse
+    >>> sims = [Simulation(RoundedPulse(0.02, mu)) for mu in (1.0, 2.0)]
+    >>> plan = RunSettings(dt=5e-4)
+    >>> [round(m["SDR_s"], 3) for m in measure_many(sims, [plan, plan])]
+    [1.443, 1.123]
+    """
+    from mrsuspension._pool import pool_map
+
+    groups: dict[RunSettings, list[int]] = {}
+    for j, plan in enumerate(settings):
+        groups.setdefault(plan, []).append(j)
+    # a ProcessPoolExecutor's size (how many parts plan_batches should split groups into)
+    parts = getattr(pool, "_max_workers", 1) if pool is not None else 1
+    tasks: list[tuple[bool, Any]] = []
+    where: list[list[int]] = []
+    for plan, idx in groups.items():
+        t, batches = _tasks([simulations[j] for j in idx], plan, MeasuresOf(road_peak), True, parts)
+        tasks.extend(t)
+        where.extend([idx[k] for k in b] for b in batches)
+    values = pool_map(_run_task_keep, tasks, pool=pool, workers=1)
+    return _in_order(len(simulations), where, values)

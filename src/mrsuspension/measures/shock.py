@@ -24,6 +24,7 @@ The dissertation does not say which it used. The displacement peaks (``SDR_s``,
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from typing import Literal
 
 import numpy as np
@@ -43,6 +44,7 @@ __all__ = [
     "dtr",
     "peak",
     "road_acceleration_peak",
+    "shock_from_peaks",
     "shock_ratios",
 ]
 
@@ -214,10 +216,35 @@ def shock_ratios(
         for k, v in zip(names, (z_s, z_u, z_r, acc_s, acc_u, acc_r, x_d), strict=True)
     }
     same_length(**arrays)
-    pk = {k: float(np.max(np.abs(v))) for k, v in arrays.items()}
+    pk = {k: float(np.max(np.abs(v))) for k, v in arrays.items() if k != "acc_r"}
     if pk["z_r"] == 0.0:
         raise ValidationError("z_r is zero over the whole record: shock ratios undefined")
-    road_acc = road_acceleration_peak(arrays["acc_r"], how)
+    return shock_from_peaks(pk, road_acceleration_peak(arrays["acc_r"], how))
+
+
+def shock_from_peaks(peaks: Mapping[str, float], road_acc: float) -> dict[str, float]:
+    """The shock ratios from the record's peaks (one definition of each).
+
+    :func:`shock_ratios` takes the peaks from time histories; the engine's in-kernel
+    reduction (:mod:`mrsuspension.engine.reduced`) tracks them while stepping.
+
+    Parameters
+    ----------
+    peaks : mapping
+        ``max |x|`` over the record of ``z_s``, ``z_u``, ``z_r`` [m], ``acc_s``,
+        ``acc_u`` [m/s^2] and ``x_d`` [m].
+    road_acc : float
+        The road acceleration peak (:func:`road_acceleration_peak`) [m/s^2].
+
+    Examples
+    --------
+    >>> pk = {"z_s": 0.03, "z_u": 0.05, "z_r": 0.05, "acc_s": 3.0, "acc_u": 20.0, "x_d": 0.02}
+    >>> {k: round(v, 6) for k, v in shock_from_peaks(pk, 10.0).items()}
+    {'SDR_s': 0.6, 'SAR_s': 0.3, 'SDR_u': 1.0, 'SAR_u': 2.0, 'RDR': 0.4}
+    """
+    pk = peaks
+    if pk["z_r"] == 0.0:
+        raise ValidationError("z_r is zero over the whole record: shock ratios undefined")
     return {
         "SDR_s": pk["z_s"] / pk["z_r"],
         "SAR_s": pk["acc_s"] / road_acc,

@@ -8,6 +8,7 @@ whole record), a ``slice`` (e.g. from :func:`steady_window`), time limits
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from typing import Any
 
 import numpy as np
@@ -35,6 +36,7 @@ __all__ = [
     "current_statistics",
     "dlc",
     "force_tracking_error",
+    "harmonic_from_moments",
     "harmonic_measures",
     "rms",
     "steady_window",
@@ -377,18 +379,79 @@ def harmonic_measures(
     if i_d is not None:
         sig["i_d"] = signal("i_d", i_d)
     same_length(time=t, **sig)
-    out: dict[str, Any] = {
-        "T_as": T_as(sig["acc_s"], sig["acc_r"], window=w),
-        "T_au": T_au(sig["acc_u"], sig["acc_r"], window=w),
-        "T_dr": T_dr(sig["x_d"], sig["z_r"], window=w),
-        "T_ds": T_ds(sig["z_s"], sig["z_r"], window=w),
-        "T_du": T_du(sig["z_u"], sig["z_r"], window=w),
-        "DLC": dlc(sig["F_T"], static_load, window=w),
+    win = {k: v[w] for k, v in sig.items()}
+    squares = {
+        k: float(np.mean(win[k] ** 2))
+        for k in ("acc_s", "acc_u", "acc_r", "x_d", "z_s", "z_u", "z_r")
     }
-    try:
-        out["gamma"] = asymmetry_ratio(sig["F_d"], window=w)
-    except ValidationError:
-        out["gamma"] = None
+    force = win["F_d"]
+    current = None
     if i_d is not None:
-        out.update(current_statistics(sig["i_d"], window=w))
+        stats = current_statistics(win["i_d"])
+        current = (stats["mean_current"], stats["mean_square_current"])
+    return harmonic_from_moments(
+        squares,
+        tire_force_variance=float(np.var(win["F_T"])),
+        static_load=static_load,
+        compression_peak=float(np.max(force)),
+        rebound_peak=float(np.max(-force)),
+        current=current,
+    )
+
+
+def harmonic_from_moments(
+    mean_squares: Mapping[str, float],
+    *,
+    tire_force_variance: float,
+    static_load: float,
+    compression_peak: float,
+    rebound_peak: float,
+    current: tuple[float, float] | None = None,
+) -> dict[str, Any]:
+    """The harmonic measures from the steady window's moments (one definition of each).
+
+    :func:`harmonic_measures` computes the moments from time histories; the engine's
+    in-kernel reduction (:mod:`mrsuspension.engine.reduced`) accumulates them while
+    stepping. Both end here.
+
+    Parameters
+    ----------
+    mean_squares : mapping
+        Mean of the square over the window of ``acc_s``, ``acc_u``, ``acc_r``, ``x_d``,
+        ``z_s``, ``z_u`` and ``z_r`` (SI units squared).
+    tire_force_variance : float
+        Variance of ``F_T`` over the window [N^2].
+    static_load : float
+        ``(m_s + m_u) g`` [N].
+    compression_peak, rebound_peak : float
+        ``max F_d`` and ``max(-F_d)`` over the window [N].
+    current : (float, float), optional
+        Mean drive current [A] and mean square current [A^2] over the window.
+
+    Examples
+    --------
+    >>> ms = {"acc_s": 4.0, "acc_u": 1.0, "acc_r": 1.0, "x_d": 1.0, "z_s": 4.0,
+    ...       "z_u": 1.0, "z_r": 1.0}
+    >>> m = harmonic_from_moments(ms, tire_force_variance=100.0, static_load=1000.0,
+    ...                           compression_peak=50.0, rebound_peak=100.0)
+    >>> m["T_as"], m["DLC"], m["gamma"]
+    (2.0, 0.01, 2.0)
+    """
+    rms_of = {k: math.sqrt(v) for k, v in mean_squares.items()}
+    out: dict[str, Any] = {}
+    for name, num, den in (
+        ("T_as", "acc_s", "acc_r"),
+        ("T_au", "acc_u", "acc_r"),
+        ("T_dr", "x_d", "z_r"),
+        ("T_ds", "z_s", "z_r"),
+        ("T_du", "z_u", "z_r"),
+    ):
+        if rms_of[den] == 0.0:
+            raise ValidationError(f"{den} has zero rms over the window: ratio undefined")
+        out[name] = rms_of[num] / rms_of[den]
+    out["DLC"] = math.sqrt(tire_force_variance) / rate("static_load", static_load, "N")
+    # gamma (asymmetry_ratio): undefined when the damper never pushes in compression
+    out["gamma"] = max(rebound_peak, 0.0) / compression_peak if compression_peak > 0.0 else None
+    if current is not None:
+        out["mean_current"], out["mean_square_current"] = current
     return out

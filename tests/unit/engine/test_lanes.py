@@ -212,7 +212,7 @@ def test_run_many_with_lanes_matches_without(monkeypatch: pytest.MonkeyPatch) ->
         sims, workers=1, reduce=measures_of, lanes=True, progress=lambda d, t: seen.append((d, t))
     )
     assert batches == [len(sims) - 1]  # the linear damper's run went on its own
-    without = run_many(sims, workers=1, reduce=measures_of)  # the default: no lanes
+    without = run_many(sims, workers=1, reduce=measures_of, lanes=False)
     assert batches == [len(sims) - 1]
     assert seen[-1] == (len(sims), len(sims))
     for a, b in zip(with_lanes, without, strict=True):
@@ -240,3 +240,13 @@ def test_plan_batches_keeps_batches_under_the_step_limit(monkeypatch: pytest.Mon
     assert [len(b) for b in LN.plan_batches(sims, 1e-4, None, parts=1)] == [LN.MIN_GROUP] * 4
     monkeypatch.setattr(LN, "MAX_BATCH_STEPS", 1_200_000)  # 17 runs' worth: two batches
     assert [len(b) for b in LN.plan_batches(sims, 1e-4, 7.0, parts=1)] == [2 * LN.MIN_GROUP] * 2
+
+
+def test_lanes_take_their_roads_in_chunks(monkeypatch: pytest.MonkeyPatch) -> None:
+    # a few steps a chunk: many refills, some landing on output samples and run ends
+    monkeypatch.setattr(LN, "ROAD_CHUNK", 7)
+    acm = make_controller("skyhook-hilo", mode="ACM")
+    sims = [Simulation(Harmonic(f, 0.02), controller=acm) for f in (1.0, 2.5, 4.0)]
+    lanes = LN.run_lanes(sims, duration=0.05, output_rate=2000.0)
+    for sim, lane in zip(sims, lanes, strict=True):
+        agree(lane, sim.run(0.05, output_rate=2000.0))
