@@ -21,10 +21,12 @@ from mrsuspension import _numba_cache
 
 MODULES = [
     "mrsuspension.control.kernel",
+    "mrsuspension.dampers.kernels",
     "mrsuspension.engine.kernel",
     "mrsuspension.engine.lanes",
     "mrsuspension.hil._kernels",
     "mrsuspension.identify.timedomain",
+    "mrsuspension.shaping",
 ]
 
 
