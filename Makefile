@@ -11,9 +11,11 @@ $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --upgrade pip
 
-# reinstall only when the project metadata changes
+# reinstall only when the project metadata changes; then compile the kernels (numba's
+# cache), so the first command does not wait for them
 $(VENV)/.stamp-install: pyproject.toml | $(BIN)/python
 	$(BIN)/python -m pip install --quiet -e ".[dev,plot]"
+	$(BIN)/mrsus cache warm
 	touch $@
 
 report: $(VENV)/.stamp-install
@@ -31,7 +33,10 @@ system-deps:
 	  $$SUDO apt-get update -qq && $$SUDO apt-get install -y -qq chromium; \
 	fi
 
+# warm first (a few seconds when nothing changed): the tests' processes then load the
+# compiled kernels instead of each compiling them
 test: $(VENV)/.stamp-install lint system-deps
+	$(BIN)/mrsus cache warm
 	$(BIN)/python -m pytest
 
 bench: $(VENV)/.stamp-install

@@ -11,8 +11,30 @@ from __future__ import annotations
 
 import hashlib
 from pathlib import Path
+from typing import Any
 
-__all__ = ["DEPENDENCIES", "invalidate_if_changed"]
+__all__ = ["DEPENDENCIES", "INLINED", "invalidate_if_changed"]
+
+#: numba options of the kernels that the entry points (``engine.kernel.run``, the lane
+#: kernel, the damper and HiL loops) call: each is compiled once, as its own function,
+#: and LLVM inlines it at every call site (``forceinline``). numba's own inlining
+#: (``inline="always"``) copies the callee's IR into every caller, and each copy of a
+#: block deep-copies the callee's whole variable scope: the cost grows with the square
+#: of the inlined code, and was 11 of the 17 s that compiling ``run`` took. Measured on a
+#: fresh cache (harmonic ``mrsus simulate``, CPU s): 17.6 s inlined by numba, 5.7 s
+#: inlined by LLVM, with the same step time (133 against 135 ns, min of 800); compiled
+#: as plain calls (no ``forceinline``) LLVM left ``accelerations`` un-inlined and the step
+#: took 196 ns. The options are explicit, not inherited from the caller (numba keeps the
+#: first compiled version of a signature, whoever the caller): no reference counting (the
+#: kernels allocate nothing; with it the step was ~30x slower), Python's error model and
+#: IEEE arithmetic (no fastmath), as in ``run``, so results do not depend on which entry
+#: point compiled a kernel first.
+INLINED: dict[str, Any] = {
+    "forceinline": True,
+    "_nrt": False,
+    "error_model": "python",
+    "fastmath": False,
+}
 
 #: module file -> the source files its cached kernels inline (as registered by
 #: :func:`invalidate_if_changed`; checked by ``tests/unit/engine/test_numba_deps.py``)
@@ -22,7 +44,8 @@ DEPENDENCIES: dict[str, tuple[str, ...]] = {}
 def invalidate_if_changed(module_file: str, *dependencies: str) -> None:
     """Delete ``module_file``'s numba cache when a dependency's source changed.
 
-    The digest of the dependencies is kept in ``__pycache__/<stem>.deps``; failures to
+    The digest of the dependencies (and of :data:`INLINED`, which numba's cache does not
+    key on) is kept in ``__pycache__/<stem>.deps``; failures to
     read or write (a read-only install) are ignored, numba then simply recompiles or uses
     its own fallback cache location.
 
@@ -36,7 +59,7 @@ def invalidate_if_changed(module_file: str, *dependencies: str) -> None:
     DEPENDENCIES[str(module_file)] = tuple(str(d) for d in dependencies)
     module = Path(module_file)
     cache = module.parent / "__pycache__"
-    digest = hashlib.sha256()
+    digest = hashlib.sha256(repr(sorted(INLINED.items())).encode())
     for dep in dependencies:
         try:
             digest.update(Path(dep).read_bytes())

@@ -30,7 +30,12 @@ import numpy as np
 import numpy.typing as npt
 from numba import njit, vectorize
 
+from mrsuspension._numba_cache import INLINED, invalidate_if_changed
 from mrsuspension.errors import ValidationError, check_finite, check_range
+
+# no other module's kernels are called here; registered so that a change of INLINED drops
+# the cache
+invalidate_if_changed(__file__)
 
 __all__ = [
     "adfg_multiplier",
@@ -58,12 +63,12 @@ def _onoff(control_current: float, velocity: float, p: float) -> float:
     return p * control_current if velocity > 0.0 else control_current
 
 
-adfg_kernel = njit(cache=True, inline="always")(_mp)
-cm_kernel = njit(cache=True, inline="always")(_mc)
-onoff_kernel = njit(cache=True, inline="always")(_onoff)
+adfg_kernel = njit(cache=True, **INLINED)(_mp)
+cm_kernel = njit(cache=True, **INLINED)(_mc)
+onoff_kernel = njit(cache=True, **INLINED)(_onoff)
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, **INLINED)
 def drive_current_kernel(
     i_z: float,
     velocity: float,

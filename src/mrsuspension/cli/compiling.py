@@ -1,28 +1,42 @@
-"""The one-line notice that the engine is being compiled (a cold numba cache).
+"""The engine's compiled kernels: the notice while they compile, and warming them early.
 
-numba compiles the engine on its first call (about a minute on a slow machine) and keeps
-the result in ``engine/__pycache__``; without a word the first ``mrsus simulate``,
-``sweep``, ``study`` or ``reproduce`` looks hung. The commands call
-:func:`notify_if_compiling` before their first run.
+numba compiles the engine on its first call (5-10 s; 17-40 s before the kernels were
+inlined by LLVM, see :data:`~mrsuspension._numba_cache.INLINED`) and keeps the result in
+``__pycache__`` beside the sources; without a word the first ``mrsus simulate``,
+``sweep``, ``study``, ``optimize``, ``reproduce`` or ``hil`` command looks hung. The
+commands call :func:`notify_if_compiling` before their first run. :func:`warm_kernels`
+(``mrsus cache warm``, run by ``make`` after installing and before the tests) compiles
+every entry point ahead of time, so that the tests' processes share the compiled kernels.
 """
 
 from __future__ import annotations
 
 import sys
-from typing import TextIO
+import time
+from collections.abc import Callable
+from typing import Any, TextIO
 
-__all__ = ["COMPILE_NOTICE", "engine_cache_cold", "notify_if_compiling"]
+__all__ = [
+    "COMPILE_NOTICE",
+    "WARM_STEPS",
+    "engine_cache_cold",
+    "notify_if_compiling",
+    "warm_kernels",
+]
 
 #: said on stderr before the first run when the engine's numba cache is cold
-COMPILE_NOTICE = "compiling the engine (first run only, about a minute)..."
+COMPILE_NOTICE = (
+    "compiling the engine (first run only, 5-10 s; `mrsus cache warm` compiles ahead)..."
+)
 
 
-def engine_cache_cold() -> bool:
-    """Whether the engine's compiled kernels are missing from numba's on-disk cache.
+def engine_cache_cold(*kernels: str) -> bool:
+    """Whether any of the engine's entry points ``kernels`` is missing from numba's cache.
 
-    Imports :mod:`mrsuspension.engine.kernel` (which drops a stale cache, see
-    :mod:`mrsuspension._numba_cache`) and looks for the cache index of its ``run``
-    kernel in ``engine/__pycache__`` (or under ``NUMBA_CACHE_DIR`` when set).
+    ``kernels`` are names in :mod:`mrsuspension.engine.kernel` (default: ``run``, the
+    offline loop; ``step`` is the tick-by-tick step of HiL). Imports the module (which
+    drops a stale cache, see :mod:`mrsuspension._numba_cache`) and looks for each cache
+    index in ``engine/__pycache__`` (or under ``NUMBA_CACHE_DIR`` when set).
 
     Examples
     --------
@@ -34,15 +48,22 @@ def engine_cache_cold() -> bool:
 
     import mrsuspension.engine.kernel as kernel
 
-    pattern = f"{Path(kernel.__file__).stem}.run-*.nbi"
     root = os.environ.get("NUMBA_CACHE_DIR")
-    if root:
-        return not any(Path(root).rglob(pattern))
-    return not any((Path(kernel.__file__).parent / "__pycache__").glob(pattern))
+    for name in kernels or ("run",):
+        pattern = f"{Path(kernel.__file__).stem}.{name}-*.nbi"
+        if root:
+            found = any(Path(root).rglob(pattern))
+        else:
+            found = any((Path(kernel.__file__).parent / "__pycache__").glob(pattern))
+        if not found:
+            return True
+    return False
 
 
-def notify_if_compiling(stream: TextIO | None = None) -> bool:
-    """Write :data:`COMPILE_NOTICE` on stderr when the engine cache is cold; say whether.
+def notify_if_compiling(stream: TextIO | None = None, *kernels: str) -> bool:
+    """Write :data:`COMPILE_NOTICE` on stderr when an entry point is cold; say whether.
+
+    ``kernels`` as in :func:`engine_cache_cold` (default: ``run``).
 
     Examples
     --------
@@ -51,9 +72,96 @@ def notify_if_compiling(stream: TextIO | None = None) -> bool:
     >>> notify_if_compiling(log) == bool(log.getvalue())
     True
     """
-    if not engine_cache_cold():
+    if not engine_cache_cold(*kernels):
         return False
     out = sys.stderr if stream is None else stream
     out.write(COMPILE_NOTICE + "\n")
     out.flush()
     return True
+
+
+def _warm_engine() -> None:
+    import numpy as np
+
+    from mrsuspension.engine import Simulation
+    from mrsuspension.excitation import Harmonic, RoadProfile, RoundedPulse
+
+    # run() is one compiled loop for every damper, controller and estimator (codes)
+    Simulation(Harmonic(2.0, 0.01)).run(0.01)
+    Simulation(RoundedPulse(0.01, 1.0)).run(0.01)
+    RoadProfile(np.arange(4.0), np.zeros(4)).sample_grid(3, 1e-4)
+
+
+def _warm_lanes() -> None:
+    from mrsuspension.engine import Simulation
+    from mrsuspension.engine.lanes import run_lanes
+    from mrsuspension.excitation import Harmonic
+
+    sim = Simulation(Harmonic(2.0, 0.01))
+    run_lanes([sim, sim], duration=0.01)
+
+
+def _warm_stepper() -> None:
+    from mrsuspension.engine import Simulation
+    from mrsuspension.excitation import Harmonic
+    from mrsuspension.hil.rig import SimulatedRig
+
+    Simulation(Harmonic(1.0, 0.01)).stepper(1e-4).step(0.0, 0.0628)
+    rig = SimulatedRig()
+    rig.reset(1e-3)
+    rig.command(0.0, 0.1)
+    rig.read()
+
+
+def _warm_dampers() -> None:
+    import numpy as np
+
+    from mrsuspension.dampers import WangSymmetric
+    from mrsuspension.shaping import drive_current
+
+    damper = WangSymmetric()
+    damper.force(0.0, 0.1, current=0.2)
+    t = np.linspace(0.0, 0.01, 11)
+    damper.response(t, 0.01 * np.sin(t))
+    damper.inverse_current(100.0, 0.1)
+    drive_current(0.1, velocity=0.1, peak_velocity=0.2, switching=-1.0)
+
+
+def _warm_identify() -> None:
+    from mrsuspension.identify.timedomain import synthetic_record
+
+    synthetic_record(duration=0.1, sample_rate=1000.0)
+
+
+#: what :func:`warm_kernels` compiles: (what, a call that compiles it, or loads it)
+WARM_STEPS: tuple[tuple[str, Callable[[], None]], ...] = (
+    ("engine run loop (simulate, sweep, study, report)", _warm_engine),
+    ("lane kernel (sweeps in lane batches)", _warm_lanes),
+    ("tick-by-tick step and simulated rig (hil)", _warm_stepper),
+    ("damper force, response and inverse (damper)", _warm_dampers),
+    ("time-domain record (identify)", _warm_identify),
+)
+
+
+def warm_kernels(say: Callable[[str], None] = lambda _m: None) -> list[dict[str, Any]]:
+    """Compile every entry point into numba's on-disk cache (loading it when warm).
+
+    Each step calls public functions on a tiny input, so the signatures compiled are the
+    ones real runs use; ``say`` gets a line before and after each. Returns one row per
+    step: ``what`` and ``seconds``.
+
+    Examples
+    --------
+    >>> rows = warm_kernels()
+    >>> [r["what"].split(" (")[0] for r in rows][:2]
+    ['engine run loop', 'lane kernel']
+    """
+    rows = []
+    for i, (what, call) in enumerate(WARM_STEPS, 1):
+        say(f"[{i}/{len(WARM_STEPS)}] {what}...")
+        t0 = time.perf_counter()
+        call()
+        seconds = time.perf_counter() - t0
+        rows.append({"what": what, "seconds": seconds})
+        say(f"[{i}/{len(WARM_STEPS)}] {what}: {seconds:.1f} s")
+    return rows

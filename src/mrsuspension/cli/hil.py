@@ -146,6 +146,9 @@ def hil_run_command(
         check_range("--duration", duration, 0.0, 1e5, unit="s", low_inclusive=False)
         check_range("--rate", rate, 50.0, MONITOR_MAX_RATE if monitor else MAX_RATE, unit="Hz")
         sim = _simulation_of(scn)
+        from mrsuspension.cli.compiling import notify_if_compiling
+
+        notify_if_compiling(None, "step")
         if monitor:
             from mrsuspension.monitor.app import AttachedRun
             from mrsuspension.monitor.server import serve
@@ -375,6 +378,9 @@ def hil_validate_command(
         if road_duration is not None:
             check_range("--road-duration", road_duration, 0.0, 1e5, unit="s", low_inclusive=False)
         sim = _simulation_of(scenario)
+        from mrsuspension.cli.compiling import notify_if_compiling
+
+        notify_if_compiling(None, "run", "step")
         the_rig = make_rig(rig, sim.damper)
         data = validate_chapter7(
             sim, the_rig, out, what=chosen, cases=case_list, frequencies=freq_list,

@@ -59,6 +59,9 @@ def optimize_command(
         prob = OptimizationProblem.load(problem)
         files: list[str] = []
         with prepare_output(out, "optimize", force=force) as folder:  # checked before the work
+            from mrsuspension.cli.compiling import notify_if_compiling
+
+            notify_if_compiling()
             result = optimize(
                 prob, max_evaluations=max_evaluations, workers=workers, progress=not as_json
             )

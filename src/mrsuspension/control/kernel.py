@@ -25,13 +25,14 @@ import numpy as np
 from numba import njit
 
 from mrsuspension import shaping as _shaping
-from mrsuspension._numba_cache import invalidate_if_changed
+from mrsuspension._numba_cache import INLINED, invalidate_if_changed
 from mrsuspension.dampers import kernels as DK
 from mrsuspension.shaping import drive_current_kernel, onoff_kernel
 from mrsuspension.vehicle import kernel as VK
 from mrsuspension.vehicle.kernel import V_KS
 
-# the cached laws below inline the damper and shaping kernels (and read vehicle layouts)
+# the cached laws below call (LLVM inlines) the damper and shaping kernels (and read
+# vehicle layouts)
 invalidate_if_changed(__file__, DK.__file__, _shaping.__file__, VK.__file__)
 
 __all__ = [
@@ -111,7 +112,7 @@ F_EXTERNAL = 3  # a given force held over the step (hardware in the loop; set by
 EST_SHARED = -1
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, **INLINED)
 def needs_reference(ck: int) -> bool:
     """Whether law ``ck`` tracks the reference model (3.18) integrated with the plant.
 
@@ -123,7 +124,7 @@ def needs_reference(ck: int) -> bool:
     return ck == C_SLIDING
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, **INLINED)
 def ideal_force(fk: int, cp: np.ndarray, vs: float, xd: float, vd: float) -> float:
     """Force ``F_d`` [N] of an ideal dissipative damper under force source ``fk``.
 
@@ -142,7 +143,7 @@ def ideal_force(fk: int, cp: np.ndarray, vs: float, xd: float, vd: float) -> flo
     return cp[P_CS] * vd if xd * vd < 0.0 else 0.0
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, **INLINED)
 def control(
     ck: int,
     cp: np.ndarray,

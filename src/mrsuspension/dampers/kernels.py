@@ -4,8 +4,11 @@ This module is the single source of the damper physics: the vectorised array API
 :mod:`mrsuspension.dampers` loops over these functions, and the simulation engine and the
 hardware-in-the-loop loop call them sample by sample. Short symbols follow
 ``MODEL_SPEC.md`` sections 2-3; the mapping to domain names is given at each constant.
-The kernels are inlined into their callers and the array loops are compiled without
-reference counting (see :mod:`mrsuspension.engine.kernel` for why).
+The kernels are compiled once each and inlined into their callers by LLVM
+(:data:`~mrsuspension._numba_cache.INLINED`); the few that the lane kernel's vectorised
+stages use (:func:`wang_combine`, :func:`lane_tanh` and what they call) are inlined by numba
+instead (``inline="always"``), so that they take the stages' fused multiply-adds. The array
+loops are compiled without reference counting (see :mod:`mrsuspension.engine.kernel`).
 
 A damper is described by four flat arrays so that one compiled step can serve every
 model:
@@ -33,6 +36,12 @@ from typing import Any
 
 import numpy as np
 from numba import njit
+
+from mrsuspension._numba_cache import INLINED, invalidate_if_changed
+
+# no other module's kernels are called here; registered so that a change of INLINED drops
+# the cache
+invalidate_if_changed(__file__)
 
 #: numba option compiling a function without reference counting (no allocation inside):
 #: the loops over kernels run ~30x faster without the per-call reference counts.
@@ -94,7 +103,7 @@ EST_CYCLE_RMS = 3  # ep = [v_min, v_max, n_window]; sqrt(2 mean(v_d^2)) over the
 CR_HEAD, CR_COUNT, CR_SUM, CR_RING = 0, 1, 2, 3
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, **INLINED)
 def sigmoid(u: float) -> float:
     """Logistic function 1/(1+exp(-u)), evaluated without overflow."""
     if u >= 0.0:
@@ -107,7 +116,7 @@ def sigmoid(u: float) -> float:
 TANH_RATIONAL_BELOW = 0.55
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, **INLINED)
 def fast_tanh(u: float) -> float:
     """tanh(u) to round-off, with at most one exp and one division.
 
@@ -134,7 +143,7 @@ def fast_tanh(u: float) -> float:
     return _tanh_from_exp(u, math.exp(-2.0 * a))
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always")  # in the lane stages: see the module docstring
 def _tanh_rational_parts(u: float) -> tuple[float, float]:
     """Numerator and denominator of Lambert's continued fraction for tanh, truncated
     after the term 15 (for |u| < 0.55)."""
@@ -143,13 +152,13 @@ def _tanh_rational_parts(u: float) -> tuple[float, float]:
     return num, 2027025.0 + z * (945945.0 + z * (51975.0 + z * (630.0 + z)))
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, **INLINED)
 def _tanh_rational(u: float) -> float:
     num, den = _tanh_rational_parts(u)
     return num / den
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, **INLINED)
 def _tanh_from_exp(u: float, t: float) -> float:
     """tanh(u) from ``t = exp(-2|u|)``: ``sgn(u) (1 - t)/(1 + t)``."""
     r = (1.0 - t) / (1.0 + t)
@@ -167,7 +176,7 @@ _TWO_M63 = 2.0**-63
 EXP_NEG_FLOOR = -40.0
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always")  # in the lane stages: see the module docstring
 def exp_neg(x: float) -> float:
     """exp(x) for ``EXP_NEG_FLOOR <= x <= 0`` (clamped below) in vectorisable arithmetic.
 
@@ -206,7 +215,7 @@ def exp_neg(x: float) -> float:
     return p * (float(np.uint64(1) << (np.uint64(63) - m)) * _TWO_M63)
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always")  # in the lane stages: see the module docstring
 def lane_tanh(u: float) -> float:
     """:func:`fast_tanh` without branches or calls (vectorisable): both forms, selected.
 
@@ -228,7 +237,7 @@ def lane_tanh(u: float) -> float:
     return r if small or u > 0.0 else (-r if u < 0.0 else u)
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, **INLINED)
 def sign(u: float) -> float:
     """sgn(u) with sgn(0) = 0."""
     if u > 0.0:
@@ -240,20 +249,20 @@ def sign(u: float) -> float:
 
 # ----------------------------------------------------------------------------------
 # the dissertation's model
-@njit(cache=True, inline="always")
+@njit(cache=True, **INLINED)
 def wang_derive(p: np.ndarray) -> None:
     """Fill the derived slots of a parameter vector (constants of C_i and H)."""
     p[W_SA2] = sigmoid(p[W_A2] * p[W_I0])
     p[W_SA3] = sigmoid(p[W_A3] * p[W_I1])
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, **INLINED)
 def current_gain(p: np.ndarray, i: float) -> float:
     """C_i(i) = 1 + k2 sigma(a2 (i + I0)) - k2 sigma(a2 I0), eq. (2.9); C_i(0) = 1."""
     return 1.0 + p[W_K2] * (sigmoid(p[W_A2] * (i + p[W_I0])) - p[W_SA2])
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, **INLINED)
 def hysteresis_current_factor(p: np.ndarray, i: float) -> float:
     """H(i) of eq. (2.12); 1 for the simplified (2.13) variant."""
     if p[W_VHI] == 0.0:
@@ -261,26 +270,26 @@ def hysteresis_current_factor(p: np.ndarray, i: float) -> float:
     return 1.0 + p[W_K3] * (sigmoid(p[W_A3] * (i + p[W_I1])) - p[W_SA3])
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, **INLINED)
 def transition_force(p: np.ndarray, vm: float) -> float:
     """F_t = F0 (1 + exp(a1 v_m)), eq. (2.7)."""
     return p[W_F0] * (1.0 + math.exp(p[W_A1] * vm))
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, **INLINED)
 def hysteresis_slope(p: np.ndarray, vm: float) -> float:
     """alpha = a0 / (1 + k0 v_m), eq. (2.11)."""
     return p[W_A0] / (1.0 + p[W_K0] * vm)
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, **INLINED)
 def linear_rise(p: np.ndarray, v: float, vm: float) -> float:
     """1 + k_v |v_d| with k_v = k1 exp(-a4 v_m), eqs. (2.5), (2.10), (2.18), (2.21)."""
     k1 = p[W_K1C] if v >= 0.0 else p[W_K1E]
     return 1.0 + k1 * math.exp(-p[W_A4] * vm) * abs(v)
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, **INLINED)
 def passive_hysteron(p: np.ndarray, v: float, sgn_a: float, vm: float) -> float:
     """Passive hysteron F_h of eq. (2.8) with v_h of (2.13), as used by the inverse model."""
     vh = sgn_a * p[W_K4] * vm
@@ -291,7 +300,7 @@ def passive_hysteron(p: np.ndarray, v: float, sgn_a: float, vm: float) -> float:
     )
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, **INLINED)
 def wang_latch_motion(p: np.ndarray, s: np.ndarray, vm: float, sgn_a: float) -> None:
     """Latch v_m, sgn(a_d) and the terms that depend on them only (eqs. 2.7, 2.10, 2.11).
 
@@ -308,7 +317,7 @@ def wang_latch_motion(p: np.ndarray, s: np.ndarray, vm: float, sgn_a: float) -> 
     s[WS_DECAY] = math.exp(-p[W_A4] * vm)
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, **INLINED)
 def wang_latch_current(p: np.ndarray, s: np.ndarray, i: float) -> None:
     """Latch the current-dependent terms: C_i (2.9), v_h + v_b (2.12)/(2.13)/(2.20), F_b."""
     ci = current_gain(p, i)
@@ -319,7 +328,7 @@ def wang_latch_current(p: np.ndarray, s: np.ndarray, i: float) -> None:
     s[WS_FB] = p[W_K5] * ci * s[WS_FT]
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, **INLINED)
 def wang_eval(p: np.ndarray, s: np.ndarray, v: float, i: float) -> float:
     """Damper force of eqs. (2.15) and (2.19) from the latched state, with the gain k_d.
 
@@ -334,7 +343,7 @@ def wang_eval(p: np.ndarray, s: np.ndarray, v: float, i: float) -> float:
     return wang_combine(p[W_KD] * s[WS_CI], s[WS_FT], s[WS_FB], tanh, k1, s[WS_DECAY], v)
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always")  # in the lane stages: see the module docstring
 def wang_combine(
     kd_ci: float, ft: float, fb: float, tanh: float, k1: float, decay: float, v: float
 ) -> float:
@@ -346,7 +355,7 @@ def wang_combine(
     return kd_ci * (ft * tanh - fb) * (1.0 + k1 * decay * abs(v))
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always")  # allocates: needs reference counting
 def wang_force(p: np.ndarray, v: float, sgn_a: float, i: float, vm: float) -> float:
     """Force of the dissertation's model at one point (convenience; allocates a state)."""
     s = np.empty(STATE_SIZE)
@@ -354,7 +363,7 @@ def wang_force(p: np.ndarray, v: float, sgn_a: float, i: float, vm: float) -> fl
     return wang_eval(p, s, v, i)
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, **INLINED)
 def wang_inverse(
     p: np.ndarray, target: float, v: float, sgn_a: float, vm: float, i_max: float
 ) -> float:
@@ -384,13 +393,13 @@ def wang_inverse(
 
 # ----------------------------------------------------------------------------------
 # peers
-@njit(cache=True, inline="always")
+@njit(cache=True, **INLINED)
 def bingham_force(p: np.ndarray, v: float, i: float) -> float:
     """Bingham plastic model with current-linear yield force and viscosity."""
     return (p[B_FCA] + p[B_FCB] * i) * sign(v) + (p[B_C0A] + p[B_C0B] * i) * v + p[B_F0]
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, **INLINED)
 def spencer_ydot(p: np.ndarray, x: float, xd: float, y: float, z: float, u: float) -> float:
     """Internal velocity y' of the modified Bouc-Wen model."""
     alpha = p[S_ALA] + p[S_ALB] * u
@@ -399,14 +408,14 @@ def spencer_ydot(p: np.ndarray, x: float, xd: float, y: float, z: float, u: floa
     return (alpha * z + c0 * xd + p[S_K0] * (x - y)) / (c0 + c1)
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, **INLINED)
 def spencer_force(p: np.ndarray, x: float, xd: float, y: float, z: float, u: float) -> float:
     """F = c1 y' + k1 (x - x0)."""
     c1 = p[S_C1A] + p[S_C1B] * u
     return c1 * spencer_ydot(p, x, xd, y, z, u) + p[S_K1] * (x - p[S_X0])
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, **INLINED)
 def _spencer_rates(
     p: np.ndarray, x: float, xd: float, y: float, z: float, u: float, command: float
 ) -> tuple[float, float, float]:
@@ -419,7 +428,9 @@ def _spencer_rates(
     return yd, zd, ud
 
 
-@njit(cache=True)  # not inlined: large, and dominated by its own sub-steps
+# not inlined (explicitly: numba would inherit its caller's forceinline): large, and
+# dominated by its own sub-steps
+@njit(cache=True, forceinline=False)
 def spencer_advance(p: np.ndarray, s: np.ndarray, x: float, xd: float, i: float, dt: float) -> None:
     """Integrate (y, z, u) over ``dt`` with x' held, by RK4 sub-steps sized for stability."""
     command = p[S_VPA] * i
@@ -453,12 +464,12 @@ def spencer_advance(p: np.ndarray, s: np.ndarray, x: float, xd: float, i: float,
 
 # ----------------------------------------------------------------------------------
 # peak-velocity estimators
-@njit(cache=True, inline="always")
+@njit(cache=True, **INLINED)
 def _clamp(u: float, lo: float, hi: float) -> float:
     return lo if u < lo else (hi if u > hi else u)
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, **INLINED)
 def estimator_pointwise(ek: int, ep: np.ndarray, x: float, v: float, a: float) -> float:
     """v_m of a freshly reset estimator that has seen one sample."""
     if ek == EST_KNOWN:
@@ -469,7 +480,7 @@ def estimator_pointwise(ek: int, ep: np.ndarray, x: float, v: float, a: float) -
     return _clamp(math.sqrt(max(v * v - a * x, 0.0)), ep[0], ep[1])
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, **INLINED)
 def _cycle_rms_update(ep: np.ndarray, es: np.ndarray, v: float) -> float:
     """sqrt(2 mean(v_d^2)) over the last n samples (fewer at the start), clamped.
 
@@ -502,7 +513,7 @@ def _cycle_rms_update(ep: np.ndarray, es: np.ndarray, v: float) -> float:
     return _clamp(math.sqrt(2.0 * max(total, 0.0) / count), ep[0], ep[1])
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, **INLINED)
 def estimator_update(
     ek: int, ep: np.ndarray, es: np.ndarray, x: float, v: float, a: float
 ) -> float:
@@ -545,7 +556,7 @@ def estimator_update(
 
 # ----------------------------------------------------------------------------------
 # one interface for every model
-@njit(cache=True, inline="always")
+@njit(cache=True, **INLINED)
 def damper_sample(
     kind: int,
     p: np.ndarray,
@@ -572,7 +583,7 @@ def damper_sample(
         s[3] = 1.0
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, **INLINED)
 def damper_force(kind: int, p: np.ndarray, s: np.ndarray, x: float, v: float, i: float) -> float:
     """Damper force [N] (positive resists compression) with the held internals ``s``."""
     if kind == WANG:
@@ -584,7 +595,7 @@ def damper_force(kind: int, p: np.ndarray, s: np.ndarray, x: float, v: float, i:
     return spencer_force(p, x, v, s[0], s[1], s[2])
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, **INLINED)
 def damper_advance(
     kind: int, p: np.ndarray, s: np.ndarray, x: float, v: float, i: float, dt: float
 ) -> None:

@@ -2,7 +2,9 @@
 
 Performance note: the entry points are compiled without numba's reference counting
 (``_nrt=False``, so they allocate nothing: work arrays come from the caller) and the
-kernels they call are inlined (``inline="always"``). With reference counting on, the
+kernels they call are compiled once each and inlined by LLVM
+(:data:`~mrsuspension._numba_cache.INLINED`; numba's own ``inline="always"`` made the
+first compile of :func:`run` take 17 s instead of 6). With reference counting on, the
 branches over model kinds kept numba from pruning the per-call reference counts of the
 array arguments, which cost ~30x in the step (measured: 3 ns against 90-110 ns per
 rates evaluation).
@@ -50,7 +52,7 @@ import numpy as np
 from numba import njit
 
 from mrsuspension import shaping as _shaping
-from mrsuspension._numba_cache import invalidate_if_changed
+from mrsuspension._numba_cache import INLINED, invalidate_if_changed
 from mrsuspension.control import kernel as CK
 from mrsuspension.control.kernel import EST_SHARED, F_EXTERNAL, F_MODEL, P_C0, P_CS, P_MS0
 from mrsuspension.dampers import kernels as DK
@@ -92,7 +94,7 @@ MEM_SIZE = 12
 SCRATCH_SIZE = 6 * NY  # work space of the callers (rates of start())
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, **INLINED)
 def accelerations(
     zs: float,
     vs: float,
@@ -133,7 +135,7 @@ def accelerations(
     return a_s, a_u, a_0, fd, ft
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, **INLINED)
 def rates(
     y: np.ndarray,
     zr: float,
@@ -161,7 +163,7 @@ def rates(
     return fd, ft
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, **INLINED)
 def apply_control(
     ck: int,
     cp: np.ndarray,
@@ -183,7 +185,7 @@ def apply_control(
     mem[M_TARGET] = target
 
 
-@njit(cache=True, inline="always", **NO_REFCOUNT)
+@njit(cache=True, **INLINED)
 def step(
     y: np.ndarray,
     dt: float,
@@ -290,6 +292,8 @@ def step(
 N_REC = 16
 
 
+# inlined by numba: called with literal row numbers, as a function of its own it would be
+# compiled once per literal
 @njit(cache=True, inline="always")
 def record(
     rec: np.ndarray, row: int, y: np.ndarray, zr: float, zrd: float, mem: np.ndarray
@@ -312,7 +316,7 @@ def record(
     rec[row, R_ZS0] = y[4]
 
 
-@njit(cache=True, inline="always", **NO_REFCOUNT)
+@njit(cache=True, **INLINED)
 def start(
     y: np.ndarray,
     zr: float,
@@ -353,7 +357,7 @@ D_OK, D_STATE, D_FORCE, D_TIRE = 0, 1, 2, 3
 LIMITS = np.array([10.0, 100.0, 1e6, 1e7])
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, **INLINED)
 def check_limits(y: np.ndarray, mem: np.ndarray, limits: np.ndarray) -> tuple[int, int, float]:
     """``(status, index, value)`` of the first state or force out of ``limits`` (D_OK: none).
 

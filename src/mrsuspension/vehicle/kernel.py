@@ -48,6 +48,8 @@ Y_ZS, Y_VS, Y_ZU, Y_VU, Y_Z0, Y_V0 = range(6)
 NY = 6
 
 
+# inlined by numba (not compiled on its own, see mrsuspension._numba_cache.INLINED): the
+# lane kernel's vectorised stages apply their fused multiply-adds to it
 @njit(cache=True, inline="always")
 def plant_rates(
     zs: float,

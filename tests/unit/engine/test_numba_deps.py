@@ -21,12 +21,14 @@ from mrsuspension import _numba_cache
 
 MODULES = [
     "mrsuspension.control.kernel",
+    "mrsuspension.dampers.kernels",
     "mrsuspension.engine.kernel",
     "mrsuspension.engine.lanes",
     "mrsuspension.engine.vehicle_kernel",
     "mrsuspension.engine.reduced",
     "mrsuspension.hil._kernels",
     "mrsuspension.identify.timedomain",
+    "mrsuspension.shaping",
 ]
 
 
