@@ -91,6 +91,17 @@ def _commands(tmp: Path) -> dict[str, list[str]]:
             str(tmp / "out"),
         ],
         "reproduce": ["reproduce", "--quick", "--out", str(tmp / "out")],
+        "hil run": [
+            "hil",
+            "run",
+            str(ROOT / "examples" / "scenarios" / "passive-harmonic.toml"),
+            "--duration",
+            "120",
+            "--realtime",
+            "off",
+            "--out",
+            str(tmp / "rec"),
+        ],
     }
 
 
@@ -190,3 +201,21 @@ def test_interrupt_stops_fast_without_orphans(tmp_path: Path, command: str, how:
 
 def test_signals_during_the_cleanup_change_nothing(tmp_path: Path) -> None:
     _check(interrupt(_commands(tmp_path)["sweep"], "burst", tmp_path), tmp_path, "sweep", "burst")
+
+
+@pytest.mark.parametrize("how", ["sigint", "sigterm"])
+def test_an_interrupted_hil_run_stops_its_loop_the_safe_way(tmp_path: Path, how: str) -> None:
+    """The loop process trips, ramps the rig home and writes its stop record, then exits;
+    the recording so far is kept and said so (a SIGTERM to the parent only used to leave
+    the loop running for the whole duration)."""
+    stopped = interrupt(_commands(tmp_path)["hil run"], how, tmp_path)
+    print(f"hil run {how}: exit {stopped.code} after {stopped.seconds:.3f} s")
+    assert stopped.left == [], f"processes left: {stopped.left}"
+    assert stopped.code == (143 if how == "sigterm" else 130), stopped.stderr
+    assert stopped.seconds < LIMIT
+    assert "Traceback" not in stopped.stderr
+    rec = tmp_path / "rec"
+    assert stopped.stderr.strip().splitlines()[-1] == (
+        f"interrupted: kept the recording so far in {str(rec)!r}"
+    )
+    assert (rec / "stop.json").is_file()

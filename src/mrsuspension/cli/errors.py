@@ -20,7 +20,13 @@ import typer
 
 from mrsuspension.errors import MRSuspensionError
 
-__all__ = ["interrupted_message", "interrupts", "option_named", "user_errors"]
+__all__ = [
+    "interrupted_message",
+    "interrupts",
+    "keep_on_interrupt",
+    "option_named",
+    "user_errors",
+]
 
 #: the field a library message starts with: ``peak_velocity must ...``, ``drive current
 #: must ...``, ``target_force must ...``
@@ -97,12 +103,31 @@ def user_errors(aliases: Mapping[str, str] | None = None) -> Iterator[None]:
         raise typer.Exit(2) from None
 
 
-def interrupted_message(left: Sequence[str | Path] = ()) -> str:
+#: what interrupted commands kept, for the ``interrupted:`` line (:func:`keep_on_interrupt`)
+_KEPT: list[str] = []
+
+
+def keep_on_interrupt(what: str) -> None:
+    """Name, in the ``interrupted:`` line, something an interrupted command kept on purpose.
+
+    E.g. ``hil run --out``: the recording up to the Ctrl-C (the loop's safe stop included).
+
+    Examples
+    --------
+    >>> keep_on_interrupt("the recording so far in 'rec'")
+    >>> interrupted_message(kept=_KEPT)
+    "interrupted: kept the recording so far in 'rec'"
+    >>> _KEPT.clear()
+    """
+    _KEPT.append(what)
+
+
+def interrupted_message(left: Sequence[str | Path] = (), kept: Sequence[str] = ()) -> str:
     """The line printed when a command is interrupted: what was saved, or not.
 
     Every ``--out`` is written into a temporary folder and moved into place only when the
     command completes (:mod:`mrsuspension._output`), so an interrupted command names the
-    outputs (``left``) it left as they were.
+    outputs (``left``) it left as they were, and what it ``kept`` on purpose.
 
     Examples
     --------
@@ -111,10 +136,10 @@ def interrupted_message(left: Sequence[str | Path] = ()) -> str:
     >>> interrupted_message(["results"])
     "interrupted: nothing saved; 'results' left as it was"
     """
-    if not left:
-        return "interrupted: nothing saved"
-    names = ", ".join(repr(str(p)) for p in dict.fromkeys(left))
-    return f"interrupted: nothing saved; {names} left as it was"
+    said = "; ".join(f"kept {k}" for k in kept) if kept else "nothing saved"
+    if left:
+        said += "; " + ", ".join(repr(str(p)) for p in dict.fromkeys(left)) + " left as it was"
+    return f"interrupted: {said}"
 
 
 @contextmanager
@@ -139,21 +164,21 @@ def interrupts() -> Iterator[None]:
     from mrsuspension._output import discarded
     from mrsuspension._pool import handle_signals
 
-    before = len(discarded)
+    before, kept = len(discarded), len(_KEPT)
     with handle_signals() as state:
         try:
             yield
         except KeyboardInterrupt as exc:  # raised outside typer's own handling
             signum = getattr(exc, "signum", state.signum or signal.SIGINT)
-            _exit_interrupted(signum, discarded[before:])
+            _exit_interrupted(signum, discarded[before:], _KEPT[kept:])
         except SystemExit as exc:  # typer turns KeyboardInterrupt into exit code 130
             if state.signum is None or exc.code != 130:
                 raise
-            _exit_interrupted(state.signum, discarded[before:])
+            _exit_interrupted(state.signum, discarded[before:], _KEPT[kept:])
 
 
-def _exit_interrupted(signum: int, left: Sequence[Path]) -> None:
-    print(interrupted_message(left), file=sys.stderr)
+def _exit_interrupted(signum: int, left: Sequence[Path], kept: Sequence[str]) -> None:
+    print(interrupted_message(left, kept), file=sys.stderr)
     for stream in (sys.stdout, sys.stderr):
         with suppress(OSError, ValueError):  # a closed pipe
             stream.flush()

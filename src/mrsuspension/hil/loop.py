@@ -822,10 +822,19 @@ def _row(
 
 
 # -- own process ----------------------------------------------------------------------------
+#: seconds an interrupted ``hil run`` gives its loop process to trip, ramp the rig back to
+#: mid-stroke and write its stop record before it is terminated (the unpaced simulated
+#: rig takes ~0.1 s; a real rig's own watchdog takes over after that)
+STOP_TIMEOUT = 1.5
+
+
 def _child(
     target: Any, rig: Rig | None, duration: float, rate: float, out: str, kw: dict[str, Any]
 ) -> None:
-    run_hil(target, rig, duration, rate, out, **kw)
+    try:
+        run_hil(target, rig, duration, rate, out, **kw)
+    except KeyboardInterrupt:  # before the loop started or during its stop: no traceback
+        sys.exit(130)
 
 
 def start_process(
@@ -849,7 +858,11 @@ def _run_in_process(
     target: Any, rig: Rig | None, duration: float, rate: float, out: Path, **kw: Any
 ) -> HilResult:
     proc = start_process(target, rig, duration, rate, out, **kw)
-    proc.join()
+    try:
+        proc.join()
+    except BaseException:  # Ctrl-C or SIGTERM here: stop the loop the safe way, bounded
+        _stop_loop(proc)
+        raise
     if proc.exitcode != 0:
         recording = load_recording(out)
         raise MRSuspensionError(
@@ -857,6 +870,28 @@ def _run_in_process(
             f"the recording in {out} holds {len(recording)} rows"
         )
     return load_result(out)
+
+
+def _stop_loop(proc: multiprocessing.process.BaseProcess) -> None:
+    """Stop a loop process: SIGINT (it trips and ramps home), then SIGTERM, then SIGKILL.
+
+    A terminal's Ctrl-C has already reached the loop (same process group); a SIGTERM sent
+    to this process only has not, so the loop is asked here. Waits at most
+    :data:`STOP_TIMEOUT` plus 1 s.
+    """
+    import os
+    import signal
+
+    with contextlib.suppress(OSError):
+        if proc.is_alive() and proc.pid is not None:
+            os.kill(proc.pid, signal.SIGINT)
+    proc.join(STOP_TIMEOUT)
+    if proc.is_alive():
+        proc.terminate()
+        proc.join(0.5)
+    if proc.is_alive():
+        proc.kill()
+        proc.join(0.5)
 
 
 def load_result(out: str | Path) -> HilResult:
