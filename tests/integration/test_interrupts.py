@@ -19,6 +19,7 @@ import signal
 import subprocess
 import sys
 import time
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -129,13 +130,20 @@ def _alive(p: psutil.Process) -> bool:
         return False
 
 
-def interrupt(args: list[str], how: str, cwd: Path) -> Stopped:
+def interrupt(
+    args: list[str],
+    how: str,
+    cwd: Path,
+    ready: Callable[[], bool] | None = None,
+    settle: float = 0.5,
+) -> Stopped:
     """Run ``mrsus ARGS``, signal it while its two workers compute, and report how it ended.
 
     ``how``: ``sigint`` (to the group), ``sigint2`` (to the group, again 0.2 s later
     unless it has ended), ``burst`` (six to the group, 5 ms apart: the later ones land
     in the cleanup) or ``sigterm`` (to the parent only). ``seconds`` counts from the
-    first signal to the exit.
+    first signal to the exit. ``ready()``, if given, must be true too, and then the
+    signal comes ``settle`` seconds later.
     """
     proc = subprocess.Popen(
         [sys.executable, "-m", "mrsuspension", *args],
@@ -149,11 +157,11 @@ def interrupt(args: list[str], how: str, cwd: Path) -> Stopped:
     parent = psutil.Process(proc.pid)
     try:
         deadline = time.monotonic() + START
-        while len(_tree(parent)) < 3:  # the parent and two workers
+        while len(_tree(parent)) < 3 or (ready is not None and not ready()):  # two workers
             assert proc.poll() is None, f"mrsus {args[0]} ended early: {proc.stderr.read()}"  # type: ignore[union-attr]
             assert time.monotonic() < deadline, f"mrsus {args[0]} started no workers"
             time.sleep(0.05)
-        time.sleep(1.0)  # the workers are inside their first runs
+        time.sleep(settle)  # the workers are inside their first runs
         tree = _tree(parent)
         assert proc.poll() is None, f"mrsus {args[0]} finished before the signal"
         start = time.monotonic()
@@ -205,17 +213,32 @@ def test_signals_during_the_cleanup_change_nothing(tmp_path: Path) -> None:
 
 @pytest.mark.parametrize("how", ["sigint", "sigterm"])
 def test_an_interrupted_hil_run_stops_its_loop_the_safe_way(tmp_path: Path, how: str) -> None:
-    """The loop process trips, ramps the rig home and writes its stop record, then exits;
-    the recording so far is kept and said so (a SIGTERM to the parent only used to leave
-    the loop running for the whole duration)."""
-    stopped = interrupt(_commands(tmp_path)["hil run"], how, tmp_path)
+    """Once the loop runs (its recording exists), it trips, ramps the rig home and writes
+    its stop record, then exits; the recording so far is kept and said so (a SIGTERM to
+    the parent only used to leave the loop running for the whole duration)."""
+    rec = tmp_path / "rec"
+    stopped = interrupt(
+        _commands(tmp_path)["hil run"], how, tmp_path, ready=(rec / "meta.json").is_file
+    )
     print(f"hil run {how}: exit {stopped.code} after {stopped.seconds:.3f} s")
     assert stopped.left == [], f"processes left: {stopped.left}"
     assert stopped.code == (143 if how == "sigterm" else 130), stopped.stderr
     assert stopped.seconds < LIMIT
     assert "Traceback" not in stopped.stderr
-    rec = tmp_path / "rec"
     assert stopped.stderr.strip().splitlines()[-1] == (
         f"interrupted: kept the recording so far in {str(rec)!r}"
     )
     assert (rec / "stop.json").is_file()
+
+
+@pytest.mark.parametrize("how", ["sigint", "sigterm"])
+def test_a_hil_run_interrupted_while_starting_stops_quietly(tmp_path: Path, how: str) -> None:
+    """The loop process starts with SIGINT ignored and SIGTERM held back until it can
+    handle them: a Ctrl-C while it imports prints no traceback from it."""
+    stopped = interrupt(_commands(tmp_path)["hil run"], how, tmp_path, settle=0.0)
+    print(f"hil run (starting) {how}: exit {stopped.code} after {stopped.seconds:.3f} s")
+    assert stopped.left == [], f"processes left: {stopped.left}"
+    assert stopped.code == (143 if how == "sigterm" else 130), stopped.stderr
+    assert stopped.seconds < LIMIT
+    assert "Traceback" not in stopped.stderr
+    assert stopped.stderr.strip().splitlines()[-1].startswith("interrupted: ")
