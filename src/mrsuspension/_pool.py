@@ -38,6 +38,7 @@ __all__ = [
     "InterruptState",
     "Interrupted",
     "Progress",
+    "descendants",
     "handle_signals",
     "pool_map",
     "process_pool",
@@ -175,8 +176,15 @@ def _worker_init() -> None:
     signal.pthread_sigmask(signal.SIG_UNBLOCK, _SIGNALS)
 
 
-def _descendants(pid: int) -> list[int]:
-    """Process ids of ``pid``'s children, grandchildren, ... (Linux ``/proc``; else none)."""
+def descendants(pid: int) -> list[int]:
+    """Process ids of ``pid``'s children, grandchildren, ... (Linux ``/proc``; else none).
+
+    Examples
+    --------
+    >>> import os
+    >>> os.getpid() in descendants(os.getppid())
+    True
+    """
     found: list[int] = []
     stack = [pid]
     while stack:
@@ -215,7 +223,7 @@ def stop_pool(pool: Executor, timeout: float = STOP_TIMEOUT) -> None:
     """
     with _signals_held(replay=False):
         workers = list((getattr(pool, "_processes", None) or {}).values())
-        children = [k for w in workers if w.pid is not None for k in _descendants(w.pid)]
+        children = [k for w in workers if w.pid is not None for k in descendants(w.pid)]
         for w in workers:
             if w.is_alive():
                 w.terminate()

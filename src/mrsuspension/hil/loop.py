@@ -52,6 +52,7 @@ from typing import Any
 
 import numpy as np
 
+from mrsuspension._pool import descendants
 from mrsuspension.engine.settings import RunSettings
 from mrsuspension.engine.simulate import DEFAULT_DT, Simulation, SimulationDiverged
 from mrsuspension.errors import MRSuspensionError, ValidationError, check_range
@@ -908,8 +909,11 @@ def _stop_loop(proc: multiprocessing.process.BaseProcess, started: bool) -> None
             if proc.is_alive() and proc.pid is not None:
                 os.kill(proc.pid, signal.SIGINT)
         proc.join(STOP_TIMEOUT)
-    if proc.is_alive():
-        proc.terminate()
+    if proc.is_alive() and proc.pid is not None:
+        # its recording writer drains and ends on SIGTERM too
+        for pid in [proc.pid, *descendants(proc.pid)]:
+            with contextlib.suppress(OSError):
+                os.kill(pid, signal.SIGTERM)
         proc.join(0.5)
     if proc.is_alive():
         proc.kill()
