@@ -33,6 +33,10 @@ __all__ = ["MARKER", "check_writable_folder", "prepare_output", "prepare_output_
 #: the file naming the command that wrote a folder
 MARKER = ".mrsus-output.json"
 
+#: outputs whose block raised or was interrupted, left as they were (for the message of
+#: an interrupted command, :func:`mrsuspension.cli.errors.interrupts`)
+discarded: list[Path] = []
+
 
 def _first_existing(path: Path) -> Path:
     """``path`` or its nearest existing ancestor."""
@@ -249,6 +253,7 @@ def prepare_output(
     except BaseException:
         shutil.rmtree(tmp, ignore_errors=True)
         _remove_empty(created)
+        discarded.append(path)
         raise
 
 
@@ -316,4 +321,5 @@ def prepare_output_file(
     except BaseException:
         shutil.rmtree(tmp, ignore_errors=True)
         _remove_empty(created)
+        discarded.append(path)
         raise

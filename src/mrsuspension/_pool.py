@@ -1,26 +1,262 @@
-"""The one local process pool: map a picklable function over tasks, results in order.
+"""The one owner of worker processes and of interrupts: a local process pool that stops fast.
 
-Used by :func:`~mrsuspension.engine.simulate.run_many` (and through it by scenarios and
-studies) and by :mod:`mrsuspension._batch` (the optimiser and the trade-off search,
-which keep one pool open across batches with :func:`process_pool`). It imports nothing
-from the package, so the engine may use it.
+:func:`pool_map` maps a picklable function over tasks, results in order. It is used by
+:func:`~mrsuspension.engine.simulate.run_many` (and through it by scenarios and studies)
+and by :mod:`mrsuspension._batch` (the optimiser and the trade-off search, which keep one
+pool open across batches with :func:`process_pool`); the report's runner uses
+:func:`process_pool` directly.
+
+Interrupts: the workers ignore SIGINT (a terminal's Ctrl-C reaches the whole process
+group), so only the parent decides. When the block of :func:`process_pool` ends with any
+exception (a ``KeyboardInterrupt``, :class:`Interrupted`, a task's error), the pending
+tasks are cancelled and the workers and their children are terminated (SIGTERM, then
+SIGKILL after :data:`STOP_TIMEOUT`), never waited for: ``shutdown(wait=True)`` would let
+every running and queued task finish first (about 40 s on a sweep), and
+``shutdown(cancel_futures=True)`` still lets the running ones finish. Signals arriving
+during that cleanup are held back, so a second Ctrl-C cannot interrupt it half way.
+:func:`handle_signals` turns SIGINT and SIGTERM into :class:`Interrupted` once, for the
+``mrsus`` command. It imports nothing from the package, so the engine may use it.
 """
 
 from __future__ import annotations
 
+import functools
 import os
+import signal
+import threading
+import time
 from collections.abc import Callable, Iterator, Sequence
-from concurrent.futures import Executor, ProcessPoolExecutor, as_completed
-from contextlib import contextmanager
-from typing import Any, TypeVar
+from contextlib import contextmanager, suppress
+from types import FrameType
+from typing import TYPE_CHECKING, Any, TypeVar
 
-__all__ = ["Progress", "pool_map", "process_pool", "worker_count"]
+if TYPE_CHECKING:
+    from concurrent.futures import Executor, Future, ProcessPoolExecutor
+
+__all__ = [
+    "STOP_TIMEOUT",
+    "InterruptState",
+    "Interrupted",
+    "Progress",
+    "descendants",
+    "handle_signals",
+    "pool_map",
+    "process_pool",
+    "stop_pool",
+    "worker_count",
+]
 
 T = TypeVar("T")
 R = TypeVar("R")
 
 #: ``progress(done, total)``, called as tasks finish
 Progress = Callable[[int, int], None]
+
+#: seconds a terminated worker gets to exit before it is killed (measured: a worker
+#: inside a numba kernel exits on SIGTERM in a few milliseconds)
+STOP_TIMEOUT = 0.5
+
+_SIGNALS = (signal.SIGINT, signal.SIGTERM)
+
+
+class Interrupted(KeyboardInterrupt):
+    """SIGINT (Ctrl-C) or SIGTERM received by the parent process.
+
+    A ``KeyboardInterrupt``, so code that stops cleanly on Ctrl-C stops on SIGTERM too.
+
+    Examples
+    --------
+    >>> import signal
+    >>> Interrupted(signal.SIGTERM).exit_code
+    143
+    """
+
+    def __init__(self, signum: int = signal.SIGINT) -> None:
+        super().__init__(signum)
+        self.signum = int(signum)
+
+    @property
+    def exit_code(self) -> int:
+        """The shell's exit status for this signal: 128 + its number (130, 143)."""
+        return 128 + self.signum
+
+
+class InterruptState:
+    """What :func:`handle_signals` received: ``signum`` (None until a signal arrives)."""
+
+    def __init__(self) -> None:
+        self.signum: int | None = None
+
+
+def _in_main_thread() -> bool:
+    return threading.current_thread() is threading.main_thread()
+
+
+@contextmanager
+def handle_signals() -> Iterator[InterruptState]:
+    """Raise :class:`Interrupted` on the first SIGINT or SIGTERM; ignore the ones after it.
+
+    The first signal stops the work (as ``KeyboardInterrupt`` does); a second Ctrl-C
+    while the program cleans up is ignored instead of interrupting the cleanup. A SIGINT
+    that was ignored when the block started (a background job) stays ignored. The
+    previous handlers come back when the block ends. Outside the main thread it does
+    nothing.
+
+    Yields
+    ------
+    InterruptState
+        ``signum`` of the first signal received, None if none.
+
+    Examples
+    --------
+    >>> import os, signal
+    >>> try:
+    ...     with handle_signals() as state:
+    ...         os.kill(os.getpid(), signal.SIGTERM)
+    ...         for _ in range(10**6):  # the handler runs at the next bytecode
+    ...             pass
+    ... except Interrupted as exc:
+    ...     print(exc.exit_code, state.signum == signal.SIGTERM)
+    143 True
+    """
+    state = InterruptState()
+    if not _in_main_thread():
+        yield state
+        return
+
+    def on_signal(signum: int, _frame: FrameType | None) -> None:
+        if state.signum is not None:
+            return  # already stopping: cleanup is bounded, a second signal is not needed
+        state.signum = signum
+        raise Interrupted(signum)
+
+    previous = {s: signal.getsignal(s) for s in _SIGNALS}
+    for s in _SIGNALS:
+        if not (s == signal.SIGINT and previous[s] == signal.SIG_IGN):
+            signal.signal(s, on_signal)
+    try:
+        yield state
+    finally:
+        for s, handler in previous.items():
+            signal.signal(s, handler if handler is not None else signal.SIG_DFL)
+
+
+@contextmanager
+def _signals_held(replay: bool = True) -> Iterator[None]:
+    """Hold SIGINT and SIGTERM back for a short critical section (main thread only).
+
+    The signals are blocked (so a process forked inside, a pool worker, starts with them
+    blocked until its initializer ignores SIGINT) and their Python handlers only record
+    them; on leaving, the handlers are restored and, with ``replay``, a recorded signal
+    is delivered again.
+    """
+    if not _in_main_thread():
+        yield
+        return
+    caught: list[int] = []
+    previous = {s: signal.getsignal(s) for s in _SIGNALS}
+    for s in _SIGNALS:
+        if previous[s] != signal.SIG_IGN:
+            signal.signal(s, lambda signum, _frame: caught.append(signum))
+    mask = signal.pthread_sigmask(signal.SIG_BLOCK, _SIGNALS)
+    try:
+        yield
+    finally:
+        signal.pthread_sigmask(signal.SIG_SETMASK, mask)
+        for s, handler in previous.items():
+            signal.signal(s, handler if handler is not None else signal.SIG_DFL)
+        if replay and caught:
+            signal.raise_signal(caught[0])
+
+
+def _worker_init() -> None:
+    """Pool worker start: Ctrl-C is the parent's business; SIGTERM ends the worker."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    signal.pthread_sigmask(signal.SIG_UNBLOCK, _SIGNALS)
+
+
+def descendants(pid: int) -> list[int]:
+    """Process ids of ``pid``'s children, grandchildren, ... (Linux ``/proc``; else none).
+
+    Examples
+    --------
+    >>> import os
+    >>> os.getpid() in descendants(os.getppid())
+    True
+    """
+    found: list[int] = []
+    stack = [pid]
+    while stack:
+        parent = stack.pop()
+        try:
+            threads = os.listdir(f"/proc/{parent}/task")
+        except OSError:
+            continue
+        for tid in threads:
+            try:
+                with open(f"/proc/{parent}/task/{tid}/children") as f:
+                    kids = [int(k) for k in f.read().split()]
+            except (OSError, ValueError):
+                continue
+            found += kids
+            stack += kids
+    return found
+
+
+def stop_pool(pool: Executor, timeout: float = STOP_TIMEOUT) -> None:
+    """Stop a pool now: cancel its pending tasks, terminate its workers and their children.
+
+    Running tasks are not waited for. Workers get SIGTERM, then SIGKILL if still alive
+    after ``timeout`` seconds; the whole call takes at most about ``2 * timeout``.
+    SIGINT and SIGTERM received meanwhile are dropped (the caller is already stopping).
+    Works with :class:`~concurrent.futures.ProcessPoolExecutor` (its worker processes);
+    any other executor is only shut down without waiting.
+
+    Examples
+    --------
+    >>> from concurrent.futures import ProcessPoolExecutor
+    >>> pool = ProcessPoolExecutor(2)
+    >>> pool.submit(abs, -1).result()
+    1
+    >>> stop_pool(pool)
+    """
+    with _signals_held(replay=False):
+        workers = list((getattr(pool, "_processes", None) or {}).values())
+        children = [k for w in workers if w.pid is not None for k in descendants(w.pid)]
+        for w in workers:
+            if w.is_alive():
+                w.terminate()
+        for pid in children:
+            with suppress(OSError):  # gone already
+                os.kill(pid, signal.SIGKILL)
+        queue = getattr(pool, "_call_queue", None)
+        if queue is not None:  # its feeder may be blocked on a pipe no worker reads any more
+            queue.cancel_join_thread()
+        pool.shutdown(wait=False, cancel_futures=True)
+        deadline = time.monotonic() + timeout
+        for w in workers:
+            w.join(max(0.0, deadline - time.monotonic()))
+        for w in workers:
+            if w.is_alive():
+                w.kill()
+                w.join(timeout)
+
+
+@functools.cache
+def _pool_class() -> type[ProcessPoolExecutor]:
+    """The pool class, built on first use (``concurrent.futures`` is imported lazily)."""
+    from concurrent.futures import ProcessPoolExecutor
+
+    class SignalSafePool(ProcessPoolExecutor):
+        """Submits with SIGINT/SIGTERM held back: workers fork (on the first submit) with
+        them blocked, and an interrupt never lands inside the executor's lock."""
+
+        def submit(self, fn: Callable[..., R], /, *args: Any, **kwargs: Any) -> Future[R]:
+            with _signals_held():
+                return super().submit(fn, *args, **kwargs)
+
+    return SignalSafePool
 
 
 def worker_count(workers: int | None, tasks: int) -> int:
@@ -39,20 +275,31 @@ def process_pool(workers: int | None, tasks: int) -> Iterator[Executor | None]:
     """A process pool for one or several batches of up to ``tasks`` tasks.
 
     Yields None (run in this process) when only one worker would be used; a pool costs
-    about 0.3 s to start, so a caller with several batches keeps one open.
+    about 0.3 s to start, so a caller with several batches keeps one open. The workers
+    ignore SIGINT. When the block raises (Ctrl-C, SIGTERM under :func:`handle_signals`,
+    a task's error), the pool is stopped at once with :func:`stop_pool`; when it ends
+    normally, the pool is shut down after its tasks.
 
     Examples
     --------
     >>> with process_pool(1, 10) as pool:
     ...     pool is None
     True
+    >>> with process_pool(2, 2) as pool:
+    ...     [f.result() for f in [pool.submit(abs, -1), pool.submit(abs, -2)]]
+    [1, 2]
     """
     n = worker_count(workers, tasks)
     if n <= 1:
         yield None
         return
-    with ProcessPoolExecutor(max_workers=n) as pool:
+    pool = _pool_class()(max_workers=n, initializer=_worker_init)
+    try:
         yield pool
+    except BaseException:
+        stop_pool(pool)
+        raise
+    pool.shutdown(wait=True)
 
 
 def pool_map(
@@ -87,13 +334,15 @@ def pool_map(
     -------
     list
         ``fn(task)`` for each task, in order. The first exception raised by a task is
-        raised here.
+        raised here (the pool of this call is then stopped at once).
 
     Examples
     --------
     >>> pool_map(abs, [-1, 2, -3], workers=1)
     [1, 2, 3]
     """
+    from concurrent.futures import as_completed
+
     items = list(tasks)
     counts = [1] * len(items) if weights is None else [int(w) for w in weights]
     if len(counts) != len(items):

@@ -177,8 +177,11 @@ def version() -> None:
 
 def main() -> None:
     """Entry point of the ``mrsus`` command (and ``python -m mrsuspension``)."""
+    from mrsuspension.cli.errors import interrupts
+
     try:
-        app(prog_name="mrsus")
+        with interrupts():  # Ctrl-C / SIGTERM: one line, exit 130 / 143, no orphans
+            app(prog_name="mrsus")
     except MRSuspensionError as exc:  # pragma: no cover - commands catch their own
         print(f"error: {exc}", file=sys.stderr)
         sys.exit(2)

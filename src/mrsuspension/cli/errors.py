@@ -1,17 +1,32 @@
-"""User-error handling shared by the ``mrsus`` commands (one line on stderr, exit code 2)."""
+"""User-error and interrupt handling shared by the ``mrsus`` commands.
+
+A user error is one ``error:`` line on stderr and exit code 2 (:func:`user_errors`); an
+interrupt (Ctrl-C, SIGTERM) is one ``interrupted:`` line and exit code 130 or 143
+(:func:`interrupts`).
+"""
 
 from __future__ import annotations
 
+import os
 import re
-from collections.abc import Iterator, Mapping
-from contextlib import contextmanager
+import signal
+import sys
+from collections.abc import Iterator, Mapping, Sequence
+from contextlib import contextmanager, suppress
+from pathlib import Path
 from typing import Any
 
 import typer
 
 from mrsuspension.errors import MRSuspensionError
 
-__all__ = ["option_named", "user_errors"]
+__all__ = [
+    "interrupted_message",
+    "interrupts",
+    "keep_on_interrupt",
+    "option_named",
+    "user_errors",
+]
 
 #: the field a library message starts with: ``peak_velocity must ...``, ``drive current
 #: must ...``, ``target_force must ...``
@@ -86,3 +101,85 @@ def user_errors(aliases: Mapping[str, str] | None = None) -> Iterator[None]:
         message = option_named(" ".join(str(exc).split()), aliases)
         typer.echo(f"error: {message}", err=True)
         raise typer.Exit(2) from None
+
+
+#: what interrupted commands kept, for the ``interrupted:`` line (:func:`keep_on_interrupt`)
+_KEPT: list[str] = []
+
+
+def keep_on_interrupt(what: str) -> None:
+    """Name, in the ``interrupted:`` line, something an interrupted command kept on purpose.
+
+    E.g. ``hil run --out``: the recording up to the Ctrl-C (the loop's safe stop included).
+
+    Examples
+    --------
+    >>> keep_on_interrupt("the recording so far in 'rec'")
+    >>> interrupted_message(kept=_KEPT)
+    "interrupted: kept the recording so far in 'rec'"
+    >>> _KEPT.clear()
+    """
+    _KEPT.append(what)
+
+
+def interrupted_message(left: Sequence[str | Path] = (), kept: Sequence[str] = ()) -> str:
+    """The line printed when a command is interrupted: what was saved, or not.
+
+    Every ``--out`` is written into a temporary folder and moved into place only when the
+    command completes (:mod:`mrsuspension._output`), so an interrupted command names the
+    outputs (``left``) it left as they were, and what it ``kept`` on purpose.
+
+    Examples
+    --------
+    >>> interrupted_message()
+    'interrupted: nothing saved'
+    >>> interrupted_message(["results"])
+    "interrupted: nothing saved; 'results' left as it was"
+    """
+    said = "; ".join(f"kept {k}" for k in kept) if kept else "nothing saved"
+    if left:
+        said += "; " + ", ".join(repr(str(p)) for p in dict.fromkeys(left)) + " left as it was"
+    return f"interrupted: {said}"
+
+
+@contextmanager
+def interrupts() -> Iterator[None]:
+    """Run the ``mrsus`` command so that Ctrl-C and SIGTERM stop it fast and cleanly.
+
+    The first SIGINT or SIGTERM raises :class:`~mrsuspension._pool.Interrupted` (a
+    ``KeyboardInterrupt``) in the command: its pools stop their workers at once and its
+    output folders are discarded as the exception unwinds; later signals are ignored, so
+    a second Ctrl-C cannot break the cleanup. Then one line
+    (:func:`interrupted_message`) goes to stderr and the process exits with 130 (SIGINT)
+    or 143 (SIGTERM), without a traceback, and without waiting for threads of stopped
+    pools (``os._exit``). A command that handles the interrupt itself and ends normally
+    keeps its own exit code.
+
+    Examples
+    --------
+    >>> with interrupts():
+    ...     print("runs as usual")
+    runs as usual
+    """
+    from mrsuspension._output import discarded
+    from mrsuspension._pool import handle_signals
+
+    before, kept = len(discarded), len(_KEPT)
+    with handle_signals() as state:
+        try:
+            yield
+        except KeyboardInterrupt as exc:  # raised outside typer's own handling
+            signum = getattr(exc, "signum", state.signum or signal.SIGINT)
+            _exit_interrupted(signum, discarded[before:], _KEPT[kept:])
+        except SystemExit as exc:  # typer turns KeyboardInterrupt into exit code 130
+            if state.signum is None or exc.code != 130:
+                raise
+            _exit_interrupted(state.signum, discarded[before:], _KEPT[kept:])
+
+
+def _exit_interrupted(signum: int, left: Sequence[Path], kept: Sequence[str]) -> None:
+    print(interrupted_message(left, kept), file=sys.stderr)
+    for stream in (sys.stdout, sys.stderr):
+        with suppress(OSError, ValueError):  # a closed pipe
+            stream.flush()
+    os._exit(128 + signum)

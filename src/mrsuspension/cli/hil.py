@@ -22,7 +22,7 @@ import typer
 
 from mrsuspension._jsonsafe import to_jsonable
 from mrsuspension._output import check_output_folder
-from mrsuspension.cli.errors import user_errors
+from mrsuspension.cli.errors import keep_on_interrupt, user_errors
 from mrsuspension.errors import (
     ValidationError,
     check_input_file,
@@ -186,6 +186,10 @@ def hil_run_command(
                 realtime=realtime, isolate=isolate,
                 model_dt=DEFAULT_DT if model_dt is None else model_dt,
             )  # fmt: skip
+        except KeyboardInterrupt:  # the loop has stopped the safe way; its recording stays
+            if out is not None and out.is_dir() and any(out.iterdir()):
+                keep_on_interrupt(f"the recording so far in {str(out)!r}")
+            raise
         finally:
             if tmp is not None:
                 shutil.rmtree(tmp, ignore_errors=True)

@@ -38,9 +38,12 @@ import gc
 import json
 import math
 import multiprocessing
+import os
 import shutil
+import signal
 import sys
 import tempfile
+import threading
 import time
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
@@ -49,6 +52,7 @@ from typing import Any
 
 import numpy as np
 
+from mrsuspension._pool import descendants
 from mrsuspension.engine.settings import RunSettings
 from mrsuspension.engine.simulate import DEFAULT_DT, Simulation, SimulationDiverged
 from mrsuspension.errors import MRSuspensionError, ValidationError, check_range
@@ -68,7 +72,7 @@ from mrsuspension.hil.realtime import (
     realtime_session,
     yield_loop_cpu,
 )
-from mrsuspension.hil.recorder import Recorder, Recording, load_recording
+from mrsuspension.hil.recorder import META_FILE, Recorder, Recording, load_recording
 from mrsuspension.hil.rig import Rig, SimulatedRig
 from mrsuspension.hil.safety import SafetyLimits, SafetySupervisor, StartUp
 
@@ -822,10 +826,21 @@ def _row(
 
 
 # -- own process ----------------------------------------------------------------------------
+#: seconds an interrupted ``hil run`` gives its loop process to trip, ramp the rig back to
+#: mid-stroke and write its stop record before it is terminated (the unpaced simulated
+#: rig takes ~0.1 s; a real rig's own watchdog takes over after that)
+STOP_TIMEOUT = 1.5
+
+
 def _child(
     target: Any, rig: Rig | None, duration: float, rate: float, out: str, kw: dict[str, Any]
 ) -> None:
-    run_hil(target, rig, duration, rate, out, **kw)
+    try:
+        signal.signal(signal.SIGINT, signal.default_int_handler)  # ignored until here
+        signal.pthread_sigmask(signal.SIG_UNBLOCK, {signal.SIGINT, signal.SIGTERM})
+        run_hil(target, rig, duration, rate, out, **kw)
+    except KeyboardInterrupt:  # before the loop started or during its stop: no traceback
+        sys.exit(130)
 
 
 def start_process(
@@ -841,7 +856,24 @@ def start_process(
     proc = ctx.Process(
         target=_child, args=(target, rig, duration, rate, str(out), kw), name="mrsus-hil-loop"
     )
-    proc.start()
+    # the process starts with SIGINT ignored (kept through exec), so that a Ctrl-C while it
+    # imports prints no traceback; _child handles it again before the loop starts. Here
+    # SIGINT and SIGTERM are blocked meanwhile, so one arriving during start() waits for
+    # the handler instead of cutting the child's start-up data short (the resource
+    # tracker, which unblocks both when it starts, is started first).
+    if threading.current_thread() is not threading.main_thread():
+        proc.start()
+        return proc
+    from multiprocessing import resource_tracker
+
+    resource_tracker.ensure_running()
+    mask = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT, signal.SIGTERM})
+    previous = signal.signal(signal.SIGINT, signal.SIG_IGN)
+    try:
+        proc.start()
+    finally:
+        signal.signal(signal.SIGINT, previous if previous is not None else signal.SIG_DFL)
+        signal.pthread_sigmask(signal.SIG_SETMASK, mask)
     return proc
 
 
@@ -849,7 +881,11 @@ def _run_in_process(
     target: Any, rig: Rig | None, duration: float, rate: float, out: Path, **kw: Any
 ) -> HilResult:
     proc = start_process(target, rig, duration, rate, out, **kw)
-    proc.join()
+    try:
+        proc.join()
+    except BaseException:  # Ctrl-C or SIGTERM here: stop the loop the safe way, bounded
+        _stop_loop(proc, started=(out / META_FILE).exists())
+        raise
     if proc.exitcode != 0:
         recording = load_recording(out)
         raise MRSuspensionError(
@@ -857,6 +893,31 @@ def _run_in_process(
             f"the recording in {out} holds {len(recording)} rows"
         )
     return load_result(out)
+
+
+def _stop_loop(proc: multiprocessing.process.BaseProcess, started: bool) -> None:
+    """Stop a loop process: SIGINT (it trips and ramps home), then SIGTERM, then SIGKILL.
+
+    A terminal's Ctrl-C has already reached the loop (same process group); a SIGTERM sent
+    to this process only has not, so the loop is asked here, and given
+    :data:`STOP_TIMEOUT` once it has ``started`` (its recording exists: before that the
+    rig has only been commanded to rest, and the process is terminated at once). Takes at
+    most :data:`STOP_TIMEOUT` plus 1 s.
+    """
+    if started:
+        with contextlib.suppress(OSError):
+            if proc.is_alive() and proc.pid is not None:
+                os.kill(proc.pid, signal.SIGINT)
+        proc.join(STOP_TIMEOUT)
+    if proc.is_alive() and proc.pid is not None:
+        # its recording writer drains and ends on SIGTERM too
+        for pid in [proc.pid, *descendants(proc.pid)]:
+            with contextlib.suppress(OSError):
+                os.kill(pid, signal.SIGTERM)
+        proc.join(0.5)
+    if proc.is_alive():
+        proc.kill()
+        proc.join(0.5)
 
 
 def load_result(out: str | Path) -> HilResult:

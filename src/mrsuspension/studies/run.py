@@ -12,6 +12,7 @@ variables = measures), saved as NetCDF (``.nc``) or CSV.
 
 from __future__ import annotations
 
+import contextlib
 import functools
 import hashlib
 import json
@@ -49,6 +50,8 @@ __all__ = [
 
 Progress = Callable[[int, int], None]
 
+#: seconds an interrupted or finished study waits for its own Dask client to close
+DASK_CLOSE_TIMEOUT = 2.0
 #: subpackages a study's computation never reaches: left out of :func:`code_fingerprint`
 _NOT_COMPUTING = frozenset({"cli", "monitor", "report", "hil", "identify"})
 #: the files that make up the code (and the parameter sets shipped as data)
@@ -250,6 +253,7 @@ def _run_dask(
         ) from None
     own = not isinstance(executor, Client)
     client = Client(executor) if own else executor
+    futures: list[Any] = []
     try:
         futures = client.map(
             functools.partial(_run_point, road_peak=road_peak), list(jobs), pure=False
@@ -261,9 +265,14 @@ def _run_dask(
             if progress:
                 progress(n, len(jobs))
         return out
+    except BaseException:  # Ctrl-C, SIGTERM or a failed run: the cluster stops computing
+        with contextlib.suppress(Exception):
+            client.cancel(futures)
+        raise
     finally:
-        if own:
-            client.close()
+        if own:  # bounded: an interrupted study does not wait for a slow scheduler
+            with contextlib.suppress(Exception):
+                client.close(timeout=DASK_CLOSE_TIMEOUT)
 
 
 # -- assembling ---------------------------------------------------------------------------
