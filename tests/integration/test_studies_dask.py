@@ -35,7 +35,9 @@ def test_local_pool_and_dask_cluster_agree() -> None:
             study, executor=cluster.scheduler_address, progress=False, cache_dir=False
         )
         by_client = run_study(study, executor=client, progress=False, cache_dir=False)
+    # the local pool reduces in the kernels (lane batches), Dask post-processes each run:
+    # equal to round-off (the engine's contract: 1e-9 relative)
     for m in study.measures:
-        np.testing.assert_array_equal(local[m].values, by_address[m].values)
-        np.testing.assert_array_equal(local[m].values, by_client[m].values)
+        np.testing.assert_allclose(local[m].values, by_address[m].values, rtol=1e-9, atol=0)
+        np.testing.assert_allclose(local[m].values, by_client[m].values, rtol=1e-9, atol=0)
     assert local.content_hash == by_address.content_hash

@@ -30,7 +30,7 @@ from mrsuspension._batch import Job
 from mrsuspension._progress import progress_bar as _bar
 from mrsuspension.engine.result import SimulationResult
 from mrsuspension.engine.settings import RunSettings
-from mrsuspension.engine.simulate import run_many, run_quietly
+from mrsuspension.engine.simulate import MeasuresOf, run_many, run_quietly
 from mrsuspension.errors import ValidationError
 from mrsuspension.measures.shock import DEFAULT_ROAD_PEAK, RoadPeak
 from mrsuspension.studies.study import Study
@@ -229,7 +229,7 @@ def _run_local(
             settings=settings,
             workers=workers,
             progress=tick,
-            reduce=functools.partial(_measures, road_peak=road_peak),
+            reduce=MeasuresOf(road_peak),  # reduced inside the kernels
         )
         for k, r in zip(idx, results, strict=True):
             out[k] = r
