@@ -74,10 +74,14 @@ def _build(
             **calls,
         }
     extra = []
-    if findings:
+    if findings:  # its report units join the pool's; its history runs are one more task
         from mrsuspension.report import findings as scorecard
 
         extra = scorecard.units(quick)
+        calls = {
+            **calls,
+            "findings history": (scorecard.run_payloads, (scorecard.history_keys(quick), 1)),
+        }
     return build_all(
         figures,
         tables,
@@ -182,7 +186,9 @@ def build_report(
     if findings:
         from mrsuspension.report import findings as scorecard
 
-        body, info = scorecard.build(out, quick, say, payloads=built.payloads)
+        body, info = scorecard.build(
+            out, quick, say, payloads=built.payloads, runs=built.calls["findings history"]
+        )
         bodies.append(body)
         manifest["findings"] = info
     for c in chosen:

@@ -1131,14 +1131,21 @@ def error_figure(law: str, quick: bool) -> tuple[Any, dict[str, Any]]:
     ([1.0, 1.5, 2.0, 2.5], 4)
     >>> import matplotlib.pyplot as plt; plt.close(fig)
     """
-    errors = force_tracking_errors(law, quick)
-    runs = harmonic_runs(
+    modes = ("ACM", "SCM")
+    every = harmonic_runs(  # each run once: the errors and the ACM histories share them
         [
-            {"damper": {"force_gain": kd}, "controller": {"law": law, "mode": "ACM"}}
+            {"damper": {"force_gain": kd}, "controller": {"law": law, "mode": mode}}
+            for mode in modes
             for kd in FORCE_GAINS
         ],
         quick,
     )
+    n = len(FORCE_GAINS)
+    errors = {
+        mode: [tracking_error(r) for r in every[k * n : (k + 1) * n]]
+        for k, mode in enumerate(modes)
+    }
+    runs = every[:n]
     fig, grid = subplots(1, 3)
     axes = grid[0]
     data: dict[str, Any] = {"k_d": list(FORCE_GAINS)}
