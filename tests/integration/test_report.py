@@ -18,13 +18,14 @@ def report(tmp_path_factory: pytest.TempPathFactory) -> Path:
     out = tmp_path_factory.mktemp("report")
     exe = Path(sys.executable).with_name("mrsus")
     done = subprocess.run(
-        [exe, "reproduce", "--out", str(out), "--quick"],
+        [exe, "reproduce", "--out", str(out), "--quick", "--check-layout"],
         capture_output=True,
         text=True,
         timeout=600,
     )
     assert done.returncode == 0, done.stderr
     assert "report written to" in done.stdout
+    out.with_name(out.name + ".stderr").write_text(done.stderr)
     return out
 
 
@@ -297,3 +298,30 @@ def test_findings_scorecard_section(report: Path) -> None:
     assert [r["id"] for r in rows] == [c.id for c in CLAIMS]
     assert all(r["our numbers"] for r in rows)
     assert all(r["holds"] in ("yes", "no") for r in rows)
+
+
+def test_every_figure_is_legible(report: Path) -> None:
+    """No two texts of a figure overlap, no legend hides data, every figure has a title
+    (``layout issues`` of each figure, recorded by the hidden ``--check-layout``)."""
+    manifest = json.loads((report / "manifest.json").read_text())
+    records = [r for c in manifest["chapters"].values() for r in c["figures"]]
+    records += manifest["beyond"]["figures"]
+    assert len(records) >= 88
+    issues = {r["number"]: r["layout issues"] for r in records if r["layout issues"]}
+    assert not issues, issues
+    assert all("layout issues" in r for r in records)
+
+
+def test_progress_lines_and_chapter_times(report: Path) -> None:
+    """Plain progress lines in a log (stderr not a terminal); the manifest records each
+    chapter's timing; PNG only without --svg."""
+    log = report.with_name(report.name + ".stderr").read_text().splitlines()
+    assert sum("report: " in line for line in log) >= 2, log
+    assert not any("\r" in line or "\x1b[" in line for line in log), log
+    manifest = json.loads((report / "manifest.json").read_text())
+    for number, chapter in manifest["chapters"].items():
+        timing = chapter["timing"]
+        assert timing["figures"] == len(chapter["figures"]), number
+        assert timing["last figure done at [s]"] > 0.0, number
+    assert manifest["beyond"]["timing"]["wall time [s]"] > 0.0
+    assert not list(report.rglob("*.svg"))

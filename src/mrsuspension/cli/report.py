@@ -28,6 +28,17 @@ def reproduce(
         typer.Option(help="comma-separated chapters and sections, e.g. 2,4,findings,beyond"),
     ] = None,
     quick: Annotated[bool, typer.Option("--quick", help="coarse grids, for a fast check")] = False,
+    svg: Annotated[
+        bool, typer.Option("--svg", help="also write every figure as SVG (PNG always)")
+    ] = False,
+    check_layout: Annotated[
+        bool,
+        typer.Option(
+            "--check-layout",
+            hidden=True,
+            help="record each figure's overlapping texts and legends over data (for tests)",
+        ),
+    ] = False,
 ) -> None:
     """Regenerate the dissertation's analyses into OUT/index.html (the main job)."""
     import sys
@@ -44,10 +55,22 @@ def reproduce(
         chosen = None if chapters is None else _chapters(chapters)
         notify_if_compiling()
         if not sys.stderr.isatty():  # a log: plain lines every few seconds, no spinner
-            index = build_report(out, chapters=chosen, quick=quick, progress=plain_status())
+            index = build_report(
+                out,
+                chapters=chosen,
+                quick=quick,
+                progress=plain_status(),
+                svg=svg,
+                check_layout=check_layout,
+            )
         else:
             with console.status("starting") as status:
                 index = build_report(
-                    out, chapters=chosen, quick=quick, progress=lambda m: status.update(m)
+                    out,
+                    chapters=chosen,
+                    quick=quick,
+                    progress=lambda m: status.update(m),
+                    svg=svg,
+                    check_layout=check_layout,
                 )
     typer.echo(f"report written to {index}")

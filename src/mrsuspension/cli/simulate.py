@@ -132,8 +132,27 @@ def parse_formats(text: str) -> list[str]:
     return list(dict.fromkeys(names))
 
 
-def _write_sweep(out: Path, rows: Sequence[Mapping[str, Any]]) -> list[Path]:
-    """``sweep.csv`` (headers ``name [unit]``) and ``sweep.png`` (T_as, T_au, T_dr, DLC)."""
+def _title(source: Path, scenario: Mapping[str, Any], what: str | None = None) -> str:
+    """A plot title: the scenario file, then the controller and the excitation (or ``what``).
+
+    Examples
+    --------
+    >>> _title(Path("runs/a.toml"), {"controller": {"law": "passive", "current": 0.1},
+    ...        "excitation": {"kind": "harmonic", "frequency": 1.5}}, "frequency response")
+    'a.toml: passive (current 0.1), frequency response'
+    """
+    from mrsuspension.engine.result import describe_run
+
+    if what is not None:
+        scenario = {k: v for k, v in scenario.items() if k != "excitation"}
+    text = describe_run(scenario)
+    text = what if text == "simulation" and what else ", ".join(filter(None, [text, what]))
+    return f"{source.name}: {text}"
+
+
+def _write_sweep(out: Path, rows: Sequence[Mapping[str, Any]], title: str) -> list[Path]:
+    """``sweep.csv`` (headers ``name [unit]``) and ``sweep.png`` (T_as, T_au, T_dr, DLC)
+    titled ``title`` (the scenario)."""
     from mrsuspension.engine.result import measure_label
 
     files = [out / "sweep.csv", out / "sweep.png"]
@@ -157,6 +176,7 @@ def _write_sweep(out: Path, rows: Sequence[Mapping[str, Any]]) -> list[Path]:
         ax.set_xscale("log")
         ax.grid(True, which="both", alpha=0.3)
     axes[-1].set_xlabel("frequency [Hz]")
+    fig.suptitle(title, fontsize=10)
     fig.tight_layout()
     fig.savefig(files[1], dpi=120)
     plt.close(fig)
@@ -168,8 +188,10 @@ def _write_single(
     result: SimulationResult,
     measures: Mapping[str, Any],
     formats: Sequence[str] = ("csv", "nc"),
+    title: str | None = None,
 ) -> list[Path]:
-    """``result.<format>`` per format (csv + ``result.json``; nc if xarray), plot, measures."""
+    """``result.<format>`` per format (csv + ``result.json``; nc if xarray), plot (titled
+    ``title``, default the run's controller and excitation), measures."""
     files: list[Path] = []
     for name in formats:
         if name == "nc" and importlib.util.find_spec("xarray") is None:
@@ -179,7 +201,7 @@ def _write_single(
             files.append(out / "result.json")
     import matplotlib.pyplot as plt
 
-    fig = result.plot()
+    fig = result.plot(title=title)
     fig.savefig(out / "result.png", dpi=120)
     plt.close(fig)
     files.append(out / "result.png")
@@ -333,13 +355,18 @@ def simulate_command(
             ]
             payload = rows
             if out is not None:
-                _write(out, lambda d: files.extend(_write_sweep(d, rows)))
+                title = _title(scenario, results[0].scenario, "frequency response")
+                _write(out, lambda d: files.extend(_write_sweep(d, rows, title)))
                 _write(out, lambda d: (d / "measures.json").write_text(json.dumps(rows, indent=2)))
                 files.append(out / "measures.json")
         else:
             payload = to_jsonable(results[0].measures(road_peak=how))
             if out is not None:
-                _write(out, lambda d: files.extend(_write_single(d, results[0], payload, kinds)))
+                title = _title(scenario, results[0].scenario)
+                _write(
+                    out,
+                    lambda d: files.extend(_write_single(d, results[0], payload, kinds, title)),
+                )
     _clamp_note([r.velocity_clamp_fraction for r in results])
     _spare_teardown()
     if as_json:
@@ -418,7 +445,8 @@ def sweep_command(
             rows = [to_jsonable(_run_row(e, m)) for e, m in zip(excitations, results, strict=True)]
             if out is not None and folder is not None:
                 try:
-                    files = [out / f.name for f in _write_sweep(folder, rows)]
+                    title = _title(scenario, sims[0].describe(), "frequency response")
+                    files = [out / f.name for f in _write_sweep(folder, rows, title)]
                 except OSError as exc:
                     raise ValidationError(f"cannot write --out {str(out)!r}: {exc}") from None
     _clamp_note([m.get("vm_clamp_fraction") for m in results])

@@ -30,6 +30,7 @@ __all__ = [
     "SimulationDiverged",
     "SimulationResult",
     "VelocityClampWarning",
+    "describe_run",
     "measure_label",
     "measures_context",
     "pulse_measures",
@@ -430,8 +431,31 @@ class SimulationResult(Mapping[str, np.ndarray]):
             units={"time": "s", **{k: str(units.get(k, "")) for k in data}},
         )
 
-    def plot(self, signals: tuple[str, ...] = ("z_s_ddot", "x_d", "F_d", "F_T", "i_d")) -> Figure:
-        """Time histories of some signals, one panel each."""
+    def plot(
+        self,
+        signals: tuple[str, ...] = ("z_s_ddot", "x_d", "F_d", "F_T", "i_d"),
+        title: str | None = None,
+    ) -> Figure:
+        """Time histories of some signals, one panel each, titled with the run.
+
+        Parameters
+        ----------
+        signals : tuple of str
+            Signals to show, one panel each.
+        title : str, optional
+            Figure title; default: the controller and the excitation of the run
+            (:func:`describe_run`).
+
+        Examples
+        --------
+        >>> res = SimulationResult(time=np.arange(3.0), signals={"F_d": np.zeros(3)},
+        ...     scenario={"controller": {"law": "passive", "current": 0.1}},
+        ...     units={"time": "s", "F_d": "N"})
+        >>> fig = res.plot(("F_d",))
+        >>> fig._suptitle.get_text()
+        'passive (current 0.1)'
+        >>> import matplotlib.pyplot as plt; plt.close(fig)
+        """
         import matplotlib
 
         matplotlib.use("Agg", force=False)
@@ -445,6 +469,7 @@ class SimulationResult(Mapping[str, np.ndarray]):
             ax.set_ylabel(f"{s} [{self.units[s]}]")
             ax.grid(True, alpha=0.3)
         np.atleast_1d(axes)[-1].set_xlabel("time [s]")
+        fig.suptitle(describe_run(self.scenario) if title is None else title, fontsize=10)
         fig.tight_layout()
         return fig
 
@@ -524,6 +549,36 @@ def road_measures(
         "rms_stroke": float(np.sqrt(stroke_variance)),
         "mean_current": mean_current,
     }
+
+
+def describe_run(scenario: Mapping[str, Any]) -> str:
+    """A one-line title of a run: its controller and its excitation (from ``describe()``).
+
+    Examples
+    --------
+    >>> describe_run({"controller": {"law": "skyhook-hilo", "mode": "ACM", "gain": 3.0},
+    ...               "excitation": {"kind": "harmonic", "frequency": 1.5, "amplitude": 0.025}})
+    'skyhook-hilo ACM (gain 3), harmonic 1.5 Hz, 25 mm'
+    >>> describe_run({})
+    'simulation'
+    """
+    parts = []
+    ctrl = dict(scenario.get("controller", {}))
+    if ctrl:
+        law = str(ctrl.pop("law", "controller"))
+        mode = ctrl.pop("mode", None)
+        first = f"{law} {mode}" if mode else law
+        extra = [f"{k} {v:g}" for k, v in ctrl.items() if k in ("current", "gain")]
+        parts.append(first + (f" ({', '.join(extra)})" if extra else ""))
+    exc = scenario.get("excitation", {})
+    if exc:
+        kind = str(exc.get("kind", "excitation"))
+        if kind == "harmonic" and "frequency" in exc:
+            kind += f" {exc['frequency']:g} Hz, {1e3 * float(exc.get('amplitude', 0.0)):g} mm"
+        elif "speed_kmh" in exc:
+            kind += f" at {exc['speed_kmh']:g} km/h"
+        parts.append(kind)
+    return ", ".join(parts) or "simulation"
 
 
 def require_pyarrow() -> None:

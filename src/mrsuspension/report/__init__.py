@@ -26,10 +26,12 @@ scenario, variants and a caption. The kinds:
 - **special**: a figure function of its own.
 
 Every distinct scenario runs once and is shared by the figures and tables that use it;
-figures are simulated and drawn across a process pool (both cores). Quick mode
-(`--quick`) writes PNG only, the full report PNG and SVG. `manifest.json` holds, per figure,
-the scenario of every curve (`scenario <label>`), the numbers behind it, and its render and
-simulation times.
+figures are simulated and drawn across a process pool (both cores), each drawn once as
+its runs finish; the "beyond" section's trade-off and optimiser run in the same pool.
+Figures are PNG; `--svg` adds SVG (it costs about as much again as the drawing).
+`manifest.json` holds, per figure, the scenario of every curve (`scenario <label>`), the
+numbers behind it, and its render and simulation times; per chapter, a `timing` entry
+(when its last figure was done, its figures' render and run times).
 
 The shock tables (4.1-4.5, 5.1-5.3, 6.1-6.3) show each measure as ours | the
 dissertation's | ratio (DTR: the difference, since the dissertation's is 0 in nominal

@@ -8,15 +8,16 @@ trade-off across controllers and gains, and a controller tuned by the optimiser.
 * A table of every point (also as CSV).
 
 Quick mode: a 100 m road, 0.25 ms steps, the coarse grid and a 10-candidate search of
-k_c alone, in this process (a few seconds on one core). Full mode: 500 m, 0.1 ms, the full
-grid and a search of k_c and n over every core.
+k_c alone (a few seconds on one core). Full mode: 500 m, 0.1 ms, the full grid and a search
+of k_c and n. Inside ``mrsus reproduce`` the section is one task of the report's process
+pool, run on one core beside the chapters' runs.
 """
 
 from __future__ import annotations
 
 import csv
 import html
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -71,17 +72,58 @@ def _best_label(result: OptimizationResult) -> str:
     return f"optimiser best: skyhook hi-lo ACM, {', '.join(parts)} (J = {result.objective:.3f})"
 
 
-def build(folder: Path, quick: bool, progress: Callable[[str], None]) -> tuple[str, dict[str, Any]]:
-    """Build the section into ``folder``; returns its HTML and its manifest entry."""
+def _spread(fig: Any) -> Any:
+    """``fig`` with its point labels moved apart (:func:`~.toolkit.spread_labels`)."""
+    from mrsuspension.report.toolkit import spread_labels
+
+    spread_labels(fig)
+    return fig
+
+
+def build(
+    folder: Path,
+    quick: bool,
+    progress: Callable[[str], None],
+    *,
+    formats: Sequence[str] = ("png",),
+    check: bool = False,
+    workers: int | None = None,
+) -> tuple[str, dict[str, Any]]:
+    """Build the section into ``folder``; returns its HTML and its manifest entry.
+
+    Parameters
+    ----------
+    folder : Path
+        The section's folder (created).
+    quick : bool
+        Quick mode (see the module's docstring).
+    progress : callable
+        Progress messages.
+    formats : sequence of str
+        Figure formats (PNG by default; ``("png", "svg")`` with ``--svg``).
+    check : bool
+        Record each figure's ``layout issues`` in the manifest.
+    workers : int, optional
+        Processes of the trade-off and the optimiser (default: one in quick mode or in a
+        pool worker, where the report runs this section beside the chapters' runs; else
+        every core).
+
+    Returns
+    -------
+    tuple
+        The section's HTML and its manifest entry.
+    """
+    from mrsuspension.report.toolkit import in_worker
+
     folder.mkdir(parents=True, exist_ok=True)
     the_road = road(quick)
     dt = step(quick)
+    if workers is None and (quick or in_worker()):
+        workers = 1
     progress("beyond: comfort / road holding / rattle space across controllers")
-    trade: TradeoffResult = tradeoff(
-        [the_road], grid=default_grid(quick), dt=dt, workers=1 if quick else None
-    )
+    trade: TradeoffResult = tradeoff([the_road], grid=default_grid(quick), dt=dt, workers=workers)
     progress("beyond: optimising skyhook hi-lo ACM")
-    result = optimize(problem(quick), workers=1 if quick else None, progress=False)
+    result = optimize(problem(quick), workers=workers, progress=False)
     best_label = _best_label(result)
     best_measures = result.measures[the_road.name]
 
@@ -103,7 +145,7 @@ def build(folder: Path, quick: bool, progress: Callable[[str], None]) -> tuple[s
             "cannot realise and is left out of the fronts. Star: the optimiser's best skyhook "
             f"hi-lo ACM for weights {WEIGHTS} normalised by passive 0 A."
         ),
-        figure=trade.plot(extra={best_label: best_measures}),
+        figure=_spread(trade.plot(extra={best_label: best_measures})),
         data={"points": rows, "optimiser_best": best_measures},
     )
     fig_b2 = FigureRecord(
@@ -120,15 +162,16 @@ def build(folder: Path, quick: bool, progress: Callable[[str], None]) -> tuple[s
     figures = []
     sections = []
     for rec in (fig_b1, fig_b2):
-        rec.save(folder)
-        figures.append(
-            {"number": rec.number, "title": rec.title, "files": rec.files, "data": rec.data}
-        )
+        rec.save(folder, formats, check=check)
+        entry = {"number": rec.number, "title": rec.title, "files": rec.files, "data": rec.data}
+        if rec.issues is not None:
+            entry["layout issues"] = rec.issues
+        figures.append(entry)
+        svg = f' <a href="beyond/{rec.slug}.svg">SVG</a>' if "svg" in formats else ""
         sections.append(
             f'<figure id="{rec.slug}"><img src="beyond/{rec.slug}.png" alt="Fig. {rec.number}">'
             f"<figcaption><b>Fig. {html.escape(rec.number)}: {html.escape(rec.title)}.</b> "
-            f"{html.escape(rec.caption)} "
-            f'<a href="beyond/{rec.slug}.svg">SVG</a></figcaption></figure>'
+            f"{html.escape(rec.caption)}{svg}</figcaption></figure>"
         )
     best_rows = [
         {

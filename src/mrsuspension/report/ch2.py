@@ -28,7 +28,9 @@ from mrsuspension.report.toolkit import (
     Context,
     FigureRecord,
     Jobs,
+    figure_legend,
     figure_sections,
+    side_legend,
     subplots,
     table,
     write_csv,
@@ -50,6 +52,10 @@ def band_model(frequency: float, **options: Any) -> WangSymmetric:
 
 
 def _loop_axes(ax: Axes, kind: str = "F-v") -> None:
+    from matplotlib.ticker import MaxNLocator
+
+    # at most 5 labelled ticks: labels like "-0.075" collide in a 4.2 in panel
+    ax.xaxis.set_major_locator(MaxNLocator(nbins=5))
     if kind == "F-v":
         ax.set_xlabel("velocity $v_d$ [m/s]")
     else:
@@ -197,7 +203,7 @@ def fig_2_7() -> FigureRecord:
     ax2 = ax.twinx()
     ax2.plot(t, v, color="0.5", lw=0.8, label="$v_d$")
     ax2.set_ylabel("velocity $v_d$ [m/s]")
-    ax.legend(fontsize=8, loc="upper right")
+    figure_legend(fig, ax, fontsize=8)
     return FigureRecord(
         number="2.7",
         title="Modulation of command current: symmetric, on-off and ADFG",
@@ -277,7 +283,7 @@ def _generalised(model: WangSymmetric, number: str, title: str) -> FigureRecord:
     ax.plot([0.0], [fh], "o", color="C3")
     ax.annotate("$F_h$ (v = 0, decreasing v)", (0.0, fh), textcoords="offset points", xytext=(8, 8))
     _loop_axes(ax)
-    ax.legend()
+    side_legend(ax)
     return FigureRecord(
         number=number,
         title=title,
@@ -327,13 +333,13 @@ def fig_2_10() -> FigureRecord:
     axes[0, 0].plot(t, i_d, label="$i_d$")
     axes[0, 0].plot(t, i_z, "--", label="$i_z$ (inverse)")
     axes[0, 0].set_ylabel("current [A]")
-    axes[0, 0].legend(fontsize=8)
+    side_legend(axes[0, 0], fontsize=8)
     axes[1, 0].semilogy(t, np.maximum(err, 1e-18))
     axes[1, 0].set_ylabel("$e_i = |i_d - i_z|$ [A]")
     axes[2, 0].plot(t, f_h, label="$F_h$ (passive hysteron)")
     axes[2, 0].plot(t, f_d, label="$F_d$")
     axes[2, 0].set_ylabel("force [N]")
-    axes[2, 0].legend(fontsize=8)
+    side_legend(axes[2, 0], fontsize=8)
     for ax in axes[:, 0]:
         ax.grid(True, alpha=0.3)
     axes[2, 0].set_xlabel("time [s]")

@@ -62,7 +62,7 @@ def fig_3_2(quick: bool = False) -> FigureRecord:
         ax.set_xlabel("time [s]")
         ax.set_ylabel("controller current $i_c$ [A]")
         ax.grid(True, alpha=0.3)
-        ax.legend(fontsize=8)
+        ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.2), ncols=2)
     return FigureRecord(
         number="3.2",
         title="Continuous variations in the controller current of on-off or hi-lo control",

@@ -73,7 +73,9 @@ from mrsuspension.report.toolkit import (
     STEADY_FROM,
     TABLE_MEASURES,
     FigureRecord,
+    figure_legend,
     in_worker,
+    legend_columns,
     subplots,
 )
 
@@ -497,9 +499,11 @@ def run_unit(unit: Unit) -> dict[str, Any]:
 
 
 # -- rendering ----------------------------------------------------------------------------
-def _subplots(rows: int, cols: int) -> tuple[Any, Any]:
-    """The family figures' panel grid: 3.3 x 2.5 in panels with fixed margins."""
-    return subplots(rows, cols, 3.3, 2.5, layout="fixed")
+def _subplots(rows: int, cols: int, labels: Sequence[str]) -> tuple[Any, Any]:
+    """The family figures' panel grid: 3.3 x 2.5 in panels with fixed margins, and a strip
+    for the legend of ``labels`` between the title and the panels (off the data)."""
+    per_row = legend_columns(labels, 3.3 * cols)
+    return subplots(rows, cols, 3.3, 2.5, layout="fixed", legend_rows=-(-len(labels) // per_row))
 
 
 def _grid(n: int) -> tuple[int, int]:
@@ -518,7 +522,7 @@ def _render_histories(
     spec: FigureSpec, payloads: Mapping[str, dict[str, Any]]
 ) -> tuple[Any, dict[str, Any]]:
     rows, cols = _grid(len(spec.signals))
-    fig, axes = _subplots(rows, cols)
+    fig, axes = _subplots(rows, cols, list(payloads))
     flat = axes.ravel()
     data: dict[str, Any] = {}
     every = 10
@@ -547,14 +551,14 @@ def _render_histories(
     for ax in flat[: len(spec.signals)]:
         ax.set_xlabel("time [s]")
         ax.grid(True, alpha=0.3)
-    flat[0].legend(fontsize=7, loc="upper right")
+    figure_legend(fig, flat[0])
     return fig, data
 
 
 def _render_freq(
     spec: FigureSpec, payloads: Mapping[str, dict[str, Any]]
 ) -> tuple[Any, dict[str, Any]]:
-    fig, axes = _subplots(2, 2)
+    fig, axes = _subplots(2, 2, list(payloads))
     data: dict[str, Any] = {}
     for label, p in payloads.items():
         f = p["frequency"]
@@ -577,14 +581,14 @@ def _render_freq(
         ax.xaxis.set_minor_locator(NullLocator())
         ax.set_xlabel("frequency [Hz]")
         ax.grid(True, alpha=0.3)
-    axes[0, 0].legend(fontsize=7, loc="upper right")
+    figure_legend(fig, axes[0, 0])
     return fig, data
 
 
 def _render_psd(
     spec: FigureSpec, payloads: Mapping[str, dict[str, Any]]
 ) -> tuple[Any, dict[str, Any]]:
-    fig, axes = _subplots(2, 3)
+    fig, axes = _subplots(2, 3, list(payloads))
     flat = axes.ravel()
     data: dict[str, Any] = {}
     for label, p in payloads.items():
@@ -614,7 +618,7 @@ def _render_psd(
         ax.grid(True, alpha=0.3)
     flat[5].set_xlabel("time [s]")
     flat[5].set_ylabel("$i_d$ [A]")
-    flat[0].legend(fontsize=7, loc="upper right")
+    figure_legend(fig, flat[0])
     return fig, data
 
 
@@ -654,6 +658,7 @@ def render(
     payloads: Mapping[str, dict[str, Any]],
     folder: Path,
     formats: Sequence[str],
+    check: bool = False,
 ) -> dict[str, Any]:
     """Draw ``spec`` from its units' payloads, save it and return its manifest record.
 
@@ -667,6 +672,9 @@ def render(
         Where the files go.
     formats : sequence of str
         ``("png",)`` or ``("png", "svg")``.
+    check : bool
+        Also record the figure's ``layout issues``
+        (:func:`~mrsuspension.report.legibility.layout_issues`).
 
     Returns
     -------
@@ -683,16 +691,20 @@ def render(
         spec.number, spec.title, spec.caption + clamp_note(payloads, data), fig, data
     )
     simulated = sum(p["run time [s]"] for p in payloads.values())
-    return _saved(rec, folder, formats, start, cpu, round(simulated, 3))
+    return _saved(rec, folder, formats, start, cpu, round(simulated, 3), check)
 
 
 def _build_special(
-    builder: Callable[..., Any], quick: bool | None, folder: Path, formats: Sequence[str]
+    builder: Callable[..., Any],
+    quick: bool | None,
+    folder: Path,
+    formats: Sequence[str],
+    check: bool = False,
 ) -> dict[str, Any]:
     """Run a figure function (``builder(quick)``, or ``builder()`` if quick is None) and save."""
     start, cpu = time.perf_counter(), time.process_time()
     rec = builder() if quick is None else builder(quick)
-    return _saved(rec, folder, formats, start, cpu, 0.0)
+    return _saved(rec, folder, formats, start, cpu, 0.0, check)
 
 
 def _saved(
@@ -702,9 +714,11 @@ def _saved(
     start: float,
     cpu: float,
     simulated: float,
+    check: bool = False,
 ) -> dict[str, Any]:
     """Save ``rec`` and return its manifest entry, timed from ``start`` (wall) and ``cpu``."""
-    rec.save(folder, formats)
+    rec.save(folder, formats, check=check)
+    extra = {} if rec.issues is None else {"layout issues": rec.issues}
     return {
         "number": rec.number,
         "title": rec.title,
@@ -714,14 +728,15 @@ def _saved(
         "render time [s]": round(time.perf_counter() - start, 3),
         "render cpu time [s]": round(time.process_time() - cpu, 3),
         "simulation time [s]": simulated,
+        **extra,
     }
 
 
-def _call(func: Callable[..., Any], args: tuple[Any, ...]) -> tuple[Any, float]:
-    """``func(*args)`` and the CPU time it took [s]."""
-    cpu = time.process_time()
+def _call(func: Callable[..., Any], args: tuple[Any, ...]) -> tuple[Any, float, float]:
+    """``func(*args)``, the CPU time and the wall time it took [s]."""
+    cpu, wall = time.process_time(), time.perf_counter()
     value = func(*args)
-    return value, time.process_time() - cpu
+    return value, time.process_time() - cpu, time.perf_counter() - wall
 
 
 # -- shock tables --------------------------------------------------------------------------
@@ -1022,6 +1037,7 @@ class Built:
     tables: dict[str, dict[str, Any]] = field(default_factory=dict)
     calls: dict[str, Any] = field(default_factory=dict)
     payloads: dict[Unit, dict[str, Any]] = field(default_factory=dict)
+    call_times: dict[str, float] = field(default_factory=dict)
     wall_time: float = 0.0
     timing: dict[str, Any] = field(default_factory=dict)
 
@@ -1037,6 +1053,8 @@ def build_all(
     units: Sequence[Unit] = (),
     workers: int | None = None,
     progress: Callable[[str], None] | None = None,
+    formats: Sequence[str] | None = None,
+    check: bool = False,
 ) -> Built:
     """Run every distinct unit once and draw every figure, across a process pool.
 
@@ -1047,7 +1065,7 @@ def build_all(
     tables : sequence of ShockTable
         Shock tables (their pulse units are shared with the figures').
     quick : bool
-        Coarse grids and steps; PNG only (else PNG and SVG).
+        Coarse grids and steps.
     out : Path
         Report folder.
     specials : sequence
@@ -1063,15 +1081,22 @@ def build_all(
         this process.
     progress : callable, optional
         Called with a message as jobs finish.
+    formats : sequence of str, optional
+        Figure file formats (default PNG only; ``("png", "svg")`` for both).
+    check : bool
+        Record each figure's ``layout issues``
+        (:func:`~mrsuspension.report.legibility.layout_issues`).
 
     Returns
     -------
     Built
+        Each figure record also holds ``done at [s]``: when it was saved, counted from
+        the start of the pool.
     """
     from concurrent.futures import FIRST_COMPLETED, Future, wait
 
     say = progress or (lambda _m: None)
-    formats = ("png",) if quick else ("png", "svg")
+    formats = tuple(formats or ("png",))
     start = time.perf_counter()
     built = Built()
     todo: list[tuple[str, FigureSpec]] = [
@@ -1110,37 +1135,42 @@ def build_all(
         done += 1
         say(f"report: {done}/{total} {what}")
 
+    def done_at(record: dict[str, Any]) -> dict[str, Any]:
+        record["done at [s]"] = round(time.perf_counter() - start, 2)
+        return record
+
     pending_figs = dict(
         todo_item for todo_item in ((f"{sub}/{s.number}", (sub, s)) for sub, s in todo)
     )
 
     with process_pool(n_workers, total) as pool:
         if pool is None:
+            for name, (func, args) in (calls or {}).items():
+                built.calls[name], call_cpu[name], built.call_times[name] = _call(func, args)
+                tick(name)
             for u in units:
                 built.payloads[u] = run_unit(u)
                 tick(f"{u.kind} run")
             for key, (sub, s) in pending_figs.items():
                 pl = {label: built.payloads[u] for label, u in need[key].items()}
-                built.figures[key] = render(s, pl, out / sub, formats)
+                built.figures[key] = done_at(render(s, pl, out / sub, formats, check))
                 tick(f"Fig. {s.number}")
             for sub, builder, q in special_jobs:
-                rec = _build_special(builder, q, out / sub, formats)
+                rec = done_at(_build_special(builder, q, out / sub, formats, check))
                 built.figures[f"{sub}/{rec['number']}"] = rec
                 tick(f"Fig. {rec['number']}")
-            for name, (func, args) in (calls or {}).items():
-                built.calls[name], call_cpu[name] = _call(func, args)
-                tick(name)
         else:
             futures: dict[Future[Any], tuple[str, Any]] = {}
+            # calls first: the "beyond" section's trade-off and optimiser are the longest
+            for name, (func, args) in (calls or {}).items():
+                futures[pool.submit(_call, func, args)] = ("call", name)
             for u in units:
                 futures[pool.submit(run_unit, u)] = ("unit", u)
             for sub, builder, q in special_jobs:
-                futures[pool.submit(_build_special, builder, q, out / sub, formats)] = (
+                futures[pool.submit(_build_special, builder, q, out / sub, formats, check)] = (
                     "special",
                     sub,
                 )
-            for name, (func, args) in (calls or {}).items():
-                futures[pool.submit(_call, func, args)] = ("call", name)
             while futures:
                 finished, _ = wait(list(futures), return_when=FIRST_COMPLETED)
                 for fut in finished:
@@ -1153,18 +1183,19 @@ def build_all(
                             if all(u in built.payloads for u in need[key].values()):
                                 sub, s = pending_figs.pop(key)
                                 pl = {label: built.payloads[u] for label, u in need[key].items()}
-                                futures[pool.submit(render, s, pl, out / sub, formats)] = (
+                                job = pool.submit(render, s, pl, out / sub, formats, check)
+                                futures[job] = (
                                     "figure",
                                     key,
                                 )
                     elif what == "figure":
-                        built.figures[ref] = value
+                        built.figures[ref] = done_at(value)
                         tick(f"Fig. {value['number']}")
                     elif what == "special":
-                        built.figures[f"{ref}/{value['number']}"] = value
+                        built.figures[f"{ref}/{value['number']}"] = done_at(value)
                         tick(f"Fig. {value['number']}")
                     else:
-                        built.calls[ref], call_cpu[ref] = value
+                        built.calls[ref], call_cpu[ref], built.call_times[ref] = value
                         tick(ref)
     for t in tables:
         rows_in: dict[float, dict[str, Any]] = {

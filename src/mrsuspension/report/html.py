@@ -41,9 +41,13 @@ def _build(
     quick: bool,
     progress: Callable[[str], None],
     findings: bool = False,
+    beyond: bool = False,
+    formats: Sequence[str] = ("png",),
+    check: bool = False,
 ) -> Any:
-    """Run the jobs of ``chapters`` (and the findings scorecard's runs) in one process pool
-    (see families.build_all); the pool's results (``families.Built``)."""
+    """Run the jobs of ``chapters`` (and the findings scorecard's runs, and the "beyond"
+    section) in one process pool (see families.build_all); the pool's results
+    (``families.Built``)."""
     from mrsuspension.report.chapters import chapter
     from mrsuspension.report.families import build_all
 
@@ -59,11 +63,25 @@ def _build(
         calls.update(job.calls)
     for sub in {*figures, *(s[0] for s in specials)}:
         (out / sub).mkdir(parents=True, exist_ok=True)
+    if beyond:  # its trade-off and optimiser runs, beside the chapters' (first: the longest)
+        from mrsuspension.report import beyond as section
+
+        calls = {
+            "beyond": (
+                _build_beyond,
+                (section.build, out / "beyond", quick, tuple(formats), check),
+            ),
+            **calls,
+        }
     extra = []
-    if findings:
+    if findings:  # its report units join the pool's; its history runs are one more task
         from mrsuspension.report import findings as scorecard
 
         extra = scorecard.units(quick)
+        calls = {
+            **calls,
+            "findings history": (scorecard.run_payloads, (scorecard.history_keys(quick), 1)),
+        }
     return build_all(
         figures,
         tables,
@@ -73,7 +91,35 @@ def _build(
         calls=calls,
         units=extra,
         progress=progress,
+        formats=formats,
+        check=check,
     )
+
+
+def _build_beyond(
+    build: Callable[..., tuple[str, dict[str, Any]]],
+    folder: Path,
+    quick: bool,
+    formats: Sequence[str],
+    check: bool,
+) -> tuple[str, dict[str, Any]]:
+    """The "beyond" section as a task of the report's pool (no progress messages)."""
+    return build(folder, quick, lambda _msg: None, formats=formats, check=check)
+
+
+def _chapter_timing(figures: Sequence[dict[str, Any]], build_time: float) -> dict[str, Any]:
+    """A chapter's timing for the manifest: its figures' draw and run times, when its last
+    figure was done (seconds after the pool started: figures are drawn as their runs
+    finish, in parallel across chapters) and how long writing its section took."""
+    done = [f["done at [s]"] for f in figures if "done at [s]" in f]
+    return {
+        "figures": len(figures),
+        "last figure done at [s]": round(max(done), 2) if done else None,
+        "render wall time [s]": round(sum(f.get("render time [s]", 0.0) for f in figures), 2),
+        "render cpu time [s]": round(sum(f.get("render cpu time [s]", 0.0) for f in figures), 2),
+        "simulation time [s]": round(sum(f.get("simulation time [s]", 0.0) for f in figures), 2),
+        "section build time [s]": round(build_time, 3),
+    }
 
 
 def build_report(
@@ -82,6 +128,8 @@ def build_report(
     chapters: Iterable[int | str] | None = None,
     quick: bool = False,
     progress: Callable[[str], None] | None = None,
+    svg: bool = False,
+    check_layout: bool = False,
 ) -> Path:
     """Regenerate the dissertation's analyses into ``out/index.html``.
 
@@ -95,9 +143,16 @@ def build_report(
         :mod:`mrsuspension.report.findings`, and the "beyond the dissertation" section,
         :mod:`mrsuspension.report.beyond`; :func:`mrsuspension.report.chapters.choices`).
     quick : bool
-        Coarser grids for a fast check, PNG only (else PNG and SVG).
+        Coarser grids for a fast check.
     progress : callable, optional
         Called with a message before each step.
+    svg : bool
+        Also write every figure as SVG (PNG always; SVG costs about as much again as the
+        drawing, so only on request).
+    check_layout : bool
+        Record each figure's ``layout issues`` (overlapping texts, a legend over the
+        data, no title; :func:`~mrsuspension.report.legibility.layout_issues`) in
+        ``manifest.json``; the report's tests require none.
 
     Returns
     -------
@@ -116,24 +171,38 @@ def build_report(
     start = time.perf_counter()
     bodies: list[str] = []
     manifest: dict[str, Any] = {"version": __version__, "chapters": {}}
-    built = _build(chosen, out, quick, say, findings=findings)
+    formats = ("png", "svg") if svg else ("png",)
+    built = _build(
+        chosen,
+        out,
+        quick,
+        say,
+        findings=findings,
+        beyond=beyond,
+        formats=formats,
+        check=check_layout,
+    )
     manifest["pool"] = built.timing
     if findings:
         from mrsuspension.report import findings as scorecard
 
-        body, info = scorecard.build(out, quick, say, payloads=built.payloads)
+        body, info = scorecard.build(
+            out, quick, say, payloads=built.payloads, runs=built.calls["findings history"]
+        )
         bodies.append(body)
         manifest["findings"] = info
     for c in chosen:
         context = Context(c, out / f"chapter{c}", quick, built, say)
+        t0 = time.perf_counter()
         body, info = chapter(c).build(context)
         bodies.append(body)
+        info["timing"] = _chapter_timing(info.get("figures", []), time.perf_counter() - t0)
         manifest["chapters"][str(c)] = info
     if beyond:
-        from mrsuspension.report import beyond as beyond_section
-
-        body, info = beyond_section.build(out / "beyond", quick, say)
+        body, info = built.calls["beyond"]
         bodies.append(body)
+        info["timing"] = _chapter_timing(info["figures"], 0.0)
+        info["timing"]["wall time [s]"] = round(built.call_times["beyond"], 2)
         manifest["beyond"] = info
     elapsed = time.perf_counter() - start
     manifest["run_time_s"] = round(elapsed, 2)

@@ -37,10 +37,12 @@ if TYPE_CHECKING:
     from mrsuspension.studies import Study, StudyResult
 
 __all__ = [
+    "DPI",
     "DURATION",
     "FORCE_GAINS",
     "FREQUENCY_PANELS",
     "HARMONIC",
+    "LABEL_OFFSETS",
     "LEGEND",
     "SHOCK",
     "SHOWN",
@@ -55,6 +57,7 @@ __all__ = [
     "error_figure",
     "family_chapter",
     "family_note",
+    "figure_legend",
     "figure_sections",
     "force_tracking_errors",
     "format_cell",
@@ -62,12 +65,15 @@ __all__ = [
     "harmonic_runs",
     "in_worker",
     "inverse_model_step",
+    "legend_columns",
     "plot_selections",
     "plot_sweep",
     "run_sweep",
     "save_figure",
     "shock_table_html",
     "shown",
+    "side_legend",
+    "spread_labels",
     "steady",
     "subplots",
     "sweep_study",
@@ -90,6 +96,7 @@ def subplots(
     height: float = 3.4,
     *,
     layout: str = "constrained",
+    legend_rows: int = 0,
 ) -> tuple[Any, Any]:
     """A figure with an ``nrows`` x ``ncols`` grid of panels (always a 2-D axes array).
 
@@ -104,6 +111,9 @@ def subplots(
         Chapters 2-6). ``"fixed"``: fixed margins and a 0.35 in title strip; constrained
         layout costs about 60 % of a figure's rendering time, and the figure families
         (:mod:`~mrsuspension.report.families`) all share a few shapes.
+    legend_rows : int
+        ``"fixed"`` only: rows of a figure legend to leave room for between the title
+        and the panels (:func:`figure_legend`), 0.22 in each.
 
     Returns
     -------
@@ -137,17 +147,148 @@ def subplots(
             squeeze=False,
             layout="constrained",
         )
-    fig_w, fig_h = width * ncols, height * nrows + 0.35
+    strip = _LEGEND_ROW * legend_rows
+    fig_w, fig_h = width * ncols, height * nrows + 0.35 + strip
     fig, axes = plt.subplots(nrows, ncols, figsize=(fig_w, fig_h), squeeze=False)
     fig.subplots_adjust(
         left=0.95 / fig_w,
         right=1 - 0.15 / fig_w,
         bottom=0.5 / fig_h,
-        top=1 - 0.45 / fig_h,
+        top=1 - (0.45 + strip) / fig_h,
         wspace=0.5,
         hspace=0.42,
     )
     return fig, axes
+
+
+#: Resolution of the report's PNG figures [dots per inch]
+DPI = 110
+
+
+#: Height of one row of a figure legend above fixed-layout panels [in]
+_LEGEND_ROW = 0.22
+
+
+def legend_columns(labels: Sequence[str], width: float, fontsize: float = 7.0) -> int:
+    """Columns of a one-line-per-row figure legend of ``labels`` across ``width`` inches.
+
+    An entry is estimated as its handle (0.4 in) plus 0.55 em per character.
+
+    Examples
+    --------
+    >>> legend_columns(["0 A", "0.1 A", "0.2 A"], 9.9), legend_columns(["x" * 60] * 3, 6.6)
+    (3, 1)
+    """
+    if not labels:
+        return 1
+    entry = 0.4 + 0.55 * fontsize / 72.0 * max(len(str(t)) for t in labels)
+    return max(1, min(len(labels), int((width - 0.3) // entry)))
+
+
+def figure_legend(fig: Any, ax: Any, *, fontsize: float = 7.0, **options: Any) -> Any:
+    """One legend for the whole figure, outside every panel, from the curves of ``ax``.
+
+    With constrained layout it goes below the panels (the layout makes room); with the
+    fixed layout into the strip left between the title and the panels
+    (:func:`subplots` ``legend_rows``, e.g. from :func:`legend_columns`).
+
+    Examples
+    --------
+    >>> fig, axes = subplots(1, 2, layout="fixed", legend_rows=1)
+    >>> _ = axes[0, 0].plot([0, 1], label="a"); _ = axes[0, 1].plot([1, 0])
+    >>> figure_legend(fig, axes[0, 0]).get_texts()[0].get_text()
+    'a'
+    >>> import matplotlib.pyplot as plt; plt.close(fig)
+    """
+    handles, labels = ax.get_legend_handles_labels()
+    width, height = fig.get_size_inches()
+    ncols = options.pop("ncols", legend_columns(labels, width, fontsize))
+    if fig.get_layout_engine() is not None:
+        return fig.legend(
+            handles, labels, loc="outside lower center", ncols=ncols, fontsize=fontsize, **options
+        )
+    return fig.legend(
+        handles,
+        labels,
+        loc="upper center",
+        bbox_to_anchor=(0.5, 1 - 0.33 / height),
+        ncols=ncols,
+        fontsize=fontsize,
+        frameon=False,
+        borderaxespad=0.0,
+        **options,
+    )
+
+
+def side_legend(ax: Any, **options: Any) -> Any:
+    """A legend beside ``ax`` (to its right, top-aligned), off the data.
+
+    Examples
+    --------
+    >>> fig, axes = subplots(1, 1)
+    >>> _ = axes[0, 0].plot([0, 1], label="a")
+    >>> side_legend(axes[0, 0], fontsize=8).get_texts()[0].get_text()
+    'a'
+    >>> import matplotlib.pyplot as plt; plt.close(fig)
+    """
+    return ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0, **options)
+
+
+#: Offsets [pt] tried in turn for a point's label by :func:`spread_labels`
+LABEL_OFFSETS: tuple[tuple[float, float], ...] = (
+    (3, 3), (3, -9), (-3, 3), (-3, -9), (3, 11), (3, -17), (-3, 11), (-3, -17),
+)  # fmt: skip
+
+
+def spread_labels(fig: Any, offsets: Sequence[tuple[float, float]] = LABEL_OFFSETS) -> int:
+    """Move point labels (annotations in offset points, no arrow) so that no two overlap.
+
+    Each label takes the first offset of ``offsets`` (to the right for positive x, to
+    the left otherwise) where it overlaps no label placed before it nor the axes' other
+    texts; a label that fits nowhere keeps the first offset.
+
+    Returns
+    -------
+    int
+        Labels moved from the first offset.
+
+    Examples
+    --------
+    >>> fig, axes = subplots(1, 1)
+    >>> ax = axes[0, 0]
+    >>> for x in (0.0, 0.0001):
+    ...     _ = ax.annotate("k_c = 10", (x, 0.0), xytext=(3, 3), textcoords="offset points")
+    >>> spread_labels(fig)
+    1
+    >>> import matplotlib.pyplot as plt; plt.close(fig)
+    """
+    from matplotlib.text import Annotation
+
+    from mrsuspension.report.legibility import overlap
+
+    fig.canvas.draw()  # resolve the layout: label positions are then final
+    renderer = fig.canvas.get_renderer()
+    moved = 0
+    for ax in fig.axes:
+        labels = [
+            t
+            for t in ax.texts
+            if isinstance(t, Annotation)
+            and t.anncoords == "offset points"
+            and t.arrow_patch is None  # a note with an arrow stays where it points from
+            and t.get_visible()
+        ]
+        placed = [t.get_window_extent(renderer) for t in ax.texts if t not in labels]
+        for label in labels:
+            for k, (dx, dy) in enumerate([*offsets, offsets[0]]):
+                label.xyann = (dx, dy)
+                label.set_horizontalalignment("left" if dx >= 0 else "right")
+                box = label.get_window_extent(renderer)
+                if k == len(offsets) or not any(overlap(box, b) for b in placed):
+                    break
+            moved += k > 0
+            placed.append(box)
+    return moved
 
 
 @dataclass
@@ -168,22 +309,45 @@ class FigureRecord:
     figure: Any  # matplotlib.figure.Figure
     data: dict[str, Any] = field(default_factory=dict)
     files: list[str] = field(default_factory=list)
+    issues: list[str] | None = None
 
     @property
     def slug(self) -> str:
         """File stem, e.g. ``fig_2_3``."""
         return "fig_" + self.number.replace(".", "_")
 
-    def save(self, folder: Path, formats: Sequence[str] = ("png", "svg")) -> list[Path]:
-        """Write the figure in each format and close it."""
+    def save(
+        self, folder: Path, formats: Sequence[str] = ("png",), *, check: bool = False
+    ) -> list[Path]:
+        """Title the figure ``Fig. <number>: <title>``, write it in each format and close it.
+
+        Parameters
+        ----------
+        folder : Path
+            Where the files go (created).
+        formats : sequence of str
+            File formats: PNG by default (SVG costs as much again as drawing the figure).
+        check : bool
+            Also list what makes the figure hard to read in :attr:`issues`
+            (:func:`~mrsuspension.report.legibility.layout_issues`; one more draw).
+
+        Returns
+        -------
+        list of Path
+            The files written.
+        """
         import matplotlib.pyplot as plt
 
         folder.mkdir(parents=True, exist_ok=True)
         self.figure.suptitle(f"Fig. {self.number}: {self.title}", fontsize=10)
+        if check:
+            from mrsuspension.report.legibility import layout_issues
+
+            self.issues = layout_issues(self.figure)
         paths = []
         for fmt in formats:
             path = folder / f"{self.slug}.{fmt}"
-            self.figure.savefig(path, dpi=110)
+            self.figure.savefig(path, dpi=DPI)
             paths.append(path)
         plt.close(self.figure)
         self.files = [p.name for p in paths]
@@ -500,8 +664,7 @@ def family_note(quick: bool) -> str:
     (True, False)
     """
     return _FAMILY_NOTE.format(
-        quick=" Quick mode: 10 frequencies and a 0.5 ms step (0.25 ms for the inverse-model "
-        "laws); PNG only."
+        quick=" Quick mode: 10 frequencies and a 0.5 ms step (0.25 ms for the inverse-model laws)."
         if quick
         else ""
     )
@@ -968,14 +1131,21 @@ def error_figure(law: str, quick: bool) -> tuple[Any, dict[str, Any]]:
     ([1.0, 1.5, 2.0, 2.5], 4)
     >>> import matplotlib.pyplot as plt; plt.close(fig)
     """
-    errors = force_tracking_errors(law, quick)
-    runs = harmonic_runs(
+    modes = ("ACM", "SCM")
+    every = harmonic_runs(  # each run once: the errors and the ACM histories share them
         [
-            {"damper": {"force_gain": kd}, "controller": {"law": law, "mode": "ACM"}}
+            {"damper": {"force_gain": kd}, "controller": {"law": law, "mode": mode}}
+            for mode in modes
             for kd in FORCE_GAINS
         ],
         quick,
     )
+    n = len(FORCE_GAINS)
+    errors = {
+        mode: [tracking_error(r) for r in every[k * n : (k + 1) * n]]
+        for k, mode in enumerate(modes)
+    }
+    runs = every[:n]
     fig, grid = subplots(1, 3)
     axes = grid[0]
     data: dict[str, Any] = {"k_d": list(FORCE_GAINS)}

@@ -95,6 +95,7 @@ __all__ = [
     "build",
     "claims_markdown",
     "evaluate",
+    "history_keys",
     "html_section",
     "run_payloads",
     "units",
@@ -213,6 +214,22 @@ def run_payloads(
     return dict(zip(todo, pool_map(run_key, todo, workers=workers), strict=True))
 
 
+def history_keys(quick: bool, claims: Sequence[Claim] | None = None) -> list[tuple[str, Unit]]:
+    """The payload keys of the claims' ``history`` runs (not report units), in order.
+
+    The report runs them as one task of its process pool (:func:`run_payloads`) and hands
+    the payloads to :func:`build` (``runs``), so no second pool starts.
+
+    Examples
+    --------
+    >>> {kind for kind, _ in history_keys(True)}
+    {'history'}
+    """
+    chosen = CLAIMS if claims is None else claims
+    keys = [r.key(quick) for c in chosen for r in c.check.runs.values()]
+    return [k for k in dict.fromkeys(keys) if k[0] == "history"]
+
+
 def units(quick: bool, claims: Sequence[Claim] | None = None) -> list[Unit]:
     """The report units the claims need (``history`` runs excluded), for the report pool."""
     chosen = CLAIMS if claims is None else claims
@@ -226,6 +243,7 @@ def evaluate(
     claims: Sequence[Claim] | None = None,
     payloads: Mapping[Unit, Payload] | None = None,
     workers: int | None = 1,
+    runs: Mapping[tuple[str, Unit], Payload] | None = None,
 ) -> Scorecard:
     """Run every distinct scenario the claims need once, then evaluate every claim.
 
@@ -240,6 +258,9 @@ def evaluate(
         Payloads already run (``Built.payloads`` of the report's pool, by unit): reused.
     workers : int, optional
         Processes for the missing runs (1: in this process).
+    runs : mapping, optional
+        Payloads already run, by payload key (e.g. :func:`history_keys` run in the
+        report's pool): reused.
 
     Returns
     -------
@@ -248,7 +269,7 @@ def evaluate(
     chosen = CLAIMS if claims is None else claims
     start = time.perf_counter()
     keys = [r.key(quick) for c in chosen for r in c.check.runs.values()]
-    have: dict[tuple[str, Unit], Payload] = {}
+    have: dict[tuple[str, Unit], Payload] = dict(runs or {})
     for key in dict.fromkeys(keys):
         if key[0] == "unit" and payloads is not None and key[1] in payloads:
             have[key] = payloads[key[1]]
@@ -376,8 +397,10 @@ def build(
     quick: bool,
     progress: Callable[[str], None] | None = None,
     payloads: Mapping[Unit, Payload] | None = None,
+    runs: Mapping[tuple[str, Unit], Payload] | None = None,
 ) -> tuple[str, dict[str, Any]]:
-    """Evaluate the scorecard (reusing ``payloads``), write ``findings.csv`` into ``folder``.
+    """Evaluate the scorecard (reusing ``payloads`` and ``runs``, see :func:`evaluate`),
+    write ``findings.csv`` into ``folder``.
 
     Returns
     -------
@@ -391,7 +414,7 @@ def build(
     from mrsuspension.report.families import in_worker
 
     workers = 1 if in_worker() else (os.cpu_count() or 1)
-    card = evaluate(quick, payloads=payloads, workers=workers)
+    card = evaluate(quick, payloads=payloads, workers=workers, runs=runs)
     folder.mkdir(parents=True, exist_ok=True)
     write_csv(card, folder / "findings.csv")
     manifest = {
