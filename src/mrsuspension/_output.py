@@ -346,8 +346,14 @@ def relocate_files(tmp: str | Path, path: str | Path, pattern: str = "**/*.json"
 
 
 def _temporary_sibling(path: Path, option: str) -> Path:
+    """A new hidden folder beside ``path``, with the permissions of a plain ``mkdir``
+    (``mkdtemp`` makes it private, 0700, which the moved output would keep)."""
     try:
-        return Path(tempfile.mkdtemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent))
+        tmp = Path(tempfile.mkdtemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent))
+        mask = os.umask(0o022)
+        os.umask(mask)
+        tmp.chmod(0o777 & ~mask)
+        return tmp
     except OSError as exc:
         raise ValidationError(f"{option} {str(path)!r} cannot be written: {exc}") from None
 

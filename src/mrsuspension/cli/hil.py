@@ -30,6 +30,7 @@ from mrsuspension._output import (
 from mrsuspension.cli.errors import user_errors
 from mrsuspension.errors import (
     ValidationError,
+    check_host,
     check_input_file,
     check_port,
     check_range,
@@ -143,6 +144,9 @@ def hil_run_command(
     with user_errors():
         check_input_file("scenario file", scenario)
         check_port("--port", port)
+        check_host("--host", host)
+        if token is not None and not token.strip():
+            raise ValidationError("--token must not be empty (omit it for a loopback monitor)")
         if out is not None and not monitor:
             check_output_folder("--out", out, "hil run", force=force)
         elif out is not None:
@@ -526,6 +530,7 @@ def rig_emulator_command(
 
     with user_errors():
         check_port("--port", port, any_free=True)
+        check_host("--host", host)
         spec = rig_kind(rig, kinds=[k for k in RIGS.values() if k.local]).name
         model = make_damper(
             damper, **({"vh_variant": VEHICLE_VH_VARIANT} if damper.startswith("wang-") else {})

@@ -213,6 +213,8 @@ def identify_command(
         if gain is not None:
             # a coil driver's transconductance is of order 0.1-2 A/V
             check_range("--gain", gain, 0.0, 1e3, unit="A/V", low_inclusive=False)
+        if vh_variant is not None and vh_variant not in ("2.12", "2.13"):
+            raise ValidationError(f"--vh-variant must be '2.12' or '2.13'; got {vh_variant!r}")
         if out is not None:
             check_output_folder("--out", out, "identify", force=force)
     if time_domain:

@@ -362,7 +362,7 @@ def load(path: str | Path) -> ParameterSet:
     ParameterSet(name='my-damper', model='linear', 1 parameters)
     """
     path = Path(path)
-    if not path.is_file():
+    if not _is_file(str(path)):
         raise ValidationError(f"parameter file {str(path)!r} does not exist")
     text = path.read_text()
     suffix = path.suffix.lower()
@@ -426,6 +426,14 @@ def resolve(spec: str | Path | ParameterSet | Mapping[str, float], model: str) -
         check_magnitudes(pset.values, pset.units, "parameter set 'user'")
         return pset
     text = str(spec)
-    if isinstance(spec, Path) or text.lower().endswith((".toml", ".json")) or Path(text).is_file():
+    if isinstance(spec, Path) or text.lower().endswith((".toml", ".json")) or _is_file(text):
         return load(text)
     return get(text)
+
+
+def _is_file(text: str) -> bool:
+    """``Path(text).is_file()``, False for a text no file can have (too long, NUL)."""
+    try:
+        return Path(text).is_file()
+    except (OSError, ValueError):
+        return False
