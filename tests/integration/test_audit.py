@@ -289,7 +289,7 @@ def _(tmp: Path) -> None:
     kept = _kept(tmp)
     before = sorted(p.name for p in kept.iterdir())
     child = subprocess.Popen(
-        [sys.executable, "-m", "mrsuspension", "sweep", str(SCENARIO), "-f", "log:40:0.5:15",
+        [sys.executable, "-m", "mrsuspension", "sweep", str(SCENARIO), "-f", "log:400:0.5:15",
          "-j", "1", "--out", str(kept)],
         stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True,
     )  # fmt: skip
