@@ -161,9 +161,21 @@ def marked_command(folder: str | Path) -> str | None:
     try:
         data = json.loads((folder / MARKER).read_text())
     except (OSError, ValueError):
-        return None
+        return _unmarked_report(folder)
     command = data.get("command") if isinstance(data, dict) else None
     return command if isinstance(command, str) else None
+
+
+def _unmarked_report(folder: Path) -> str | None:
+    """``"reproduce"`` for a report written before folders carried the marker (an
+    ``index.html`` beside a ``manifest.json`` listing chapters), so that ``make report``
+    replaces, and ``--chapters`` updates, a report of an older version."""
+    try:
+        manifest = json.loads((folder / "manifest.json").read_text())
+    except (OSError, ValueError):
+        return None
+    report = isinstance(manifest, dict) and "chapters" in manifest
+    return "reproduce" if report and (folder / "index.html").is_file() else None
 
 
 def _check_folder(path: Path, command: str, force: bool, option: str) -> None:

@@ -341,6 +341,17 @@ def _(tmp: Path) -> None:
     assert merged["parts"]["ch3"]["quick"] is True
 
 
+@case("silent garbage", "a report of an older version (no marker) is a report")
+def _(tmp: Path) -> None:
+    from mrsuspension._output import marked_command
+
+    (tmp / "index.html").write_text("<html></html>")
+    (tmp / "manifest.json").write_text('{"chapters": {"2": {}}}')
+    assert marked_command(tmp) == "reproduce"  # make report replaces it; --chapters merges
+    (tmp / "manifest.json").write_text('{"something": "else"}')
+    assert marked_command(tmp) is None  # anything else stays refused without --force
+
+
 @case("silent garbage", "a parameter of 1e308")
 def _(tmp: Path) -> None:
     file = tmp / "huge.toml"
