@@ -6,9 +6,13 @@ file (``mrsus study --out``):
 * the path is checked **before any computing**: a file in the way, a parent that is a
   file, a folder that cannot be written are a :class:`~mrsuspension.errors.ValidationError`
   naming the option and the path;
-* results are written into a temporary hidden sibling and moved into place only when
-  the command succeeds, so a failed or interrupted run leaves nothing behind and two runs
-  writing one folder never interleave files;
+* results are written into a temporary hidden sibling (same file system) and moved into
+  place only when the command succeeds, so a failed or interrupted run leaves the previous
+  folder untouched and no temporary folder behind; a temporary folder left by a killed run
+  (SIGKILL, power loss) is removed by the next run writing there;
+* two runs writing one output never interleave: the first holds a lock (a hidden
+  ``.NAME.lock`` beside the output, :func:`fcntl.flock`, released by the system when the
+  process dies, removed when the run ends) and the second refuses at once with one line;
 * a folder carries a marker (:data:`MARKER`, the command's name): a folder holding
   another command's output, or files not written by ``mrsus``, is refused unless
   ``force`` (which replaces it); the same command's folder is replaced.
@@ -20,15 +24,27 @@ from __future__ import annotations
 
 import json
 import os
+import re
 import shutil
 import tempfile
-from collections.abc import Iterator, Sequence
+from collections.abc import Iterable, Iterator, Sequence
 from contextlib import contextmanager
 from pathlib import Path
+from typing import Any
 
 from mrsuspension.errors import ValidationError
 
-__all__ = ["MARKER", "check_writable_folder", "prepare_output", "prepare_output_file"]
+__all__ = [
+    "MARKER",
+    "carry_over",
+    "check_output_folder",
+    "check_writable_folder",
+    "marked_command",
+    "prepare_output",
+    "prepare_output_file",
+    "relocate_files",
+    "relocated",
+]
 
 #: the file naming the command that wrote a folder
 MARKER = ".mrsus-output.json"
@@ -46,17 +62,27 @@ def _first_existing(path: Path) -> Path:
     return Path(path.anchor or ".")  # pragma: no cover - the root always exists
 
 
-def check_output_folder(what: str, path: str | Path) -> Path:
+def check_output_folder(
+    what: str, path: str | Path, command: str | None = None, *, force: bool = False
+) -> Path:
     """``path`` as a :class:`~pathlib.Path` that is, or can be created as, a writable
     folder (:func:`check_writable_folder`), checked before a long run writes into it.
+
+    With ``command``, also the checks :func:`prepare_output` makes on entering (a folder
+    holding another command's output or foreign files is refused unless ``force``), for
+    a command that computes before it enters :func:`prepare_output`.
 
     Examples
     --------
     >>> check_output_folder("--out", "results/new")
     PosixPath('results/new')
+    >>> check_output_folder("--out", "results/new", "sweep")
+    PosixPath('results/new')
     """
     path = Path(path)
     check_writable_folder(path, what)
+    if command is not None:
+        _check_folder(path, command, force, what)
     return path
 
 
@@ -125,21 +151,42 @@ def _refuse_dangerous(path: Path, option: str) -> None:
         )
 
 
-def _marked_command(folder: Path) -> str | None:
-    """The command named by the folder's marker (None: no marker or unreadable)."""
+def marked_command(folder: str | Path) -> str | None:
+    """The command named by an output folder's :data:`MARKER` (None: no marker, unreadable).
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     print(marked_command(d))
+    None
+    """
+    folder = Path(folder)
     try:
         data = json.loads((folder / MARKER).read_text())
     except (OSError, ValueError):
-        return None
+        return _unmarked_report(folder)
     command = data.get("command") if isinstance(data, dict) else None
     return command if isinstance(command, str) else None
+
+
+def _unmarked_report(folder: Path) -> str | None:
+    """``"reproduce"`` for a report written before folders carried the marker (an
+    ``index.html`` beside a ``manifest.json`` listing chapters), so that ``make report``
+    replaces, and ``--chapters`` updates, a report of an older version."""
+    try:
+        manifest = json.loads((folder / "manifest.json").read_text())
+    except (OSError, ValueError):
+        return None
+    report = isinstance(manifest, dict) and "chapters" in manifest
+    return "reproduce" if report and (folder / "index.html").is_file() else None
 
 
 def _check_folder(path: Path, command: str, force: bool, option: str) -> None:
     if path.exists() and not path.is_dir():
         raise ValidationError(f"{option} {str(path)!r} is a file, not a folder; give a folder")
     if path.is_dir() and any(path.iterdir()):
-        owner = _marked_command(path)
+        owner = marked_command(path)
         if owner != command and not force:
             held = (
                 f"holds the output of 'mrsus {owner}'"
@@ -172,9 +219,157 @@ def _remove_empty(folders: Sequence[Path]) -> None:
             break
 
 
-def _temporary_sibling(path: Path, option: str) -> Path:
+def _stale_siblings(path: Path) -> list[Path]:
+    """Temporary siblings of ``path`` (``.NAME.*.tmp`` / ``.old``) left by a killed run."""
+    pattern = re.compile(rf"\.{re.escape(path.name)}\.[a-z0-9_]{{8}}\.(tmp|old)")
+    return [
+        p
+        for p in path.parent.iterdir()
+        if pattern.fullmatch(p.name) and p.is_dir() and not p.is_symlink()
+    ]
+
+
+@contextmanager
+def _locked(path: Path, option: str) -> Iterator[None]:
+    """Hold the write lock of ``path`` (``.NAME.lock`` beside it) for the block.
+
+    A second process refuses at once. Under the lock, temporary siblings left by a killed
+    run are removed (only the lock holder creates them). The lock file is removed while
+    still locked; a process that opened the old file re-opens the new one (inode check).
+    Without :mod:`fcntl` (Windows) the block runs unlocked.
+    """
     try:
-        return Path(tempfile.mkdtemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent))
+        import fcntl
+    except ImportError:  # pragma: no cover - Windows: no advisory locks, last move wins
+        yield
+        return
+    lock = path.parent / f".{path.name}.lock"
+    while True:
+        try:
+            fd = os.open(lock, os.O_RDWR | os.O_CREAT, 0o644)
+        except OSError as exc:
+            raise ValidationError(f"{option} {str(path)!r} cannot be written: {exc}") from None
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except OSError:
+            os.close(fd)
+            raise ValidationError(
+                f"{option} {str(path)!r} is being written by another mrsus run; wait for it "
+                f"to finish or give another {option}"
+            ) from None
+        try:
+            same = os.fstat(fd).st_ino == os.stat(lock).st_ino
+        except OSError:
+            same = False
+        if same:
+            break
+        os.close(fd)  # locked a file its holder had just removed: take the new one
+    try:
+        for stale in _stale_siblings(path):
+            shutil.rmtree(stale, ignore_errors=True)
+        yield
+    finally:
+        try:
+            os.unlink(lock)
+        finally:
+            os.close(fd)
+
+
+def carry_over(old: str | Path, new: str | Path, *, skip: Iterable[str] = ()) -> list[str]:
+    """Copy the entries of folder ``old`` into ``new``, except the names in ``skip``.
+
+    For a command that updates part of its previous output (``mrsus reproduce
+    --chapters``): the previous folder stays untouched until the new one replaces it.
+    Files are copied, not hard-linked: a writer that truncates a file in place (as
+    ``savefig`` does) must never reach the previous folder. The marker is never carried
+    over.
+
+    Returns
+    -------
+    list of str
+        The names carried over, sorted.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     old, new = pathlib.Path(d, "old"), pathlib.Path(d, "new")
+    ...     (old / "chapter2").mkdir(parents=True)
+    ...     _ = (old / "chapter2" / "fig.png").write_text("png")
+    ...     _ = (old / "index.html").write_text("<html>")
+    ...     new.mkdir()
+    ...     carry_over(old, new, skip={"index.html"})
+    ['chapter2']
+    """
+    old, new = Path(old), Path(new)
+    names = sorted(p.name for p in old.iterdir() if p.name not in {*skip, MARKER})
+    for name in names:
+        src = old / name
+        if src.is_dir() and not src.is_symlink():
+            shutil.copytree(src, new / name, symlinks=True)
+        else:
+            shutil.copy2(src, new / name, follow_symlinks=False)
+    return names
+
+
+def relocated(value: Any, tmp: str | Path, path: str | Path) -> Any:
+    """``value`` with every string naming ``tmp`` (or a file in it) naming ``path`` instead.
+
+    For what a command prints or records about files it wrote into the temporary folder
+    of :func:`prepare_output`: the paths the user sees name the final folder. Walks
+    dicts, lists and tuples; other values are returned as they are.
+
+    Examples
+    --------
+    >>> relocated({"out": "r/.x.ab12cd34.tmp/rec", "n": 3}, "r/.x.ab12cd34.tmp", "r/x")
+    {'out': 'r/x/rec', 'n': 3}
+    """
+    old, new = str(tmp), str(path)
+    if isinstance(value, str):
+        if value == old or value.startswith(old + os.sep):
+            return new + value[len(old) :]
+        return value
+    if isinstance(value, dict):
+        return {k: relocated(v, old, new) for k, v in value.items()}
+    if isinstance(value, list | tuple):
+        return type(value)(relocated(v, old, new) for v in value)
+    return value
+
+
+def relocate_files(tmp: str | Path, path: str | Path, pattern: str = "**/*.json") -> None:
+    """Rewrite the paths naming ``tmp`` inside the JSON files written into it (before the
+    move), so that they name ``path``, where the files end up.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     tmp = pathlib.Path(d, ".out.ab12cd34.tmp")
+    ...     tmp.mkdir()
+    ...     _ = (tmp / "meta.json").write_text(json.dumps({"out": str(tmp / "rec")}))
+    ...     relocate_files(tmp, pathlib.Path(d, "out"))
+    ...     json.loads((tmp / "meta.json").read_text())["out"] == str(pathlib.Path(d, "out", "rec"))
+    True
+    """
+    old, new = json.dumps(str(tmp))[1:-1], json.dumps(str(path))[1:-1]
+    for file in Path(tmp).glob(pattern):
+        if file.is_file() and not file.is_symlink():
+            text = file.read_text(encoding="utf-8", errors="surrogateescape")
+            if old in text:  # a new file moved over the old: never edit a shared inode
+                fresh = file.with_name(file.name + ".relocating")
+                fresh.write_text(text.replace(old, new), encoding="utf-8", errors="surrogateescape")
+                os.replace(fresh, file)
+
+
+def _temporary_sibling(path: Path, option: str) -> Path:
+    """A new hidden folder beside ``path``, with the permissions of a plain ``mkdir``
+    (``mkdtemp`` makes it private, 0700, which the moved output would keep)."""
+    try:
+        tmp = Path(tempfile.mkdtemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent))
+        mask = os.umask(0o022)
+        os.umask(mask)
+        tmp.chmod(0o777 & ~mask)
+        return tmp
     except OSError as exc:
         raise ValidationError(f"{option} {str(path)!r} cannot be written: {exc}") from None
 
@@ -243,15 +438,21 @@ def prepare_output(
         path = path.resolve()
     _check_folder(path, command, force, option)
     created = _make_parents(path.parent, option, path)
-    tmp = _temporary_sibling(path, option)
     try:
-        yield tmp
-        from mrsuspension import __version__
+        with _locked(path, option):
+            _check_folder(path, command, force, option)  # again: another run may have ended
+            tmp = _temporary_sibling(path, option)
+            try:
+                yield tmp
+                from mrsuspension import __version__
 
-        (tmp / MARKER).write_text(json.dumps({"command": command, "version": __version__}) + "\n")
-        _commit_folder(tmp, path)
+                marker = {"command": command, "version": __version__}
+                (tmp / MARKER).write_text(json.dumps(marker) + "\n")
+                _commit_folder(tmp, path)
+            except BaseException:
+                shutil.rmtree(tmp, ignore_errors=True)
+                raise
     except BaseException:
-        shutil.rmtree(tmp, ignore_errors=True)
         _remove_empty(created)
         discarded.append(path)
         raise
@@ -312,14 +513,18 @@ def prepare_output_file(
         )
     check_writable_folder(path.parent, option, shown=path)
     created = _make_parents(path.parent, option, path)
-    tmp = _temporary_sibling(path, option)
     try:
-        yield tmp / path.name
-        for written in sorted(tmp.iterdir()):
-            os.replace(written, path.parent / written.name)
-        tmp.rmdir()
+        with _locked(path, option):
+            tmp = _temporary_sibling(path, option)
+            try:
+                yield tmp / path.name
+                for written in sorted(tmp.iterdir()):
+                    os.replace(written, path.parent / written.name)
+                tmp.rmdir()
+            except BaseException:
+                shutil.rmtree(tmp, ignore_errors=True)
+                raise
     except BaseException:
-        shutil.rmtree(tmp, ignore_errors=True)
         _remove_empty(created)
         discarded.append(path)
         raise

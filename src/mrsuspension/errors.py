@@ -19,6 +19,7 @@ __all__ = [
     "MRSuspensionError",
     "ValidationError",
     "check_count",
+    "check_host",
     "check_input_file",
     "check_input_folder",
     "check_keys",
@@ -249,6 +250,34 @@ def check_port(name: str, port: object, *, any_free: bool = False) -> int:
         note = " (0: any free port)" if any_free else ""
         raise ValidationError(f"{name} must be an integer in [{low}, 65535]{note}; got {port!r}")
     return port
+
+
+def check_host(name: str, host: str) -> str:
+    """A network address to bind or reach: not empty, and one the system resolves.
+
+    Examples
+    --------
+    >>> check_host("--host", "127.0.0.1")
+    '127.0.0.1'
+    >>> check_host("--host", " ")
+    Traceback (most recent call last):
+    ...
+    mrsuspension.errors.ValidationError: --host must be an address such as 127.0.0.1 (0.0.0.0: every interface); got ' '
+    """
+    import socket
+
+    if not isinstance(host, str) or not host.strip() or len(host) > 253:
+        shown = host if not isinstance(host, str) or len(host) <= 60 else host[:60] + "..."
+        raise ValidationError(
+            f"{name} must be an address such as 127.0.0.1 (0.0.0.0: every interface); got {shown!r}"
+        )
+    try:
+        socket.getaddrinfo(host, None)
+    except (OSError, UnicodeError) as exc:
+        raise ValidationError(
+            f"{name} {host!r} is not an address this machine knows: {exc}"
+        ) from None
+    return host
 
 
 def check_count(name: str, value: object, minimum: int = 1) -> int:

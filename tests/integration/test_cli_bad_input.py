@@ -32,6 +32,13 @@ STUDY = ROOT / "examples" / "studies" / "passive-current.toml"
 #: seconds one invocation may take: every bad value must be refused before the work starts
 TIMEOUT = 15.0
 BAD_NUMBERS = ("nan", "-1", "1e300", "0")
+#: bad values for a text option (a name, a choice, a spec): label -> the value
+BAD_TEXTS: dict[str, str] = {
+    "empty": "",
+    "blank": "   ",
+    "unknown": "no-such-choice",
+    "long": "x" * 5000,
+}
 
 #: arguments a command needs besides the option under test (``{name}`` is a fixture path)
 BASE: dict[str, list[str]] = {
@@ -44,6 +51,7 @@ BASE: dict[str, list[str]] = {
     "identify": ["{manifest}"],
     "damper force": ["-v", "0.1"],
     "damper inverse": ["-f", "500", "-v", "0.1"],
+    "monitor": ["--port", "{port}"],  # a free port: 8765 may be busy on a shared machine
 }
 
 #: text options that carry numbers (comma-separated lists): fed the bad numbers too
@@ -109,6 +117,14 @@ VALID: dict[tuple[str, str, str], str] = {
     ("damper inverse", "--acceleration", "-1"): "an acceleration of either sign",
     ("damper inverse", "--acceleration", "0"): "the default",
     ("damper loops", "--currents", "0"): "one loop at no current",
+    # free text: any non-empty value is valid (empty and blank ones are refused)
+    ("monitor", "--token", "unknown"): "a token is any text",
+    ("monitor", "--token", "long"): "a token is any text",
+    ("hil run", "--token", "unknown"): "a token is any text",
+    ("hil run", "--token", "long"): "a token is any text",
+    ("identify", "--name", "*"): "the fitted set's name is any text",
+    ("identify", "--compare", "empty"): "no comparison models (the default)",
+    ("identify", "--compare", "blank"): "no comparison models (the default)",
 }
 for _kind_cmd, _opt in [(c, o) for (c, o), k in PATH_KIND.items() if k == "out-folder"]:
     VALID[(_kind_cmd, _opt, "missing")] = "an output folder is created"
@@ -175,13 +191,15 @@ def _cases(paths: dict[str, str]) -> Iterator[Case]:
                 where = PATH_KIND.get((command, key))
                 assert where is not None, f"classify the path {command} {key} in PATH_KIND"
                 values = ("missing", "file") if where.endswith("folder") else ("missing", "folder")
+            elif kind == "text" and not key.endswith("-completion"):
+                values = tuple(BAD_TEXTS)
             else:
                 continue
             for value in values:
-                if (command, key, value) in VALID:
+                if (command, key, value) in VALID or (command, key, "*") in VALID:
                     continue
                 text = {"missing": paths["missing"], "folder": paths["folder"],
-                        "file": paths["file"]}.get(value, value)  # fmt: skip
+                        "file": paths["file"], **BAD_TEXTS}.get(value, value)  # fmt: skip
                 if param.param_type_name == "argument":
                     args = [text if a == base[0] else a for a in base] if base else [text]
                     names: tuple[str, ...] = (text, Path(text).name)
@@ -226,7 +244,7 @@ def _problem(case: Case, code: int, stderr: str, exception: BaseException | None
         line = clicks[0]
     else:
         return f"not one error line: {stderr!r}"
-    if not any(n in line for n in case.names):
+    if not any(" ".join(n.split()) in line for n in case.names):  # messages fold blanks
         return f"the error does not name {' / '.join(case.names)}: {line!r}"
     return None
 
@@ -239,7 +257,13 @@ def paths(tmp_path_factory: pytest.TempPathFactory) -> dict[str, str]:
     (root / "a-folder").mkdir()
     (root / "a-file.txt").write_text("not a folder\n")
     manifest = synthetic_campaign(root / "campaign", "wang-symmetric", [(1.5, 0.0125, 0.1)])
+    import socket
+
+    with socket.socket() as probe:
+        probe.bind(("127.0.0.1", 0))
+        port = probe.getsockname()[1]
     return {
+        "port": str(port),
         "scenario": str(SCENARIO),
         "problem": str(PROBLEM),
         "study": str(STUDY),

@@ -8,7 +8,7 @@ from typing import Annotated, Any
 
 import typer
 
-from mrsuspension._output import check_output_folder
+from mrsuspension._output import check_output_folder, prepare_output
 from mrsuspension.cli.errors import user_errors
 from mrsuspension.errors import ValidationError, check_range
 
@@ -117,6 +117,9 @@ def _model(
 
 
 JsonOpt = Annotated[bool, typer.Option("--json", help="print the result as one JSON object")]
+ForceOpt = Annotated[
+    bool, typer.Option("--force", help="replace an --out folder holding other output")
+]
 
 
 @app.command("force")
@@ -243,20 +246,22 @@ def damper_loops(
         Path | None, typer.Option("--out", "-o", help="folder for loops.csv and a plot")
     ] = None,
     as_json: JsonOpt = False,
+    force: ForceOpt = False,
 ) -> None:
     """Steady-state F-v and F-x loops of one harmonic test at several currents."""
     from mrsuspension.characterisation import TestCondition, characterise
 
     with user_errors({"drive current": "--currents"}):
         if out is not None:
-            check_output_folder("--out", out)
+            check_output_folder("--out", out, "damper loops", force=force)
         m = _model(model, parameters, hysteresis, vh_variant, force_gain, None)
         conds = [TestCondition(frequency, amplitude, i) for i in _floats("currents", currents)]
         result = characterise(m, conds)
         files = []
-        if out is not None:
-            files = [str(p) for p in result.save(out)]
-            files.append(str(_plot_result(result, Path(out) / "loops.png")))
+        with prepare_output(out, "damper loops", force=force) as folder:
+            if out is not None and folder is not None:
+                written = [*result.save(folder), _plot_result(result, folder / "loops.png")]
+                files = [str(out / Path(p).relative_to(folder)) for p in written]
     _echo_characterisation(result, files, as_json)
 
 
@@ -322,29 +327,33 @@ def damper_matrix(
         Path | None, typer.Option("--out", "-o", help="folder for summary.csv and loops.csv")
     ] = None,
     as_json: JsonOpt = False,
+    force: ForceOpt = False,
 ) -> None:
     """Run the 165 tests of Table 2.1 on a model (summary per test; loops with --out)."""
     from mrsuspension.characterisation import characterise
 
     with user_errors():
         if out is not None:
-            check_output_folder("--out", out)
+            check_output_folder("--out", out, "damper matrix", force=force)
         m = _model(model, parameters, hysteresis, vh_variant, force_gain, None)
-        result = characterise(m, progress=not as_json)
-        files = [str(p) for p in result.save(out)] if out is not None else []
+        files = []
+        with prepare_output(out, "damper matrix", force=force) as folder:  # before the tests
+            result = characterise(m, progress=not as_json)
+            if out is not None and folder is not None:
+                files = [str(out / Path(p).relative_to(folder)) for p in result.save(folder)]
     _echo_characterisation(result, files, as_json)
 
 
 @app.command("figures")
 def damper_figures(
     out: Annotated[Path, typer.Option("--out", "-o", help="output folder")] = Path("results"),
+    force: ForceOpt = False,
 ) -> None:
-    """Regenerate the Chapter 2 figures (2.3-2.11) and their index page."""
+    """Regenerate the Chapter 2 figures (2.3-2.11) and their index page (merged into a
+    report already in OUT, as ``mrsus reproduce --chapters 2``)."""
     from mrsuspension.cli.report import reproduce
 
-    with user_errors():
-        check_output_folder("--out", out)
-    reproduce(out=out, chapters="2", quick=False)
+    reproduce(out=out, chapters="2", quick=False, force=force)
 
 
 @app.command("sets")

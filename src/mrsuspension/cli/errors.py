@@ -31,6 +31,8 @@ __all__ = [
 #: the field a library message starts with: ``peak_velocity must ...``, ``drive current
 #: must ...``, ``target_force must ...``
 _FIELD = re.compile(r"^([A-Za-z][A-Za-z_ ]*?)(\[\d+\])? (must|=)")
+#: a run of blanks, as the one-line message folds them
+_BLANKS = re.compile(r"\s+")
 
 
 def _context() -> Any:
@@ -58,8 +60,10 @@ def option_named(message: str, aliases: Mapping[str, str] | None = None) -> str:
     """
     ctx = _context()
     match = _FIELD.match(message)
-    if ctx is None or match is None:
+    if ctx is None:
         return message
+    if match is None:
+        return _by_value(message, ctx)
     field = match.group(1)
     option = (aliases or {}).get(field, "--" + field.replace("_", "-").replace(" ", "-"))
     if option in message.split(":", 1)[0]:
@@ -73,6 +77,38 @@ def option_named(message: str, aliases: Mapping[str, str] | None = None) -> str:
         if given and option in getattr(param, "opts", ()):
             return option + message[len(field) :]
     return message
+
+
+def _given(ctx: Any) -> list[tuple[str, Any]]:
+    """(long option, value) of the options given on the command line."""
+    from typer._click.core import ParameterSource
+
+    given = []
+    for param in ctx.command.params:
+        opts = [o for o in getattr(param, "opts", ()) if o.startswith("--")]
+        if (
+            param.name
+            and opts
+            and ctx.get_parameter_source(param.name) == ParameterSource.COMMANDLINE
+        ):
+            given.append((max(opts, key=len), ctx.params.get(param.name)))
+    return given
+
+
+def _by_value(message: str, ctx: Any) -> str:
+    """``message`` prefixed with the option whose value it quotes (``unknown damper model
+    'x'`` -> ``--model: unknown damper model 'x'``), when it names no option itself and
+    exactly one given option has that value."""
+    given = _given(ctx)
+    if any(option in message for option, _ in given):
+        return message
+    quoting = [
+        option
+        for option, value in given
+        if isinstance(value, str)
+        and any(f"'{v}'" in message for v in (value, _BLANKS.sub(" ", value)))
+    ]
+    return f"{quoting[0]}: {message}" if len(quoting) == 1 else message
 
 
 @contextmanager

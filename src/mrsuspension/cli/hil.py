@@ -21,10 +21,16 @@ from typing import Annotated, Any
 import typer
 
 from mrsuspension._jsonsafe import to_jsonable
-from mrsuspension._output import check_output_folder
+from mrsuspension._output import (
+    check_output_folder,
+    prepare_output,
+    relocate_files,
+    relocated,
+)
 from mrsuspension.cli.errors import keep_on_interrupt, user_errors
 from mrsuspension.errors import (
     ValidationError,
+    check_host,
     check_input_file,
     check_port,
     check_range,
@@ -84,6 +90,9 @@ def hil_run_command(
     out: Annotated[
         Path | None, typer.Option(help="recording directory (default: not kept)")
     ] = None,
+    force: Annotated[
+        bool, typer.Option("--force", help="replace an --out folder holding other output")
+    ] = False,
     as_json: Annotated[
         bool, typer.Option("--json", help="print the outcome and tick statistics as JSON")
     ] = False,
@@ -122,7 +131,12 @@ def hil_run_command(
     (the monitor's address goes to stderr).
     """
     from mrsuspension.engine.settings import DEFAULT_DT
-    from mrsuspension.hil.loop import STOP_REASON, _simulation_of, run_hil
+    from mrsuspension.hil.loop import (
+        STOP_REASON,
+        _simulation_of,
+        check_recording_memory,
+        run_hil,
+    )
     from mrsuspension.hil.realtime import normalise_mode
     from mrsuspension.hil.rigs import make_rig, rig_kind
     from mrsuspension.scenario import Scenario
@@ -130,7 +144,12 @@ def hil_run_command(
     with user_errors():
         check_input_file("scenario file", scenario)
         check_port("--port", port)
-        if out is not None:
+        check_host("--host", host)
+        if token is not None and not token.strip():
+            raise ValidationError("--token must not be empty (omit it for a loopback monitor)")
+        if out is not None and not monitor:
+            check_output_folder("--out", out, "hil run", force=force)
+        elif out is not None:
             check_output_folder("--out", out)
         if normalise_mode(realtime) == "unpaced":
             raise ValidationError(
@@ -145,6 +164,7 @@ def hil_run_command(
         duration, model_dt = _run_settings(scn, duration)
         check_range("--duration", duration, 0.0, 1e5, unit="s", low_inclusive=False)
         check_range("--rate", rate, 50.0, MONITOR_MAX_RATE if monitor else MAX_RATE, unit="Hz")
+        check_recording_memory(duration, rate, name="--duration")
         sim = _simulation_of(scn)
         from mrsuspension.cli.compiling import notify_if_compiling
 
@@ -176,24 +196,33 @@ def hil_run_command(
             return
         the_rig = make_rig(rig, sim.damper)
         tmp = None
-        target = out
-        if target is None:
-            tmp = Path(tempfile.mkdtemp(prefix="mrsus-hil-"))
-            target = tmp / "recording"
-        try:
-            result = run_hil(
-                sim, the_rig, duration=duration, rate=rate, out=target, process=True,
-                realtime=realtime, isolate=isolate,
-                model_dt=DEFAULT_DT if model_dt is None else model_dt,
-            )  # fmt: skip
-        except KeyboardInterrupt:  # the loop has stopped the safe way; its recording stays
+        interrupted: KeyboardInterrupt | None = None
+        with prepare_output(out, "hil run", force=force) as staged:
+            target = staged
+            if target is None:
+                tmp = Path(tempfile.mkdtemp(prefix="mrsus-hil-"))
+                target = tmp / "recording"
+            try:
+                result = run_hil(
+                    sim, the_rig, duration=duration, rate=rate, out=target, process=True,
+                    realtime=realtime, isolate=isolate,
+                    model_dt=DEFAULT_DT if model_dt is None else model_dt,
+                )  # fmt: skip
+            except KeyboardInterrupt as exc:  # the loop stopped the safe way: keep the data
+                interrupted = exc
+            finally:
+                if tmp is not None:
+                    shutil.rmtree(tmp, ignore_errors=True)
+            if staged is not None and out is not None:
+                relocate_files(staged, out)  # the recording names its final folder
+            if interrupted is None:
+                info = result.describe()
+                if staged is not None and out is not None:
+                    info = relocated(info, staged, out)
+        if interrupted is not None:  # the recording up to the Ctrl-C is in place: say so
             if out is not None and out.is_dir() and any(out.iterdir()):
                 keep_on_interrupt(f"the recording so far in {str(out)!r}")
-            raise
-        finally:
-            if tmp is not None:
-                shutil.rmtree(tmp, ignore_errors=True)
-    info = result.describe()
+            raise interrupted
     if tmp is not None:
         info["out"] = None
     if as_json:
@@ -313,6 +342,9 @@ def hil_validate_command(
         Path | None,
         typer.Option(help="folder for the figures, validation.json, index.html, recording"),
     ] = None,
+    force: Annotated[
+        bool, typer.Option("--force", help="replace an --out folder holding other output")
+    ] = False,
     as_json: Annotated[bool, typer.Option("--json", help="print the numbers as JSON")] = False,
     what: Annotated[
         str, typer.Option(help="comparisons: all or a list of time,frequency,pulse,road")
@@ -372,7 +404,7 @@ def hil_validate_command(
     with user_errors({"sprung_mass": "--masses", "frequency": "--frequencies"}):
         check_input_file("scenario file", scenario)
         if out is not None:
-            check_output_folder("--out", out)
+            check_output_folder("--out", out, "hil validate", force=force)
         chosen = parse_what(what)
         case_list = parse_cases(cases)
         freq_list = parse_frequencies(frequencies)
@@ -386,11 +418,15 @@ def hil_validate_command(
 
         notify_if_compiling(None, "run", "step")
         the_rig = make_rig(rig, sim.damper)
-        data = validate_chapter7(
-            sim, the_rig, out, what=chosen, cases=case_list, frequencies=freq_list,
-            amplitude=amplitude, duration=duration, road_duration=road_duration, rate=rate,
-            realtime=realtime, masses=mass_list,
-        )  # fmt: skip
+        with prepare_output(out, "hil validate", force=force) as staged:
+            data = validate_chapter7(
+                sim, the_rig, staged, what=chosen, cases=case_list, frequencies=freq_list,
+                amplitude=amplitude, duration=duration, road_duration=road_duration, rate=rate,
+                realtime=realtime, masses=mass_list,
+            )  # fmt: skip
+            if staged is not None and out is not None:
+                relocate_files(staged, out)
+                data = relocated(data, staged, out)
     tripped = _tripped(data)
     # one time report is printed flat (as before masses); several stay under "time"
     flat = _flat_time(data)
@@ -509,6 +545,7 @@ def rig_emulator_command(
 
     with user_errors():
         check_port("--port", port, any_free=True)
+        check_host("--host", host)
         spec = rig_kind(rig, kinds=[k for k in RIGS.values() if k.local]).name
         model = make_damper(
             damper, **({"vh_variant": VEHICLE_VH_VARIANT} if damper.startswith("wang-") else {})

@@ -15,7 +15,12 @@ from typing import Annotated, Any
 
 import typer
 
-from mrsuspension._output import check_output_folder
+from mrsuspension._output import (
+    check_output_folder,
+    prepare_output,
+    relocate_files,
+    relocated,
+)
 from mrsuspension.cli.errors import option_named, user_errors
 from mrsuspension.errors import (
     MRSuspensionError,
@@ -71,6 +76,9 @@ def identify_command(
             "--out", "-o", help="folder for parameters.toml, tests.csv, plots, index.html"
         ),
     ] = None,
+    force: Annotated[
+        bool, typer.Option("--force", help="replace an --out folder holding other output")
+    ] = False,
     as_json: Annotated[
         bool, typer.Option("--json", help="print the result as one JSON object")
     ] = False,
@@ -205,11 +213,13 @@ def identify_command(
         if gain is not None:
             # a coil driver's transconductance is of order 0.1-2 A/V
             check_range("--gain", gain, 0.0, 1e3, unit="A/V", low_inclusive=False)
+        if vh_variant is not None and vh_variant not in ("2.12", "2.13"):
+            raise ValidationError(f"--vh-variant must be '2.12' or '2.13'; got {vh_variant!r}")
         if out is not None:
-            check_output_folder("--out", out)
+            check_output_folder("--out", out, "identify", force=force)
     if time_domain:
         _time_domain(
-            manifest, model, out=out, as_json=as_json, columns=columns, units=units,
+            manifest, model, out=out, force=force, as_json=as_json, columns=columns, units=units,
             gain=gain, validation_fraction=validation_fraction, start=start, free=free,
             starts=multistart, seed=seed, max_nfev=max_nfev, name=name, plots=plots,
         )  # fmt: skip
@@ -240,7 +250,7 @@ def identify_command(
 
             with Console(stderr=True).status("identify") as status:
                 result = identify(manifest, model, progress=lambda m: status.update(m), **kwargs)
-        files = [str(p) for p in result.save(out, plots=plots)] if out is not None else []
+        files = _save(result, out, plots=plots, force=force)
     except MRSuspensionError as exc:
         aliases = {"points per cycle": "--points"}
         typer.echo(f"error: {option_named(' '.join(str(exc).split()), aliases)}", err=True)
@@ -267,6 +277,17 @@ def identify_command(
         raise typer.Exit(1)
 
 
+def _save(result: Any, out: Path | None, *, plots: bool, force: bool) -> list[str]:
+    """Save a fit's files into ``out`` whole (:func:`mrsuspension._output.prepare_output`);
+    the paths written, as the user will find them."""
+    with prepare_output(out, "identify", force=force) as staged:
+        if out is None or staged is None:
+            return []
+        written = [str(p) for p in result.save(staged, plots=plots)]
+        relocate_files(staged, out)
+        return list(relocated(written, staged, out))
+
+
 _TIME_DOMAIN_MODELS_BY_PERIODIC = {"wang-symmetric": "wang"}
 
 
@@ -275,6 +296,7 @@ def _time_domain(
     model: str,
     *,
     out: Path | None,
+    force: bool,
     as_json: bool,
     columns: str | None,
     units: str | None,
@@ -319,7 +341,7 @@ def _time_domain(
                 result = fit_time_domain(
                     record, model, progress=lambda m: status.update(m), **kwargs
                 )
-        files = [str(p) for p in result.save(out, plots=plots)] if out is not None else []
+        files = _save(result, out, plots=plots, force=force)
     except MRSuspensionError as exc:
         aliases = {"points per cycle": "--points"}
         typer.echo(f"error: {option_named(' '.join(str(exc).split()), aliases)}", err=True)

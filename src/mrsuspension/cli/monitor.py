@@ -51,9 +51,13 @@ def monitor_command(
     Runs started from the page are HiL runs (`run_hil`) with the --rig rig in the loop,
     in their own process; settings changed on the page are applied between ticks.
     """
+    from mrsuspension.errors import ValidationError, check_host
     from mrsuspension.monitor.server import serve
 
     with user_errors():
+        check_host("--host", host)
+        if token is not None and not token.strip():
+            raise ValidationError("--token must not be empty (omit it for a loopback monitor)")
         serve(
             host, port, token, rig=rig, road_dir=road_dir, open_browser=open_browser,
             workdir=workdir, realtime=realtime, isolate=isolate,

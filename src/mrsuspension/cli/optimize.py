@@ -55,7 +55,7 @@ def optimize_command(
         if max_evaluations is not None:
             check_count("--max-evaluations", max_evaluations)
         if out is not None:
-            check_output_folder("--out", out)
+            check_output_folder("--out", out, "optimize", force=force)
         prob = OptimizationProblem.load(problem)
         files: list[str] = []
         with prepare_output(out, "optimize", force=force) as folder:  # checked before the work

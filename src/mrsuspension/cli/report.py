@@ -7,7 +7,7 @@ from typing import Annotated
 
 import typer
 
-from mrsuspension._output import check_output_folder
+from mrsuspension._output import check_output_folder, marked_command, prepare_output
 from mrsuspension.cli.errors import user_errors
 
 __all__ = ["reproduce"]
@@ -39,8 +39,16 @@ def reproduce(
             help="record each figure's overlapping texts and legends over data (for tests)",
         ),
     ] = False,
+    force: Annotated[
+        bool, typer.Option("--force", help="replace an --out folder holding other output")
+    ] = False,
 ) -> None:
-    """Regenerate the dissertation's analyses into OUT/index.html (the main job)."""
+    """Regenerate the dissertation's analyses into OUT/index.html (the main job).
+
+    The report is written whole into a temporary folder that replaces OUT when complete.
+    With --chapters, a report already in OUT is updated: the chosen chapters are
+    rebuilt, the others kept (files, index and manifest entries).
+    """
     import sys
 
     from rich.console import Console
@@ -51,26 +59,32 @@ def reproduce(
 
     console = Console(stderr=True)
     with user_errors():
-        check_output_folder("--out", out)
+        check_output_folder("--out", out, "reproduce", force=force)
         chosen = None if chapters is None else _chapters(chapters)
-        notify_if_compiling()
-        if not sys.stderr.isatty():  # a log: plain lines every few seconds, no spinner
-            index = build_report(
-                out,
-                chapters=chosen,
-                quick=quick,
-                progress=plain_status(),
-                svg=svg,
-                check_layout=check_layout,
-            )
-        else:
-            with console.status("starting") as status:
-                index = build_report(
-                    out,
-                    chapters=chosen,
-                    quick=quick,
-                    progress=lambda m: status.update(m),
-                    svg=svg,
-                    check_layout=check_layout,
-                )
-    typer.echo(f"report written to {index}")
+        previous = _merge_into(out, chosen)
+        with prepare_output(out, "reproduce", force=force) as staged:
+            assert staged is not None
+            notify_if_compiling()
+            if not sys.stderr.isatty():  # a log: plain lines every few seconds, no spinner
+                build_report(
+                    staged, chapters=chosen, quick=quick, progress=plain_status(), svg=svg,
+                    check_layout=check_layout, previous=previous,
+                )  # fmt: skip
+            else:
+                with console.status("starting") as status:
+                    build_report(
+                        staged, chapters=chosen, quick=quick,
+                        progress=lambda m: status.update(m), svg=svg,
+                        check_layout=check_layout, previous=previous,
+                    )  # fmt: skip
+    if previous is not None:
+        typer.echo(f"merged into the report in {out} (chapters not chosen kept)", err=True)
+    typer.echo(f"report written to {out / 'index.html'}")
+
+
+def _merge_into(out: Path, chosen: list[int | str] | None) -> Path | None:
+    """The report folder a partial run (``--chapters``) merges into: ``out`` when it holds
+    a report written by ``mrsus reproduce``; None for a full run or a new folder."""
+    if chosen is None or not (out / "index.html").is_file():
+        return None
+    return out if marked_command(out) == "reproduce" else None

@@ -20,7 +20,12 @@ from typing import TYPE_CHECKING, Annotated, Any
 import typer
 
 from mrsuspension._jsonsafe import to_jsonable
-from mrsuspension._output import check_output_folder
+from mrsuspension._output import (
+    check_output_folder,
+    prepare_output,
+    relocate_files,
+    relocated,
+)
 from mrsuspension.cli.errors import user_errors
 from mrsuspension.errors import ValidationError, check_count, check_range
 
@@ -314,6 +319,9 @@ def simulate_command(
             "or 'onset' (the largest over the record: the onset jump, 4.854x larger)",
         ),
     ] = DEFAULT_ROAD_PEAK,
+    force: Annotated[
+        bool, typer.Option("--force", help="replace an --out folder holding other output")
+    ] = False,
 ) -> None:
     """Run a scenario file and print its spec section 9 measures.
 
@@ -335,7 +343,7 @@ def simulate_command(
             if formats is not None and out is None:
                 raise ValidationError(f"--format {formats!r} needs --out DIR (the folder to write)")
             if out is not None:
-                check_output_folder("--out", out)
+                check_output_folder("--out", out, "simulate", force=force)
             notify_if_compiling()  # before the first kernel loads (the scenario's damper)
             scn = Scenario.load(scenario)
             if formats is not None and scn.is_sweep:
@@ -343,30 +351,35 @@ def simulate_command(
                     f"--format {formats!r} applies to single runs; a swept scenario writes "
                     "sweep.csv, sweep.png and measures.json"
                 )
-        with progress_bar(scn.is_sweep and not as_json, "simulating") as progress:
-            results = scn.run(duration=duration, workers=None, progress=progress)
         files: list[Path] = []
         payload: Any
-        if scn.is_sweep:
-            rows = [
-                to_jsonable(_run_row(exc, res.measures()))
-                for exc, res in zip(scn.excitations, results, strict=True)
-                if isinstance(exc, Harmonic)
-            ]
-            payload = rows
-            if out is not None:
-                title = _title(scenario, results[0].scenario, "frequency response")
-                _write(out, lambda d: files.extend(_write_sweep(d, rows, title)))
-                _write(out, lambda d: (d / "measures.json").write_text(json.dumps(rows, indent=2)))
-                files.append(out / "measures.json")
-        else:
-            payload = to_jsonable(results[0].measures(road_peak=how))
-            if out is not None:
-                title = _title(scenario, results[0].scenario)
-                _write(
-                    out,
-                    lambda d: files.extend(_write_single(d, results[0], payload, kinds, title)),
-                )
+        with prepare_output(out, "simulate", force=force) as folder:  # before the run
+            with progress_bar(scn.is_sweep and not as_json, "simulating") as progress:
+                results = scn.run(duration=duration, workers=None, progress=progress)
+            if scn.is_sweep:
+                rows = [
+                    to_jsonable(_run_row(exc, res.measures()))
+                    for exc, res in zip(scn.excitations, results, strict=True)
+                    if isinstance(exc, Harmonic)
+                ]
+                payload = rows
+                if folder is not None:
+                    title = _title(scenario, results[0].scenario, "frequency response")
+                    _write(folder, lambda d: files.extend(_write_sweep(d, rows, title)))
+                    measures = folder / "measures.json"
+                    _write(folder, lambda _d: measures.write_text(json.dumps(rows, indent=2)))
+                    files.append(measures)
+            else:
+                payload = to_jsonable(results[0].measures(road_peak=how))
+                if folder is not None:
+                    title = _title(scenario, results[0].scenario)
+                    _write(
+                        folder,
+                        lambda d: files.extend(_write_single(d, results[0], payload, kinds, title)),
+                    )
+            if folder is not None and out is not None:
+                relocate_files(folder, out)
+                files = [Path(f) for f in relocated([str(f) for f in files], folder, out)]
     _clamp_note([r.velocity_clamp_fraction for r in results])
     _spare_teardown()
     if as_json:
@@ -415,7 +428,6 @@ def sweep_command(
     stderr (none with ``--json``), and prints T_as, T_au, T_dr, T_ds, T_du, DLC, gamma
     and the current per frequency (``--json``: a list of objects).
     """
-    from mrsuspension._output import prepare_output
     from mrsuspension._progress import progress_bar
     from mrsuspension.cli.compiling import notify_if_compiling
     from mrsuspension.engine.simulate import measures_of, run_many
@@ -425,7 +437,7 @@ def sweep_command(
         if workers is not None:
             check_count("--workers", workers)
         if out is not None:
-            check_output_folder("--out", out)
+            check_output_folder("--out", out, "sweep", force=force)
         scn = Scenario.load(scenario)
         sweep = _sweep_for(scn, frequencies, amplitude)
         excitations = list(sweep.excitations())

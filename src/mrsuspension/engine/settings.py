@@ -208,7 +208,13 @@ def memory_limit() -> float:
         return 8.0 * 2**30
 
 
-def check_memory(duration: float, values: float, *, name: str = "duration") -> None:
+def check_memory(
+    duration: float,
+    values: float,
+    *,
+    name: str = "duration",
+    hint: str = "shorten the duration, raise dt or lower output_rate",
+) -> None:
     """Refuse a run whose arrays (``values`` floats of 8 bytes) exceed :func:`memory_limit`.
 
     Checked before anything is allocated, so that a long ``duration`` fails at once with
@@ -217,7 +223,8 @@ def check_memory(duration: float, values: float, *, name: str = "duration") -> N
     Raises
     ------
     ValidationError
-        Naming ``name``, the duration, the estimate and the limit.
+        Naming ``name``, the duration, the estimate and the limit, then ``hint`` (how to
+        fix it).
 
     Examples
     --------
@@ -233,7 +240,7 @@ def check_memory(duration: float, values: float, *, name: str = "duration") -> N
         raise ValidationError(
             f"{name} = {duration:g} s needs about {need / 2**30:.3g} GiB of memory (samples x "
             f"signals x 8 bytes), more than the {limit / 2**30:.3g} GiB allowed (half this "
-            "machine's RAM): shorten the duration, raise dt or lower output_rate"
+            f"machine's RAM): {hint}"
         )
 
 

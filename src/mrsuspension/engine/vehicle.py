@@ -387,9 +387,13 @@ class VehicleResult(SimulationResult):
                     ds[key].attrs["long_name"] = f"{SIGNALS[base][1]} at {corner}"
         return ds
 
-    def plot(self, signals: tuple[str, ...] = ("heave_ddot", "pitch_ddot", "roll_ddot")) -> Figure:
+    def plot(
+        self,
+        signals: tuple[str, ...] = ("heave_ddot", "pitch_ddot", "roll_ddot"),
+        title: str | None = None,
+    ) -> Figure:
         """Time histories of some signals, one panel each (default: body accelerations)."""
-        return super().plot(signals)
+        return super().plot(signals, title=title)
 
     def measures(self, **kwargs: Any) -> dict[str, Any]:
         """Every corner's quarter-car measures, keyed ``"<measure>.<corner>"``.

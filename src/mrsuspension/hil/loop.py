@@ -86,6 +86,7 @@ __all__ = [
     "LiveChange",
     "LoopHooks",
     "TickStats",
+    "check_recording_memory",
     "load_result",
     "run_hil",
 ]
@@ -124,6 +125,36 @@ CHANNELS: tuple[tuple[str, str], ...] = (
     ("lateness", "s"),  # release lateness of the tick
 )
 _NAMES = tuple(n for n, _ in CHANNELS)
+
+
+def check_recording_memory(duration: float, rate: float, *, name: str = "duration") -> None:
+    """Refuse a run whose recording (``duration`` x ``rate`` rows of every channel, 8
+    bytes each) would not fit in memory when read back: more than half the RAM
+    (:func:`mrsuspension.engine.settings.check_memory`).
+
+    Raises
+    ------
+    ValidationError
+        Naming ``name``, the duration, the estimate and the limit.
+
+    Examples
+    --------
+    >>> check_recording_memory(10.0, 1000.0)  # 10 000 rows: a few MB
+    >>> check_recording_memory(1e5, 1e5)  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    mrsuspension.errors.ValidationError: duration = 100000 s needs about ... GiB of memory ...
+    """
+    from mrsuspension.engine.settings import check_memory
+
+    check_memory(
+        duration,
+        float(duration) * float(rate) * len(_NAMES),
+        name=name,
+        hint="shorten the duration or lower the loop rate",
+    )
+
+
 #: settling allowance after the return ramp [s]
 _SETTLE = 1.0
 #: spin (busy-wait) for the last part of each wait [s], at most this fraction of a period
@@ -459,6 +490,9 @@ def run_hil(
         check_isolate(realtime, isolate)  # refused here, not in the child
         if out is None:
             raise ValidationError("run_hil(process=True) needs an output directory (out=...)")
+        rate = float(check_range("rate", rate, 1.0, 100000.0, unit="Hz"))
+        duration = float(check_range("duration", duration, 0.0, 1e5, unit="s", low_inclusive=False))
+        check_recording_memory(duration, rate)  # before the child starts
         return _run_in_process(
             target, rig, duration, rate, Path(out), model_dt=model_dt, limits=limits,
             startup=startup, driver=driver, realtime=realtime, isolate=isolate,
@@ -472,6 +506,7 @@ def run_hil(
     startup = startup if startup is not None else StartUp()
     rate = float(check_range("rate", rate, 1.0, 100000.0, unit="Hz"))
     duration = float(check_range("duration", duration, 0.0, 1e5, unit="s", low_inclusive=False))
+    check_recording_memory(duration, rate)
     if cap_current and sim.max_current > limits.current:
         sim = dataclasses.replace(sim, max_current=limits.current)
     rig = rig if rig is not None else _default_rig(sim)

@@ -28,7 +28,55 @@ from typing import Any
 
 from mrsuspension.errors import ValidationError, unknown_name
 
-__all__ = ["ParameterSet", "available", "get", "load", "resolve"]
+__all__ = [
+    "MAX_MAGNITUDE",
+    "ParameterSet",
+    "available",
+    "check_magnitudes",
+    "get",
+    "load",
+    "resolve",
+]
+
+#: Largest |value| accepted for a parameter a user gives (SI units). Five orders of
+#: magnitude above the largest registered value (spencer-1997's gamma, 3.63e6 1/m^2), so
+#: only a slip (a wrong unit prefix, an exponent typo, 1e308) is refused.
+MAX_MAGNITUDE = 1e12
+
+
+def check_magnitudes(values: Mapping[str, float], units: Mapping[str, str], origin: str) -> None:
+    """Refuse a parameter whose magnitude no physical damper parameter has.
+
+    Parameters
+    ----------
+    values : mapping of str to float
+        The parameters (SI units).
+    units : mapping of str to str
+        Their units, named in the message.
+    origin : str
+        Where the values come from (a file name, ``"parameter set 'mine'"``).
+
+    Raises
+    ------
+    ValidationError
+        Naming the parameter, the value, its unit and the accepted magnitude.
+
+    Examples
+    --------
+    >>> check_magnitudes({"c": 1800.0}, {"c": "N s/m"}, "mine.toml")
+    >>> check_magnitudes({"F0": 1e308}, {"F0": "N"}, "mine.toml")
+    Traceback (most recent call last):
+    ...
+    mrsuspension.errors.ValidationError: mine.toml: parameter 'F0' = 1e+308 N is beyond any physical damper parameter (|value| <= 1e+12 in SI units); check the value and its unit
+    """
+    for key, value in values.items():
+        if abs(value) > MAX_MAGNITUDE:
+            unit = f" {units[key]}" if units.get(key) not in (None, "", "1") else ""
+            raise ValidationError(
+                f"{origin}: parameter {key!r} = {value:g}{unit} is beyond any physical damper "
+                f"parameter (|value| <= {MAX_MAGNITUDE:g} in SI units); check the value and "
+                "its unit"
+            )
 
 
 @dataclass(frozen=True)
@@ -170,6 +218,11 @@ class ParameterSet:
         for key in values:
             if key not in self.values:
                 raise unknown_name(f"parameter of set {self.name!r}", key, self.values)
+        check_magnitudes(
+            {k: v for k, v in values.items() if isinstance(v, int | float)},
+            self.units,
+            f"parameter set {self.name!r}",
+        )
         new = {**self.values, **values}
         changed = ", ".join(f"{k}={v:g}" for k, v in values.items())
         return ParameterSet(
@@ -273,7 +326,7 @@ def _from_mapping(data: Mapping[str, Any], origin: str) -> ParameterSet:
             )
         frange = (float(frange[0]), float(frange[1]))
     try:
-        return ParameterSet(
+        pset = ParameterSet(
             name=str(data.get("name", Path(origin).stem)),
             model=data["model"],
             values=values,
@@ -288,6 +341,8 @@ def _from_mapping(data: Mapping[str, Any], origin: str) -> ParameterSet:
         )
     except ValidationError as exc:
         raise ValidationError(f"{origin}: {exc}") from None
+    check_magnitudes(pset.values, pset.units, origin)
+    return pset
 
 
 def load(path: str | Path) -> ParameterSet:
@@ -307,7 +362,7 @@ def load(path: str | Path) -> ParameterSet:
     ParameterSet(name='my-damper', model='linear', 1 parameters)
     """
     path = Path(path)
-    if not path.is_file():
+    if not _is_file(str(path)):
         raise ValidationError(f"parameter file {str(path)!r} does not exist")
     text = path.read_text()
     suffix = path.suffix.lower()
@@ -367,8 +422,18 @@ def resolve(spec: str | Path | ParameterSet | Mapping[str, float], model: str) -
     if isinstance(spec, ParameterSet):
         return spec
     if isinstance(spec, Mapping):
-        return ParameterSet(name="user", model=model, values=dict(spec))
+        pset = ParameterSet(name="user", model=model, values=dict(spec))
+        check_magnitudes(pset.values, pset.units, "parameter set 'user'")
+        return pset
     text = str(spec)
-    if isinstance(spec, Path) or text.lower().endswith((".toml", ".json")) or Path(text).is_file():
+    if isinstance(spec, Path) or text.lower().endswith((".toml", ".json")) or _is_file(text):
         return load(text)
     return get(text)
+
+
+def _is_file(text: str) -> bool:
+    """``Path(text).is_file()``, False for a text no file can have (too long, NUL)."""
+    try:
+        return Path(text).is_file()
+    except (OSError, ValueError):
+        return False

@@ -17,6 +17,14 @@ from collections.abc import Callable, Iterable, Sequence
 from pathlib import Path
 from typing import Any
 
+from mrsuspension.report.merge import (
+    PART_ORDER,
+    merge_manifest,
+    mixed_note,
+    part_files,
+    previous_report,
+    wrap_part,
+)
 from mrsuspension.report.toolkit import Context, FigureRecord, shock_table_html
 
 __all__ = ["FigureRecord", "build_report", "shock_table_html"]
@@ -130,6 +138,7 @@ def build_report(
     progress: Callable[[str], None] | None = None,
     svg: bool = False,
     check_layout: bool = False,
+    previous: str | Path | None = None,
 ) -> Path:
     """Regenerate the dissertation's analyses into ``out/index.html``.
 
@@ -153,6 +162,9 @@ def build_report(
         Record each figure's ``layout issues`` (overlapping texts, a legend over the
         data, no title; :func:`~mrsuspension.report.legibility.layout_issues`) in
         ``manifest.json``; the report's tests require none.
+    previous : path, optional
+        A report folder to merge with (:mod:`mrsuspension.report.merge`): its parts not
+        rebuilt here are copied into ``out`` and kept in the index and the manifest.
 
     Returns
     -------
@@ -189,27 +201,37 @@ def build_report(
         body, info = scorecard.build(
             out, quick, say, payloads=built.payloads, runs=built.calls["findings history"]
         )
-        bodies.append(body)
+        bodies.append(wrap_part("findings", body))
         manifest["findings"] = info
     for c in chosen:
         context = Context(c, out / f"chapter{c}", quick, built, say)
         t0 = time.perf_counter()
         body, info = chapter(c).build(context)
-        bodies.append(body)
+        bodies.append(wrap_part(f"ch{c}", body))
         info["timing"] = _chapter_timing(info.get("figures", []), time.perf_counter() - t0)
         manifest["chapters"][str(c)] = info
     if beyond:
         body, info = built.calls["beyond"]
-        bodies.append(body)
+        bodies.append(wrap_part("beyond", body))
         info["timing"] = _chapter_timing(info["figures"], 0.0)
         info["timing"]["wall time [s]"] = round(built.call_times["beyond"], 2)
         manifest["beyond"] = info
     elapsed = time.perf_counter() - start
     manifest["run_time_s"] = round(elapsed, 2)
+    keys = [*(["findings"] if findings else []), *(f"ch{c}" for c in chosen)]
+    keys += ["beyond"] if beyond else []
+    built_at = time.strftime("%Y-%m-%dT%H:%M:%S%z")
+    manifest["parts"] = {
+        k: {"built": built_at, "quick": quick, "version": __version__} for k in keys
+    }
+    note = ""
+    if previous is not None:
+        manifest, bodies, keys = _merged(
+            Path(previous), out, manifest, dict(zip(keys, bodies, strict=True))
+        )
+        note = mixed_note(manifest["parts"])
     (out / "manifest.json").write_text(json.dumps(manifest, indent=2, default=float) + "\n")
-    toc = "<li><a href='#findings'>Findings scorecard</a></li>" if findings else ""
-    toc += "".join(f"<li><a href='#ch{c}'>Chapter {c}</a></li>" for c in chosen)
-    toc += "<li><a href='#beyond'>Beyond the dissertation</a></li>" if beyond else ""
+    toc = "".join(f"<li><a href='#{k}'>{html.escape(_TITLES.get(k, k))}</a></li>" for k in keys)
     page = (
         "<!doctype html><html><head><meta charset='utf-8'>"
         "<title>mrsuspension report</title>"
@@ -219,8 +241,30 @@ def build_report(
         f"{platform.python_version()}, generated {time.strftime('%Y-%m-%d %H:%M:%S')} in "
         f"{elapsed:.1f} s{' (quick mode)' if quick else ''}. Raw numbers: "
         "<a href='manifest.json'>manifest.json</a>.</p>"
-        f"<ul>{toc}</ul>" + "".join(bodies) + "</body></html>"
+        f"{note}<ul>{toc}</ul>" + "".join(bodies) + "</body></html>"
     )
     index = out / "index.html"
     index.write_text(page)
     return index
+
+
+_TITLES = {"findings": "Findings scorecard", "beyond": "Beyond the dissertation"}
+_TITLES.update({f"ch{n}": f"Chapter {n}" for n in range(1, 10)})
+
+
+def _merged(
+    previous: Path, out: Path, manifest: dict[str, Any], bodies: dict[str, str]
+) -> tuple[dict[str, Any], list[str], list[str]]:
+    """Merge this run's parts into the report in ``previous`` (the parts not rebuilt are
+    copied into ``out``): the manifest, the sections in page order and their keys."""
+    from mrsuspension._output import carry_over
+
+    old_manifest, old_sections = previous_report(previous)
+    kept = [k for k in old_sections if k not in bodies]
+    skip = {"index.html", "manifest.json", *(f for k in bodies for f in part_files(k))}
+    skip |= {p.name for p in out.iterdir()}  # never over what this run wrote
+    carry_over(previous, out, skip=skip)
+    sections = {**{k: wrap_part(k, old_sections[k]) for k in kept}, **bodies}
+    keys = sorted(sections, key=lambda k: PART_ORDER.index(k) if k in PART_ORDER else 99)
+    merged = merge_manifest(old_manifest, manifest, bodies, kept)
+    return merged, [sections[k] for k in keys], keys

@@ -171,14 +171,18 @@ class StudyResult:
         return self.dataset.to_dataframe().reset_index()
 
     def save(self, path: str | Path) -> Path:
-        """Write ``.nc`` (NetCDF, with the study in the attributes) or ``.csv`` (+ ``.json``)."""
+        """Write ``.nc`` (NetCDF, with the study in the attributes and ``units`` on every
+        measure and numeric field) or ``.csv`` (+ ``.json``; headers ``name [unit]``)."""
         path = Path(path)
         path.parent.mkdir(parents=True, exist_ok=True)
         suffix = path.suffix.lower()
         if suffix == ".nc":
             self.dataset.to_netcdf(path)
         elif suffix == ".csv":
-            self.to_pandas().to_csv(path, index=False)
+            from mrsuspension.studies.units import csv_headers
+
+            table = self.to_pandas()
+            table.rename(columns=csv_headers(self.dataset)).to_csv(path, index=False)
             path.with_suffix(".json").write_text(
                 json.dumps(
                     {"study": self.study.describe(), "content_hash": self.content_hash},

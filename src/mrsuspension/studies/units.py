@@ -12,7 +12,7 @@ from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     import xarray as xr
 
-__all__ = ["FIELD_UNITS", "add_units"]
+__all__ = ["FIELD_UNITS", "add_units", "csv_headers"]
 
 #: SI unit of the numeric scenario fields a study can vary ("-": dimensionless).
 FIELD_UNITS: dict[str, str] = {
@@ -78,3 +78,21 @@ def add_units(ds: xr.Dataset) -> xr.Dataset:
         if unit is not None and ds[name].dtype.kind in "fiu":
             ds[name].attrs["units"] = unit
     return ds
+
+
+def csv_headers(ds: xr.Dataset) -> dict[str, str]:
+    """Column name -> ``"name [unit]"`` for every variable and coordinate of ``ds`` with a
+    ``units`` attribute (the CSV writer's headers; text columns keep their names).
+
+    Examples
+    --------
+    >>> import xarray as xr
+    >>> ds = add_units(xr.Dataset(
+    ...     {"T_as": ("controller.current", [1.2, 1.1])},
+    ...     coords={"controller.current": [0.0, 0.2]},
+    ... ))
+    >>> csv_headers(ds)
+    {'T_as': 'T_as [-]', 'controller.current': 'controller.current [A]'}
+    """
+    names = [*map(str, ds.data_vars), *map(str, ds.coords)]
+    return {n: f"{n} [{ds[n].attrs['units']}]" for n in names if "units" in ds[n].attrs}
