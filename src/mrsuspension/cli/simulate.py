@@ -447,7 +447,8 @@ def _sweep_for(scn: Scenario, frequencies: str | None, amplitude: float | None) 
             amplitude = exc.amplitude
         else:
             raise ValidationError(
-                f"the scenario's excitation is {exc.name!r}: give the sweep amplitude with "
+                f"the scenario's excitation is {scn.data['excitation']['kind']!r}: give the "
+                "sweep amplitude with "
                 "--amplitude (metres, e.g. 0.025)"
             )
     if isinstance(exc, SteppedSweep):
