@@ -43,6 +43,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+import numpy as np
+
 from mrsuspension.control import CONTROLLERS, Controller, HiLo, make_controller
 from mrsuspension.dampers import DAMPERS, ESTIMATORS, DamperModel, damper_options, make_damper
 from mrsuspension.dampers.wang import VEHICLE_VH_VARIANT
@@ -67,7 +69,14 @@ from mrsuspension.vehicle.body import FullCar, HalfCar, VehicleBody, available_s
 if TYPE_CHECKING:
     from mrsuspension.engine.vehicle import VehicleSimulation
 
-__all__ = ["SCENARIO_KEYS", "VEHICLE_MODELS", "WHEEL_KINDS", "Scenario"]
+__all__ = [
+    "BODY_MEASURES",
+    "SCENARIO_KEYS",
+    "VEHICLE_MODELS",
+    "WHEEL_KINDS",
+    "Scenario",
+    "run_measures",
+]
 
 # -- the public keys -----------------------------------------------------------------------
 # Value kinds: "number", "integer", "bool", "string", "numbers" (a list of numbers),
@@ -534,13 +543,17 @@ class Scenario:
         car = self.vehicle
         if isinstance(car, QuarterCar):
             raise ValidationError("wheel roads need [vehicle] model = 'half-car' or 'full-car'")
+        # a speedless kind's [excitation] speed, else the scenario road's own speed
+        speed = self.road_speed
+        if speed is None:
+            speed = getattr(self.excitation, "speed_kmh", None)
         out = []
         for exc in self.excitations if excitations is None else excitations:
             if isinstance(exc, WheelRoads):
                 out.append(exc)
                 continue
             with _in_section("excitation"):
-                out.append(WheelRoads.from_excitation(exc, car, self.road_speed))
+                out.append(WheelRoads.from_excitation(exc, car, speed))
         return out
 
     def vehicle_simulations(
@@ -670,6 +683,48 @@ class Scenario:
         out["controller"] = {"law": self.controller.law, **out["controller"]}
         out["simulation"] = self.settings.to_dict()
         return out
+
+
+# -- measures of any run --------------------------------------------------------------------
+#: Body measures of a half- or full-car run: name -> (signal, unit); RMS over the record.
+BODY_MEASURES: dict[str, tuple[str, str]] = {
+    "heave_ddot_rms": ("heave_ddot", "m/s^2"),
+    "pitch_ddot_rms": ("pitch_ddot", "rad/s^2"),
+    "roll_ddot_rms": ("roll_ddot", "rad/s^2"),
+}
+
+
+def run_measures(result: SimulationResult, **kwargs: Any) -> dict[str, Any]:
+    """The measures of a scenario's run: the quarter car's, or a vehicle's body and corners.
+
+    A quarter-car result gives :meth:`SimulationResult.measures
+    <mrsuspension.engine.result.SimulationResult.measures>` unchanged. A half- or full-car
+    result (:class:`~mrsuspension.engine.vehicle.VehicleResult`) gives the RMS body
+    accelerations of :data:`BODY_MEASURES` over the whole record (a full car only: roll),
+    then its own measures (every corner's quarter-car measures, ``"<measure>.<corner>"``);
+    a measure the result already reports keeps its value. A module-level function, so it
+    can reduce results in worker processes.
+
+    Examples
+    --------
+    >>> s = Scenario.from_dict({"vehicle": {"model": "half-car"},
+    ...                         "excitation": {"kind": "harmonic", "frequency": 5.0,
+    ...                                        "amplitude": 0.005}})
+    >>> m = run_measures(s.run()[0])  # the harmonic's steady-state rule: 10 cycles settled
+    >>> list(m)[:3], 0.0 < m["T_as.rear"] < 1.0
+    (['heave_ddot_rms', 'pitch_ddot_rms', 'T_as.front'], True)
+    """
+    measures = result.measures(**kwargs)
+    if not hasattr(result, "corners"):
+        return measures
+    out: dict[str, Any] = {}
+    for name, (signal, _) in BODY_MEASURES.items():
+        if signal == "roll_ddot" and len(getattr(result, "corners", ())) < 4:
+            continue
+        values = np.asarray(result[signal], dtype=float)
+        out[name] = float(np.sqrt(np.mean(values * values)))
+    out.update(measures)
+    return out
 
 
 # -- section builders ---------------------------------------------------------------------

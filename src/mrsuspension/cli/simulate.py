@@ -29,7 +29,13 @@ if TYPE_CHECKING:
     from mrsuspension.excitation import Harmonic, SteppedSweep
     from mrsuspension.scenario import Scenario
 
-__all__ = ["parse_formats", "parse_frequencies", "simulate_command", "sweep_command"]
+__all__ = [
+    "measure_unit",
+    "parse_formats",
+    "parse_frequencies",
+    "simulate_command",
+    "sweep_command",
+]
 
 #: measures shown in the transmissibility plot of a sweep
 SWEEP_PLOT = ("T_as", "T_au", "T_dr", "DLC")
@@ -132,15 +138,47 @@ def parse_formats(text: str) -> list[str]:
     return list(dict.fromkeys(names))
 
 
-def _write_sweep(out: Path, rows: Sequence[Mapping[str, Any]]) -> list[Path]:
-    """``sweep.csv`` (headers ``name [unit]``) and ``sweep.png`` (T_as, T_au, T_dr, DLC)."""
-    from mrsuspension.engine.result import measure_label
+def measure_unit(key: str) -> str | None:
+    """Unit of a measure: the quarter car's, a vehicle's body measure, or ``"<m>.<corner>"``.
 
+    Examples
+    --------
+    >>> measure_unit("T_as"), measure_unit("DLC.front_left"), measure_unit("roll_ddot_rms")
+    ('-', '-', 'rad/s^2')
+    """
+    from mrsuspension.engine.result import MEASURE_UNITS
+    from mrsuspension.scenario import BODY_MEASURES
+
+    if key in BODY_MEASURES:
+        return BODY_MEASURES[key][1]
+    return MEASURE_UNITS.get(key, MEASURE_UNITS.get(key.split(".", 1)[0]))
+
+
+def _label(key: str) -> str:
+    """``"name [unit]"`` (see :func:`measure_unit`), else ``name``."""
+    unit = measure_unit(key)
+    return key if unit is None else f"{key} [{unit}]"
+
+
+def _sweep_panels(row: Mapping[str, Any]) -> list[list[str]]:
+    """The sweep plot's panels: T_as, T_au, T_dr, DLC; a vehicle's per corner, body RMS."""
+    if all(k in row for k in SWEEP_PLOT):
+        return [[k] for k in SWEEP_PLOT]
+    body = [[k] for k in ("heave_ddot_rms", "pitch_ddot_rms", "roll_ddot_rms") if k in row]
+    corners = [[k for k in row if k.startswith(f"{m}.")] for m in ("T_as", "DLC")]
+    return body + [keys for keys in corners if keys]
+
+
+def _write_sweep(
+    out: Path, rows: Sequence[Mapping[str, Any]], title: str | None = None
+) -> list[Path]:
+    """``sweep.csv`` (headers ``name [unit]``) and ``sweep.png`` (T_as, T_au, T_dr, DLC;
+    a vehicle: body RMS accelerations, T_as and DLC of every corner)."""
     files = [out / "sweep.csv", out / "sweep.png"]
     keys = list(rows[0])
     with files[0].open("w", newline="") as fh:
         writer = csv.writer(fh)
-        writer.writerow([measure_label(k) for k in keys])
+        writer.writerow([_label(k) for k in keys])
         for row in rows:
             writer.writerow([row[k] for k in keys])
     import matplotlib
@@ -149,14 +187,20 @@ def _write_sweep(out: Path, rows: Sequence[Mapping[str, Any]]) -> list[Path]:
     import matplotlib.pyplot as plt
 
     freqs = [r["frequency"] for r in rows]
-    fig, axes = plt.subplots(len(SWEEP_PLOT), 1, sharex=True, figsize=(7, 2.0 * len(SWEEP_PLOT)))
-    for ax, key in zip(axes, SWEEP_PLOT, strict=True):
-        values = [r[key] if r[key] is not None else math.nan for r in rows]
-        ax.plot(freqs, values, "o-", ms=3, lw=1)
-        ax.set_ylabel(measure_label(key))
+    panels = _sweep_panels(rows[0])
+    fig, axes = plt.subplots(len(panels), 1, sharex=True, figsize=(7, 2.0 * len(panels)))
+    for ax, group in zip(axes, panels, strict=True):
+        for key in group:
+            values = [r[key] if r[key] is not None else math.nan for r in rows]
+            ax.plot(freqs, values, "o-", ms=3, lw=1, label=key.partition(".")[2] or None)
+        ax.set_ylabel(_label(group[0].partition(".")[0] if len(group) > 1 else group[0]))
+        if len(group) > 1:
+            ax.legend(fontsize=7, ncol=len(group))
         ax.set_xscale("log")
         ax.grid(True, which="both", alpha=0.3)
     axes[-1].set_xlabel("frequency [Hz]")
+    if title:
+        fig.suptitle(title, fontsize=10)
     fig.tight_layout()
     fig.savefig(files[1], dpi=120)
     plt.close(fig)
@@ -168,6 +212,7 @@ def _write_single(
     result: SimulationResult,
     measures: Mapping[str, Any],
     formats: Sequence[str] = ("csv", "nc"),
+    title: str | None = None,
 ) -> list[Path]:
     """``result.<format>`` per format (csv + ``result.json``; nc if xarray), plot, measures."""
     files: list[Path] = []
@@ -180,6 +225,9 @@ def _write_single(
     import matplotlib.pyplot as plt
 
     fig = result.plot()
+    if title:
+        fig.suptitle(title, fontsize=10)
+        fig.tight_layout()
     fig.savefig(out / "result.png", dpi=120)
     plt.close(fig)
     files.append(out / "result.png")
@@ -216,12 +264,11 @@ def _spare_teardown() -> None:
 
 def _echo_measures(measures: Mapping[str, Any]) -> None:
     """One ``name = value [unit]`` line per measure (a note such as ``road_peak``: no unit)."""
-    from mrsuspension.engine.result import MEASURE_UNITS
-
+    width = max(26, *(len(k) for k in measures)) if measures else 26
     for key, value in measures.items():
         text = "n/a" if value is None else f"{value:.6g}" if isinstance(value, float) else value
-        unit = f"[{MEASURE_UNITS[key]}]" if key in MEASURE_UNITS else ""
-        typer.echo(f"{key:>26} = {text!s:<12} {unit}".rstrip())
+        unit = measure_unit(key)
+        typer.echo(f"{key:>{width}} = {text!s:<12} {'' if unit is None else f'[{unit}]'}".rstrip())
 
 
 def _clamp_note(fractions: Sequence[float | None]) -> None:
@@ -244,10 +291,8 @@ def _clamp_note(fractions: Sequence[float | None]) -> None:
 
 def _echo_rows(rows: Sequence[Mapping[str, Any]]) -> None:
     """A table, one row per run, headers ``name [unit]`` (columns as wide as needed)."""
-    from mrsuspension.engine.result import measure_label
-
     keys = [k for k in rows[0] if k != "amplitude"]
-    labels = [measure_label(k) for k in keys]
+    labels = [_label(k) for k in keys]
     widths = [max(12, len(label)) for label in labels]
     typer.echo(" ".join(f"{label:>{w}}" for label, w in zip(labels, widths, strict=True)))
     for row in rows:
@@ -306,7 +351,7 @@ def simulate_command(
             from mrsuspension.cli.compiling import notify_if_compiling
             from mrsuspension.excitation import Harmonic
             from mrsuspension.measures.shock import check_road_peak
-            from mrsuspension.scenario import Scenario
+            from mrsuspension.scenario import Scenario, run_measures
 
             how = check_road_peak(road_peak)
             kinds = parse_formats(DEFAULT_RESULT_FORMATS if formats is None else formats)
@@ -325,21 +370,24 @@ def simulate_command(
             results = scn.run(duration=duration, workers=None, progress=progress)
         files: list[Path] = []
         payload: Any
+        title = _title(scn)
         if scn.is_sweep:
             rows = [
-                to_jsonable(_run_row(exc, res.measures()))
+                to_jsonable(_run_row(exc, run_measures(res)))
                 for exc, res in zip(scn.excitations, results, strict=True)
                 if isinstance(exc, Harmonic)
             ]
             payload = rows
             if out is not None:
-                _write(out, lambda d: files.extend(_write_sweep(d, rows)))
+                _write(out, lambda d: files.extend(_write_sweep(d, rows, title)))
                 _write(out, lambda d: (d / "measures.json").write_text(json.dumps(rows, indent=2)))
                 files.append(out / "measures.json")
         else:
-            payload = to_jsonable(results[0].measures(road_peak=how))
+            payload = to_jsonable(run_measures(results[0], road_peak=how))
             if out is not None:
-                _write(out, lambda d: files.extend(_write_single(d, results[0], payload, kinds)))
+                _write(
+                    out, lambda d: files.extend(_write_single(d, results[0], payload, kinds, title))
+                )
     _clamp_note([r.velocity_clamp_fraction for r in results])
     _spare_teardown()
     if as_json:
@@ -392,7 +440,8 @@ def sweep_command(
     from mrsuspension._progress import progress_bar
     from mrsuspension.cli.compiling import notify_if_compiling
     from mrsuspension.engine.simulate import measures_of, run_many
-    from mrsuspension.scenario import Scenario
+    from mrsuspension.engine.vehicle import run_vehicles
+    from mrsuspension.scenario import Scenario, run_measures
 
     with user_errors({"frequency": "--frequencies"}):
         if workers is not None:
@@ -402,23 +451,33 @@ def sweep_command(
         scn = Scenario.load(scenario)
         sweep = _sweep_for(scn, frequencies, amplitude)
         excitations = list(sweep.excitations())
-        sims = scn.simulations(excitations)
         files: list[Path] = []
         with prepare_output(out, "sweep", force=force) as folder:  # checked before the runs
             notify_if_compiling()
             with progress_bar(not as_json, "sweep") as progress:
-                results = run_many(
-                    sims,
-                    dt=scn.dt,
-                    output_rate=scn.output_rate,
-                    workers=workers,
-                    progress=progress,
-                    reduce=measures_of,  # measures computed in the workers: little traffic
-                )
+                # measures computed in the workers: little traffic
+                if scn.is_vehicle:
+                    results = run_vehicles(
+                        scn.vehicle_simulations(excitations),
+                        dt=scn.dt,
+                        output_rate=scn.output_rate,
+                        workers=workers,
+                        progress=progress,
+                        reduce=run_measures,
+                    )
+                else:
+                    results = run_many(
+                        scn.simulations(excitations),
+                        dt=scn.dt,
+                        output_rate=scn.output_rate,
+                        workers=workers,
+                        progress=progress,
+                        reduce=measures_of,
+                    )
             rows = [to_jsonable(_run_row(e, m)) for e, m in zip(excitations, results, strict=True)]
             if out is not None and folder is not None:
                 try:
-                    files = [out / f.name for f in _write_sweep(folder, rows)]
+                    files = [out / f.name for f in _write_sweep(folder, rows, _title(scn))]
                 except OSError as exc:
                     raise ValidationError(f"cannot write --out {str(out)!r}: {exc}") from None
     _clamp_note([m.get("vm_clamp_fraction") for m in results])
@@ -428,6 +487,12 @@ def sweep_command(
     _echo_rows(rows)
     for f in files:
         typer.echo(f"wrote {f}")
+
+
+def _title(scn: Scenario) -> str:
+    """The plots' title: the scenario file (or "scenario") and the vehicle model."""
+    name = scn.source.name if scn.source is not None else "scenario"
+    return f"{name} ({scn.model})"
 
 
 def _sweep_for(scn: Scenario, frequencies: str | None, amplitude: float | None) -> SteppedSweep:

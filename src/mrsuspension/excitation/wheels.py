@@ -558,7 +558,7 @@ class WheelRoads:
             track,
             layout,
             source=f"{excitation.name} on both tracks",
-            details={"excitation": excitation.describe()},
+            details={"excitation": excitation.describe(), "single_track": True},
         )
 
     @classmethod
@@ -958,6 +958,24 @@ class WheelRoads:
         )
 
     # -- properties ------------------------------------------------------------------------
+    @property
+    def excitation(self) -> Excitation | None:
+        """The single-track excitation of :meth:`from_excitation` (None for other roads).
+
+        The vehicle engine measures each corner of such a road as the quarter car on that
+        excitation (a harmonic's transmissibilities, a pulse's shock ratios); other roads
+        get the road measures.
+
+        Examples
+        --------
+        >>> from mrsuspension.excitation import Harmonic
+        >>> WheelRoads.from_excitation(Harmonic(1.0, 0.01), (2.5, 1.5), 50.0).excitation.name
+        'harmonic'
+        >>> WheelRoads.bump("left", 0.05, 0.5, (2.5, 1.5)).excitation is None
+        True
+        """
+        return self.left if self.details.get("single_track") else None
+
     @property
     def speed(self) -> float:
         """Vehicle speed ``V`` [m/s]."""
