@@ -30,8 +30,10 @@ from mrsuspension._progress import progress_bar as _bar
 from mrsuspension.engine.result import SimulationResult
 from mrsuspension.engine.settings import RunSettings
 from mrsuspension.engine.simulate import run_many, run_quietly
+from mrsuspension.engine.vehicle import VehicleSimulation, run_vehicles
 from mrsuspension.errors import ValidationError
 from mrsuspension.measures.shock import DEFAULT_ROAD_PEAK, RoadPeak
+from mrsuspension.scenario import run_measures
 from mrsuspension.studies.study import Study
 
 if TYPE_CHECKING:
@@ -192,8 +194,9 @@ class StudyResult:
 
 # -- executors ----------------------------------------------------------------------------
 def _measures(result: SimulationResult, road_peak: RoadPeak) -> dict[str, Any]:
-    """``result.measures(road_peak=...)``, the reducer (module level, so it pickles)."""
-    return result.measures(road_peak=road_peak)
+    """``result.measures(road_peak=...)`` (a vehicle's: :func:`~mrsuspension.scenario.run_measures`),
+    the reducer (module level, so it pickles)."""
+    return run_measures(result, road_peak=road_peak)
 
 
 def _run_point(job: Job, road_peak: RoadPeak = DEFAULT_ROAD_PEAK) -> dict[str, Any]:
@@ -215,22 +218,32 @@ def _run_local(
     done = 0
     total = len(jobs)
     for settings, idx in groups.items():
-        offset = done
-
-        def tick(n: int, _total: int, offset: int = offset) -> None:
-            if progress:
-                progress(offset + n, total)
-
-        results = run_many(
-            [jobs[k].simulation for k in idx],
-            settings=settings,
-            workers=workers,
-            progress=tick,
-            reduce=functools.partial(_measures, road_peak=road_peak),
+        # quarter cars through the engine's batch runner, half and full cars through theirs
+        cars = [k for k in idx if isinstance(jobs[k].simulation, VehicleSimulation)]
+        quarter = [k for k in idx if k not in set(cars)]
+        runners: tuple[tuple[Callable[..., list[Any]], list[int]], ...] = (
+            (run_many, quarter),
+            (run_vehicles, cars),
         )
-        for k, r in zip(idx, results, strict=True):
-            out[k] = r
-        done += len(idx)
+        for runner, part in runners:
+            if not part:
+                continue
+            offset = done
+
+            def tick(n: int, _total: int, offset: int = offset) -> None:
+                if progress:
+                    progress(offset + n, total)
+
+            results = runner(
+                [jobs[k].simulation for k in part],
+                settings=settings,
+                workers=workers,
+                progress=tick,
+                reduce=functools.partial(_measures, road_peak=road_peak),
+            )
+            for k, r in zip(part, results, strict=True):
+                out[k] = r
+            done += len(part)
     return out
 
 
