@@ -83,8 +83,8 @@ from mrsuspension.errors import (
     did_you_mean,
     read_toml,
 )
-from mrsuspension.excitation import EXCITATION_OPTIONS
-from mrsuspension.scenario import SCENARIO_KEYS, Scenario
+from mrsuspension.excitation import EXCITATION_OPTIONS, FULL_CAR_CORNERS, HALF_CAR_CORNERS
+from mrsuspension.scenario import BODY_MEASURES, SCENARIO_KEYS, VEHICLE_MODELS, Scenario
 from mrsuspension.studies.study import MEASURES, merge_scenario_tables
 
 if TYPE_CHECKING:
@@ -157,7 +157,32 @@ def _int_option(where: str, value: object, low: int) -> int:
 
 def _set(tables: dict[str, dict[str, Any]], dotted: str, value: Any) -> None:
     section, key = dotted.split(".", 1)
-    tables.setdefault(section, {})[key] = value
+    table = tables.setdefault(section, {})
+    if "." in key:  # one corner of a half or full car: damper.front_left.force_gain
+        corner, key = key.split(".", 1)
+        table = table.setdefault(corner, {})
+    table[key] = value
+
+
+def _field_kind(dotted: str) -> str:
+    """Value kind of a dotted field (``section.key`` or ``section.corner.key``)."""
+    parts = dotted.split(".")
+    return SCENARIO_KEYS[parts[0]][parts[-1]]
+
+
+def _objective_measures(base: Mapping[str, Any]) -> tuple[str, ...]:
+    """Measures an objective may weight for the base's vehicle model.
+
+    The quarter car's :data:`OBJECTIVE_MEASURES`; a half or full car's body RMS
+    accelerations and every corner's ``"<measure>.<corner>"``.
+    """
+    model = base.get("vehicle", {}).get("model", "quarter-car")
+    cls = VEHICLE_MODELS.get(model)
+    corners: tuple[str, ...] = getattr(cls, "corners", ())
+    if not corners:
+        return OBJECTIVE_MEASURES
+    body = tuple(m for m in BODY_MEASURES if m != "roll_ddot_rms" or len(corners) == 4)
+    return body + tuple(f"{m}.{c}" for c in corners for m in OBJECTIVE_MEASURES)
 
 
 # -- the parts of a problem ---------------------------------------------------------------
@@ -250,6 +275,12 @@ def _parameter(index: int, table: object) -> Parameter:
         for s in _TUNABLE_SECTIONS
         for k, kind in SCENARIO_KEYS[s].items()
         if kind in ("number", "integer")
+    ] + [  # one corner of a half or full car
+        f"{s}.{c}.{k}"
+        for s in ("damper", "controller")
+        for c in (*FULL_CAR_CORNERS, *HALF_CAR_CORNERS)
+        for k, kind in SCENARIO_KEYS[s].items()
+        if kind in ("number", "integer")
     ]
     if not isinstance(name, str) or name not in tunable:
         extra = ""
@@ -266,8 +297,7 @@ def _parameter(index: int, table: object) -> Parameter:
         if not isinstance(value, bool):
             raise ValidationError(f"{where} {key} must be true or false; got {value!r}")
         flags[key] = value
-    section, key = name.split(".", 1)
-    if SCENARIO_KEYS[section][key] == "integer":
+    if _field_kind(name) == "integer":
         flags["integer"] = True
     return Parameter(
         name,
@@ -392,7 +422,7 @@ def objective_value(
     return value
 
 
-def _weights(table: object) -> dict[str, float]:
+def _weights(table: object, valid_measures: Sequence[str] = OBJECTIVE_MEASURES) -> dict[str, float]:
     where = "[objective] weights"
     if not isinstance(table, Mapping) or not table:
         raise ValidationError(
@@ -401,8 +431,8 @@ def _weights(table: object) -> dict[str, float]:
         )
     out: dict[str, float] = {}
     for m, w in table.items():
-        if m not in OBJECTIVE_MEASURES:
-            valid = sorted(OBJECTIVE_MEASURES)
+        if m not in valid_measures:
+            valid = sorted(valid_measures)
             raise ValidationError(
                 f"{where}: unknown measure {m!r}.{did_you_mean(str(m), valid)} "
                 f"Valid: {', '.join(valid)}."
@@ -549,7 +579,7 @@ class OptimizationProblem:
             raise ValidationError("[[roads]] weights: at least one must be > 0")
 
         objective = check_keys("[objective]", data.get("objective"), _OBJECTIVE_KEYS)
-        weights = _weights(objective.get("weights"))
+        weights = _weights(objective.get("weights"), _objective_measures(base))
         reference = _reference(objective.get("reference", DEFAULT_REFERENCE))
 
         seed = _int_option("[problem] seed", meta.get("seed", 0), 0)
@@ -625,8 +655,7 @@ class OptimizationProblem:
             out.update(copy.deepcopy(self.reference))
         else:
             for name, value in values.items():
-                section, key = name.split(".", 1)
-                kind = SCENARIO_KEYS[section][key]
+                kind = _field_kind(name)
                 _set(out, name, round(value) if kind == "integer" else float(value))
         out["excitation"] = road.excitation()
         return out

@@ -201,7 +201,8 @@ def _measures(result: SimulationResult, road_peak: RoadPeak) -> dict[str, Any]:
 
 def _run_point(job: Job, road_peak: RoadPeak = DEFAULT_ROAD_PEAK) -> dict[str, Any]:
     """One run reduced to its measures (module level, so workers can unpickle it)."""
-    return _measures(run_quietly(job.simulation, job.settings), road_peak)
+    sim: Any = job.simulation  # a quarter car, or a half or full car (same run interface)
+    return _measures(run_quietly(sim, job.settings), road_peak)
 
 
 def _run_local(
