@@ -19,10 +19,10 @@ from mrsuspension.engine.settings import RunSettings
 from mrsuspension.engine.simulate import (
     Simulation,
     SimulationDiverged,
+    measures_of,
     run_quietly,
 )
-from mrsuspension.engine.vehicle import VehicleSimulation
-from mrsuspension.scenario import Scenario, run_measures
+from mrsuspension.scenario import Scenario
 
 __all__ = ["Job", "job_of", "measure_job", "process_pool", "run_jobs"]
 
@@ -39,23 +39,20 @@ class Job:
     ['RDR', 'SAR_s']
     """
 
-    simulation: Simulation | VehicleSimulation
+    simulation: Simulation
     settings: RunSettings
 
 
 def measure_job(job: Job) -> dict[str, Any] | None:
     """One run reduced to its measures; None when it diverges (module level: picklable)."""
-    sim: Any = job.simulation  # a quarter car, or a half or full car (same run interface)
     try:
-        return run_measures(run_quietly(sim, job.settings))  # the quarter car's measures_of
+        return measures_of(run_quietly(job.simulation, job.settings))
     except SimulationDiverged:
         return None
 
 
 def job_of(scenario: Scenario) -> Job:
     """The run of a (single-run) scenario, with its ``[simulation]`` settings."""
-    if scenario.is_vehicle:
-        return Job(scenario.vehicle_simulations()[0], scenario.settings)
     return Job(scenario.simulations()[0], scenario.settings)
 
 

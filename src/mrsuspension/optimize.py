@@ -75,7 +75,10 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from mrsuspension._batch import Job, job_of, process_pool, run_jobs
+from mrsuspension._batch import job_of, process_pool, run_jobs
+from mrsuspension.engine.result import SimulationDiverged
+from mrsuspension.engine.settings import RunSettings
+from mrsuspension.engine.vehicle import VehicleSimulation
 from mrsuspension.errors import (
     ValidationError,
     check_keys,
@@ -84,7 +87,13 @@ from mrsuspension.errors import (
     read_toml,
 )
 from mrsuspension.excitation import EXCITATION_OPTIONS, FULL_CAR_CORNERS, HALF_CAR_CORNERS
-from mrsuspension.scenario import BODY_MEASURES, SCENARIO_KEYS, VEHICLE_MODELS, Scenario
+from mrsuspension.scenario import (
+    BODY_MEASURES,
+    SCENARIO_KEYS,
+    VEHICLE_MODELS,
+    Scenario,
+    run_measures,
+)
 from mrsuspension.studies.study import MEASURES, merge_scenario_tables
 
 if TYPE_CHECKING:
@@ -893,7 +902,7 @@ def optimize(
     generation = 0
 
     with process_pool(n_workers, problem.population * len(roads)) as pool:
-        ref_rows = run_jobs([job_of(problem.scenario(None, r)) for r in roads], pool)
+        ref_rows = _measure_runs([problem.scenario(None, r) for r in roads], pool)
         if any(row is None for row in ref_rows):
             raise ValidationError("the reference controller's run diverged; check the problem")
         reference = [dict(row or {}) for row in ref_rows]
@@ -906,7 +915,7 @@ def optimize(
             candidates = [problem.values(columns[:, s]) for s in range(columns.shape[1])]
             keys = [tuple(c.values()) for c in candidates]
             new = [k for k in dict.fromkeys(keys) if k not in cache]
-            jobs: list[Job] = []
+            batch: list[Scenario] = []
             owners: list[tuple[float, ...]] = []
             for key in new:
                 values = dict(zip((p.field for p in problem.parameters), key, strict=True))
@@ -915,9 +924,9 @@ def optimize(
                 except ValidationError:
                     cache[key] = (math.inf, None)
                     continue
-                jobs.extend(job_of(s) for s in scenarios)
+                batch.extend(scenarios)
                 owners.extend([key] * len(roads))
-            rows = run_jobs(jobs, pool)
+            rows = _measure_runs(batch, pool)
             by_key: dict[tuple[float, ...], list[dict[str, Any] | None]] = {}
             for key, row in zip(owners, rows, strict=True):
                 by_key.setdefault(key, []).append(row)
@@ -982,6 +991,41 @@ def optimize(
         run_time=time.perf_counter() - start,
         message=str(res.message),
     )
+
+
+def _measure_vehicle(
+    run: tuple[VehicleSimulation, RunSettings],
+) -> dict[str, Any] | None:
+    """A half- or full-car run reduced to its measures; None when it diverges (picklable)."""
+    sim, settings = run
+    try:
+        return run_measures(sim.run(settings=settings))
+    except SimulationDiverged:
+        return None
+
+
+def _measure_runs(scenarios: Sequence[Scenario], pool: Any) -> list[dict[str, Any] | None]:
+    """Measures of each single-run scenario, in order (None for a diverged run).
+
+    Quarter cars go through :func:`~mrsuspension._batch.run_jobs`; half and full cars
+    (:func:`~mrsuspension.scenario.run_measures`: body and per-corner) through the same
+    process pool.
+    """
+    if not any(s.is_vehicle for s in scenarios):
+        return run_jobs([job_of(s) for s in scenarios], pool)
+    from mrsuspension._pool import pool_map
+
+    out: list[dict[str, Any] | None] = [None] * len(scenarios)
+    cars = [k for k, s in enumerate(scenarios) if s.is_vehicle]
+    quarter = [k for k, s in enumerate(scenarios) if not s.is_vehicle]
+    runs = [(scenarios[k].vehicle_simulations()[0], scenarios[k].settings) for k in cars]
+    for k, row in zip(cars, pool_map(_measure_vehicle, runs, pool=pool, workers=1), strict=True):
+        out[k] = row
+    if quarter:
+        rows = run_jobs([job_of(scenarios[k]) for k in quarter], pool)
+        for k, row in zip(quarter, rows, strict=True):
+            out[k] = row
+    return out
 
 
 def _floats(row: Mapping[str, Any]) -> dict[str, float]:

@@ -1,13 +1,18 @@
-"""Scenario files: a quarter-car study described in TOML and validated on load.
+"""Scenario files: a quarter-, half- or full-car study described in TOML, validated on load.
 
 A scenario has five tables, whose section and key names are public interface::
 
     [vehicle]       # QuarterCar: sprung_mass, unsprung_mass, suspension_stiffness,
-                    # tire_stiffness, tire_damping, skyhook_damping
+                    # tire_stiffness, tire_damping, skyhook_damping; or model = "half-car"
+                    # | "full-car" (HalfCar, FullCar), set = a published set, body fields
     [damper]        # model, parameters, hysteresis, force_gain, max_current, damping, ...
     [controller]    # law, mode, gain, order, current, p, xi, p_c, xi_c, lambda, eps, ...
-    [excitation]    # kind (harmonic | swept | pulse | road) and its options
+    [excitation]    # kind (harmonic | swept | pulse | road; a half or full car also
+                    # two-track | crg | bump | pothole) and its options
     [simulation]    # duration, dt, output_rate
+
+A half or full car takes per-corner sub-tables ``[damper.<corner>]`` and
+``[controller.<corner>]`` over the main tables (see ``docs/scenarios.md``).
 
 Every key is optional except ``[excitation] kind`` and the excitation's required options;
 defaults are those of the classes (:class:`~mrsuspension.vehicle.QuarterCar`,
@@ -338,21 +343,22 @@ def _choice(section: str, key: str, value: str, choices: Mapping[str, Any]) -> s
 # -- the scenario -------------------------------------------------------------------------
 @dataclass(frozen=True)
 class Scenario:
-    """A validated quarter-car scenario (see the module docstring for the file format).
+    """A validated scenario (see the module docstring for the file format).
 
     Build it with :meth:`load` (a TOML file) or :meth:`from_dict`; the components are
     constructed and checked on load.
 
     Parameters
     ----------
-    vehicle : QuarterCar
-        The vehicle (``[vehicle]``).
+    vehicle : QuarterCar, HalfCar or FullCar
+        The vehicle (``[vehicle]``, ``model``).
     damper : DamperModel
         The damper model (``[damper]``).
     controller : Controller
         The control law (``[controller]``).
-    excitation : Excitation or SteppedSweep
-        The road input (``[excitation]``); a stepped sweep gives one run per frequency.
+    excitation : Excitation, SteppedSweep or WheelRoads
+        The road input (``[excitation]``); a stepped sweep gives one run per frequency;
+        a wheel-only kind (half or full car) is a :class:`~mrsuspension.excitation.WheelRoads`.
     max_current : float
         Drive-current limit i_max [A] (``[damper] max_current``).
     settings : RunSettings
@@ -364,6 +370,14 @@ class Scenario:
         The scenario as plain tables (see :meth:`to_dict`).
     base_dir : Path
         Folder that relative file paths (parameters, road profiles) are taken from.
+    source : Path or None
+        The file it was loaded from.
+    corner_dampers, corner_controllers : mapping
+        A half or full car: every corner's damper and controller (the main table with the
+        corner's overrides); empty for the quarter car.
+    road_speed : float or None
+        A half or full car on a harmonic or swept excitation: the speed [km/h] that
+        delays the rear wheels.
     """
 
     vehicle: QuarterCar | HalfCar | FullCar
@@ -634,6 +648,9 @@ class Scenario:
         progress: Callable[[int, int], None] | None = None,
     ) -> list[SimulationResult]:
         """Run every simulation of the scenario; results in order (one per frequency).
+
+        A half or full car gives :class:`~mrsuspension.engine.vehicle.VehicleResult`
+        objects (with :func:`run_measures` for its body and per-corner measures).
 
         Parameters
         ----------
