@@ -48,14 +48,13 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-import numpy as np
-
 from mrsuspension.control import CONTROLLERS, Controller, HiLo, make_controller
 from mrsuspension.dampers import DAMPERS, ESTIMATORS, DamperModel, damper_options, make_damper
 from mrsuspension.dampers.wang import VEHICLE_VH_VARIANT
 from mrsuspension.engine.result import SimulationResult
 from mrsuspension.engine.settings import RunSettings
 from mrsuspension.engine.simulate import Simulation, run_many
+from mrsuspension.engine.vehicle import BODY_MEASURES
 from mrsuspension.errors import ValidationError, did_you_mean, read_toml
 from mrsuspension.excitation import (
     EXCITATION_OPTIONS,
@@ -703,24 +702,14 @@ class Scenario:
 
 
 # -- measures of any run --------------------------------------------------------------------
-#: Body measures of a half- or full-car run: name -> (signal, unit); RMS over the record.
-BODY_MEASURES: dict[str, tuple[str, str]] = {
-    "heave_ddot_rms": ("heave_ddot", "m/s^2"),
-    "pitch_ddot_rms": ("pitch_ddot", "rad/s^2"),
-    "roll_ddot_rms": ("roll_ddot", "rad/s^2"),
-}
-
-
 def run_measures(result: SimulationResult, **kwargs: Any) -> dict[str, Any]:
-    """The measures of a scenario's run: the quarter car's, or a vehicle's body and corners.
+    """The measures of a scenario's run: ``result.measures(**kwargs)``.
 
-    A quarter-car result gives :meth:`SimulationResult.measures
-    <mrsuspension.engine.result.SimulationResult.measures>` unchanged. A half- or full-car
-    result (:class:`~mrsuspension.engine.vehicle.VehicleResult`) gives the RMS body
-    accelerations of :data:`BODY_MEASURES` over the whole record (a full car only: roll),
-    then its own measures (every corner's quarter-car measures, ``"<measure>.<corner>"``);
-    a measure the result already reports keeps its value. A module-level function, so it
-    can reduce results in worker processes.
+    The quarter car's measures, or a half or full car's body RMS accelerations
+    (:data:`~mrsuspension.engine.vehicle.BODY_MEASURES`) and every corner's measures
+    ``"<measure>.<corner>"`` (:meth:`VehicleResult.measures
+    <mrsuspension.engine.vehicle.VehicleResult.measures>`). A module-level function, so
+    it can reduce results in worker processes.
 
     Examples
     --------
@@ -731,17 +720,7 @@ def run_measures(result: SimulationResult, **kwargs: Any) -> dict[str, Any]:
     >>> list(m)[:3], 0.0 < m["T_as.rear"] < 1.0
     (['heave_ddot_rms', 'pitch_ddot_rms', 'T_as.front'], True)
     """
-    measures = result.measures(**kwargs)
-    if not hasattr(result, "corners"):
-        return measures
-    out: dict[str, Any] = {}
-    for name, (signal, _) in BODY_MEASURES.items():
-        if signal == "roll_ddot" and len(getattr(result, "corners", ())) < 4:
-            continue
-        values = np.asarray(result[signal], dtype=float)
-        out[name] = float(np.sqrt(np.mean(values * values)))
-    out.update(measures)
-    return out
+    return result.measures(**kwargs)
 
 
 # -- section builders ---------------------------------------------------------------------

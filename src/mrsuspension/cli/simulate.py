@@ -138,42 +138,10 @@ def parse_formats(text: str) -> list[str]:
     return list(dict.fromkeys(names))
 
 
-def measure_unit(key: str) -> str | None:
-    """Unit of a measure: the quarter car's, a vehicle's body measure, or ``"<m>.<corner>"``.
+def _write_sweep(out: Path, rows: Sequence[Mapping[str, Any]]) -> list[Path]:
+    """``sweep.csv`` (headers ``name [unit]``) and ``sweep.png`` (T_as, T_au, T_dr, DLC)."""
+    from mrsuspension.engine.result import measure_label
 
-    Examples
-    --------
-    >>> measure_unit("T_as"), measure_unit("DLC.front_left"), measure_unit("roll_ddot_rms")
-    ('-', '-', 'rad/s^2')
-    """
-    from mrsuspension.engine.result import MEASURE_UNITS
-    from mrsuspension.scenario import BODY_MEASURES
-
-    if key in BODY_MEASURES:
-        return BODY_MEASURES[key][1]
-    return MEASURE_UNITS.get(key, MEASURE_UNITS.get(key.split(".", 1)[0]))
-
-
-def _label(key: str) -> str:
-    """``"name [unit]"`` (see :func:`measure_unit`), else ``name``."""
-    unit = measure_unit(key)
-    return key if unit is None else f"{key} [{unit}]"
-
-
-def _sweep_panels(row: Mapping[str, Any]) -> list[list[str]]:
-    """The sweep plot's panels: T_as, T_au, T_dr, DLC; a vehicle's per corner, body RMS."""
-    if all(k in row for k in SWEEP_PLOT):
-        return [[k] for k in SWEEP_PLOT]
-    body = [[k] for k in ("heave_ddot_rms", "pitch_ddot_rms", "roll_ddot_rms") if k in row]
-    corners = [[k for k in row if k.startswith(f"{m}.")] for m in ("T_as", "DLC")]
-    return body + [keys for keys in corners if keys]
-
-
-def _write_sweep(
-    out: Path, rows: Sequence[Mapping[str, Any]], title: str | None = None
-) -> list[Path]:
-    """``sweep.csv`` (headers ``name [unit]``) and ``sweep.png`` (T_as, T_au, T_dr, DLC;
-    a vehicle: body RMS accelerations, T_as and DLC of every corner)."""
     files = [out / "sweep.csv", out / "sweep.png"]
     keys = list(rows[0])
     with files[0].open("w", newline="") as fh:
@@ -187,20 +155,19 @@ def _write_sweep(
     import matplotlib.pyplot as plt
 
     freqs = [r["frequency"] for r in rows]
-    panels = _sweep_panels(rows[0])
+    panels = _sweep_panels(rows[0])  # T_as, T_au, T_dr, DLC; a vehicle: body, per corner
     fig, axes = plt.subplots(len(panels), 1, sharex=True, figsize=(7, 2.0 * len(panels)))
     for ax, group in zip(axes, panels, strict=True):
         for key in group:
             values = [r[key] if r[key] is not None else math.nan for r in rows]
             ax.plot(freqs, values, "o-", ms=3, lw=1, label=key.partition(".")[2] or None)
-        ax.set_ylabel(_label(group[0].partition(".")[0] if len(group) > 1 else group[0]))
+        name = group[0].partition(".")[0] if len(group) > 1 else group[0]
+        ax.set_ylabel(measure_label(name) if name in SWEEP_PLOT else _label(name))
         if len(group) > 1:
             ax.legend(fontsize=7, ncol=len(group))
         ax.set_xscale("log")
         ax.grid(True, which="both", alpha=0.3)
     axes[-1].set_xlabel("frequency [Hz]")
-    if title:
-        fig.suptitle(title, fontsize=10)
     fig.tight_layout()
     fig.savefig(files[1], dpi=120)
     plt.close(fig)
@@ -212,7 +179,6 @@ def _write_single(
     result: SimulationResult,
     measures: Mapping[str, Any],
     formats: Sequence[str] = ("csv", "nc"),
-    title: str | None = None,
 ) -> list[Path]:
     """``result.<format>`` per format (csv + ``result.json``; nc if xarray), plot, measures."""
     files: list[Path] = []
@@ -225,9 +191,6 @@ def _write_single(
     import matplotlib.pyplot as plt
 
     fig = result.plot()
-    if title:
-        fig.suptitle(title, fontsize=10)
-        fig.tight_layout()
     fig.savefig(out / "result.png", dpi=120)
     plt.close(fig)
     files.append(out / "result.png")
@@ -264,7 +227,7 @@ def _spare_teardown() -> None:
 
 def _echo_measures(measures: Mapping[str, Any]) -> None:
     """One ``name = value [unit]`` line per measure (a note such as ``road_peak``: no unit)."""
-    width = max(26, *(len(k) for k in measures)) if measures else 26
+    width = max(26, *(len(k) for k in measures)) if measures else 26  # vehicle: long names
     for key, value in measures.items():
         text = "n/a" if value is None else f"{value:.6g}" if isinstance(value, float) else value
         unit = measure_unit(key)
@@ -351,7 +314,7 @@ def simulate_command(
             from mrsuspension.cli.compiling import notify_if_compiling
             from mrsuspension.excitation import Harmonic
             from mrsuspension.measures.shock import check_road_peak
-            from mrsuspension.scenario import Scenario, run_measures
+            from mrsuspension.scenario import Scenario
 
             how = check_road_peak(road_peak)
             kinds = parse_formats(DEFAULT_RESULT_FORMATS if formats is None else formats)
@@ -370,24 +333,21 @@ def simulate_command(
             results = scn.run(duration=duration, workers=None, progress=progress)
         files: list[Path] = []
         payload: Any
-        title = _title(scn)
         if scn.is_sweep:
             rows = [
-                to_jsonable(_run_row(exc, run_measures(res)))
+                to_jsonable(_run_row(exc, res.measures()))
                 for exc, res in zip(scn.excitations, results, strict=True)
                 if isinstance(exc, Harmonic)
             ]
             payload = rows
             if out is not None:
-                _write(out, lambda d: files.extend(_write_sweep(d, rows, title)))
+                _write(out, lambda d: files.extend(_write_sweep(d, rows)))
                 _write(out, lambda d: (d / "measures.json").write_text(json.dumps(rows, indent=2)))
                 files.append(out / "measures.json")
         else:
-            payload = to_jsonable(run_measures(results[0], road_peak=how))
+            payload = to_jsonable(results[0].measures(road_peak=how))
             if out is not None:
-                _write(
-                    out, lambda d: files.extend(_write_single(d, results[0], payload, kinds, title))
-                )
+                _write(out, lambda d: files.extend(_write_single(d, results[0], payload, kinds)))
     _clamp_note([r.velocity_clamp_fraction for r in results])
     _spare_teardown()
     if as_json:
@@ -440,8 +400,7 @@ def sweep_command(
     from mrsuspension._progress import progress_bar
     from mrsuspension.cli.compiling import notify_if_compiling
     from mrsuspension.engine.simulate import measures_of, run_many
-    from mrsuspension.engine.vehicle import run_vehicles
-    from mrsuspension.scenario import Scenario, run_measures
+    from mrsuspension.scenario import Scenario
 
     with user_errors({"frequency": "--frequencies"}):
         if workers is not None:
@@ -451,33 +410,23 @@ def sweep_command(
         scn = Scenario.load(scenario)
         sweep = _sweep_for(scn, frequencies, amplitude)
         excitations = list(sweep.excitations())
+        sims = _sweep_simulations(scn, excitations)  # quarter, half or full car
         files: list[Path] = []
         with prepare_output(out, "sweep", force=force) as folder:  # checked before the runs
             notify_if_compiling()
             with progress_bar(not as_json, "sweep") as progress:
-                # measures computed in the workers: little traffic
-                if scn.is_vehicle:
-                    results = run_vehicles(
-                        scn.vehicle_simulations(excitations),
-                        dt=scn.dt,
-                        output_rate=scn.output_rate,
-                        workers=workers,
-                        progress=progress,
-                        reduce=run_measures,
-                    )
-                else:
-                    results = run_many(
-                        scn.simulations(excitations),
-                        dt=scn.dt,
-                        output_rate=scn.output_rate,
-                        workers=workers,
-                        progress=progress,
-                        reduce=measures_of,
-                    )
+                results = _runner(sims, run_many)(
+                    sims,
+                    dt=scn.dt,
+                    output_rate=scn.output_rate,
+                    workers=workers,
+                    progress=progress,
+                    reduce=measures_of,  # measures computed in the workers: little traffic
+                )
             rows = [to_jsonable(_run_row(e, m)) for e, m in zip(excitations, results, strict=True)]
             if out is not None and folder is not None:
                 try:
-                    files = [out / f.name for f in _write_sweep(folder, rows, _title(scn))]
+                    files = [out / f.name for f in _write_sweep(folder, rows)]
                 except OSError as exc:
                     raise ValidationError(f"cannot write --out {str(out)!r}: {exc}") from None
     _clamp_note([m.get("vm_clamp_fraction") for m in results])
@@ -487,12 +436,6 @@ def sweep_command(
     _echo_rows(rows)
     for f in files:
         typer.echo(f"wrote {f}")
-
-
-def _title(scn: Scenario) -> str:
-    """The plots' title: the scenario file (or "scenario") and the vehicle model."""
-    name = scn.source.name if scn.source is not None else "scenario"
-    return f"{name} ({scn.model})"
 
 
 def _sweep_for(scn: Scenario, frequencies: str | None, amplitude: float | None) -> SteppedSweep:
@@ -519,3 +462,52 @@ def _sweep_for(scn: Scenario, frequencies: str | None, amplitude: float | None) 
     if isinstance(exc, SteppedSweep):
         return SteppedSweep(tuple(freqs), amplitude, exc.transition_frequency)
     return SteppedSweep(tuple(freqs), amplitude)
+
+
+# -- half and full cars (issue 19) ------------------------------------------------------------
+def measure_unit(key: str) -> str | None:
+    """Unit of a measure: the quarter car's, a vehicle's body measure, or ``"<m>.<corner>"``.
+
+    Examples
+    --------
+    >>> measure_unit("T_as"), measure_unit("DLC.front_left"), measure_unit("roll_ddot_rms")
+    ('-', '-', 'rad/s^2')
+    """
+    from mrsuspension.engine.result import MEASURE_UNITS
+    from mrsuspension.engine.vehicle import BODY_MEASURES
+
+    if key in BODY_MEASURES:
+        return BODY_MEASURES[key][1]
+    return MEASURE_UNITS.get(key, MEASURE_UNITS.get(key.split(".", 1)[0]))
+
+
+def _label(key: str) -> str:
+    """``"name [unit]"`` (see :func:`measure_unit`), else ``name``."""
+    unit = measure_unit(key)
+    return key if unit is None else f"{key} [{unit}]"
+
+
+def _sweep_panels(row: Mapping[str, Any]) -> list[list[str]]:
+    """The sweep plot's panels: T_as, T_au, T_dr, DLC; a vehicle's body RMS accelerations,
+    then T_as and DLC of every corner (one panel each)."""
+    if all(k in row for k in SWEEP_PLOT):
+        return [[k] for k in SWEEP_PLOT]
+    body = [[k] for k in ("heave_ddot_rms", "pitch_ddot_rms", "roll_ddot_rms") if k in row]
+    corners = [[k for k in row if k.startswith(f"{m}.")] for m in ("T_as", "DLC")]
+    return body + [keys for keys in corners if keys]
+
+
+def _sweep_simulations(scn: Scenario, excitations: Sequence[Any]) -> list[Any]:
+    """The sweep's runs: quarter-car ``Simulation``s or half/full-car ``VehicleSimulation``s."""
+    if scn.is_vehicle:
+        return list(scn.vehicle_simulations(excitations))
+    return list(scn.simulations(excitations))
+
+
+def _runner(sims: Sequence[Any], quarter: Callable[..., list[Any]]) -> Callable[..., list[Any]]:
+    """The batch runner of ``sims``: ``quarter`` (``run_many``), or ``run_vehicles`` for cars."""
+    from mrsuspension.engine.vehicle import VehicleSimulation, run_vehicles
+
+    if sims and isinstance(sims[0], VehicleSimulation):
+        return run_vehicles
+    return quarter

@@ -30,10 +30,8 @@ from mrsuspension._progress import progress_bar as _bar
 from mrsuspension.engine.result import SimulationResult
 from mrsuspension.engine.settings import RunSettings
 from mrsuspension.engine.simulate import run_many, run_quietly
-from mrsuspension.engine.vehicle import VehicleSimulation, run_vehicles
 from mrsuspension.errors import ValidationError
 from mrsuspension.measures.shock import DEFAULT_ROAD_PEAK, RoadPeak
-from mrsuspension.scenario import run_measures
 from mrsuspension.studies.study import Study
 
 if TYPE_CHECKING:
@@ -194,15 +192,13 @@ class StudyResult:
 
 # -- executors ----------------------------------------------------------------------------
 def _measures(result: SimulationResult, road_peak: RoadPeak) -> dict[str, Any]:
-    """``result.measures(road_peak=...)`` (a vehicle's: :func:`~mrsuspension.scenario.run_measures`),
-    the reducer (module level, so it pickles)."""
-    return run_measures(result, road_peak=road_peak)
+    """``result.measures(road_peak=...)``, the reducer (module level, so it pickles)."""
+    return result.measures(road_peak=road_peak)
 
 
 def _run_point(job: Job, road_peak: RoadPeak = DEFAULT_ROAD_PEAK) -> dict[str, Any]:
     """One run reduced to its measures (module level, so workers can unpickle it)."""
-    sim: Any = job.simulation  # a quarter car, or a half or full car (same run interface)
-    return _measures(run_quietly(sim, job.settings), road_peak)
+    return _measures(run_quietly(job.simulation, job.settings), road_peak)
 
 
 def _run_local(
@@ -219,32 +215,22 @@ def _run_local(
     done = 0
     total = len(jobs)
     for settings, idx in groups.items():
-        # quarter cars through the engine's batch runner, half and full cars through theirs
-        cars = [k for k in idx if isinstance(jobs[k].simulation, VehicleSimulation)]
-        quarter = [k for k in idx if k not in set(cars)]
-        runners: tuple[tuple[Callable[..., list[Any]], list[int]], ...] = (
-            (run_many, quarter),
-            (run_vehicles, cars),
+        offset = done
+
+        def tick(n: int, _total: int, offset: int = offset) -> None:
+            if progress:
+                progress(offset + n, total)
+
+        results = run_many(
+            [jobs[k].simulation for k in idx],
+            settings=settings,
+            workers=workers,
+            progress=tick,
+            reduce=functools.partial(_measures, road_peak=road_peak),
         )
-        for runner, part in runners:
-            if not part:
-                continue
-            offset = done
-
-            def tick(n: int, _total: int, offset: int = offset) -> None:
-                if progress:
-                    progress(offset + n, total)
-
-            results = runner(
-                [jobs[k].simulation for k in part],
-                settings=settings,
-                workers=workers,
-                progress=tick,
-                reduce=functools.partial(_measures, road_peak=road_peak),
-            )
-            for k, r in zip(part, results, strict=True):
-                out[k] = r
-            done += len(part)
+        for k, r in zip(idx, results, strict=True):
+            out[k] = r
+        done += len(idx)
     return out
 
 
@@ -309,6 +295,54 @@ def _dataset(study: Study, rows: Sequence[dict[str, Any]], run_time: float) -> x
 
     ds.attrs["mrsuspension_version"] = __version__
     return ds
+
+
+def _run_local_any(
+    jobs: Sequence[Job],
+    workers: int | None,
+    progress: Progress | None,
+    road_peak: RoadPeak = DEFAULT_ROAD_PEAK,
+) -> list[dict[str, Any]]:
+    """:func:`_run_local` for quarter cars; half and full cars (issue 19) through
+    :func:`~mrsuspension.engine.vehicle.run_vehicles`, once per group of equal settings."""
+    from mrsuspension.engine.vehicle import VehicleSimulation, run_vehicles
+
+    cars = [k for k, job in enumerate(jobs) if isinstance(job.simulation, VehicleSimulation)]
+    if not cars:
+        return _run_local(jobs, workers, progress, road_peak)
+    taken = set(cars)
+    quarter = [k for k in range(len(jobs)) if k not in taken]
+    out: list[dict[str, Any]] = [{} for _ in jobs]
+    total = len(jobs)
+    done = 0
+
+    def ticker(offset: int) -> Progress:
+        def tick(n: int, _total: int) -> None:
+            if progress:
+                progress(offset + n, total)
+
+        return tick
+
+    if quarter:
+        rows = _run_local([jobs[k] for k in quarter], workers, ticker(0), road_peak)
+        for k, row in zip(quarter, rows, strict=True):
+            out[k] = row
+        done = len(quarter)
+    groups: dict[RunSettings, list[int]] = {}
+    for k in cars:
+        groups.setdefault(jobs[k].settings, []).append(k)
+    for settings, idx in groups.items():
+        results = run_vehicles(
+            [jobs[k].simulation for k in idx],  # type: ignore[misc]
+            settings=settings,
+            workers=workers,
+            progress=ticker(done),
+            reduce=functools.partial(_measures, road_peak=road_peak),
+        )
+        for k, row in zip(idx, results, strict=True):
+            out[k] = row
+        done += len(idx)
+    return out
 
 
 def run_study(
@@ -389,7 +423,7 @@ def run_study(
     start = time.perf_counter()
     with _bar(progress, f"study {study.name} ({len(jobs)} runs)") as tick:
         if (isinstance(executor, str) and executor == "local") or executor is None:
-            rows = _run_local(jobs, workers, tick, study.road_peak)
+            rows = _run_local_any(jobs, workers, tick, study.road_peak)
         else:
             rows = _run_dask(jobs, executor, tick, study.road_peak)
     elapsed = time.perf_counter() - start
