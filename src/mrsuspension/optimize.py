@@ -75,7 +75,10 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from mrsuspension._batch import Job, job_of, process_pool, run_jobs
+from mrsuspension._batch import job_of, process_pool, run_jobs
+from mrsuspension.engine.result import SimulationDiverged
+from mrsuspension.engine.settings import RunSettings
+from mrsuspension.engine.vehicle import VehicleSimulation
 from mrsuspension.errors import (
     ValidationError,
     check_keys,
@@ -83,8 +86,14 @@ from mrsuspension.errors import (
     did_you_mean,
     read_toml,
 )
-from mrsuspension.excitation import EXCITATION_OPTIONS
-from mrsuspension.scenario import SCENARIO_KEYS, Scenario
+from mrsuspension.excitation import EXCITATION_OPTIONS, FULL_CAR_CORNERS, HALF_CAR_CORNERS
+from mrsuspension.scenario import (
+    BODY_MEASURES,
+    SCENARIO_KEYS,
+    VEHICLE_MODELS,
+    Scenario,
+    run_measures,
+)
 from mrsuspension.studies.study import MEASURES, merge_scenario_tables
 
 if TYPE_CHECKING:
@@ -157,7 +166,32 @@ def _int_option(where: str, value: object, low: int) -> int:
 
 def _set(tables: dict[str, dict[str, Any]], dotted: str, value: Any) -> None:
     section, key = dotted.split(".", 1)
-    tables.setdefault(section, {})[key] = value
+    table = tables.setdefault(section, {})
+    if "." in key:  # one corner of a half or full car: damper.front_left.force_gain
+        corner, key = key.split(".", 1)
+        table = table.setdefault(corner, {})
+    table[key] = value
+
+
+def _field_kind(dotted: str) -> str:
+    """Value kind of a dotted field (``section.key`` or ``section.corner.key``)."""
+    parts = dotted.split(".")
+    return SCENARIO_KEYS[parts[0]][parts[-1]]
+
+
+def _objective_measures(base: Mapping[str, Any]) -> tuple[str, ...]:
+    """Measures an objective may weight for the base's vehicle model.
+
+    The quarter car's :data:`OBJECTIVE_MEASURES`; a half or full car's body RMS
+    accelerations and every corner's ``"<measure>.<corner>"``.
+    """
+    model = base.get("vehicle", {}).get("model", "quarter-car")
+    cls = VEHICLE_MODELS.get(model)
+    corners: tuple[str, ...] = getattr(cls, "corners", ())
+    if not corners:
+        return OBJECTIVE_MEASURES
+    body = tuple(m for m in BODY_MEASURES if m != "roll_ddot_rms" or len(corners) == 4)
+    return body + tuple(f"{m}.{c}" for c in corners for m in OBJECTIVE_MEASURES)
 
 
 # -- the parts of a problem ---------------------------------------------------------------
@@ -250,6 +284,12 @@ def _parameter(index: int, table: object) -> Parameter:
         for s in _TUNABLE_SECTIONS
         for k, kind in SCENARIO_KEYS[s].items()
         if kind in ("number", "integer")
+    ] + [  # one corner of a half or full car
+        f"{s}.{c}.{k}"
+        for s in ("damper", "controller")
+        for c in (*FULL_CAR_CORNERS, *HALF_CAR_CORNERS)
+        for k, kind in SCENARIO_KEYS[s].items()
+        if kind in ("number", "integer")
     ]
     if not isinstance(name, str) or name not in tunable:
         extra = ""
@@ -266,8 +306,7 @@ def _parameter(index: int, table: object) -> Parameter:
         if not isinstance(value, bool):
             raise ValidationError(f"{where} {key} must be true or false; got {value!r}")
         flags[key] = value
-    section, key = name.split(".", 1)
-    if SCENARIO_KEYS[section][key] == "integer":
+    if _field_kind(name) == "integer":
         flags["integer"] = True
     return Parameter(
         name,
@@ -392,7 +431,7 @@ def objective_value(
     return value
 
 
-def _weights(table: object) -> dict[str, float]:
+def _weights(table: object, valid_measures: Sequence[str] = OBJECTIVE_MEASURES) -> dict[str, float]:
     where = "[objective] weights"
     if not isinstance(table, Mapping) or not table:
         raise ValidationError(
@@ -401,8 +440,8 @@ def _weights(table: object) -> dict[str, float]:
         )
     out: dict[str, float] = {}
     for m, w in table.items():
-        if m not in OBJECTIVE_MEASURES:
-            valid = sorted(OBJECTIVE_MEASURES)
+        if m not in valid_measures:
+            valid = sorted(valid_measures)
             raise ValidationError(
                 f"{where}: unknown measure {m!r}.{did_you_mean(str(m), valid)} "
                 f"Valid: {', '.join(valid)}."
@@ -549,7 +588,7 @@ class OptimizationProblem:
             raise ValidationError("[[roads]] weights: at least one must be > 0")
 
         objective = check_keys("[objective]", data.get("objective"), _OBJECTIVE_KEYS)
-        weights = _weights(objective.get("weights"))
+        weights = _weights(objective.get("weights"), _objective_measures(base))
         reference = _reference(objective.get("reference", DEFAULT_REFERENCE))
 
         seed = _int_option("[problem] seed", meta.get("seed", 0), 0)
@@ -625,8 +664,7 @@ class OptimizationProblem:
             out.update(copy.deepcopy(self.reference))
         else:
             for name, value in values.items():
-                section, key = name.split(".", 1)
-                kind = SCENARIO_KEYS[section][key]
+                kind = _field_kind(name)
                 _set(out, name, round(value) if kind == "integer" else float(value))
         out["excitation"] = road.excitation()
         return out
@@ -864,7 +902,7 @@ def optimize(
     generation = 0
 
     with process_pool(n_workers, problem.population * len(roads)) as pool:
-        ref_rows = run_jobs([job_of(problem.scenario(None, r)) for r in roads], pool)
+        ref_rows = _measure_runs([problem.scenario(None, r) for r in roads], pool)
         if any(row is None for row in ref_rows):
             raise ValidationError("the reference controller's run diverged; check the problem")
         reference = [dict(row or {}) for row in ref_rows]
@@ -877,7 +915,7 @@ def optimize(
             candidates = [problem.values(columns[:, s]) for s in range(columns.shape[1])]
             keys = [tuple(c.values()) for c in candidates]
             new = [k for k in dict.fromkeys(keys) if k not in cache]
-            jobs: list[Job] = []
+            batch: list[Scenario] = []
             owners: list[tuple[float, ...]] = []
             for key in new:
                 values = dict(zip((p.field for p in problem.parameters), key, strict=True))
@@ -886,9 +924,9 @@ def optimize(
                 except ValidationError:
                     cache[key] = (math.inf, None)
                     continue
-                jobs.extend(job_of(s) for s in scenarios)
+                batch.extend(scenarios)
                 owners.extend([key] * len(roads))
-            rows = run_jobs(jobs, pool)
+            rows = _measure_runs(batch, pool)
             by_key: dict[tuple[float, ...], list[dict[str, Any] | None]] = {}
             for key, row in zip(owners, rows, strict=True):
                 by_key.setdefault(key, []).append(row)
@@ -953,6 +991,41 @@ def optimize(
         run_time=time.perf_counter() - start,
         message=str(res.message),
     )
+
+
+def _measure_vehicle(
+    run: tuple[VehicleSimulation, RunSettings],
+) -> dict[str, Any] | None:
+    """A half- or full-car run reduced to its measures; None when it diverges (picklable)."""
+    sim, settings = run
+    try:
+        return run_measures(sim.run(settings=settings))
+    except SimulationDiverged:
+        return None
+
+
+def _measure_runs(scenarios: Sequence[Scenario], pool: Any) -> list[dict[str, Any] | None]:
+    """Measures of each single-run scenario, in order (None for a diverged run).
+
+    Quarter cars go through :func:`~mrsuspension._batch.run_jobs`; half and full cars
+    (:func:`~mrsuspension.scenario.run_measures`: body and per-corner) through the same
+    process pool.
+    """
+    if not any(s.is_vehicle for s in scenarios):
+        return run_jobs([job_of(s) for s in scenarios], pool)
+    from mrsuspension._pool import pool_map
+
+    out: list[dict[str, Any] | None] = [None] * len(scenarios)
+    cars = [k for k, s in enumerate(scenarios) if s.is_vehicle]
+    quarter = [k for k, s in enumerate(scenarios) if not s.is_vehicle]
+    runs = [(scenarios[k].vehicle_simulations()[0], scenarios[k].settings) for k in cars]
+    for k, row in zip(cars, pool_map(_measure_vehicle, runs, pool=pool, workers=1), strict=True):
+        out[k] = row
+    if quarter:
+        rows = run_jobs([job_of(scenarios[k]) for k in quarter], pool)
+        for k, row in zip(quarter, rows, strict=True):
+            out[k] = row
+    return out
 
 
 def _floats(row: Mapping[str, Any]) -> dict[str, float]:

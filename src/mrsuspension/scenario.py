@@ -1,13 +1,18 @@
-"""Scenario files: a quarter-car study described in TOML and validated on load.
+"""Scenario files: a quarter-, half- or full-car study described in TOML, validated on load.
 
 A scenario has five tables, whose section and key names are public interface::
 
     [vehicle]       # QuarterCar: sprung_mass, unsprung_mass, suspension_stiffness,
-                    # tire_stiffness, tire_damping, skyhook_damping
+                    # tire_stiffness, tire_damping, skyhook_damping; or model = "half-car"
+                    # | "full-car" (HalfCar, FullCar), set = a published set, body fields
     [damper]        # model, parameters, hysteresis, force_gain, max_current, damping, ...
     [controller]    # law, mode, gain, order, current, p, xi, p_c, xi_c, lambda, eps, ...
-    [excitation]    # kind (harmonic | swept | pulse | road) and its options
+    [excitation]    # kind (harmonic | swept | pulse | road; a half or full car also
+                    # two-track | crg | bump | pothole) and its options
     [simulation]    # duration, dt, output_rate
+
+A half or full car takes per-corner sub-tables ``[damper.<corner>]`` and
+``[controller.<corner>]`` over the main tables (see ``docs/scenarios.md``).
 
 Every key is optional except ``[excitation] kind`` and the excitation's required options;
 defaults are those of the classes (:class:`~mrsuspension.vehicle.QuarterCar`,
@@ -29,7 +34,7 @@ Examples
 >>> Scenario.from_dict({"vehicle": {"sprung_mas": 500.0}, "excitation": {"kind": "pulse"}})
 Traceback (most recent call last):
 ...
-mrsuspension.errors.ValidationError: unknown key [vehicle] sprung_mas. Did you mean 'sprung_mass'? Valid: skyhook_damping, sprung_mass, suspension_stiffness, tire_damping, tire_stiffness, unsprung_mass.
+mrsuspension.errors.ValidationError: unknown key [vehicle] sprung_mas. Did you mean 'sprung_mass'? Valid: model, skyhook_damping, sprung_mass, suspension_stiffness, tire_damping, tire_stiffness, unsprung_mass.
 """
 
 from __future__ import annotations
@@ -41,7 +46,7 @@ from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from mrsuspension.control import CONTROLLERS, Controller, HiLo, make_controller
 from mrsuspension.dampers import DAMPERS, ESTIMATORS, DamperModel, damper_options, make_damper
@@ -49,6 +54,7 @@ from mrsuspension.dampers.wang import VEHICLE_VH_VARIANT
 from mrsuspension.engine.result import SimulationResult
 from mrsuspension.engine.settings import RunSettings
 from mrsuspension.engine.simulate import Simulation, run_many
+from mrsuspension.engine.vehicle import BODY_MEASURES
 from mrsuspension.errors import ValidationError, did_you_mean, read_toml
 from mrsuspension.excitation import (
     EXCITATION_OPTIONS,
@@ -56,17 +62,50 @@ from mrsuspension.excitation import (
     PRESET_ROADS,
     Excitation,
     SteppedSweep,
+    WheelRoads,
     make_excitation,
 )
+from mrsuspension.excitation.base import positive
+from mrsuspension.excitation.deterministic import REFERENCE_SPEED_KMH
 from mrsuspension.vehicle import QuarterCar
+from mrsuspension.vehicle.body import FullCar, HalfCar, VehicleBody, available_sets
 
-__all__ = ["SCENARIO_KEYS", "Scenario"]
+if TYPE_CHECKING:
+    from mrsuspension.engine.vehicle import VehicleSimulation
+
+__all__ = [
+    "BODY_MEASURES",
+    "SCENARIO_KEYS",
+    "VEHICLE_MODELS",
+    "WHEEL_KINDS",
+    "Scenario",
+    "run_measures",
+]
 
 # -- the public keys -----------------------------------------------------------------------
 # Value kinds: "number", "integer", "bool", "string", "numbers" (a list of numbers),
 # "text" (a string; a number is accepted and turned into its text, e.g. vh_variant = 2.12).
 
-_VEHICLE_KEYS = {f.name: "number" for f in dataclasses.fields(QuarterCar)}
+#: ``[vehicle] model`` -> the class it builds (the quarter car by default)
+VEHICLE_MODELS: dict[str, type] = {
+    "quarter-car": QuarterCar,
+    "half-car": HalfCar,
+    "full-car": FullCar,
+}
+#: ``[vehicle]`` keys of each model (``model`` and ``set`` apply to the half and full car)
+_MODEL_KEYS: dict[str, tuple[str, ...]] = {
+    name: (
+        ("model",)
+        + (() if cls is QuarterCar else ("set",))
+        + tuple(f.name for f in dataclasses.fields(cls))
+    )
+    for name, cls in VEHICLE_MODELS.items()
+}
+_VEHICLE_KEYS: dict[str, str] = {
+    k: "string" if k in ("model", "set") else "number"
+    for keys in _MODEL_KEYS.values()
+    for k in keys
+}
 
 #: every ``[damper]`` key of any model (each model's own: :func:`damper_options`)
 _DAMPER_KEYS: dict[str, str] = {k: v for m in DAMPERS for k, v in damper_options(m).items()}
@@ -127,7 +166,56 @@ def _excitation_keys() -> dict[str, str]:
     return keys
 
 
-_EXCITATION_KEYS: dict[str, str] = _excitation_keys()
+#: Excitation kinds that give a road per wheel (half and full car only): kind -> key ->
+#: (value kind, required). ``speed`` [km/h] and the geometry come from the scenario.
+WHEEL_KINDS: dict[str, dict[str, tuple[str, bool]]] = {
+    "two-track": {
+        "iso_class": ("string", False),
+        "profile": ("string", False),
+        "seed": ("integer", False),
+        "length": ("number", False),
+        "spacing": ("number", False),
+        "speed": ("number", False),
+        "fade_in": ("number", False),
+    },
+    "crg": {
+        "file": ("string", True),
+        "speed": ("number", False),
+        "lateral_offset": ("number", False),
+        "absolute": ("bool", False),
+        "fade_in": ("number", False),
+    },
+    "bump": {
+        "side": ("string", True),
+        "height": ("number", True),
+        "length": ("number", True),
+        "position": ("number", False),
+        "speed": ("number", False),
+    },
+    "pothole": {
+        "side": ("string", True),
+        "depth": ("number", True),
+        "length": ("number", True),
+        "position": ("number", False),
+        "edge": ("number", False),
+        "speed": ("number", False),
+    },
+}
+#: single-track kinds without a speed of their own: ``speed`` [km/h] is accepted on a
+#: half or full car (the rear wheels' delay wheelbase/speed); 50 km/h by default
+_SPEEDLESS_KINDS = ("harmonic", "swept")
+
+
+def _all_excitation_keys() -> dict[str, str]:
+    keys = _excitation_keys()
+    for options in WHEEL_KINDS.values():
+        for key, (kind, _) in options.items():
+            if keys.setdefault(key, kind) != kind:  # pragma: no cover
+                raise ValidationError(f"excitation key {key!r} has two value kinds")
+    return keys
+
+
+_EXCITATION_KEYS: dict[str, str] = _all_excitation_keys()
 
 #: ``[simulation]``: the fields of :class:`~mrsuspension.engine.settings.RunSettings`
 _SIMULATION_KEYS = {f.name: "number" for f in dataclasses.fields(RunSettings)}
@@ -207,6 +295,10 @@ def _typed(section: str, key: str, value: object, kind: str) -> Any:
     raise AssertionError(kind)  # pragma: no cover
 
 
+#: sections that take per-corner sub-tables (``[damper.front_left]``, ``[controller.rear]``)
+_CORNER_SECTIONS = ("damper", "controller")
+
+
 def _table(data: Mapping[str, Any], section: str) -> dict[str, Any]:
     """The section's table, typed and with known keys only."""
     raw = data.get(section, {})
@@ -215,8 +307,21 @@ def _table(data: Mapping[str, Any], section: str) -> dict[str, Any]:
     keys = SCENARIO_KEYS[section]
     out: dict[str, Any] = {}
     for key, value in raw.items():
+        if section in _CORNER_SECTIONS and isinstance(value, Mapping):
+            # a per-corner table [damper.front_left]: its keys are the section's
+            corner = {}
+            for sub, item in value.items():
+                if sub not in keys:
+                    raise _unknown_key(f"{section}.{key}", str(sub), keys)
+                if isinstance(item, Mapping):
+                    raise ValidationError(
+                        f"[{section}.{key}.{sub}]: per-corner tables hold keys, not tables"
+                    )
+                corner[sub] = _typed(f"{section}.{key}", sub, item, keys[sub])
+            out[key] = corner
+            continue
         if key not in keys:
-            if section == "excitation":  # reported for the kind in _build_excitation
+            if section in ("excitation", "vehicle"):  # reported for the kind or model
                 out[key] = value
                 continue
             raise _unknown_key(section, str(key), keys)
@@ -237,21 +342,22 @@ def _choice(section: str, key: str, value: str, choices: Mapping[str, Any]) -> s
 # -- the scenario -------------------------------------------------------------------------
 @dataclass(frozen=True)
 class Scenario:
-    """A validated quarter-car scenario (see the module docstring for the file format).
+    """A validated scenario (see the module docstring for the file format).
 
     Build it with :meth:`load` (a TOML file) or :meth:`from_dict`; the components are
     constructed and checked on load.
 
     Parameters
     ----------
-    vehicle : QuarterCar
-        The vehicle (``[vehicle]``).
+    vehicle : QuarterCar, HalfCar or FullCar
+        The vehicle (``[vehicle]``, ``model``).
     damper : DamperModel
         The damper model (``[damper]``).
     controller : Controller
         The control law (``[controller]``).
-    excitation : Excitation or SteppedSweep
-        The road input (``[excitation]``); a stepped sweep gives one run per frequency.
+    excitation : Excitation, SteppedSweep or WheelRoads
+        The road input (``[excitation]``); a stepped sweep gives one run per frequency;
+        a wheel-only kind (half or full car) is a :class:`~mrsuspension.excitation.WheelRoads`.
     max_current : float
         Drive-current limit i_max [A] (``[damper] max_current``).
     settings : RunSettings
@@ -263,17 +369,30 @@ class Scenario:
         The scenario as plain tables (see :meth:`to_dict`).
     base_dir : Path
         Folder that relative file paths (parameters, road profiles) are taken from.
+    source : Path or None
+        The file it was loaded from.
+    corner_dampers, corner_controllers : mapping
+        A half or full car: every corner's damper and controller (the main table with the
+        corner's overrides); empty for the quarter car.
+    road_speed : float or None
+        A half or full car on a harmonic or swept excitation: the speed [km/h] that
+        delays the rear wheels.
     """
 
-    vehicle: QuarterCar
+    vehicle: QuarterCar | HalfCar | FullCar
     damper: DamperModel
     controller: Controller
-    excitation: Excitation | SteppedSweep
+    excitation: Excitation | SteppedSweep | WheelRoads
     max_current: float
     settings: RunSettings
     data: dict[str, dict[str, Any]] = field(default_factory=dict, repr=False)
     base_dir: Path = field(default_factory=Path.cwd)
     source: Path | None = None
+    #: a half or full car: every corner's damper and controller (main table + overrides)
+    corner_dampers: Mapping[str, DamperModel] = field(default_factory=dict, repr=False)
+    corner_controllers: Mapping[str, Controller] = field(default_factory=dict, repr=False)
+    #: a half or full car on a single-track kind without its own speed: the speed [km/h]
+    road_speed: float | None = None
 
     # -- loading ------------------------------------------------------------------------
     @classmethod
@@ -318,11 +437,26 @@ class Scenario:
         base = Path.cwd() if base_dir is None else Path(base_dir)
         tables = {section: _table(data, section) for section in SCENARIO_KEYS}
 
-        with _in_section("vehicle"):
-            vehicle = QuarterCar(**tables["vehicle"])
-        damper, max_current = _build_damper(tables["damper"], base)
-        controller = _build_controller(tables["controller"])
-        excitation = _build_excitation(tables["excitation"], base)
+        vehicle = _build_vehicle(tables["vehicle"])
+        corners = () if isinstance(vehicle, QuarterCar) else vehicle.corners
+        damper_table, damper_corners = _split_corners("damper", tables["damper"], corners)
+        controller_table, law_corners = _split_corners("controller", tables["controller"], corners)
+        damper, max_current = _build_damper(damper_table, base)
+        controller = _build_controller(controller_table)
+        corner_dampers: dict[str, DamperModel] = {}
+        corner_controllers: dict[str, Controller] = {}
+        for corner in corners:
+            section = f"damper.{corner}"
+            if "max_current" in damper_corners[corner]:
+                raise ValidationError(
+                    f"[{section}] max_current: the current limit applies to every corner; "
+                    "set it in [damper]"
+                )
+            merged = _corner_table(damper_table, damper_corners[corner], "model", "wang-symmetric")
+            corner_dampers[corner] = _build_damper(merged, base, section)[0]
+            merged = _corner_table(controller_table, law_corners[corner], "law", "passive")
+            corner_controllers[corner] = _build_controller(merged, f"controller.{corner}")
+        excitation, road_speed = _build_any_excitation(tables["excitation"], base, vehicle)
 
         with _in_section("simulation"):
             settings = RunSettings(**tables["simulation"])
@@ -336,10 +470,22 @@ class Scenario:
             settings=settings,
             data=copy.deepcopy(tables),
             base_dir=base,
+            corner_dampers=corner_dampers,
+            corner_controllers=corner_controllers,
+            road_speed=road_speed,
         )
-        sims = scenario._build_simulations()  # checks the damper/controller combination
-        with _in_section("simulation"):
-            sims[0].check_dt(settings.dt)  # stability: the same model in every run
+        # checks the damper/controller combination, then stability (same model every run)
+        if scenario.is_vehicle:
+            vsims = scenario.vehicle_simulations()
+            with _in_section("simulation"):
+                vsims[0].check_dt(settings.dt)
+            for corner, law in corner_controllers.items():
+                with _in_section(f"controller.{corner}"):
+                    law.params(max_current)
+        else:
+            sims = scenario._build_simulations()
+            with _in_section("simulation"):
+                sims[0].check_dt(settings.dt)
         with _in_section("controller"):
             controller.params(max_current)  # e.g. a passive current above max_current
         return scenario
@@ -367,15 +513,109 @@ class Scenario:
         return isinstance(self.excitation, SteppedSweep)
 
     @property
-    def excitations(self) -> list[Excitation]:
-        """The road inputs of the runs (one, or one harmonic per sweep frequency)."""
+    def is_vehicle(self) -> bool:
+        """True for a half or full car (``[vehicle] model``); False for the quarter car."""
+        return not isinstance(self.vehicle, QuarterCar)
+
+    @property
+    def model(self) -> str:
+        """``[vehicle] model``: ``"quarter-car"``, ``"half-car"`` or ``"full-car"``."""
+        return "quarter-car" if isinstance(self.vehicle, QuarterCar) else self.vehicle.model_name
+
+    @property
+    def excitations(self) -> list[Any]:
+        """The road inputs of the runs (one, or one harmonic per sweep frequency).
+
+        Single-track excitations (:class:`Excitation`), or the scenario's
+        :class:`~mrsuspension.excitation.WheelRoads` for a wheel-only kind.
+        """
         if isinstance(self.excitation, SteppedSweep):
             return list(self.excitation.excitations())
         return [self.excitation]
 
+    def wheel_roads(self, excitations: Sequence[Any] | None = None) -> list[WheelRoads]:
+        """The road under every wheel of a half or full car, one per run.
+
+        A single-track excitation goes to both sides (the rear wheels wheelbase/speed
+        later: :meth:`WheelRoads.from_excitation <mrsuspension.excitation.WheelRoads.from_excitation>`).
+
+        Parameters
+        ----------
+        excitations : sequence, optional
+            Other single-track inputs (e.g. a sweep given on the command line); default:
+            the scenario's own.
+
+        Examples
+        --------
+        >>> s = Scenario.from_dict({"vehicle": {"model": "half-car"},
+        ...                         "excitation": {"kind": "harmonic", "frequency": 1.0,
+        ...                                        "amplitude": 0.01, "speed": 36.0}})
+        >>> s.wheel_roads()[0].corners, round(s.wheel_roads()[0].rear_delay, 4)
+        (('front', 'rear'), 0.2348)
+        """
+        car = self.vehicle
+        if isinstance(car, QuarterCar):
+            raise ValidationError("wheel roads need [vehicle] model = 'half-car' or 'full-car'")
+        # a speedless kind's [excitation] speed, else the scenario road's own speed
+        speed = self.road_speed
+        if speed is None:
+            speed = getattr(self.excitation, "speed_kmh", None)
+        out = []
+        for exc in self.excitations if excitations is None else excitations:
+            if isinstance(exc, WheelRoads):
+                out.append(exc)
+                continue
+            with _in_section("excitation"):
+                out.append(WheelRoads.from_excitation(exc, car, speed))
+        return out
+
+    def vehicle_simulations(
+        self, excitations: Sequence[Any] | None = None
+    ) -> list[VehicleSimulation]:
+        """One :class:`~mrsuspension.engine.vehicle.VehicleSimulation` per run (half/full car).
+
+        Every corner gets its damper and controller (``[damper]``/``[controller]`` with the
+        corner's overrides) and the road of :meth:`wheel_roads`.
+
+        Examples
+        --------
+        >>> s = Scenario.from_dict({"vehicle": {"model": "full-car"},
+        ...                         "controller": {"law": "skyhook-hilo", "mode": "ACM",
+        ...                                        "rear_left": {"law": "passive"}},
+        ...                         "excitation": {"kind": "bump", "side": "left",
+        ...                                        "height": 0.03, "length": 0.5}})
+        >>> sim = s.vehicle_simulations()[0]
+        >>> [sim.corner_simulation(c).controller.law for c in sim.corners]
+        ['skyhook-hilo', 'skyhook-hilo', 'passive', 'skyhook-hilo']
+        """
+        from mrsuspension.engine.vehicle import VehicleSimulation
+
+        car = self.vehicle
+        if isinstance(car, QuarterCar):
+            raise ValidationError(
+                "vehicle_simulations needs [vehicle] model = 'half-car' or 'full-car'; "
+                "a quarter car has simulations()"
+            )
+        return [
+            VehicleSimulation(
+                car,
+                roads,
+                dampers=dict(self.corner_dampers),
+                controllers=dict(self.corner_controllers),
+                max_current=self.max_current,
+            )
+            for roads in self.wheel_roads(excitations)
+        ]
+
     def _build_simulations(
         self, excitations: Sequence[Excitation] | None = None
     ) -> list[Simulation]:
+        if self.is_vehicle:
+            raise ValidationError(
+                f"this is a {self.model} scenario ([vehicle] model); this use needs a quarter "
+                "car (model = 'quarter-car'), or use vehicle_simulations()"
+            )
+        assert isinstance(self.vehicle, QuarterCar)
         with _in_section("damper"):
             return [
                 Simulation(
@@ -408,6 +648,9 @@ class Scenario:
     ) -> list[SimulationResult]:
         """Run every simulation of the scenario; results in order (one per frequency).
 
+        A half or full car gives :class:`~mrsuspension.engine.vehicle.VehicleResult`
+        objects (with :func:`run_measures` for its body and per-corner measures).
+
         Parameters
         ----------
         duration : float, optional
@@ -426,6 +669,12 @@ class Scenario:
         settings = self.settings
         if duration is not None:
             settings = dataclasses.replace(settings, duration=duration)
+        if self.is_vehicle:
+            from mrsuspension.engine.vehicle import run_vehicles
+
+            return run_vehicles(
+                self.vehicle_simulations(), settings=settings, workers=workers, progress=progress
+            )
         return run_many(
             self.simulations(),
             settings=settings,
@@ -440,6 +689,8 @@ class Scenario:
         """
         out = copy.deepcopy(self.data)
         out["vehicle"] = dataclasses.asdict(self.vehicle)
+        if self.is_vehicle:
+            out["vehicle"] = {"model": self.model, **out["vehicle"]}
         out["damper"] = {
             "model": self.damper.name,
             **out["damper"],
@@ -450,32 +701,119 @@ class Scenario:
         return out
 
 
+# -- measures of any run --------------------------------------------------------------------
+def run_measures(result: SimulationResult, **kwargs: Any) -> dict[str, Any]:
+    """The measures of a scenario's run: ``result.measures(**kwargs)``.
+
+    The quarter car's measures, or a half or full car's body RMS accelerations
+    (:data:`~mrsuspension.engine.vehicle.BODY_MEASURES`) and every corner's measures
+    ``"<measure>.<corner>"`` (:meth:`VehicleResult.measures
+    <mrsuspension.engine.vehicle.VehicleResult.measures>`). A module-level function, so
+    it can reduce results in worker processes.
+
+    Examples
+    --------
+    >>> s = Scenario.from_dict({"vehicle": {"model": "half-car"},
+    ...                         "excitation": {"kind": "harmonic", "frequency": 5.0,
+    ...                                        "amplitude": 0.005}})
+    >>> m = run_measures(s.run()[0])  # the harmonic's steady-state rule: 10 cycles settled
+    >>> list(m)[:3], 0.0 < m["T_as.rear"] < 1.0
+    (['heave_ddot_rms', 'pitch_ddot_rms', 'T_as.front'], True)
+    """
+    return result.measures(**kwargs)
+
+
 # -- section builders ---------------------------------------------------------------------
-def _build_damper(table: dict[str, Any], base: Path) -> tuple[DamperModel, float]:
-    model = _choice("damper", "model", table.get("model", "wang-symmetric"), DAMPERS)
-    with _in_section("damper"):
+def _build_vehicle(table: dict[str, Any]) -> QuarterCar | HalfCar | FullCar:
+    """``[vehicle]``: the model (quarter car by default), a published set, overrides."""
+    model = _choice("vehicle", "model", table.get("model", "quarter-car"), VEHICLE_MODELS)
+    allowed = _MODEL_KEYS[model]
+    for key in table:
+        if key not in _VEHICLE_KEYS:
+            raise _unknown_key("vehicle", key, allowed)
+        if key not in allowed:
+            valid = sorted(allowed)
+            raise ValidationError(
+                f"{_where('vehicle', key)} does not apply to model {model!r}."
+                f"{did_you_mean(key, valid)} Its keys: {', '.join(valid)}."
+            )
+    values = {k: v for k, v in table.items() if k not in ("model", "set")}
+    if model == "quarter-car":
+        with _in_section("vehicle"):
+            return QuarterCar(**values)
+    cls: type[HalfCar] | type[FullCar] = HalfCar if model == "half-car" else FullCar
+    with _in_section("vehicle"):
+        if "set" in table:
+            _choice("vehicle", "set", table["set"], dict.fromkeys(available_sets()))
+            car = cls.from_set(table["set"])
+        else:
+            car = cls()
+        out: HalfCar | FullCar = car.with_(**values)
+        return out
+
+
+def _split_corners(
+    section: str, table: dict[str, Any], corners: tuple[str, ...]
+) -> tuple[dict[str, Any], dict[str, dict[str, Any]]]:
+    """``(main table, {corner: its override table})``; checks the corner names."""
+    main = {k: v for k, v in table.items() if not isinstance(v, dict)}
+    subs = {k: v for k, v in table.items() if isinstance(v, dict)}
+    if subs and not corners:
+        first = next(iter(subs))
+        raise ValidationError(
+            f"[{section}.{first}]: per-corner tables need a half or full car "
+            "([vehicle] model = 'half-car' or 'full-car'); a quarter car has one corner"
+        )
+    for name in subs:
+        if name not in corners:
+            raise ValidationError(
+                f"unknown corner table [{section}.{name}].{did_you_mean(name, corners)} "
+                f"Valid corners: {', '.join(corners)}."
+            )
+    return main, {c: subs.get(c, {}) for c in corners}
+
+
+def _corner_table(
+    main: dict[str, Any], override: dict[str, Any], kind_key: str, default: str
+) -> dict[str, Any]:
+    """A corner's table: the main table with the corner's keys on top.
+
+    A corner that names another ``model`` (damper) or ``law`` (controller) starts from
+    that model's or law's defaults: the main table's other keys are not inherited.
+    """
+    if kind_key in override and override[kind_key] != main.get(kind_key, default):
+        keep = {"max_current": main["max_current"]} if "max_current" in main else {}
+        return {**keep, **override}
+    return {**main, **override}
+
+
+def _build_damper(
+    table: dict[str, Any], base: Path, section: str = "damper"
+) -> tuple[DamperModel, float]:
+    model = _choice(section, "model", table.get("model", "wang-symmetric"), DAMPERS)
+    with _in_section(section):
         allowed = tuple(damper_options(model))  # derived from the model class
     for key in table:
         if key not in allowed:
             raise ValidationError(
-                f"{_where('damper', key)} does not apply to model {model!r}; "
+                f"{_where(section, key)} does not apply to model {model!r}; "
                 f"its keys: {', '.join(allowed)}"
             )
     options = {k: v for k, v in table.items() if k not in ("model", "parameters", "max_current")}
     if model.startswith("wang-") and "vh_variant" not in options:
         options["vh_variant"] = VEHICLE_VH_VARIANT  # the vehicle default (docs/errata.md)
     if "estimator" in options:
-        _choice("damper", "estimator", options["estimator"], ESTIMATORS)
+        _choice(section, "estimator", options["estimator"], ESTIMATORS)
     parameters: str | Path | None = None
     if "parameters" in table:
-        parameters = _parameter_spec(table["parameters"], base)
+        parameters = _parameter_spec(table["parameters"], base, section)
     max_current = table.get("max_current", _DEFAULT_MAX_CURRENT)
-    with _in_section("damper"):
+    with _in_section(section):
         damper = make_damper(model, parameters, **options)
     return damper, max_current
 
 
-def _parameter_spec(text: str, base: Path) -> str | Path:
+def _parameter_spec(text: str, base: Path, section: str = "damper") -> str | Path:
     """A registered set name stays a name; anything path-like is taken from ``base``."""
     path = Path(text).expanduser()
     candidate = path if path.is_absolute() else base / path
@@ -484,13 +822,14 @@ def _parameter_spec(text: str, base: Path) -> str | Path:
         return candidate
     if looks_like_file:
         raise ValidationError(
-            f"[damper] parameters: no such parameter file {text!r} (looked for {str(candidate)!r})"
+            f"[{section}] parameters: no such parameter file {text!r} "
+            f"(looked for {str(candidate)!r})"
         )
     return text
 
 
-def _build_controller(table: dict[str, Any]) -> Controller:
-    law = _choice("controller", "law", table.get("law", "passive"), CONTROLLERS)
+def _build_controller(table: dict[str, Any], section: str = "controller") -> Controller:
+    law = _choice(section, "law", table.get("law", "passive"), CONTROLLERS)
     keys = _law_keys(law)
     options: dict[str, Any] = {}
     for key, value in table.items():
@@ -499,25 +838,85 @@ def _build_controller(table: dict[str, Any]) -> Controller:
         if key not in keys:
             valid = sorted(keys)
             raise ValidationError(
-                f"{_where('controller', key)} does not apply to law {law!r}."
+                f"{_where(section, key)} does not apply to law {law!r}."
                 f"{did_you_mean(key, valid)} Its keys: {', '.join(valid)}."
             )
         kw = keys[key]
         if kw in options:
             raise ValidationError(
-                f"[controller] {key}: {kw!r} is given twice (as {key!r} and another name)"
+                f"[{section}] {key}: {kw!r} is given twice (as {key!r} and another name)"
             )
         options[kw] = value
-    with _in_section("controller"):
+    with _in_section(section):
         return make_controller(law, **options)
 
 
-def _build_excitation(table: dict[str, Any], base: Path) -> Excitation | SteppedSweep:
-    if "kind" not in table:
-        raise ValidationError(
-            f"[excitation] kind is required: one of {', '.join(sorted(EXCITATIONS))}"
+def _build_any_excitation(
+    table: dict[str, Any], base: Path, vehicle: QuarterCar | VehicleBody
+) -> tuple[Excitation | SteppedSweep | WheelRoads, float | None]:
+    """``[excitation]`` of any model: ``(excitation, speed [km/h] of a speedless kind)``."""
+    kind = table.get("kind")
+    if isinstance(vehicle, QuarterCar):
+        if kind in WHEEL_KINDS:
+            raise ValidationError(
+                f"[excitation] kind {kind!r} gives a road per wheel: it needs [vehicle] "
+                "model = 'half-car' or 'full-car' (the quarter car has one wheel)"
+            )
+        return _build_excitation(table, base), None
+    if kind in WHEEL_KINDS:
+        return _build_wheel_roads(str(kind), table, base, vehicle), None
+    speed: float | None = None
+    if kind in _SPEEDLESS_KINDS:
+        table = dict(table)
+        speed = table.pop("speed", REFERENCE_SPEED_KMH)
+        with _in_section("excitation"):
+            positive("speed", speed, "km/h", high=500.0)
+    return _build_excitation(table, base, extra_kinds=WHEEL_KINDS), speed
+
+
+def _build_wheel_roads(
+    kind: str, table: dict[str, Any], base: Path, car: VehicleBody
+) -> WheelRoads:
+    """A wheel-only ``[excitation]`` kind (two-track, crg, bump, pothole) for ``car``."""
+    valid = WHEEL_KINDS[kind]
+    options = {k: v for k, v in table.items() if k != "kind"}
+    for key, value in options.items():
+        if key not in valid:
+            raise _unknown_key("excitation", key, ["kind", *valid], extra=f" for kind {kind!r}")
+        options[key] = _typed("excitation", key, value, valid[key][0])
+    for key, (_, required) in valid.items():
+        if required and key not in options:
+            raise ValidationError(f"[excitation] {key} is required for kind {kind!r}")
+    speed = options.pop("speed", REFERENCE_SPEED_KMH)
+    with _in_section("excitation"):
+        if kind == "two-track":
+            if "iso_class" in options and "profile" in options:
+                raise ValidationError(
+                    "give iso_class (an ISO 8608 class A-H) or profile (a preset), not both"
+                )
+            road = options.pop("iso_class", None) or options.pop("profile", "rough")
+            return WheelRoads.two_track(road, car, speed, **options)
+        if kind == "crg":
+            path = Path(options.pop("file")).expanduser()
+            return WheelRoads.from_crg(path if path.is_absolute() else base / path, car, speed,
+                                       **options)  # fmt: skip
+        if kind == "bump":
+            return WheelRoads.bump(
+                options.pop("side"), options.pop("height"), options.pop("length"), car, speed,
+                **options,
+            )  # fmt: skip
+        return WheelRoads.pothole(
+            options.pop("side"), options.pop("depth"), options.pop("length"), car, speed, **options
         )
-    kind = _choice("excitation", "kind", table["kind"], EXCITATIONS)
+
+
+def _build_excitation(
+    table: dict[str, Any], base: Path, extra_kinds: Mapping[str, Any] | None = None
+) -> Excitation | SteppedSweep:
+    kinds = {**EXCITATIONS, **(extra_kinds or {})}
+    if "kind" not in table:
+        raise ValidationError(f"[excitation] kind is required: one of {', '.join(sorted(kinds))}")
+    kind = _choice("excitation", "kind", table["kind"], kinds)
     valid = EXCITATION_OPTIONS[kind]
     options = {k: v for k, v in table.items() if k != "kind"}
     for key in options:

@@ -34,7 +34,13 @@ if TYPE_CHECKING:
     from mrsuspension.excitation import Harmonic, SteppedSweep
     from mrsuspension.scenario import Scenario
 
-__all__ = ["parse_formats", "parse_frequencies", "simulate_command", "sweep_command"]
+__all__ = [
+    "measure_unit",
+    "parse_formats",
+    "parse_frequencies",
+    "simulate_command",
+    "sweep_command",
+]
 
 #: measures shown in the transmissibility plot of a sweep
 SWEEP_PLOT = ("T_as", "T_au", "T_dr", "DLC")
@@ -164,7 +170,7 @@ def _write_sweep(out: Path, rows: Sequence[Mapping[str, Any]], title: str) -> li
     keys = list(rows[0])
     with files[0].open("w", newline="") as fh:
         writer = csv.writer(fh)
-        writer.writerow([measure_label(k) for k in keys])
+        writer.writerow([_label(k) for k in keys])
         for row in rows:
             writer.writerow([row[k] for k in keys])
     import matplotlib
@@ -173,11 +179,16 @@ def _write_sweep(out: Path, rows: Sequence[Mapping[str, Any]], title: str) -> li
     import matplotlib.pyplot as plt
 
     freqs = [r["frequency"] for r in rows]
-    fig, axes = plt.subplots(len(SWEEP_PLOT), 1, sharex=True, figsize=(7, 2.0 * len(SWEEP_PLOT)))
-    for ax, key in zip(axes, SWEEP_PLOT, strict=True):
-        values = [r[key] if r[key] is not None else math.nan for r in rows]
-        ax.plot(freqs, values, "o-", ms=3, lw=1)
-        ax.set_ylabel(measure_label(key))
+    panels = _sweep_panels(rows[0])  # T_as, T_au, T_dr, DLC; a vehicle: body, per corner
+    fig, axes = plt.subplots(len(panels), 1, sharex=True, figsize=(7, 2.0 * len(panels)))
+    for ax, group in zip(axes, panels, strict=True):
+        for key in group:
+            values = [r[key] if r[key] is not None else math.nan for r in rows]
+            ax.plot(freqs, values, "o-", ms=3, lw=1, label=key.partition(".")[2] or None)
+        name = group[0].partition(".")[0] if len(group) > 1 else group[0]
+        ax.set_ylabel(measure_label(name) if name in SWEEP_PLOT else _label(name))
+        if len(group) > 1:
+            ax.legend(fontsize=7, ncol=len(group))
         ax.set_xscale("log")
         ax.grid(True, which="both", alpha=0.3)
     axes[-1].set_xlabel("frequency [Hz]")
@@ -243,12 +254,11 @@ def _spare_teardown() -> None:
 
 def _echo_measures(measures: Mapping[str, Any]) -> None:
     """One ``name = value [unit]`` line per measure (a note such as ``road_peak``: no unit)."""
-    from mrsuspension.engine.result import MEASURE_UNITS
-
+    width = max(26, *(len(k) for k in measures)) if measures else 26  # vehicle: long names
     for key, value in measures.items():
         text = "n/a" if value is None else f"{value:.6g}" if isinstance(value, float) else value
-        unit = f"[{MEASURE_UNITS[key]}]" if key in MEASURE_UNITS else ""
-        typer.echo(f"{key:>26} = {text!s:<12} {unit}".rstrip())
+        unit = measure_unit(key)
+        typer.echo(f"{key:>{width}} = {text!s:<12} {'' if unit is None else f'[{unit}]'}".rstrip())
 
 
 def _clamp_note(fractions: Sequence[float | None]) -> None:
@@ -271,10 +281,8 @@ def _clamp_note(fractions: Sequence[float | None]) -> None:
 
 def _echo_rows(rows: Sequence[Mapping[str, Any]]) -> None:
     """A table, one row per run, headers ``name [unit]`` (columns as wide as needed)."""
-    from mrsuspension.engine.result import measure_label
-
     keys = [k for k in rows[0] if k != "amplitude"]
-    labels = [measure_label(k) for k in keys]
+    labels = [_label(k) for k in keys]
     widths = [max(12, len(label)) for label in labels]
     typer.echo(" ".join(f"{label:>{w}}" for label, w in zip(labels, widths, strict=True)))
     for row in rows:
@@ -441,12 +449,12 @@ def sweep_command(
         scn = Scenario.load(scenario)
         sweep = _sweep_for(scn, frequencies, amplitude)
         excitations = list(sweep.excitations())
-        sims = scn.simulations(excitations)
+        sims = _sweep_simulations(scn, excitations)  # quarter, half or full car
         files: list[Path] = []
         with prepare_output(out, "sweep", force=force) as folder:  # checked before the runs
             notify_if_compiling()
             with progress_bar(not as_json, "sweep") as progress:
-                results = run_many(
+                results = _runner(sims, run_many)(
                     sims,
                     dt=scn.dt,
                     output_rate=scn.output_rate,
@@ -487,9 +495,59 @@ def _sweep_for(scn: Scenario, frequencies: str | None, amplitude: float | None) 
             amplitude = exc.amplitude
         else:
             raise ValidationError(
-                f"the scenario's excitation is {exc.name!r}: give the sweep amplitude with "
+                f"the scenario's excitation is {scn.data['excitation']['kind']!r}: give the "
+                "sweep amplitude with "
                 "--amplitude (metres, e.g. 0.025)"
             )
     if isinstance(exc, SteppedSweep):
         return SteppedSweep(tuple(freqs), amplitude, exc.transition_frequency)
     return SteppedSweep(tuple(freqs), amplitude)
+
+
+# -- half and full cars (issue 19) ------------------------------------------------------------
+def measure_unit(key: str) -> str | None:
+    """Unit of a measure: the quarter car's, a vehicle's body measure, or ``"<m>.<corner>"``.
+
+    Examples
+    --------
+    >>> measure_unit("T_as"), measure_unit("DLC.front_left"), measure_unit("roll_ddot_rms")
+    ('-', '-', 'rad/s^2')
+    """
+    from mrsuspension.engine.result import MEASURE_UNITS
+    from mrsuspension.engine.vehicle import BODY_MEASURES
+
+    if key in BODY_MEASURES:
+        return BODY_MEASURES[key][1]
+    return MEASURE_UNITS.get(key, MEASURE_UNITS.get(key.split(".", 1)[0]))
+
+
+def _label(key: str) -> str:
+    """``"name [unit]"`` (see :func:`measure_unit`), else ``name``."""
+    unit = measure_unit(key)
+    return key if unit is None else f"{key} [{unit}]"
+
+
+def _sweep_panels(row: Mapping[str, Any]) -> list[list[str]]:
+    """The sweep plot's panels: T_as, T_au, T_dr, DLC; a vehicle's body RMS accelerations,
+    then T_as and DLC of every corner (one panel each)."""
+    if all(k in row for k in SWEEP_PLOT):
+        return [[k] for k in SWEEP_PLOT]
+    body = [[k] for k in ("heave_ddot_rms", "pitch_ddot_rms", "roll_ddot_rms") if k in row]
+    corners = [[k for k in row if k.startswith(f"{m}.")] for m in ("T_as", "DLC")]
+    return body + [keys for keys in corners if keys]
+
+
+def _sweep_simulations(scn: Scenario, excitations: Sequence[Any]) -> list[Any]:
+    """The sweep's runs: quarter-car ``Simulation``s or half/full-car ``VehicleSimulation``s."""
+    if scn.is_vehicle:
+        return list(scn.vehicle_simulations(excitations))
+    return list(scn.simulations(excitations))
+
+
+def _runner(sims: Sequence[Any], quarter: Callable[..., list[Any]]) -> Callable[..., list[Any]]:
+    """The batch runner of ``sims``: ``quarter`` (``run_many``), or ``run_vehicles`` for cars."""
+    from mrsuspension.engine.vehicle import VehicleSimulation, run_vehicles
+
+    if sims and isinstance(sims[0], VehicleSimulation):
+        return run_vehicles
+    return quarter

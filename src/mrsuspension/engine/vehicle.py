@@ -45,6 +45,7 @@ if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
 __all__ = [
+    "BODY_MEASURES",
     "BODY_SIGNALS",
     "CORNERS_FULL",
     "CORNERS_HALF",
@@ -324,6 +325,13 @@ _CORNER_COLUMNS = {
     "i_d": VX.RC_ID, "i_z": VX.RC_IZ, "z_c": VX.RC_ZC, "F_target": VX.RC_TARGET, "v_m": VX.RC_VM,
     "z_s0": VX.RC_Z0,
 }  # fmt: skip
+#: Body measures of a vehicle result (:meth:`VehicleResult.measures`): name -> (signal,
+#: unit); the RMS of the signal over the record (``roll_ddot_rms``: the full car only).
+BODY_MEASURES: dict[str, tuple[str, str]] = {
+    "heave_ddot_rms": ("heave_ddot", "m/s^2"),
+    "pitch_ddot_rms": ("pitch_ddot", "rad/s^2"),
+    "roll_ddot_rms": ("roll_ddot", "rad/s^2"),
+}
 
 
 @dataclass(frozen=True)
@@ -396,12 +404,26 @@ class VehicleResult(SimulationResult):
         return super().plot(signals, title=title)
 
     def measures(self, **kwargs: Any) -> dict[str, Any]:
-        """Every corner's quarter-car measures, keyed ``"<measure>.<corner>"``.
+        """The body's RMS accelerations (:data:`BODY_MEASURES`), then every corner's
+        quarter-car measures, keyed ``"<measure>.<corner>"``.
 
         Takes the keywords of :meth:`SimulationResult.measures
         <mrsuspension.engine.result.SimulationResult.measures>`.
+
+        Examples
+        --------
+        >>> from mrsuspension.excitation import Harmonic
+        >>> from mrsuspension.vehicle import HalfCar
+        >>> sim = VehicleSimulation(HalfCar(), SameRoadAtEveryWheel(Harmonic(5.0, 0.005), ("front", "rear")))
+        >>> list(sim.run().measures())[:3]  # the harmonic's own duration (steady-state rule)
+        ['heave_ddot_rms', 'pitch_ddot_rms', 'T_as.front']
         """
         out: dict[str, Any] = {}
+        for name, (signal, _) in BODY_MEASURES.items():
+            if signal == "roll_ddot" and len(self.corners) < 4:
+                continue  # a half car has no roll
+            values = np.asarray(self.signals[signal], dtype=float)
+            out[name] = float(np.sqrt(np.mean(values * values)))
         for c in self.corners:
             for k, v in self.corner(c).measures(**kwargs).items():
                 out[f"{k}.{c}"] = v

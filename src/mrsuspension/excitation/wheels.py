@@ -23,8 +23,15 @@ profile its first elevation). The constructors:
 :meth:`WheelRoads.pothole`               a rounded pothole (:class:`Pothole`) on one side
 =======================================  ==============================================
 
-Corner names and order: :data:`FULL_CAR_CORNERS` and :data:`HALF_CAR_CORNERS`. A half car
-rides the left wheel track.
+Corner names and order: :data:`FULL_CAR_CORNERS` and :data:`HALF_CAR_CORNERS` (their one
+home; :mod:`mrsuspension.vehicle` re-exports them as ``CORNERS_FULL`` and ``CORNERS_HALF``).
+A half car rides the left wheel track.
+
+The geometry is a pair ``(wheelbase, track)`` or a vehicle: a
+:class:`~mrsuspension.vehicle.HalfCar` (no track; its corners are taken) or a
+:class:`~mrsuspension.vehicle.FullCar`, whose ``track`` is its front track: the rear
+wheels follow the front wheels' tracks, so with ``rear_track != front_track`` they get
+the road at the front track's lateral spacing (the body still uses each axle's track).
 
 Examples
 --------
@@ -144,6 +151,16 @@ def _corners(corners: object) -> tuple[str, ...]:
         f"corners must be {FULL_CAR_CORNERS} (full car) or {HALF_CAR_CORNERS} (half car), "
         f"in that order; got {names}"
     )
+
+
+def _layout_of(corners: object, geometry: object) -> object:
+    """``corners`` as given, else the geometry object's own corners, else the full car."""
+    if corners is not None:
+        return corners
+    own = getattr(geometry, "corners", None)
+    if isinstance(own, tuple) and own in CORNER_LAYOUTS.values():
+        return own
+    return "full-car"
 
 
 def _geometry(geometry: object, corners: tuple[str, ...]) -> tuple[float, float | None]:
@@ -467,7 +484,7 @@ class WheelRoads:
         geometry: object,
         speed_kmh: float | None = None,
         *,
-        corners: str | tuple[str, ...] = "full-car",
+        corners: str | tuple[str, ...] | None = None,
     ) -> WheelRoads:
         """The same single-track excitation under the left and right wheels, rear delayed.
 
@@ -489,7 +506,9 @@ class WheelRoads:
             with a ``speed_kmh`` field is driven at this speed (``dataclasses.replace``):
             a road profile keeps its shape over distance.
         corners : str or tuple of str, optional
-            ``"full-car"`` (default) or ``"half-car"``.
+            ``"full-car"`` or ``"half-car"``; by default the geometry object's own
+            ``corners`` (a :class:`~mrsuspension.vehicle.HalfCar` gives ``"half-car"``),
+            else ``"full-car"``.
 
         Raises
         ------
@@ -512,7 +531,7 @@ class WheelRoads:
                 "excitation must be a single-track Excitation (harmonic, pulse, road); "
                 f"got {excitation!r}"
             )
-        layout = _corners(corners)
+        layout = _corners(_layout_of(corners, geometry))
         wheelbase, track = _geometry(geometry, layout)
         own = getattr(excitation, "speed_kmh", None)
         if speed_kmh is None:
@@ -539,7 +558,7 @@ class WheelRoads:
             track,
             layout,
             source=f"{excitation.name} on both tracks",
-            details={"excitation": excitation.describe()},
+            details={"excitation": excitation.describe(), "single_track": True},
         )
 
     @classmethod
@@ -552,7 +571,7 @@ class WheelRoads:
         length: float = PRESET_LENGTH,
         spacing: float = PRESET_SPACING,
         seed: int | None = None,
-        corners: str | tuple[str, ...] = "full-car",
+        corners: str | tuple[str, ...] | None = None,
         fade_in: float = 0.0,
     ) -> WheelRoads:
         """A two-track random road: left and right tracks with isotropic coherence.
@@ -594,7 +613,9 @@ class WheelRoads:
             Seed of the random phases, >= 0; 0 for a class or a spectrum, the preset's
             own seed for a preset.
         corners : str or tuple of str, optional
-            ``"full-car"`` (default) or ``"half-car"``.
+            ``"full-car"`` or ``"half-car"``; by default the geometry object's own
+            ``corners`` (a :class:`~mrsuspension.vehicle.HalfCar` gives ``"half-car"``),
+            else ``"full-car"``.
         fade_in : float, optional
             Fade-in length [m] of both tracks (see
             :class:`~mrsuspension.excitation.RoadProfile`).
@@ -611,7 +632,7 @@ class WheelRoads:
         >>> roads.details["coherence"]["model"]
         'isotropic (Kamash and Robson 1978)'
         """
-        layout = _corners(corners)
+        layout = _corners(_layout_of(corners, geometry))
         wheelbase, track = _geometry(geometry, layout)
         speed = _speed(speed_kmh)
         spectrum, default_seed, label = _two_track_spectrum(road)
@@ -671,7 +692,7 @@ class WheelRoads:
         *,
         lateral_offset: float = 0.0,
         absolute: bool = True,
-        corners: str | tuple[str, ...] = "full-car",
+        corners: str | tuple[str, ...] | None = None,
         fade_in: float = 0.0,
     ) -> WheelRoads:
         """The left and right wheel tracks of an OpenCRG road file.
@@ -702,7 +723,9 @@ class WheelRoads:
             line's elevation and banking); False: the grid alone, relative to the
             reference line (no grade).
         corners : str or tuple of str, optional
-            ``"full-car"`` (default) or ``"half-car"``.
+            ``"full-car"`` or ``"half-car"``; by default the geometry object's own
+            ``corners`` (a :class:`~mrsuspension.vehicle.HalfCar` gives ``"half-car"``),
+            else ``"full-car"``.
         fade_in : float, optional
             Fade-in length [m] of both tracks.
 
@@ -728,7 +751,7 @@ class WheelRoads:
         >>> float(abs(roads.right.elevation).max()) < 0.01 * 0.5 + 1e-12
         True
         """
-        layout = _corners(corners)
+        layout = _corners(_layout_of(corners, geometry))
         wheelbase, track = _geometry(geometry, layout)
         speed = _speed(speed_kmh)
         offset = number("lateral_offset", lateral_offset)
@@ -795,7 +818,7 @@ class WheelRoads:
         speed_kmh: float = REFERENCE_SPEED_KMH,
         *,
         position: float = 5.0,
-        corners: str | tuple[str, ...] = "full-car",
+        corners: str | tuple[str, ...] | None = None,
     ) -> WheelRoads:
         """A rounded bump under the wheels of one side (it excites roll); the other side flat.
 
@@ -820,7 +843,9 @@ class WheelRoads:
         position : float, optional
             Distance [m] to the bump's start, 5 m by default.
         corners : str or tuple of str, optional
-            ``"full-car"`` (default) or ``"half-car"``.
+            ``"full-car"`` or ``"half-car"``; by default the geometry object's own
+            ``corners`` (a :class:`~mrsuspension.vehicle.HalfCar` gives ``"half-car"``),
+            else ``"full-car"``.
 
         Examples
         --------
@@ -835,7 +860,7 @@ class WheelRoads:
         ...
         mrsuspension.errors.ValidationError: unknown side 'lef'. Did you mean 'left'? Valid: both, left, right.
         """
-        layout = _corners(corners)
+        layout = _corners(_layout_of(corners, geometry))
         side = _side(side, layout)
         wheelbase, track = _geometry(geometry, layout)
         speed = _speed(speed_kmh)
@@ -864,7 +889,7 @@ class WheelRoads:
         *,
         position: float = 5.0,
         edge: float = POTHOLE_EDGE,
-        corners: str | tuple[str, ...] = "full-car",
+        corners: str | tuple[str, ...] | None = None,
     ) -> WheelRoads:
         """A rounded pothole (:class:`Pothole`) under the wheels of one side.
 
@@ -885,7 +910,9 @@ class WheelRoads:
         edge : float, optional
             Rounding length of each edge [m], 0.1 m by default.
         corners : str or tuple of str, optional
-            ``"full-car"`` (default) or ``"half-car"``.
+            ``"full-car"`` or ``"half-car"``; by default the geometry object's own
+            ``corners`` (a :class:`~mrsuspension.vehicle.HalfCar` gives ``"half-car"``),
+            else ``"full-car"``.
 
         Examples
         --------
@@ -895,7 +922,7 @@ class WheelRoads:
         >>> roads.displacement(0.38).ravel().tolist()  # then the rear right
         [0.0, 0.0, 0.0, -0.04]
         """
-        layout = _corners(corners)
+        layout = _corners(_layout_of(corners, geometry))
         side = _side(side, layout)
         wheelbase, track = _geometry(geometry, layout)
         speed = _speed(speed_kmh)
@@ -931,6 +958,24 @@ class WheelRoads:
         )
 
     # -- properties ------------------------------------------------------------------------
+    @property
+    def excitation(self) -> Excitation | None:
+        """The single-track excitation of :meth:`from_excitation` (None for other roads).
+
+        The vehicle engine measures each corner of such a road as the quarter car on that
+        excitation (a harmonic's transmissibilities, a pulse's shock ratios); other roads
+        get the road measures.
+
+        Examples
+        --------
+        >>> from mrsuspension.excitation import Harmonic
+        >>> WheelRoads.from_excitation(Harmonic(1.0, 0.01), (2.5, 1.5), 50.0).excitation.name
+        'harmonic'
+        >>> WheelRoads.bump("left", 0.05, 0.5, (2.5, 1.5)).excitation is None
+        True
+        """
+        return self.left if self.details.get("single_track") else None
+
     @property
     def speed(self) -> float:
         """Vehicle speed ``V`` [m/s]."""

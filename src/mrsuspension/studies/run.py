@@ -310,6 +310,54 @@ def _dataset(study: Study, rows: Sequence[dict[str, Any]], run_time: float) -> x
     return ds
 
 
+def _run_local_any(
+    jobs: Sequence[Job],
+    workers: int | None,
+    progress: Progress | None,
+    road_peak: RoadPeak = DEFAULT_ROAD_PEAK,
+) -> list[dict[str, Any]]:
+    """:func:`_run_local` for quarter cars; half and full cars (issue 19) through
+    :func:`~mrsuspension.engine.vehicle.run_vehicles`, once per group of equal settings."""
+    from mrsuspension.engine.vehicle import VehicleSimulation, run_vehicles
+
+    cars = [k for k, job in enumerate(jobs) if isinstance(job.simulation, VehicleSimulation)]
+    if not cars:
+        return _run_local(jobs, workers, progress, road_peak)
+    taken = set(cars)
+    quarter = [k for k in range(len(jobs)) if k not in taken]
+    out: list[dict[str, Any]] = [{} for _ in jobs]
+    total = len(jobs)
+    done = 0
+
+    def ticker(offset: int) -> Progress:
+        def tick(n: int, _total: int) -> None:
+            if progress:
+                progress(offset + n, total)
+
+        return tick
+
+    if quarter:
+        rows = _run_local([jobs[k] for k in quarter], workers, ticker(0), road_peak)
+        for k, row in zip(quarter, rows, strict=True):
+            out[k] = row
+        done = len(quarter)
+    groups: dict[RunSettings, list[int]] = {}
+    for k in cars:
+        groups.setdefault(jobs[k].settings, []).append(k)
+    for settings, idx in groups.items():
+        results = run_vehicles(
+            [jobs[k].simulation for k in idx],  # type: ignore[misc]
+            settings=settings,
+            workers=workers,
+            progress=ticker(done),
+            reduce=functools.partial(_measures, road_peak=road_peak),
+        )
+        for k, row in zip(idx, results, strict=True):
+            out[k] = row
+        done += len(idx)
+    return out
+
+
 def run_study(
     study: Study | str | Path,
     *,
@@ -388,7 +436,7 @@ def run_study(
     start = time.perf_counter()
     with _bar(progress, f"study {study.name} ({len(jobs)} runs)") as tick:
         if (isinstance(executor, str) and executor == "local") or executor is None:
-            rows = _run_local(jobs, workers, tick, study.road_peak)
+            rows = _run_local_any(jobs, workers, tick, study.road_peak)
         else:
             rows = _run_dask(jobs, executor, tick, study.road_peak)
     elapsed = time.perf_counter() - start

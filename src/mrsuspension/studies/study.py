@@ -67,9 +67,9 @@ from mrsuspension.errors import (
     did_you_mean,
     read_toml,
 )
-from mrsuspension.excitation import EXCITATIONS, log_frequencies
+from mrsuspension.excitation import EXCITATIONS, FULL_CAR_CORNERS, HALF_CAR_CORNERS, log_frequencies
 from mrsuspension.measures.shock import DEFAULT_ROAD_PEAK, RoadPeak, check_road_peak
-from mrsuspension.scenario import SCENARIO_KEYS, Scenario
+from mrsuspension.scenario import BODY_MEASURES, SCENARIO_KEYS, Scenario
 
 __all__ = [
     "MEASURES",
@@ -137,8 +137,15 @@ MEASURES: dict[str, tuple[str, ...]] = {
 _STUDY_KEYS = ("name", "description", "measures", "scenario", "road_peak")
 _TOP_LEVEL = ("study", "grid", "cases", *SCENARIO_KEYS)
 _SPEC = re.compile(r"^\s*(log|lin)\s*:\s*(\d+)\s*:\s*([^:]+)\s*:\s*([^:]+)\s*$")
-#: every dotted field a grid may vary
-FIELDS: tuple[str, ...] = tuple(f"{s}.{k}" for s, keys in SCENARIO_KEYS.items() for k in keys)
+#: every corner name a per-corner field may name (half and full car)
+_CORNERS: tuple[str, ...] = (*FULL_CAR_CORNERS, *HALF_CAR_CORNERS)
+#: sections with per-corner tables: ``damper.front_left.hysteresis``
+_CORNER_SECTIONS = ("damper", "controller")
+#: every dotted field a grid may vary (``section.key``, or ``section.corner.key`` for the
+#: per-corner ``[damper.<corner>]``/``[controller.<corner>]`` tables of a half or full car)
+FIELDS: tuple[str, ...] = tuple(
+    f"{s}.{k}" for s, keys in SCENARIO_KEYS.items() for k in keys
+) + tuple(f"{s}.{c}.{k}" for s in _CORNER_SECTIONS for c in _CORNERS for k in SCENARIO_KEYS[s])
 
 
 def expand_frequencies(value: Any, where: str = "frequencies") -> Any:
@@ -246,7 +253,9 @@ def _check_field(name: object, where: str) -> str:
         raise ValidationError(
             f"{where} unknown field {name!r}.{did_you_mean(str(name), FIELDS)} "
             "Fields are 'section.key' with a section of vehicle, damper, controller, "
-            "excitation, simulation and a key of that section (see docs/scenarios.md)."
+            "excitation, simulation and a key of that section, or 'damper.<corner>.key' / "
+            "'controller.<corner>.key' for one corner of a half or full car "
+            "(see docs/scenarios.md)."
         )
     return name
 
@@ -256,7 +265,8 @@ def _flatten(table: Mapping[str, Any], prefix: str = "") -> dict[str, Any]:
     out: dict[str, Any] = {}
     for key, value in table.items():
         name = f"{prefix}{key}"
-        if isinstance(value, Mapping) and name in SCENARIO_KEYS:
+        corner_table = prefix[:-1] in _CORNER_SECTIONS and key in _CORNERS
+        if isinstance(value, Mapping) and (name in SCENARIO_KEYS or corner_table):
             out.update(_flatten(value, f"{name}."))
         else:
             out[name] = value
@@ -321,8 +331,32 @@ def _merge(base: dict[str, dict[str, Any]], patch: Mapping[str, Any]) -> dict[st
     out = copy.deepcopy(base)
     for dotted, value in patch.items():
         section, key = dotted.split(".", 1)
-        out.setdefault(section, {})[key] = value
+        table = out.setdefault(section, {})
+        if "." in key:  # a per-corner field: damper.front_left.hysteresis
+            corner, key = key.split(".", 1)
+            table = table.setdefault(corner, {})
+        table[key] = value
     return out
+
+
+def scenario_measures(scenario: Scenario) -> tuple[str, ...]:
+    """The measures a scenario's runs report (a half or full car: body and per corner).
+
+    Examples
+    --------
+    >>> s = Scenario.from_dict({"vehicle": {"model": "half-car"},
+    ...                         "excitation": {"kind": "bump", "side": "left",
+    ...                                        "height": 0.02, "length": 0.5}})
+    >>> scenario_measures(s)[:4]
+    ('heave_ddot_rms', 'pitch_ddot_rms', 'DLC.front', 'rms_body_acceleration.front')
+    """
+    kind = scenario.data["excitation"]["kind"]
+    if not scenario.is_vehicle:
+        return MEASURES[kind]
+    corners = scenario.vehicle.corners  # type: ignore[union-attr]
+    body = tuple(m for m in BODY_MEASURES if m != "roll_ddot_rms" or len(corners) == 4)
+    per_corner = MEASURES.get(kind, MEASURES["road"])  # a wheel-only kind: road measures
+    return body + tuple(f"{m}.{c}" for c in corners for m in per_corner)
 
 
 def _file_digest(path: Path) -> str | None:
@@ -338,7 +372,8 @@ def _check_duration(scenario: Scenario) -> None:
         return
     for exc in scenario.excitations:
         need = getattr(exc, "measure_window", None)
-        if exc.name == "harmonic" and need is not None and scenario.duration < need()[1]:
+        harmonic = getattr(exc, "name", None) == "harmonic"
+        if harmonic and need is not None and scenario.duration < need()[1]:
             raise ValidationError(
                 f"[simulation] duration = {scenario.duration:g} s is too short for the "
                 f"harmonic measures at {getattr(exc, 'frequency', 0.0):g} Hz: the steady-state rule needs "
@@ -463,8 +498,12 @@ class Study:
             raise ValidationError("every grid point of a swept study must use the same frequencies")
         frequencies = next(iter(sweeps)) if sweeps else None
 
-        available = tuple(m for names in MEASURES_BY_KIND.values() for m in names)
-        valid = sorted({m for k in kinds for m in MEASURES[k]})
+        if any(s.is_vehicle for s in scenarios):  # body and per-corner measures
+            available = tuple(dict.fromkeys(m for s in scenarios for m in scenario_measures(s)))
+            valid = sorted(available)
+        else:
+            available = tuple(m for names in MEASURES_BY_KIND.values() for m in names)
+            valid = sorted({m for k in kinds for m in MEASURES[k]})
         requested = meta.get("measures")
         if requested is None:
             measures = tuple(m for m in dict.fromkeys(available) if m in valid)
@@ -528,7 +567,11 @@ class Study:
 
     def simulations(self) -> list[Any]:
         """Every run, in C order of :attr:`dims` (grid points, then frequencies)."""
-        return [sim for s in self.scenarios for sim in s.simulations()]
+        return [
+            sim
+            for s in self.scenarios
+            for sim in (s.vehicle_simulations() if s.is_vehicle else s.simulations())
+        ]
 
     def run_settings(self) -> list[RunSettings]:
         """The :class:`RunSettings` of every run (its grid point's ``[simulation]``),

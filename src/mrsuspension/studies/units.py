@@ -22,6 +22,24 @@ FIELD_UNITS: dict[str, str] = {
     "vehicle.tire_stiffness": "N/m",
     "vehicle.tire_damping": "N s/m",
     "vehicle.skyhook_damping": "N s/m",
+    # the half and full car's body fields (vehicle/body.py)
+    "vehicle.pitch_inertia": "kg m^2",
+    "vehicle.roll_inertia": "kg m^2",
+    "vehicle.cg_to_front": "m",
+    "vehicle.cg_to_rear": "m",
+    "vehicle.front_track": "m",
+    "vehicle.rear_track": "m",
+    **{
+        f"vehicle.{axle}_{name}": unit
+        for axle in ("front", "rear")
+        for name, unit in (
+            ("unsprung_mass", "kg"),
+            ("suspension_stiffness", "N/m"),
+            ("tire_stiffness", "N/m"),
+            ("tire_damping", "N s/m"),
+            ("anti_roll_stiffness", "N m/rad"),
+        )
+    },
     "damper.max_current": "A",
     "damper.force_gain": "-",
     "damper.v_min": "m/s",
@@ -68,13 +86,22 @@ def add_units(ds: xr.Dataset) -> xr.Dataset:
     ('-', 'kg')
     """
     from mrsuspension.engine.result import MEASURE_UNITS
+    from mrsuspension.scenario import BODY_MEASURES
 
     for name in ds.data_vars:
-        unit = MEASURE_UNITS.get(str(name))
+        key = str(name)
+        # a vehicle's body measure, or a corner's "<measure>.<corner>"
+        unit = MEASURE_UNITS.get(key, MEASURE_UNITS.get(key.split(".", 1)[0]))
+        if key in BODY_MEASURES:
+            unit = BODY_MEASURES[key][1]
         if unit is not None:
             ds[name].attrs["units"] = unit
     for name in ds.coords:
-        unit = MEASURE_UNITS.get(str(name)) or FIELD_UNITS.get(str(name))
+        field = str(name)
+        parts = field.split(".")
+        if len(parts) == 3:  # a per-corner field: damper.front_left.damping
+            field = f"{parts[0]}.{parts[2]}"
+        unit = MEASURE_UNITS.get(str(name)) or FIELD_UNITS.get(field)
         if unit is not None and ds[name].dtype.kind in "fiu":
             ds[name].attrs["units"] = unit
     return ds

@@ -47,6 +47,7 @@ import numpy as np
 import numpy.typing as npt
 
 from mrsuspension.errors import ValidationError, check_finite, check_range, unknown_name
+from mrsuspension.excitation.wheels import FULL_CAR_CORNERS, HALF_CAR_CORNERS
 from mrsuspension.vehicle import GRAVITY, QuarterCar
 
 __all__ = [
@@ -60,10 +61,12 @@ __all__ = [
     "delay_phasors",
 ]
 
-#: Corner names and order of the full car (left = +y).
-CORNERS_FULL: tuple[str, str, str, str] = ("front_left", "front_right", "rear_left", "rear_right")
-#: Corner names and order of the half car (one wheel per axle).
-CORNERS_HALF: tuple[str, str] = ("front", "rear")
+#: Corner names and order of the full car (left = +y): the same tuple as
+#: :data:`mrsuspension.excitation.FULL_CAR_CORNERS` (one home, in the lower layer).
+CORNERS_FULL: tuple[str, ...] = FULL_CAR_CORNERS
+#: Corner names and order of the half car (one wheel per axle):
+#: :data:`mrsuspension.excitation.HALF_CAR_CORNERS`.
+CORNERS_HALF: tuple[str, ...] = HALF_CAR_CORNERS
 
 _SET_FILE = "full-car-kalman-2023"
 
@@ -723,6 +726,23 @@ class FullCar(VehicleBody):
             front_anti_roll_stiffness=0.0,
             rear_anti_roll_stiffness=0.0,
         )
+
+    @property
+    def track(self) -> float:
+        """The front track [m]: the lateral spacing of the wheel tracks on the road.
+
+        What :class:`~mrsuspension.excitation.WheelRoads` reads as the car's ``track``.
+        The rear wheels follow the front wheels' tracks (delayed by wheelbase/speed), so
+        when ``rear_track`` differs from ``front_track`` they are fed the road at the
+        front track's spacing; the body's forces and moments still use each axle's own
+        track.
+
+        Examples
+        --------
+        >>> FullCar(front_track=1.5, rear_track=1.45).track
+        1.5
+        """
+        return self.front_track
 
     def _lateral(self) -> np.ndarray:
         tf, tr = self.front_track / 2.0, self.rear_track / 2.0

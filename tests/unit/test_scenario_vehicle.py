@@ -1,0 +1,189 @@
+"""Scenarios with a half or full car: models, sets, per-corner tables, wheel-only kinds."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pyopencrg
+import pytest
+
+from mrsuspension.dampers import LinearViscous, WangSymmetric
+from mrsuspension.engine.vehicle import VehicleResult
+from mrsuspension.errors import ValidationError
+from mrsuspension.excitation import Harmonic, WheelRoads
+from mrsuspension.scenario import Scenario
+from mrsuspension.vehicle import FullCar, HalfCar, QuarterCar
+
+HARMONIC = {"kind": "harmonic", "frequency": 1.5, "amplitude": 0.01}
+BUMP = {"kind": "bump", "side": "left", "height": 0.03, "length": 0.5, "position": 1.0}
+
+
+def _error(data: dict[str, Any], base_dir: Path | None = None) -> str:
+    with pytest.raises(ValidationError) as info:
+        Scenario.from_dict(data, base_dir)
+    return str(info.value)
+
+
+def test_models_sets_and_overrides() -> None:
+    assert isinstance(Scenario.from_dict({"excitation": HARMONIC}).vehicle, QuarterCar)
+    half = Scenario.from_dict({"vehicle": {"model": "half-car"}, "excitation": HARMONIC})
+    assert half.vehicle == HalfCar()
+    assert half.is_vehicle
+    assert half.model == "half-car"
+    full = Scenario.from_dict(
+        {
+            "vehicle": {"model": "full-car", "set": "full-car-kalman-2023", "sprung_mass": 1300},
+            "excitation": HARMONIC,
+        }
+    )
+    assert full.vehicle == FullCar.from_set("full-car-kalman-2023").with_(sprung_mass=1300.0)
+    again = Scenario.from_dict(full.to_dict(), full.base_dir)
+    assert again.to_dict() == full.to_dict()
+    assert again.vehicle == full.vehicle
+
+
+def test_per_corner_tables() -> None:
+    s = Scenario.from_dict(
+        {
+            "vehicle": {"model": "full-car"},
+            "damper": {"hysteresis": False, "rear_left": {"model": "linear", "damping": 1500.0}},
+            "controller": {"law": "skyhook-hilo", "mode": "ACM", "front_right": {"mode": "SCM"}},
+            "excitation": BUMP,
+        }
+    )
+    sim = s.vehicle_simulations()[0]
+    assert isinstance(sim.corner_simulation("rear_left").damper, LinearViscous)
+    assert isinstance(sim.corner_simulation("front_left").damper, WangSymmetric)
+    laws = {c: sim.corner_simulation(c).controller.describe() for c in s.vehicle.corners}
+    assert laws["front_left"] == laws["rear_left"] == laws["rear_right"]
+    assert laws["front_right"]["law"] == "skyhook-hilo"
+    assert laws["front_right"] != laws["front_left"]  # SCM against ACM
+    # each corner has its own controller instance
+    assert len({id(sim.corner_simulation(c).controller) for c in sim.corners}) == 4
+
+
+def test_quarter_car_path_is_unchanged() -> None:
+    s = Scenario.from_dict({"excitation": HARMONIC})
+    assert not s.is_vehicle
+    assert s.corner_dampers == {}
+    assert "model" not in s.to_dict()["vehicle"]
+    with pytest.raises(ValidationError, match="quarter car"):
+        s.vehicle_simulations()
+
+
+@pytest.mark.parametrize(
+    ("data", "message"),
+    [
+        (
+            {"vehicle": {"model": "fullcar"}},
+            "[vehicle] model: unknown model 'fullcar'. Did you mean 'full-car'?",
+        ),
+        (
+            {"vehicle": {"model": "full-car", "roll_inertia": -1.0}},
+            "[vehicle] roll_inertia must be in (0",
+        ),
+        (
+            {"vehicle": {"model": "half-car", "cg_to_front": -2.0, "cg_to_rear": 1.0}},
+            "[vehicle] wheelbase",
+        ),
+        (
+            {"vehicle": {"model": "half-car", "roll_inertia": 300.0}},
+            "[vehicle] roll_inertia does not apply to model 'half-car'",
+        ),
+        (
+            {"vehicle": {"model": "half-car", "set": "kalman"}},
+            "[vehicle] set: unknown set 'kalman'",
+        ),
+        (
+            {"vehicle": {"set": "full-car-kalman-2023"}},
+            "[vehicle] set does not apply to model 'quarter-car'",
+        ),
+        (
+            {"vehicle": {"model": "full-car"}, "damper": {"front_lef": {"hysteresis": False}}},
+            "unknown corner table [damper.front_lef]. Did you mean 'front_left'?",
+        ),
+        (
+            {"vehicle": {"model": "half-car"}, "controller": {"front_left": {"law": "passive"}}},
+            "unknown corner table [controller.front_left].",
+        ),
+        (
+            {"damper": {"front": {"hysteresis": False}}},
+            "[damper.front]: per-corner tables need a half or full car",
+        ),
+        (
+            {"vehicle": {"model": "full-car"}, "damper": {"rear_left": {"max_current": 1.0}}},
+            "[damper.rear_left] max_current: the current limit applies to every corner",
+        ),
+        (
+            {"vehicle": {"model": "full-car"}, "controller": {"rear_left": {"law": "skyhook"}}},
+            "[controller.rear_left] law: unknown law 'skyhook'",
+        ),
+        (
+            {"vehicle": {"model": "full-car"}, "damper": {"rear_left": {"hysteresys": True}}},
+            "unknown key [damper.rear_left] hysteresys. Did you mean 'hysteresis'?",
+        ),
+    ],
+)
+def test_errors_name_the_table(data: dict[str, Any], message: str) -> None:
+    data = {"excitation": HARMONIC, **data}
+    assert message in _error(data)
+
+
+def test_wheel_kinds() -> None:
+    full = {"model": "full-car"}
+    msg = _error({"excitation": BUMP})
+    assert "kind 'bump' gives a road per wheel: it needs [vehicle] model" in msg
+    assert "Did you mean 'left'" in _error({"vehicle": full, "excitation": {**BUMP, "side": "lef"}})
+    assert "[excitation] depth is required for kind 'pothole'" in _error(
+        {"vehicle": full, "excitation": {"kind": "pothole", "side": "left", "length": 0.5}}
+    )
+    assert "Did you mean 'length'" in _error(
+        {"vehicle": full, "excitation": {"kind": "two-track", "iso_class": "C", "lenght": 9.0}}
+    )
+    s = Scenario.from_dict(
+        {
+            "vehicle": full,
+            "excitation": {"kind": "two-track", "iso_class": "C", "seed": 1, "length": 200.0},
+        }
+    )
+    assert isinstance(s.excitation, WheelRoads)
+    assert s.excitation.right is not None
+    assert s.excitation.track == FullCar().front_track
+
+
+def test_single_track_kinds_become_wheel_roads() -> None:
+    s = Scenario.from_dict(
+        {"vehicle": {"model": "half-car"}, "excitation": {**HARMONIC, "speed": 36.0}}
+    )
+    (roads,) = s.wheel_roads()
+    assert isinstance(roads.left, Harmonic)
+    assert roads.rear_delay == pytest.approx(HalfCar().wheelbase / 10.0)
+    assert "[excitation] speed" in _error({"excitation": {**HARMONIC, "speed": 36.0}})
+    sweep = Scenario.from_dict(
+        {"vehicle": {"model": "full-car"},
+         "excitation": {"kind": "swept", "amplitude": 0.01, "frequencies": [1.0, 2.0]}}
+    )  # fmt: skip
+    assert len(sweep.vehicle_simulations()) == 2
+
+
+def test_crg_file_relative_to_the_scenario(tmp_path: Path) -> None:
+    u = np.arange(300) * 0.1
+    v = np.linspace(-1.5, 1.5, 31)
+    z = 0.01 * np.sin(u)[:, None] * np.ones(v.size)[None, :]
+    z[100, 20] = np.nan  # on the left wheel track (v = 0.5 m)
+    pyopencrg.CrgRoad(z, u_inc=0.1, v=v).save(tmp_path / "holes.crg", fmt="KDBI")
+    (tmp_path / "car.toml").write_text(
+        '# a crg road\n[vehicle]\nmodel = "full-car"\nfront_track = 1.0\nrear_track = 1.0\n'
+        '[excitation]\nkind = "crg"\nfile = "holes.crg"\n'
+    )
+    with pytest.raises(ValidationError, match="has no value \\(NaN\\)"):
+        Scenario.load(tmp_path / "car.toml")
+
+
+def test_run_returns_vehicle_results() -> None:
+    s = Scenario.from_dict({"vehicle": {"model": "full-car"}, "excitation": BUMP})
+    (res,) = s.run(duration=0.5)
+    assert isinstance(res, VehicleResult)
+    assert float(np.abs(res["roll"]).max()) > 0.0
