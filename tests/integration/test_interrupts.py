@@ -217,9 +217,11 @@ def test_an_interrupted_hil_run_stops_its_loop_the_safe_way(tmp_path: Path, how:
     its stop record, then exits; the recording so far is kept and said so (a SIGTERM to
     the parent only used to leave the loop running for the whole duration)."""
     rec = tmp_path / "rec"
-    stopped = interrupt(
-        _commands(tmp_path)["hil run"], how, tmp_path, ready=(rec / "meta.json").is_file
-    )
+
+    def recording() -> bool:  # written into the staged folder (_output), moved at the end
+        return any(tmp_path.glob(".rec.*.tmp/meta.json")) or (rec / "meta.json").is_file()
+
+    stopped = interrupt(_commands(tmp_path)["hil run"], how, tmp_path, ready=recording)
     print(f"hil run {how}: exit {stopped.code} after {stopped.seconds:.3f} s")
     assert stopped.left == [], f"processes left: {stopped.left}"
     assert stopped.code == (143 if how == "sigterm" else 130), stopped.stderr
