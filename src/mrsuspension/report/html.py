@@ -135,12 +135,21 @@ def build_report(
         body, info = beyond_section.build(out / "beyond", quick, say)
         bodies.append(body)
         manifest["beyond"] = info
+    if "vehicles" in sections:
+        from mrsuspension.report import vehicles as vehicles_section
+
+        body, info = vehicles_section.build(out / "vehicles", quick, say)
+        bodies.append(body)
+        manifest["vehicles"] = info
     elapsed = time.perf_counter() - start
     manifest["run_time_s"] = round(elapsed, 2)
     (out / "manifest.json").write_text(json.dumps(manifest, indent=2, default=float) + "\n")
     toc = "<li><a href='#findings'>Findings scorecard</a></li>" if findings else ""
     toc += "".join(f"<li><a href='#ch{c}'>Chapter {c}</a></li>" for c in chosen)
     toc += "<li><a href='#beyond'>Beyond the dissertation</a></li>" if beyond else ""
+    toc += (
+        "<li><a href='#vehicles'>Beyond the quarter car</a></li>" if "vehicles" in sections else ""
+    )
     page = (
         "<!doctype html><html><head><meta charset='utf-8'>"
         "<title>mrsuspension report</title>"
