@@ -13,6 +13,17 @@ quarter car's (:mod:`mrsuspension.engine.kernel`) corner by corner:
 3. evaluate the rates at the new state (record, next step's ``a_d``) and advance every
    damper's internal dynamics.
 
+With sensing (``sk``/``sp``/``ss``, :class:`~mrsuspension.control.sensing.Sensing`), step 1
+gives each corner's controller the body velocity estimated from the corner's acceleration
+at the step's start (:func:`~mrsuspension.control.sensing.leaky_integrator_update` or
+:func:`~mrsuspension.control.sensing.band_pass_update`, sampled every ``SK_ACC_EVERY``
+steps and held) and the stroke sensor's reading
+(:func:`~mrsuspension.control.sensing.stroke_sensor_update`); with a vehicle-level law
+(``SK_LAW``) the corners' currents then come from
+:func:`~mrsuspension.control.modal.modal_forces` (or ``F_i = -c_s v_i``) and
+:func:`~mrsuspension.control.modal.modal_hilo`. Ideal sensing and no law leave the step
+exactly as before.
+
 The damper kernels (:mod:`mrsuspension.dampers.kernels`) and the control laws
 (:mod:`mrsuspension.control.kernel`) are the quarter car's; the sliding-mode reference
 model (3.18) is integrated per corner with the corner's wheel.
