@@ -347,14 +347,6 @@ _CORNER_COLUMNS = {
     "i_d": VX.RC_ID, "i_z": VX.RC_IZ, "z_c": VX.RC_ZC, "F_target": VX.RC_TARGET, "v_m": VX.RC_VM,
     "z_s0": VX.RC_Z0,
 }  # fmt: skip
-#: Per-corner signals of a vehicle only: name -> (unit, description).
-VEHICLE_CORNER_SIGNALS: dict[str, tuple[str, str]] = {
-    "z_s_dot_sensed": (
-        "m/s",
-        "body velocity the controller used (true, or estimated; held over the step)",
-    ),
-}
-_VEHICLE_CORNER_COLUMNS = {"z_s_dot_sensed": VX.RC_VSENSE}
 
 
 @dataclass(frozen=True)
@@ -450,8 +442,8 @@ class VehicleResult(SimulationResult):
     ) -> dict[str, float]:
         """Measures of the whole vehicle, with units in :data:`VEHICLE_MEASURE_UNITS`.
 
-        Body: ``rms_heave_acceleration`` [m/s^2], ``rms_pitch_acceleration`` and
-        ``rms_roll_acceleration`` [rad/s^2]; the seat (ISO 2631-1,
+        Body: ``heave_ddot_rms`` [m/s^2], ``pitch_ddot_rms`` and ``roll_ddot_rms``
+        [rad/s^2] (the full car only); the seat (ISO 2631-1,
         :func:`~mrsuspension.measures.vehicle.seat_vibration`): ``seat_total`` (the
         vibration total value of ``purpose``) and ``seat_<axis>`` per axis
         (``seat_z`` is the Wk-weighted vertical RMS); per corner ``"<name>.<corner>"``:
@@ -477,7 +469,7 @@ class VehicleResult(SimulationResult):
         >>> car = FullCar()
         >>> road = WheelRoads.bump("left", 0.03, 0.5, (car.wheelbase, car.front_track), position=1.0)
         >>> m = VehicleSimulation(car, road).run(1.0, dt=2e-4).vehicle_measures()
-        >>> m["rms_roll_acceleration"] > 0.0, VEHICLE_MEASURE_UNITS["lift_off_time"]
+        >>> m["roll_ddot_rms"] > 0.0, VEHICLE_MEASURE_UNITS["lift_off_time"]
         (True, 's')
         """
         from mrsuspension.measures import vehicle as MV
@@ -499,8 +491,8 @@ class VehicleResult(SimulationResult):
             return np.asarray(self.signals[name])[keep]
 
         out: dict[str, float] = {}
-        for key, name in (("heave", "heave_ddot"), ("pitch", "pitch_ddot"), ("roll", "roll_ddot")):
-            out[f"rms_{key}_acceleration"] = float(np.sqrt(np.mean(sig(name) ** 2)))
+        for name in ("heave_ddot", "pitch_ddot", "roll_ddot")[: 3 if len(self.corners) == 4 else 2]:
+            out[f"{name}_rms"] = float(np.sqrt(np.mean(sig(name) ** 2)))
         sv = MV.seat_vibration(
             sig("heave_ddot"), sig("pitch_ddot"), sig("roll_ddot"), fs,
             x=place["x"], y=place["y"], height=place["height"], purpose=purpose,
@@ -524,6 +516,15 @@ class VehicleResult(SimulationResult):
         return out
 
 
+#: Per-corner signals of a vehicle only: name -> (unit, description).
+VEHICLE_CORNER_SIGNALS: dict[str, tuple[str, str]] = {
+    "z_s_dot_sensed": (
+        "m/s",
+        "body velocity the controller used (true, or estimated; held over the step)",
+    ),
+}
+_VEHICLE_CORNER_COLUMNS = {"z_s_dot_sensed": VX.RC_VSENSE}
+
 #: Default seat of :meth:`VehicleResult.vehicle_measures`: the driver's, [m] from the
 #: CG (ISO 8855: x forward, y left, height above the pitch and roll axes). An assumption,
 #: not a measured set: a left-hand-drive passenger car's front seats sit near the CG
@@ -533,9 +534,9 @@ DRIVER_SEAT: dict[str, float] = {"x": 0.0, "y": 0.35, "height": 0.5}
 
 #: Units of :meth:`VehicleResult.vehicle_measures` (per-corner names without the corner).
 VEHICLE_MEASURE_UNITS: dict[str, str] = {
-    "rms_heave_acceleration": "m/s^2",
-    "rms_pitch_acceleration": "rad/s^2",
-    "rms_roll_acceleration": "rad/s^2",
+    "heave_ddot_rms": "m/s^2",
+    "pitch_ddot_rms": "rad/s^2",
+    "roll_ddot_rms": "rad/s^2",
     "seat_total": "m/s^2",
     "seat_x": "m/s^2",
     "seat_y": "m/s^2",

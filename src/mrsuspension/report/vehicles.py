@@ -173,9 +173,9 @@ def _full_row(
     return {
         "model": "full car", "road": road_name, "controller": controller,
         "sensing": estimator,
-        "heave RMS [m/s^2]": m["rms_heave_acceleration"],
-        "pitch RMS [rad/s^2]": m["rms_pitch_acceleration"],
-        "roll RMS [rad/s^2]": m["rms_roll_acceleration"],
+        "heave RMS [m/s^2]": m["heave_ddot_rms"],
+        "pitch RMS [rad/s^2]": m["pitch_ddot_rms"],
+        "roll RMS [rad/s^2]": m["roll_ddot_rms"],
         "seat Wk RMS [m/s^2]": m["seat_z"], "seat total [m/s^2]": m["seat_total"],
         **{f"DLC {c}": m[f"DLC.{c}"] for c in res.corners},
     }  # fmt: skip
