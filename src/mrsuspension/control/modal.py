@@ -62,6 +62,7 @@ __all__ = [
     "CORNERS_FULL",
     "CORNERS_HALF",
     "MP_SIZE",
+    "CornerSkyhook",
     "ModalSkyhook",
     "clipped_force",
     "corner_velocity",
@@ -365,3 +366,46 @@ class ModalSkyhook:
         current, zc = np.zeros(f.size), np.zeros(f.size)
         modal_hilo(current, zc, f, vd, self.params())
         return current, zc
+
+
+@dataclass(frozen=True)
+class CornerSkyhook:
+    """Per-corner on-off skyhook: ``F_i = -c_s v_i`` at every corner, hi-lo by :func:`modal_hilo`.
+
+    The classical skyhook on-off law (high current when ``v_i v_d,i < 0``) at every
+    corner of a vehicle, through the same hi-lo kernel as :class:`ModalSkyhook`: on a car
+    with a diagonal ``J J^T`` (CG midway, symmetric tracks) it equals
+    :meth:`ModalSkyhook.corner_equivalent` with the same ``c_s``.
+
+    Parameters
+    ----------
+    damping : float
+        Skyhook damping ``c_s`` [N s/m] (> 0; default 6750 N s/m, spec section 5).
+    low_current, high_current : float
+        Currents [A] as :class:`ModalSkyhook` (0 and 0.5 A).
+
+    Examples
+    --------
+    >>> CornerSkyhook().params().tolist()
+    [6750.0, 6750.0, 6750.0, 0.0, 0.5]
+    """
+
+    damping: float = 6750.0
+    low_current: float = 0.0
+    high_current: float = 0.5
+
+    def __post_init__(self) -> None:
+        check_range("damping", self.damping, 0.0, None, unit="N s/m", low_inclusive=False)
+        check_range("low_current", self.low_current, 0.0, None, unit="A")
+        check_range("high_current", self.high_current, float(self.low_current), None, unit="A")
+
+    def params(self) -> FloatArray:
+        """The kernel parameter vector (``MP_*`` layout; ``c_s`` in every gain).
+
+        Examples
+        --------
+        >>> float(CornerSkyhook(1000.0).params()[MP_CZ])
+        1000.0
+        """
+        c = float(self.damping)
+        return ModalSkyhook(c, c, c, self.low_current, self.high_current).params()

@@ -55,6 +55,7 @@ __all__ = [
     "STROKE_SIZE",
     "BandPassObserver",
     "LeakyIntegrator",
+    "Sensing",
     "StrokeSensor",
     "band_pass_coefficients",
     "band_pass_corner",
@@ -566,6 +567,89 @@ class StrokeSensor:
             )
         n_read = (x.size + step - 1) // step
         return _run_stroke(x, self.noise(n_read), step, float(self.resolution), float(self.fs))
+
+
+@dataclass(frozen=True)
+class Sensing:
+    """What a vehicle's controllers measure: body velocity and suspension stroke.
+
+    The vehicle engine (:class:`~mrsuspension.engine.vehicle.VehicleSimulation`'s
+    ``sensing``) gives every corner's controller the body velocity ``velocity``
+    estimates from that corner's body acceleration (sampled at the estimator's ``fs``
+    and held, the acceleration at the start of the step as a sampled controller reads
+    it) and, with ``stroke``, the stroke and stroke rate that sensor reads. The default
+    is ideal sensing: the true velocity and stroke.
+
+    Parameters
+    ----------
+    velocity : LeakyIntegrator or BandPassObserver, optional
+        The body-velocity estimator of every corner (None: the true velocity).
+    stroke : StrokeSensor, optional
+        The stroke sensor of every corner (None: the true stroke and rate); corner ``i``
+        draws its noise with ``seed + i``.
+
+    Examples
+    --------
+    >>> Sensing().is_ideal
+    True
+    >>> tau = leaky_integrator_tau(1.0, 10.0, fs=1000.0)
+    >>> Sensing(LeakyIntegrator(tau, 1000.0)).describe()["velocity"]["kind"]
+    'leaky-integrator'
+    >>> Sensing("leaky")
+    Traceback (most recent call last):
+    ...
+    mrsuspension.errors.ValidationError: sensing velocity must be None (ideal), a LeakyIntegrator or a BandPassObserver; got 'leaky'
+    """
+
+    velocity: LeakyIntegrator | BandPassObserver | None = None
+    stroke: StrokeSensor | None = None
+
+    def __post_init__(self) -> None:
+        if self.velocity is not None and not isinstance(
+            self.velocity, LeakyIntegrator | BandPassObserver
+        ):
+            raise ValidationError(
+                "sensing velocity must be None (ideal), a LeakyIntegrator or a "
+                f"BandPassObserver; got {self.velocity!r}"
+            )
+        if self.stroke is not None and not isinstance(self.stroke, StrokeSensor):
+            raise ValidationError(
+                f"sensing stroke must be None (ideal) or a StrokeSensor; got {self.stroke!r}"
+            )
+
+    @property
+    def is_ideal(self) -> bool:
+        """True when the controllers get the true velocity and stroke."""
+        return self.velocity is None and self.stroke is None
+
+    def describe(self) -> dict[str, object]:
+        """Plain data: the estimator and the stroke sensor with their settings.
+
+        Examples
+        --------
+        >>> Sensing().describe()
+        {'velocity': {'kind': 'ideal'}, 'stroke': {'kind': 'ideal'}}
+        """
+        v = self.velocity
+        if isinstance(v, LeakyIntegrator):
+            vel: dict[str, object] = {"kind": "leaky-integrator", "tau": v.tau, "fs": v.fs}
+        elif isinstance(v, BandPassObserver):
+            vel = {"kind": "band-pass", "corner": v.corner, "fs": v.fs, "zeta": v.zeta}
+        else:
+            vel = {"kind": "ideal"}
+        st = self.stroke
+        stroke: dict[str, object] = (
+            {"kind": "ideal"}
+            if st is None
+            else {
+                "kind": "sensor",
+                "fs": st.fs,
+                "resolution": st.resolution,
+                "noise_std": st.noise_std,
+                "seed": st.seed,
+            }
+        )
+        return {"velocity": vel, "stroke": stroke}
 
 
 @njit(cache=True)

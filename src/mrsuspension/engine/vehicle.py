@@ -30,6 +30,15 @@ import numpy.typing as npt
 
 from mrsuspension.control import Controller, Passive
 from mrsuspension.control.kernel import F_EXTERNAL
+from mrsuspension.control.modal import CornerSkyhook, ModalSkyhook, distribution_matrix
+from mrsuspension.control.sensing import (
+    BandPassObserver,
+    LeakyIntegrator,
+    Sensing,
+    StrokeSensor,
+    band_pass_coefficients,
+    leaky_integrator_coefficients,
+)
 from mrsuspension.dampers import DamperModel, WangSymmetric
 from mrsuspension.dampers.wang import VEHICLE_VH_VARIANT
 from mrsuspension.engine import kernel as EK
@@ -49,6 +58,9 @@ __all__ = [
     "BODY_SIGNALS",
     "CORNERS_FULL",
     "CORNERS_HALF",
+    "DRIVER_SEAT",
+    "VEHICLE_CORNER_SIGNALS",
+    "VEHICLE_MEASURE_UNITS",
     "SameRoadAtEveryWheel",
     "VehicleArrays",
     "VehicleResult",
@@ -259,8 +271,11 @@ class VehicleArrays:
     ``vehicle`` (``vp``), ``corner_vehicles`` (``cvp``: every corner's quarter car),
     ``force_source`` (``fk``), ``damper_kind`` (``dk``), ``damper_params`` (``dp``),
     ``damper_state`` (``ds``), the damper estimator's ``dek, dep, des``, the
-    controller's ``ck, cp`` and its estimator's ``cek, cep, ces``, and ``memory``
-    (``mem``, the quarter car's ``M_*`` layout per corner). See
+    controller's ``ck, cp`` and its estimator's ``cek, cep, ces``, ``memory``
+    (``mem``, the quarter car's ``M_*`` layout per corner), then sensing and the
+    vehicle-level law: ``sensing_kind`` (``sk``), ``sensing_params`` (``sp``),
+    ``sensing_state`` (``ss``), ``stroke_noise``, ``modal_distribution`` and
+    ``modal_buffer`` (:mod:`~mrsuspension.engine.vehicle_kernel` ``SK_*``, ``SP_*``). See
     :class:`~mrsuspension.engine.arrays.KernelArrays` for the quarter car's.
     """
 
@@ -279,6 +294,12 @@ class VehicleArrays:
     controller_estimator_params: np.ndarray
     controller_estimator_state: np.ndarray
     memory: np.ndarray
+    sensing_kind: np.ndarray
+    sensing_params: np.ndarray
+    sensing_state: np.ndarray
+    stroke_noise: np.ndarray
+    modal_distribution: np.ndarray
+    modal_buffer: np.ndarray
 
     def args(self) -> tuple[Any, ...]:
         """The arrays in the order of :func:`~mrsuspension.engine.vehicle_kernel.step` and
@@ -289,6 +310,8 @@ class VehicleArrays:
             self.damper_estimator_params, self.damper_estimator_state, self.controller_kind,
             self.controller_params, self.controller_estimator_kind,
             self.controller_estimator_params, self.controller_estimator_state, self.memory,
+            self.sensing_kind, self.sensing_params, self.sensing_state, self.stroke_noise,
+            self.modal_distribution, self.modal_buffer,
         )  # fmt: skip
 
 
@@ -367,7 +390,11 @@ class VehicleResult(SimulationResult):
         """
         if name not in self.corners:
             raise unknown_name("corner", str(name), self.corners)
-        signals = {k.split(".")[0]: v for k, v in self.signals.items() if k.endswith(f".{name}")}
+        signals = {
+            k.split(".")[0]: v
+            for k, v in self.signals.items()
+            if k.endswith(f".{name}") and k.split(".")[0] in SIGNALS
+        }
         return SimulationResult(
             time=self.time, signals=signals, scenario=dict(self.corner_scenarios[name]), dt=self.dt
         )
@@ -393,6 +420,8 @@ class VehicleResult(SimulationResult):
                 base, corner = key.split(".", 1)
                 if base in SIGNALS:
                     ds[key].attrs["long_name"] = f"{SIGNALS[base][1]} at {corner}"
+                elif base in VEHICLE_CORNER_SIGNALS:
+                    ds[key].attrs["long_name"] = f"{VEHICLE_CORNER_SIGNALS[base][1]} at {corner}"
         return ds
 
     def plot(
@@ -428,6 +457,124 @@ class VehicleResult(SimulationResult):
             for k, v in self.corner(c).measures(**kwargs).items():
                 out[f"{k}.{c}"] = v
         return out
+
+    def vehicle_measures(
+        self,
+        *,
+        seat: Mapping[str, float] | None = None,
+        purpose: str = "comfort",
+        resistance: float | None = None,
+        start: float = 0.0,
+    ) -> dict[str, float]:
+        """Measures of the whole vehicle, with units in :data:`VEHICLE_MEASURE_UNITS`.
+
+        Body: ``heave_ddot_rms`` [m/s^2], ``pitch_ddot_rms`` and ``roll_ddot_rms``
+        [rad/s^2] (the full car only); the seat (ISO 2631-1,
+        :func:`~mrsuspension.measures.vehicle.seat_vibration`): ``seat_total`` (the
+        vibration total value of ``purpose``) and ``seat_<axis>`` per axis
+        (``seat_z`` is the Wk-weighted vertical RMS); per corner ``"<name>.<corner>"``:
+        ``DLC``, ``lift_off_time`` [s], ``rms_travel`` and ``peak_to_peak_travel`` [m],
+        ``coil_energy`` [J]; and ``coil_energy`` summed over the corners.
+
+        Parameters
+        ----------
+        seat : mapping, optional
+            ``{"x": ..., "y": ..., "height": ...}`` [m] from the CG (forward, left, up),
+            keys left out from :data:`DRIVER_SEAT` (the default: the driver's seat).
+        purpose : {"comfort", "health"}
+            The ISO 2631-1 axis factors of ``seat_total``.
+        resistance : float, optional
+            Coil resistance [ohm] (default :data:`~mrsuspension.measures.vehicle.COIL_RESISTANCE`).
+        start : float
+            Skip the record before this time [s] (a start-up transient).
+
+        Examples
+        --------
+        >>> from mrsuspension.excitation.wheels import WheelRoads
+        >>> from mrsuspension.vehicle import FullCar
+        >>> car = FullCar()
+        >>> road = WheelRoads.bump("left", 0.03, 0.5, (car.wheelbase, car.front_track), position=1.0)
+        >>> m = VehicleSimulation(car, road).run(1.0, dt=2e-4).vehicle_measures()
+        >>> m["roll_ddot_rms"] > 0.0, VEHICLE_MEASURE_UNITS["lift_off_time"]
+        (True, 's')
+        """
+        from mrsuspension.measures import vehicle as MV
+
+        place = dict(DRIVER_SEAT)
+        if seat is not None:
+            for key in seat:
+                if key not in DRIVER_SEAT:
+                    raise unknown_name("seat coordinate", str(key), tuple(DRIVER_SEAT))
+            place.update({k: float(v) for k, v in seat.items()})
+        start = float(check_range("start", start, 0.0, float(self.time[-1]), unit="s",
+                                  high_inclusive=False))  # fmt: skip
+        keep = self.time >= start - 1e-12
+        if np.count_nonzero(keep) < 2:
+            raise ValidationError(f"start = {start:g} s leaves fewer than 2 samples")
+        fs = 1.0 / float(self.time[1] - self.time[0])
+
+        def sig(name: str) -> np.ndarray:
+            return np.asarray(self.signals[name])[keep]
+
+        out: dict[str, float] = {}
+        for name in ("heave_ddot", "pitch_ddot", "roll_ddot")[: 3 if len(self.corners) == 4 else 2]:
+            out[f"{name}_rms"] = float(np.sqrt(np.mean(sig(name) ** 2)))
+        sv = MV.seat_vibration(
+            sig("heave_ddot"), sig("pitch_ddot"), sig("roll_ddot"), fs,
+            x=place["x"], y=place["y"], height=place["height"], purpose=purpose,
+        )  # fmt: skip
+        out["seat_total"] = sv.total
+        for axis, value in sv.weighted_rms.items():
+            out[f"seat_{axis}"] = value
+        corners = self.corners
+        dlc = MV.wheel_dlc({c: sig(f"F_T.{c}") for c in corners})
+        lift = MV.wheel_lift_off_time({c: sig(f"F_T.{c}") for c in corners}, fs)
+        travel = MV.wheel_suspension_travel({c: sig(f"x_d.{c}") for c in corners})
+        r = MV.COIL_RESISTANCE if resistance is None else resistance
+        energy = MV.wheel_coil_energy({c: sig(f"i_d.{c}") for c in corners}, fs, r)
+        for c in corners:
+            out[f"DLC.{c}"] = dlc[c]
+            out[f"lift_off_time.{c}"] = lift[c]
+            out[f"rms_travel.{c}"] = travel[c].rms
+            out[f"peak_to_peak_travel.{c}"] = travel[c].peak_to_peak
+            out[f"coil_energy.{c}"] = energy[c]
+        out["coil_energy"] = float(sum(energy.values()))
+        return out
+
+
+#: Per-corner signals of a vehicle only: name -> (unit, description).
+VEHICLE_CORNER_SIGNALS: dict[str, tuple[str, str]] = {
+    "z_s_dot_sensed": (
+        "m/s",
+        "body velocity the controller used (true, or estimated; held over the step)",
+    ),
+}
+_VEHICLE_CORNER_COLUMNS = {"z_s_dot_sensed": VX.RC_VSENSE}
+
+#: Default seat of :meth:`VehicleResult.vehicle_measures`: the driver's, [m] from the
+#: CG (ISO 8855: x forward, y left, height above the pitch and roll axes). An assumption,
+#: not a measured set: a left-hand-drive passenger car's front seats sit near the CG
+#: lengthwise, the driver about half a seat spacing (0.35 m) left of the centre line and
+#: 0.5 m above the axes. Give your car's seat where you know it.
+DRIVER_SEAT: dict[str, float] = {"x": 0.0, "y": 0.35, "height": 0.5}
+
+#: Units of :meth:`VehicleResult.vehicle_measures` (per-corner names without the corner).
+VEHICLE_MEASURE_UNITS: dict[str, str] = {
+    "heave_ddot_rms": "m/s^2",
+    "pitch_ddot_rms": "rad/s^2",
+    "roll_ddot_rms": "rad/s^2",
+    "seat_total": "m/s^2",
+    "seat_x": "m/s^2",
+    "seat_y": "m/s^2",
+    "seat_z": "m/s^2",
+    "seat_rx": "rad/s^2",
+    "seat_ry": "rad/s^2",
+    "DLC": "-",
+    "lift_off_time": "s",
+    "rms_travel": "m",
+    "peak_to_peak_travel": "m",
+    "coil_energy": "J",
+}
 
 
 def _per_corner(
@@ -469,6 +616,15 @@ class VehicleSimulation:
         body's motion at that corner.
     max_current : float
         Drive-current limit i_max [A] of every corner (0.5).
+    sensing : Sensing, optional
+        What the controllers measure (default: ideal, the true body velocity and
+        stroke): :class:`~mrsuspension.control.sensing.Sensing` with a body-velocity
+        estimator from each corner's accelerometer and a stroke sensor.
+    body_control : ModalSkyhook or CornerSkyhook, optional
+        A law over the whole vehicle instead of the corners' controllers (which must
+        then be left passive): modal skyhook from the body's heave, pitch and roll
+        velocities, or on-off skyhook at every corner; hi-lo currents per corner
+        (:mod:`mrsuspension.control.modal`), from the sensed velocities.
 
     Raises
     ------
@@ -500,6 +656,8 @@ class VehicleSimulation:
     )
     controllers: Controller | Mapping[str, Controller] = field(default_factory=Passive)
     max_current: float = 0.5
+    sensing: Sensing = field(default_factory=Sensing)
+    body_control: ModalSkyhook | CornerSkyhook | None = None
 
     def __post_init__(self) -> None:
         if not isinstance(self.vehicle, HalfCar | FullCar):
@@ -531,6 +689,7 @@ class VehicleSimulation:
             for i, c in enumerate(corners)
         )  # fmt: skip
         object.__setattr__(self, "_corners", sims)
+        self._check_sensing_and_law(controllers)
 
     @property
     def corners(self) -> tuple[str, ...]:
@@ -611,6 +770,7 @@ class VehicleSimulation:
             "vehicle": self.vehicle.describe(),
             "excitation": desc() if desc is not None else repr(self.excitation),
             "max_current": self.max_current,
+            **self._describe_sensing_and_law(),
             "corners": {
                 c: {
                     "damper": self.corner_simulation(c).damper.describe(),
@@ -620,8 +780,30 @@ class VehicleSimulation:
             },
         }
 
-    def arrays(self, dt: float) -> VehicleArrays:
+    def _describe_sensing_and_law(self) -> dict[str, Any]:
+        """``sensing`` and ``body_control`` of :meth:`describe` (omitted when ideal / none,
+        so that earlier descriptions are unchanged)."""
+        out: dict[str, Any] = {}
+        if not self.sensing.is_ideal:
+            out["sensing"] = self.sensing.describe()
+        law = self.body_control
+        if isinstance(law, ModalSkyhook):
+            out["body_control"] = {
+                "law": "modal-skyhook", "heave": law.heave, "pitch": law.pitch,
+                "roll": law.roll, "low_current": law.low_current, "high_current": law.high_current,
+            }  # fmt: skip
+        elif isinstance(law, CornerSkyhook):
+            out["body_control"] = {
+                "law": "corner-skyhook", "damping": law.damping,
+                "low_current": law.low_current, "high_current": law.high_current,
+            }  # fmt: skip
+        return out
+
+    def arrays(self, dt: float, *, n_steps: int | None = None) -> VehicleArrays:
         """The compiled step's arrays at step ``dt`` (fresh states), by name.
+
+        ``n_steps``: the run's length, for the stroke sensor's noise (default: 65536
+        readings, used cyclically by a stepper).
 
         Examples
         --------
@@ -676,7 +858,90 @@ class VehicleSimulation:
             controller_estimator_params=_stack([a.controller_estimator_params for a in ka]),
             controller_estimator_state=_stack([a.controller_estimator_state for a in ka]),
             memory=_stack([a.memory for a in ka]),
+            **self._sensing_arrays(dt, n_steps),
         )
+
+    def _check_sensing_and_law(self, controllers: Sequence[Controller]) -> None:
+        """Validate ``sensing`` and ``body_control`` (the corners' controllers given)."""
+        if not isinstance(self.sensing, Sensing):
+            raise ValidationError(
+                "sensing must be a Sensing object (mrsuspension.control.sensing), e.g. "
+                f"Sensing(LeakyIntegrator(tau=0.92, fs=1000.0)); got {self.sensing!r}"
+            )
+        law = self.body_control
+        if law is None:
+            return
+        if not isinstance(law, ModalSkyhook | CornerSkyhook):
+            raise ValidationError(
+                f"body_control must be a ModalSkyhook or CornerSkyhook object; got {law!r}"
+            )
+        busy = [
+            c for c, k in zip(self.corners, controllers, strict=True) if not isinstance(k, Passive)
+        ]
+        if busy:
+            raise ValidationError(
+                f"body_control sets every corner's current: leave the corners' controllers "
+                f"passive; got controllers at {', '.join(busy)}"
+            )
+        if law.high_current > self.max_current:
+            raise ValidationError(
+                f"body_control high_current must be at most max_current = {self.max_current:g} A; "
+                f"got {law.high_current:g} A"
+            )
+
+    def _sample_every(self, what: str, fs: float, dt: float) -> int:
+        """Steps per sample of a sensor at ``fs`` [Hz]: ``1/(fs dt)``, a whole number."""
+        ratio = 1.0 / (fs * dt)
+        steps = round(ratio)
+        if steps < 1 or abs(ratio - steps) > 1e-6 * ratio:
+            raise ValidationError(
+                f"{what} fs = {fs:g} Hz must divide the step rate 1/dt = {1.0 / dt:g} Hz "
+                f"(a whole number of steps per sample)"
+            )
+        return int(steps)
+
+    def _sensing_arrays(self, dt: float, n_steps: int | None) -> dict[str, np.ndarray]:
+        """The ``sensing_*``, ``stroke_noise`` and ``modal_*`` arrays of :meth:`arrays`."""
+        nc = len(self.corners)
+        sk = np.zeros(VX.SK_SIZE, dtype=np.int64)
+        sp = np.zeros(VX.SP_SIZE)
+        sk[VX.SK_ACC_EVERY] = 1
+        est = self.sensing.velocity
+        if isinstance(est, LeakyIntegrator):
+            sk[VX.SK_KIND] = VX.SENSE_LEAKY
+            sp[VX.SP_COEF : VX.SP_COEF + 2] = leaky_integrator_coefficients(est.tau, est.fs)
+        elif isinstance(est, BandPassObserver):
+            sk[VX.SK_KIND] = VX.SENSE_BAND_PASS
+            sp[VX.SP_COEF : VX.SP_RES] = band_pass_coefficients(est.corner, est.fs, est.zeta)
+        if est is not None:
+            sk[VX.SK_ACC_EVERY] = self._sample_every("the accelerometer's", est.fs, dt)
+        noise = np.zeros((nc, 1))
+        stroke = self.sensing.stroke
+        if stroke is not None:
+            every = self._sample_every("the stroke sensor's", stroke.fs, dt)
+            sk[VX.SK_STROKE_EVERY] = every
+            sp[VX.SP_RES], sp[VX.SP_SFS] = stroke.resolution, stroke.fs
+            m = 65536 if n_steps is None else n_steps // every + 1
+            noise = np.stack([
+                StrokeSensor(stroke.fs, stroke.resolution, stroke.noise_std, stroke.seed + i).noise(m)
+                for i in range(nc)
+            ])  # fmt: skip
+        dist = np.zeros((nc, 3))
+        law = self.body_control
+        if law is not None:
+            sk[VX.SK_LAW] = VX.LAW_MODAL if isinstance(law, ModalSkyhook) else VX.LAW_CORNER_SKYHOOK
+            sp[VX.SP_MP :] = law.params()
+        if isinstance(law, ModalSkyhook) or est is not None:
+            x, y = self.vehicle.corner_positions()
+            dist = distribution_matrix(x, y if isinstance(self.vehicle, FullCar) else None)
+        return {
+            "sensing_kind": sk,
+            "sensing_params": sp,
+            "sensing_state": np.zeros((2 * nc + 1, VX.SS_WIDTH)),
+            "stroke_noise": np.ascontiguousarray(noise),
+            "modal_distribution": np.ascontiguousarray(dist),
+            "modal_buffer": np.zeros((4, nc)),
+        }
 
     def initial_state(self, zr0: np.ndarray) -> np.ndarray:
         """Static equilibrium on the roads ``zr0`` at the wheels: wheels on their road,
@@ -801,7 +1066,7 @@ class VehicleSimulation:
             )
         if not (np.all(np.isfinite(zr)) and np.all(np.isfinite(zrd))):
             raise ValidationError("the wheel input returned a NaN or infinite road value")
-        a = self.arrays(dt)
+        a = self.arrays(dt, n_steps=n)
         y = self.initial_state(zr[:, 0])
         rec = np.zeros((rows, VX.REC_BODY + VX.REC_CORNER * nc))
         scratch = np.zeros((3, y.size))
@@ -855,6 +1120,9 @@ class VehicleSimulation:
             for k, v in sig.items():
                 signals[f"{k}.{c}"] = v
                 units[f"{k}.{c}"] = SIGNALS[k][0]
+            for k, col in _VEHICLE_CORNER_COLUMNS.items():
+                signals[f"{k}.{c}"] = rec[b + col]
+                units[f"{k}.{c}"] = VEHICLE_CORNER_SIGNALS[k][0]
             corner_scenarios[c] = self.corner_simulation(c).describe()
         return VehicleResult(
             time=time, signals=signals, scenario=scenario, dt=dt, units=units,

@@ -13,6 +13,17 @@ quarter car's (:mod:`mrsuspension.engine.kernel`) corner by corner:
 3. evaluate the rates at the new state (record, next step's ``a_d``) and advance every
    damper's internal dynamics.
 
+With sensing (``sk``/``sp``/``ss``, :class:`~mrsuspension.control.sensing.Sensing`), step 1
+gives each corner's controller the body velocity estimated from the corner's acceleration
+at the step's start (:func:`~mrsuspension.control.sensing.leaky_integrator_update` or
+:func:`~mrsuspension.control.sensing.band_pass_update`, sampled every ``SK_ACC_EVERY``
+steps and held) and the stroke sensor's reading
+(:func:`~mrsuspension.control.sensing.stroke_sensor_update`); with a vehicle-level law
+(``SK_LAW``) the corners' currents then come from
+:func:`~mrsuspension.control.modal.modal_forces` (or ``F_i = -c_s v_i``) and
+:func:`~mrsuspension.control.modal.modal_hilo`. Ideal sensing and no law leave the step
+exactly as before.
+
 The damper kernels (:mod:`mrsuspension.dampers.kernels`) and the control laws
 (:mod:`mrsuspension.control.kernel`) are the quarter car's; the sliding-mode reference
 model (3.18) is integrated per corner with the corner's wheel.
@@ -37,6 +48,8 @@ from numba import njit
 from mrsuspension import shaping as _shaping
 from mrsuspension._numba_cache import invalidate_if_changed
 from mrsuspension.control import kernel as CK
+from mrsuspension.control import modal as SM
+from mrsuspension.control import sensing as SN
 from mrsuspension.control.kernel import EST_SHARED, F_EXTERNAL, F_MODEL, P_C0, P_CS, P_MS0
 from mrsuspension.dampers import kernels as DK
 from mrsuspension.dampers.kernels import NO_REFCOUNT
@@ -48,8 +61,9 @@ __all__ = ["check_limits", "rates", "record", "run", "start", "step"]
 
 # the cached entry points inline the damper, shaping, controller, vehicle and engine kernels
 invalidate_if_changed(
-    __file__, DK.__file__, _shaping.__file__, CK.__file__, VK.__file__, EK.__file__
-)
+    __file__, DK.__file__, _shaping.__file__, CK.__file__, VK.__file__, EK.__file__,
+    SM.__file__, SN.__file__,
+)  # fmt: skip
 
 # vp: body then corners; reciprocal masses and inertias (they leave the divisions off the
 # chain of dependent operations from one RK4 stage to the next, as in engine/kernel.py)
@@ -66,8 +80,25 @@ NQ = 4  # states per corner: z_u, z_u', z_0, z_0'
 RB_Z, RB_PITCH, RB_ROLL, RB_VZ, RB_VPITCH, RB_VROLL, RB_AZ, RB_APITCH, RB_AROLL = range(9)
 REC_BODY = 9
 RC_ZS, RC_VS, RC_AS, RC_ZU, RC_VU, RC_AU, RC_ZR, RC_VR, RC_FD, RC_FT = range(10)
-RC_ID, RC_IZ, RC_ZC, RC_TARGET, RC_VM, RC_Z0 = range(10, 16)
-REC_CORNER = 16
+RC_ID, RC_IZ, RC_ZC, RC_TARGET, RC_VM, RC_Z0, RC_VSENSE = range(10, 17)
+REC_CORNER = 17
+
+# sensing and vehicle-level control (VehicleSimulation's ``sensing`` and ``control``):
+# sk (int64): estimator kind, steps per accelerometer sample, steps per stroke-sensor
+# sample (0: the true stroke), vehicle-level law (0: the corners' own controllers)
+SK_KIND, SK_ACC_EVERY, SK_STROKE_EVERY, SK_LAW = range(4)
+SK_SIZE = 4
+SENSE_IDEAL, SENSE_LEAKY, SENSE_BAND_PASS = 0, 1, 2
+LAW_CORNERS, LAW_MODAL, LAW_CORNER_SKYHOOK = 0, 1, 2
+# sp (float): estimator coefficients (leaky: decay, gain; band-pass: Phi, Gamma), the
+# stroke sensor's resolution [m] and rate [Hz], the law's ModalSkyhook.params()
+SP_COEF, SP_RES, SP_SFS, SP_MP = 0, 6, 7, 8
+SP_SIZE = SP_MP + SM.MP_SIZE
+# ss (2 nc + 1 rows, SS_WIDTH): row c the estimator's state (SS_VSENSE: the velocity the
+# controller saw), row nc + c the stroke sensor's (control.sensing.STROKE_SIZE), last row
+# the step count
+SS_VSENSE = 2
+SS_WIDTH = 4
 
 #: Divergence limits: |z| [m] (and |angle| [rad]), |rate| [m/s, rad/s], |F_d| [N], F_T [N].
 LIMITS = np.array([10.0, 100.0, 1e6, 1e7])
@@ -193,15 +224,29 @@ def step(
     cep: np.ndarray,
     ces: np.ndarray,
     mem: np.ndarray,
+    sk: np.ndarray,
+    sp: np.ndarray,
+    ss: np.ndarray,
+    noise: np.ndarray,
+    mdist: np.ndarray,
+    mbuf: np.ndarray,
     scratch: np.ndarray,
     work: np.ndarray,
 ) -> None:
     """Advance ``y`` by one step; each wheel's road at columns ``j, j+1, j+2`` of
     ``zr``/``zrd`` (t, t + dt/2, t + dt). ``scratch``: 5 rows of ``len(y)``; ``work``:
-    ``corners x 8``."""
+    ``corners x 8``. ``sk``, ``sp``, ``ss``, ``noise`` (stroke-sensor noise, ``corners x
+    m``, used cyclically), ``mdist`` (the modal distribution matrix) and ``mbuf`` (``4 x
+    corners``): sensing and the vehicle-level law (``SK_*``, ``SP_*``, ``SS_*``)."""
     nc = int(vp[B_NC])
     n = y.size
     view = work[nc]  # the corner's quarter-car view (6 values)
+    kind = sk[SK_KIND]
+    count = int(ss[2 * nc, 0])
+    ss[2 * nc, 0] = count + 1
+    sample_acc = kind != SENSE_IDEAL and count % sk[SK_ACC_EVERY] == 0
+    stroke_every = sk[SK_STROKE_EVERY]
+    sample_stroke = stroke_every > 0 and count % stroke_every == 0
     for c in range(nc):
         o = B_SIZE + c * CORNER_SIZE
         zs, vs = _corner_body(y, vp[o + C_X], vp[o + C_Y])
@@ -215,12 +260,62 @@ def step(
         else:
             vm = DK.estimator_update(cek[c], cep[c], ces[c], xd, vd, ad)
         mem[c, EK.M_VM] = vm
-        view[0], view[1], view[2], view[3], view[4], view[5] = (
-            zs, vs, y[q], y[q + 1], y[q + 2], y[q + 3]
-        )  # fmt: skip
+        # the body velocity the controller sees: true, or estimated from the corner's
+        # acceleration at the step's start (the previous step's last rates), sampled
+        # every SK_ACC_EVERY steps and held
+        est = ss[c]
+        if kind == SENSE_IDEAL:
+            est[SS_VSENSE] = vs
+        elif sample_acc:
+            if kind == SENSE_LEAKY:
+                v_hat = SN.leaky_integrator_update(
+                    est, mem[c, EK.M_AS], sp[SP_COEF], sp[SP_COEF + 1]
+                )
+            else:
+                v_hat = SN.band_pass_update(est, mem[c, EK.M_AS], sp[SP_COEF:SP_RES])
+            est[SS_VSENSE] = v_hat
+        v_sense = est[SS_VSENSE]
+        view[0], view[1], view[4], view[5] = zs, v_sense, y[q + 2], y[q + 3]
+        if stroke_every > 0:  # the stroke sensor's held reading and rate
+            stroke = ss[nc + c]
+            if sample_stroke:
+                e = noise[c, (count // stroke_every) % noise.shape[1]]
+                SN.stroke_sensor_update(stroke, xd, e, sp[SP_RES], sp[SP_SFS])
+            view[2] = zs + stroke[0]
+            view[3] = v_sense + stroke[1]
+        else:
+            view[2] = y[q]
+            view[3] = y[q + 1] if kind == SENSE_IDEAL else v_sense + vd
         EK.apply_control(ck[c], cp[c], cvp[c], dp[c], view, ad, vm, mem[c])
         work[c, 3] = xd
         work[c, 4] = vd
+        work[c, 5] = v_sense
+        work[c, 6] = view[3] - view[1]  # the damper velocity the controller sees
+    law = sk[SK_LAW]
+    if law != LAW_CORNERS:  # hi-lo from the desired corner forces (control.modal)
+        forces, vds, current, zc = mbuf[0], mbuf[1], mbuf[2], mbuf[3]
+        mp = sp[SP_MP:]
+        if law == LAW_MODAL:
+            if kind == SENSE_IDEAL:
+                vz, pq, pp = y[3], y[4], y[5]
+            else:  # body rates from the corners' estimates: D^T v = (J J^T)^-1 J v
+                vz = pq = pp = 0.0
+                for c in range(nc):
+                    vz += mdist[c, 0] * work[c, 5]
+                    pq += mdist[c, 1] * work[c, 5]
+                    pp += mdist[c, 2] * work[c, 5]
+            SM.modal_forces(forces, mdist, mp, vz, pq, pp)
+        else:  # per-corner skyhook F_i = -c_s v_i
+            for c in range(nc):
+                forces[c] = -mp[SM.MP_CZ] * work[c, 5]
+        for c in range(nc):
+            vds[c] = work[c, 6]
+        SM.modal_hilo(current, zc, forces, vds, mp)
+        for c in range(nc):
+            mem[c, EK.M_ID] = current[c]
+            mem[c, EK.M_IZ] = current[c]
+            mem[c, EK.M_ZC] = zc[c]
+            mem[c, EK.M_TARGET] = forces[c]
     yt = scratch[0]
     k = scratch[1]
     acc = scratch[2]
@@ -291,6 +386,7 @@ def record(
     j: int,
     vp: np.ndarray,
     mem: np.ndarray,
+    ss: np.ndarray,
     dy: np.ndarray,
 ) -> None:
     """Row ``row`` of the record: body columns ``RB_*``, then ``RC_*`` per corner (``dy``:
@@ -322,6 +418,7 @@ def record(
         rec[row, b + RC_TARGET] = mem[c, EK.M_TARGET]
         rec[row, b + RC_VM] = mem[c, EK.M_VM]
         rec[row, b + RC_Z0] = y[q + 2]
+        rec[row, b + RC_VSENSE] = ss[c, SS_VSENSE] if row > 0 else vs
 
 
 @njit(cache=True, inline="always")
@@ -365,6 +462,12 @@ def run(
     cep: np.ndarray,
     ces: np.ndarray,
     mem: np.ndarray,
+    sk: np.ndarray,
+    sp: np.ndarray,
+    ss: np.ndarray,
+    noise: np.ndarray,
+    mdist: np.ndarray,
+    mbuf: np.ndarray,
     decimate: int,
     rec: np.ndarray,
     limits: np.ndarray,
@@ -377,18 +480,18 @@ def run(
     index, value)`` as :func:`mrsuspension.engine.kernel.run`.
     """
     start(y, zr, zrd, 0, vp, cvp, fk, dk, dp, ds, dek, dep, des, ck, cp, mem, scratch, work)
-    record(rec, 0, y, zr, zrd, 0, vp, mem, scratch[1])
+    record(rec, 0, y, zr, zrd, 0, vp, mem, ss, scratch[1])
     row = 1
     for s in range(n_steps):
         j = 2 * s
         step(
             y, dt, zr, zrd, j, vp, cvp, fk, dk, dp, ds, dek, dep, des, ck, cp, cek, cep, ces,
-            mem, scratch, work,
+            mem, sk, sp, ss, noise, mdist, mbuf, scratch, work,
         )  # fmt: skip
         status, q, value = check_limits(y, vp, mem, limits)
         if status != D_OK:
             return status, s + 1, q, value
         if (s + 1) % decimate == 0 and row < rec.shape[0]:
-            record(rec, row, y, zr, zrd, j + 2, vp, mem, scratch[1])  # the step's last rates
+            record(rec, row, y, zr, zrd, j + 2, vp, mem, ss, scratch[1])  # the step's last rates
             row += 1
     return D_OK, n_steps, 0, 0.0

@@ -31,7 +31,7 @@ CHAPTERS: dict[int, str] = {
     6: "ch6",
 }
 #: The report's sections that are not chapters (findings first, beyond last on the page)
-SECTIONS: tuple[str, ...] = ("findings", "beyond")
+SECTIONS: tuple[str, ...] = ("findings", "beyond", "vehicles")
 
 
 def chapter(number: int) -> Chapter:
@@ -68,7 +68,7 @@ def choices() -> tuple[str, ...]:
     Examples
     --------
     >>> choices()
-    ('2', '3', '4', '5', '6', 'findings', 'beyond')
+    ('2', '3', '4', '5', '6', 'findings', 'beyond', 'vehicles')
     """
     return (*(str(n) for n in sorted(CHAPTERS)), *SECTIONS)
 
@@ -87,7 +87,7 @@ def resolve(selection: Iterable[int | str] | None) -> tuple[list[int], set[str]]
     ([2, 4], {'beyond'})
     >>> numbers, sections = resolve(None)
     >>> numbers, sorted(sections)
-    ([2, 3, 4, 5, 6], ['beyond', 'findings'])
+    ([2, 3, 4, 5, 6], ['beyond', 'findings', 'vehicles'])
     """
     if selection is None:
         return sorted(CHAPTERS), set(SECTIONS)
@@ -126,7 +126,7 @@ def parse_chapters(text: str) -> list[int | str]:
     >>> parse_chapters("9")
     Traceback (most recent call last):
     ...
-    mrsuspension.errors.ValidationError: --chapters: unknown chapter '9'. Give chapter numbers (2, 3, 4, 5, 6), 'findings' and/or 'beyond', comma-separated.
+    mrsuspension.errors.ValidationError: --chapters: unknown chapter '9'. Give chapter numbers (2, 3, 4, 5, 6), 'findings' and/or 'beyond' and/or 'vehicles', comma-separated.
     """
     out: list[int | str] = []
     for item in (c.strip() for c in text.split(",")):

@@ -216,10 +216,17 @@ def build_report(
         info["timing"] = _chapter_timing(info["figures"], 0.0)
         info["timing"]["wall time [s]"] = round(built.call_times["beyond"], 2)
         manifest["beyond"] = info
+    if "vehicles" in sections:
+        from mrsuspension.report import vehicles as vehicles_section
+
+        body, info = vehicles_section.build(out / "vehicles", quick, say)
+        bodies.append(wrap_part("vehicles", body))
+        manifest["vehicles"] = info
     elapsed = time.perf_counter() - start
     manifest["run_time_s"] = round(elapsed, 2)
     keys = [*(["findings"] if findings else []), *(f"ch{c}" for c in chosen)]
     keys += ["beyond"] if beyond else []
+    keys += ["vehicles"] if "vehicles" in sections else []
     built_at = time.strftime("%Y-%m-%dT%H:%M:%S%z")
     manifest["parts"] = {
         k: {"built": built_at, "quick": quick, "version": __version__} for k in keys
@@ -248,7 +255,11 @@ def build_report(
     return index
 
 
-_TITLES = {"findings": "Findings scorecard", "beyond": "Beyond the dissertation"}
+_TITLES = {
+    "findings": "Findings scorecard",
+    "beyond": "Beyond the dissertation",
+    "vehicles": "Beyond the quarter car",
+}
 _TITLES.update({f"ch{n}": f"Chapter {n}" for n in range(1, 10)})
 
 

@@ -27,13 +27,18 @@ __all__ = [
 ]
 
 #: the parts of a report in page order (chapters between findings and beyond)
-PART_ORDER: tuple[str, ...] = ("findings", *(f"ch{n}" for n in range(1, 10)), "beyond")
+PART_ORDER: tuple[str, ...] = (
+    "findings",
+    *(f"ch{n}" for n in range(1, 10)),
+    "beyond",
+    "vehicles",
+)
 
 _MARKED = re.compile(
     r"<!-- mrsus-part:(?P<key>[\w-]+) -->(?P<body>.*?)<!-- /mrsus-part:(?P=key) -->", re.S
 )
 # reports written before the markers: each section starts with its <h2 id=...>
-_HEADING = re.compile(r"<h2 id='(?P<key>findings|ch\d+|beyond)'>")
+_HEADING = re.compile(r"<h2 id='(?P<key>findings|ch\d+|beyond|vehicles)'>")
 
 
 def wrap_part(key: str, body: str) -> str:
