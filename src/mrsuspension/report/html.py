@@ -52,6 +52,7 @@ def _build(
     beyond: bool = False,
     formats: Sequence[str] = ("png",),
     check: bool = False,
+    vehicles: bool = False,
 ) -> Any:
     """Run the jobs of ``chapters`` (and the findings scorecard's runs, and the "beyond"
     section) in one process pool (see families.build_all); the pool's results
@@ -78,6 +79,16 @@ def _build(
             "beyond": (
                 _build_beyond,
                 (section.build, out / "beyond", quick, tuple(formats), check),
+            ),
+            **calls,
+        }
+    if vehicles:  # the full-car runs: one task beside the chapters'
+        from mrsuspension.report import vehicles as section_v
+
+        calls = {
+            "vehicles": (
+                _build_beyond,
+                (section_v.build, out / "vehicles", quick, tuple(formats), check),
             ),
             **calls,
         }
@@ -111,7 +122,7 @@ def _build_beyond(
     formats: Sequence[str],
     check: bool,
 ) -> tuple[str, dict[str, Any]]:
-    """The "beyond" section as a task of the report's pool (no progress messages)."""
+    """A section ("beyond", "vehicles") as a task of the report's pool (no progress)."""
     return build(folder, quick, lambda _msg: None, formats=formats, check=check)
 
 
@@ -177,6 +188,7 @@ def build_report(
     chosen, sections = resolve(chapters)
     beyond = "beyond" in sections
     findings = "findings" in sections
+    vehicles = "vehicles" in sections
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     say = progress or (lambda _msg: None)
@@ -193,6 +205,7 @@ def build_report(
         beyond=beyond,
         formats=formats,
         check=check_layout,
+        vehicles=vehicles,
     )
     manifest["pool"] = built.timing
     if findings:
@@ -216,17 +229,17 @@ def build_report(
         info["timing"] = _chapter_timing(info["figures"], 0.0)
         info["timing"]["wall time [s]"] = round(built.call_times["beyond"], 2)
         manifest["beyond"] = info
-    if "vehicles" in sections:
-        from mrsuspension.report import vehicles as vehicles_section
-
-        body, info = vehicles_section.build(out / "vehicles", quick, say)
+    if vehicles:
+        body, info = built.calls["vehicles"]
         bodies.append(wrap_part("vehicles", body))
+        info["timing"] = _chapter_timing(info["figures"], 0.0)
+        info["timing"]["wall time [s]"] = round(built.call_times["vehicles"], 2)
         manifest["vehicles"] = info
     elapsed = time.perf_counter() - start
     manifest["run_time_s"] = round(elapsed, 2)
     keys = [*(["findings"] if findings else []), *(f"ch{c}" for c in chosen)]
     keys += ["beyond"] if beyond else []
-    keys += ["vehicles"] if "vehicles" in sections else []
+    keys += ["vehicles"] if vehicles else []
     built_at = time.strftime("%Y-%m-%dT%H:%M:%S%z")
     manifest["parts"] = {
         k: {"built": built_at, "quick": quick, "version": __version__} for k in keys

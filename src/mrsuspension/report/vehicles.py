@@ -30,7 +30,7 @@ from __future__ import annotations
 
 import html
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -320,14 +320,23 @@ def _summary(data: dict[str, Any]) -> str:
     )
 
 
-def build(folder: Path, quick: bool, progress: Callable[[str], None]) -> tuple[str, dict[str, Any]]:
-    """Build the section into ``folder``; returns its HTML and its manifest entry."""
+def build(
+    folder: Path,
+    quick: bool,
+    progress: Callable[[str], None],
+    formats: Sequence[str] = ("png",),
+    check: bool = False,
+) -> tuple[str, dict[str, Any]]:
+    """Build the section into ``folder``; returns its HTML and its manifest entry.
+
+    ``formats``: figure formats (PNG; SVG too with ``--svg``); ``check``: record each
+    figure's layout issues (:mod:`mrsuspension.report.legibility`) in the manifest.
+    """
     folder.mkdir(parents=True, exist_ok=True)
     data = compute(quick, progress)
     rows, costs = data["rows"], data["costs"]
     write_csv(folder / "vehicle_measures.csv", rows)
     write_csv(folder / "estimator_cost.csv", costs)
-    formats = ("png",) if quick else ("png", "svg")
     figures: list[dict[str, Any]] = []
     sections: list[str] = []
     for number, road_name in (("V.1", ROADS[0]), ("V.2", ROADS[1])):
@@ -344,8 +353,11 @@ def build(folder: Path, quick: bool, progress: Callable[[str], None]) -> tuple[s
             figure=fig,
             data=fig_data,
         )
-        rec.save(folder, formats)
-        figures.append({"number": rec.number, "title": rec.title, "files": rec.files})
+        rec.save(folder, formats, check=check)
+        entry: dict[str, Any] = {"number": rec.number, "title": rec.title, "files": rec.files}
+        if rec.issues is not None:
+            entry["layout issues"] = rec.issues
+        figures.append(entry)
         sections.append(
             f'<figure id="{rec.slug}"><img src="vehicles/{rec.slug}.png" alt="Fig. {rec.number}">'
             f"<figcaption><b>Fig. {html.escape(rec.number)}: {html.escape(rec.title)}.</b> "
