@@ -399,20 +399,19 @@ def lane_sigmoid(u: float) -> float:
 
 
 #: largest exp argument of :func:`lane_wang_latch` that is exact to round-off (beyond,
-#: :func:`exp_neg` clamps; the lane kernel then latches with libm's exp instead)
+#: :func:`exp_neg` clamps; the lane kernel then latches with the scalar kernels instead)
 LANE_EXP_LIMIT = -EXP_NEG_FLOOR
 
 
 @njit(cache=True, inline="always")  # in the lane latch: see the module docstring
 def lane_wang_latch(
-    p: np.ndarray, vm: float, sgn_a: float, i: float, exact: bool
+    p: np.ndarray, vm: float, sgn_a: float, i: float
 ) -> tuple[float, float, float, float, float, float, float]:
     """Every latched term of :func:`wang_latch_motion` and :func:`wang_latch_current`.
 
     Returns ``(alpha/2, v_h + v_b, F_t, F_b, k_d C_i, exp(-a4 v_m), largest |exp
     argument|)``, with the exponentials from :func:`lane_exp` and :func:`lane_sigmoid`
-    (branch-free: a loop over lanes vectorises), or from libm's exp with ``exact``. The
-    formulas are the scalar kernels' own (``*_from``, :func:`hysteresis_slope`,
+    (branch-free: a loop over lanes vectorises). The formulas are the scalar kernels' own (``*_from``, :func:`hysteresis_slope`,
     :func:`wang_shift`, :func:`wang_offset_force`); the results agree with theirs to
     round-off while the largest argument stays within :data:`LANE_EXP_LIMIT`.
 
@@ -424,7 +423,7 @@ def lane_wang_latch(
     >>> s = np.zeros(STATE_SIZE)
     >>> wang_latch_motion(p, s, 0.2, 1.0)
     >>> wang_latch_current(p, s, 0.3)
-    >>> lane = lane_wang_latch(p, 0.2, 1.0, 0.3, False)
+    >>> lane = lane_wang_latch(p, 0.2, 1.0, 0.3)
     >>> exact = (s[WS_HALF_ALPHA], s[WS_SHIFT], s[WS_FT], s[WS_FB], s[WS_CI], s[WS_DECAY])
     >>> all(abs(a - b) <= 1e-15 * abs(b) for a, b in zip(lane[:6], exact))
     True
@@ -433,13 +432,9 @@ def lane_wang_latch(
     x4 = -p[W_A4] * vm
     u2 = p[W_A2] * (i + p[W_I0])
     u3 = p[W_A3] * (i + p[W_I1])
-    if exact:
-        growth, decay = math.exp(x1), math.exp(x4)
-        s2, s3 = sigmoid(u2), sigmoid(u3)
-    else:
-        growth, decay = lane_exp(x1), lane_exp(x4)
-        s2, s3 = lane_sigmoid(u2), lane_sigmoid(u3)
-    ft = transition_force_from(p, growth)
+    decay = lane_exp(x4)
+    ft = transition_force_from(p, lane_exp(x1))
+    s2, s3 = lane_sigmoid(u2), lane_sigmoid(u3)
     ci = current_gain_from(p, s2)
     shift = wang_shift(p, sgn_a, vm, hysteresis_factor_from(p, s3))
     largest = max(max(abs(x1), abs(x4)), max(abs(u2), abs(u3)))

@@ -130,7 +130,20 @@ L_VM, L_SGN, L_I, L_ARG = range(4)
 N_LAT = 4
 
 
-@njit(cache=True, inline="always")
+#: numba options of the functions only the vectorised lane loops call: compiled once each
+#: and inlined by LLVM, like :data:`~mrsuspension._numba_cache.INLINED`, but with the
+#: lanes' error model and contraction (no division checks, fused multiply-adds), which the
+#: vectoriser needs. numba's IR inlining of the four stages and the final rates made
+#: ``lane_stages`` take 2.6 s of CPU to compile; inlined by LLVM 0.7 s, at the same speed.
+LANE_INLINED: dict[str, Any] = {
+    "forceinline": True,
+    "_nrt": False,
+    "error_model": "numpy",
+    "fastmath": {"contract"},
+}
+
+
+@njit(cache=True, **LANE_INLINED)
 def _lane_rates(
     zs: float,
     vs: float,
@@ -162,7 +175,7 @@ def _lane_rates(
     return a_s, a_u, a_0, fd, ft
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, **LANE_INLINED)
 def _lane_stage(
     y: tuple[float, float, float, float, float, float],
     t: tuple[float, float, float, float, float, float],
@@ -239,36 +252,38 @@ def lane_stages(
         lout[O_FD * n + q], lout[O_FT * n + q] = fd, ft
 
 
-@njit(cache=True, inline="always")
-def _latch_lanes(lat: np.ndarray, lin: np.ndarray, dp: np.ndarray, exact: bool) -> None:
-    """The damper's latched terms of every lane (:func:`~mrsuspension.dampers.kernels.lane_wang_latch`)."""
-    n = LANES
-    for q in range(LANES):
-        ha, sh, ft, fb, kdci, dec, arg = DK.lane_wang_latch(
-            dp, lat[L_VM * n + q], lat[L_SGN * n + q], lat[L_I * n + q], exact
-        )
-        lin[I_HA * n + q], lin[I_SH * n + q], lin[I_FT * n + q] = ha, sh, ft
-        lin[I_FB * n + q], lin[I_KDCI * n + q], lin[I_DEC * n + q] = fb, kdci, dec
-        lat[L_ARG * n + q] = arg
-
-
 @njit(cache=True, error_model="numpy", fastmath={"contract"}, **NO_REFCOUNT)
-def lane_latch(lat: np.ndarray, lin: np.ndarray, dp: np.ndarray) -> None:
+def lane_latch(lat: np.ndarray, lin: np.ndarray, dp: np.ndarray, dss: np.ndarray) -> None:
     """Latch the damper of every lane from ``lat`` (:data:`N_LAT` fields) into ``lin``.
 
     The step's part of :func:`~mrsuspension.dampers.kernels.wang_latch_motion` and
     :func:`~mrsuspension.dampers.kernels.wang_latch_current`, as one loop over the lanes
     that compiles to vector instructions (their four exps per run and step were the
-    largest per-run cost). When an exp argument exceeds
-    :data:`~mrsuspension.dampers.kernels.LANE_EXP_LIMIT` (beyond any identified set),
-    the lanes latch again with libm's exp.
+    largest per-run cost: :func:`~mrsuspension.dampers.kernels.lane_wang_latch`). When
+    an exp argument exceeds :data:`~mrsuspension.dampers.kernels.LANE_EXP_LIMIT` (beyond
+    any identified set), the lanes latch again with the scalar kernels, in the lanes'
+    damper states ``dss``.
     """
-    _latch_lanes(lat, lin, dp, False)
+    n = LANES
+    for q in range(LANES):
+        ha, sh, ft, fb, kdci, dec, arg = DK.lane_wang_latch(
+            dp, lat[L_VM * n + q], lat[L_SGN * n + q], lat[L_I * n + q]
+        )
+        lin[I_HA * n + q], lin[I_SH * n + q], lin[I_FT * n + q] = ha, sh, ft
+        lin[I_FB * n + q], lin[I_KDCI * n + q], lin[I_DEC * n + q] = fb, kdci, dec
+        lat[L_ARG * n + q] = arg
     largest = 0.0
     for q in range(LANES):
-        largest = max(largest, lat[L_ARG * LANES + q])
-    if not largest <= DK.LANE_EXP_LIMIT:
-        _latch_lanes(lat, lin, dp, True)
+        largest = max(largest, lat[L_ARG * n + q])
+    if largest <= DK.LANE_EXP_LIMIT:
+        return
+    for q in range(LANES):
+        s = dss[q]
+        DK.wang_latch_motion(dp, s, lat[L_VM * n + q], lat[L_SGN * n + q])
+        DK.wang_latch_current(dp, s, lat[L_I * n + q])
+        lin[I_HA * n + q], lin[I_SH * n + q] = s[DK.WS_HALF_ALPHA], s[DK.WS_SHIFT]
+        lin[I_FT * n + q], lin[I_FB * n + q] = s[DK.WS_FT], s[DK.WS_FB]
+        lin[I_KDCI * n + q], lin[I_DEC * n + q] = dp[DK.W_KD] * s[DK.WS_CI], s[DK.WS_DECAY]
 
 
 @njit(cache=True, inline="always")
@@ -280,7 +295,7 @@ def _output(
     """Output sample ``row`` of run ``j``: a record row, or (``reduced``) its accumulators
     (:func:`~mrsuspension.engine.reduced.accumulate`) and, with a ``trace``, ``z_s''``."""
     if reduced:
-        RD.accumulate(acc[j], row, starts[j], shifts[j], thresholds[j], y, zr, mem)
+        RD.accumulate(acc[j], row >= starts[j], shifts[j], thresholds[j], y, zr, mem)
         if trace.size > 0:
             trace[rec_row] = mem[EK.M_AS]
     else:
@@ -410,7 +425,7 @@ def run_lanes_kernel(
             lin[I_R0 * n + q], lin[I_D0 * n + q] = zr[q, o], zrd[q, o]
             lin[I_R1 * n + q], lin[I_D1 * n + q] = zr[q, o + 1], zrd[q, o + 1]
             lin[I_R2 * n + q], lin[I_D2 * n + q] = zr[q, o + 2], zrd[q, o + 2]
-        lane_latch(lat, lin, dp)
+        lane_latch(lat, lin, dp, dss)
         lane_stages(lin, lout, dt, k1c, k1e, consts, reference)
         for q in range(LANES):
             j = lane_run[q]
