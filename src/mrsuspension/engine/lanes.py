@@ -4,9 +4,10 @@ A frequency sweep runs the same car, damper and controller under many road input
 scalar step (:func:`mrsuspension.engine.kernel.step`) is a chain of dependent operations
 (five damper evaluations per step, each waiting for the previous one), so one run leaves
 most of the core idle. Here :data:`LANES` runs advance together: each step, the
-per-run bookkeeping (peak-velocity estimator, latching, controller, checks, record) runs
-run by run with the scalar kernels, and the RK4 stages of all the runs (where the time
-goes) run as one loop over the lanes that compiles to vector instructions. When a run
+per-run bookkeeping (peak-velocity estimators, controller, checks, record) runs run by run
+with the scalar kernels, and the damper's latching (:func:`lane_latch`) and the RK4
+stages of all the runs (where the time goes) run as loops over the lanes that compile to
+vector instructions. When a run
 ends, its lane takes the next one, so lanes stay busy whatever the run lengths.
 
 Three things make that loop vectorise: it calls nothing (the damper's tanh uses
