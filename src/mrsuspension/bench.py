@@ -212,12 +212,28 @@ print(time.perf_counter() - t0)
 """
 
 
-def _fresh_compile() -> float:
+#: the fresh compile of the sweep's path: the lane kernel reducing to measures (10 s runs)
+_COMPILE_LANES_SCRIPT = """
+import time
+from mrsuspension.control import HiLo
+from mrsuspension.engine import Simulation
+from mrsuspension.engine.lanes import run_lanes
+from mrsuspension.excitation import Harmonic
+sim = Simulation(Harmonic(2.0, {a!r}), controller=HiLo(1, mode="SCM"))
+t0 = time.perf_counter()
+run_lanes([sim, sim], duration=10.0, measures=True)
+print(time.perf_counter() - t0)
+"""
+
+
+def _fresh_compile(script: str = _COMPILE_SCRIPT) -> float:
     """Seconds to compile the engine's run loop, and every kernel it calls, from nothing.
 
     Timed in a fresh process whose numba cache (``NUMBA_CACHE_DIR``) is an empty folder:
     the kernels are compiled once each (:data:`~mrsuspension._numba_cache.INLINED`), so
     in this process they are already compiled and only a new process shows the cost.
+    ``script`` prints the seconds its timed call took (default: a 10-step run; the lane
+    kernel's with :data:`_COMPILE_LANES_SCRIPT`).
     """
     import subprocess
     import sys
@@ -226,7 +242,7 @@ def _fresh_compile() -> float:
     with tempfile.TemporaryDirectory(prefix="mrsus-compile-") as cache:
         env = {**os.environ, "NUMBA_CACHE_DIR": cache}
         done = subprocess.run(
-            [sys.executable, "-c", _COMPILE_SCRIPT.format(f=F, a=A)],
+            [sys.executable, "-c", script.format(f=F, a=A)],
             env=env,
             capture_output=True,
             text=True,
@@ -272,9 +288,9 @@ def run_benchmarks(
     """Time the engine and its baselines; see the module docstring for what is compared.
 
     ``quick`` simulates 1 s instead of 10 s and sweeps 6 frequencies instead of 60;
-    ``fresh_compile`` (default: not quick) also times, in a new process with an empty
+    ``fresh_compile`` (default: not quick) also times, in new processes with an empty
     numba cache, the first 10-step run: the engine's compilation (``compile_s``; None when
-    skipped).
+    skipped), and the first lane batch with in-kernel measures (``compile_lanes_s``).
     """
     from mrsuspension.control import HiLo, Passive, SlidingMode
     from mrsuspension.dampers import WangSymmetric
@@ -293,9 +309,10 @@ def run_benchmarks(
     from mrsuspension.engine.lanes import run_lanes
 
     run_lanes([sim, sim], duration=0.01)  # the lane kernel too: timings exclude compiling
-    compile_s = None
+    compile_s = compile_lanes_s = None
     if fresh_compile if fresh_compile is not None else not quick:
         compile_s = _fresh_compile()
+        compile_lanes_s = _fresh_compile(_COMPILE_LANES_SCRIPT)
 
     n_single = round(duration / 1e-4)
     # the road samples (z_r, z_r' every dt/2) are computed before the loop
@@ -379,6 +396,7 @@ def run_benchmarks(
         "sweep_s_median": float(np.median(swept["sweep"])),
         # core time per run and step: comparable with single_run_ns_per_step
         "sweep_ns_per_run_step": sweep_s * cores / steps * 1e9,
+        "sweep_ns_per_run_step_median": float(np.median(swept["sweep"])) * cores / steps * 1e9,
         "sweep_workers": cores,
         # the same sweep run by run (lanes=False) with post-processed measures: the baseline
         "sweep_run_by_run_s": run_by_run_s,
@@ -393,6 +411,8 @@ def run_benchmarks(
         # the sweep's time if each core ran its share at the single run's cost per step
         "sweep_at_single_run_speed_s": steps * single / n_single / cores,
         "compile_s": compile_s,
+        # the same from an empty cache for the sweep's path (lane kernel, in-kernel measures)
+        "compile_lanes_s": compile_lanes_s,
         "first_call_s": first_call,
         # 1-minute load average before and after: other processes share the cores
         "load_average": [load_before, _load_average()],

@@ -92,6 +92,15 @@ def _warm_engine() -> None:
     RoadProfile(np.arange(4.0), np.zeros(4)).sample_grid(3, 1e-4)
 
 
+def _warm_reduced() -> None:
+    from mrsuspension.engine import Simulation
+    from mrsuspension.engine.reduced import run_measures
+    from mrsuspension.excitation import Harmonic
+
+    # the shortest harmonic run with a steady-state window (5 s settling, 5 s of cycles)
+    run_measures(Simulation(Harmonic(2.0, 0.01)), duration=10.0)
+
+
 def _warm_lanes() -> None:
     from mrsuspension.engine import Simulation
     from mrsuspension.engine.lanes import run_lanes
@@ -99,6 +108,7 @@ def _warm_lanes() -> None:
 
     sim = Simulation(Harmonic(2.0, 0.01))
     run_lanes([sim, sim], duration=0.01)
+    run_lanes([sim, sim], duration=10.0, measures=True)  # the same kernel, reducing
 
 
 def _warm_stepper() -> None:
@@ -136,7 +146,8 @@ def _warm_identify() -> None:
 #: what :func:`warm_kernels` compiles: (what, a call that compiles it, or loads it)
 WARM_STEPS: tuple[tuple[str, Callable[[], None]], ...] = (
     ("engine run loop (simulate, sweep, study, report)", _warm_engine),
-    ("lane kernel (sweeps in lane batches)", _warm_lanes),
+    ("engine run loop reducing to measures (runs of sweeps outside lanes)", _warm_reduced),
+    ("lane kernel, recording or reducing to measures (sweeps, studies)", _warm_lanes),
     ("tick-by-tick step and simulated rig (hil)", _warm_stepper),
     ("damper force, response and inverse (damper)", _warm_dampers),
     ("time-domain record (identify)", _warm_identify),
@@ -153,8 +164,8 @@ def warm_kernels(say: Callable[[str], None] = lambda _m: None) -> list[dict[str,
     Examples
     --------
     >>> rows = warm_kernels()
-    >>> [r["what"].split(" (")[0] for r in rows][:2]
-    ['engine run loop', 'lane kernel']
+    >>> [r["what"].split(" (")[0] for r in rows][:3]
+    ['engine run loop', 'engine run loop reducing to measures', 'lane kernel, recording or reducing to measures']
     """
     rows = []
     for i, (what, call) in enumerate(WARM_STEPS, 1):

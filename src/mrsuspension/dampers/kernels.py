@@ -106,10 +106,17 @@ CR_HEAD, CR_COUNT, CR_SUM, CR_RING = 0, 1, 2, 3
 @njit(cache=True, **INLINED)
 def sigmoid(u: float) -> float:
     """Logistic function 1/(1+exp(-u)), evaluated without overflow."""
-    if u >= 0.0:
-        return 1.0 / (1.0 + math.exp(-u))
-    e = math.exp(u)
-    return e / (1.0 + e)
+    return sigmoid_from(u, math.exp(-abs(u)))
+
+
+@njit(cache=True, inline="always")  # in the lane latch: see the module docstring
+def sigmoid_from(u: float, t: float) -> float:
+    """The logistic function from ``t = exp(-|u|)`` (so it never overflows).
+
+    ``1/(1 + t)`` for ``u >= 0``, ``t/(1 + t)`` below: one formula for :func:`sigmoid`
+    (libm's exp) and :func:`lane_sigmoid`.
+    """
+    return (1.0 if u >= 0.0 else t) / (1.0 + t)
 
 
 #: |u| below which :func:`fast_tanh` uses its rational form (else its exp form)
@@ -259,7 +266,16 @@ def wang_derive(p: np.ndarray) -> None:
 @njit(cache=True, **INLINED)
 def current_gain(p: np.ndarray, i: float) -> float:
     """C_i(i) = 1 + k2 sigma(a2 (i + I0)) - k2 sigma(a2 I0), eq. (2.9); C_i(0) = 1."""
-    return 1.0 + p[W_K2] * (sigmoid(p[W_A2] * (i + p[W_I0])) - p[W_SA2])
+    return current_gain_from(p, sigmoid(p[W_A2] * (i + p[W_I0])))
+
+
+# The formulas below take their exponentials as arguments (``*_from``): the scalar
+# kernels pass libm's, the lane latch (lane_wang_latch) vectorisable ones; one copy of
+# each equation.
+@njit(cache=True, inline="always")
+def current_gain_from(p: np.ndarray, sig: float) -> float:
+    """C_i of eq. (2.9) from ``sig = sigma(a2 (i + I0))``."""
+    return 1.0 + p[W_K2] * (sig - p[W_SA2])
 
 
 @njit(cache=True, **INLINED)
@@ -267,16 +283,28 @@ def hysteresis_current_factor(p: np.ndarray, i: float) -> float:
     """H(i) of eq. (2.12); 1 for the simplified (2.13) variant."""
     if p[W_VHI] == 0.0:
         return 1.0
-    return 1.0 + p[W_K3] * (sigmoid(p[W_A3] * (i + p[W_I1])) - p[W_SA3])
+    return hysteresis_factor_from(p, sigmoid(p[W_A3] * (i + p[W_I1])))
+
+
+@njit(cache=True, inline="always")
+def hysteresis_factor_from(p: np.ndarray, sig: float) -> float:
+    """H of eq. (2.12) from ``sig = sigma(a3 (i + I1))`` (1 for the (2.13) variant)."""
+    return 1.0 + p[W_K3] * (sig - p[W_SA3]) if p[W_VHI] != 0.0 else 1.0
 
 
 @njit(cache=True, **INLINED)
 def transition_force(p: np.ndarray, vm: float) -> float:
     """F_t = F0 (1 + exp(a1 v_m)), eq. (2.7)."""
-    return p[W_F0] * (1.0 + math.exp(p[W_A1] * vm))
+    return transition_force_from(p, math.exp(p[W_A1] * vm))
 
 
-@njit(cache=True, **INLINED)
+@njit(cache=True, inline="always")
+def transition_force_from(p: np.ndarray, growth: float) -> float:
+    """F_t of eq. (2.7) from ``growth = exp(a1 v_m)``."""
+    return p[W_F0] * (1.0 + growth)
+
+
+@njit(cache=True, inline="always")  # in the lane latch: no call, no division check
 def hysteresis_slope(p: np.ndarray, vm: float) -> float:
     """alpha = a0 / (1 + k0 v_m), eq. (2.11)."""
     return p[W_A0] / (1.0 + p[W_K0] * vm)
@@ -324,8 +352,96 @@ def wang_latch_current(p: np.ndarray, s: np.ndarray, i: float) -> None:
     vm = s[WS_VM]
     s[WS_I] = i
     s[WS_CI] = ci
-    s[WS_SHIFT] = s[WS_SGN] * p[W_K4] * vm * hysteresis_current_factor(p, i) + p[W_K6] * vm
-    s[WS_FB] = p[W_K5] * ci * s[WS_FT]
+    s[WS_SHIFT] = wang_shift(p, s[WS_SGN], vm, hysteresis_current_factor(p, i))
+    s[WS_FB] = wang_offset_force(p, ci, s[WS_FT])
+
+
+@njit(cache=True, inline="always")
+def wang_shift(p: np.ndarray, sgn_a: float, vm: float, h: float) -> float:
+    """Velocity shift ``v_h + v_b``: ``sgn(a_d) k4 v_m H + k6 v_m`` (2.12)/(2.13)/(2.20)."""
+    return sgn_a * p[W_K4] * vm * h + p[W_K6] * vm
+
+
+@njit(cache=True, inline="always")
+def wang_offset_force(p: np.ndarray, ci: float, ft: float) -> float:
+    """Force offset ``F_b = k5 C_i F_t`` of eq. (2.19)."""
+    return p[W_K5] * ci * ft
+
+
+@njit(cache=True, inline="always")  # in the lane latch: see the module docstring
+def lane_exp(x: float) -> float:
+    """exp(x) for ``|x| <= -EXP_NEG_FLOOR`` in vectorisable arithmetic (clamped beyond).
+
+    :func:`exp_neg` of ``-|x|``, inverted for positive ``x`` (within 2.5 ulp of libm's).
+
+    Examples
+    --------
+    >>> import math
+    >>> all(abs(lane_exp(x) - math.exp(x)) <= 6e-16 * math.exp(x)
+    ...     for x in (-39.0, -1.0, 0.0, 0.3, 3.9, 39.0))
+    True
+    """
+    t = exp_neg(-abs(x))
+    return 1.0 / t if x > 0.0 else t
+
+
+@njit(cache=True, inline="always")  # in the lane latch: see the module docstring
+def lane_sigmoid(u: float) -> float:
+    """:func:`sigmoid` with :func:`exp_neg` (vectorisable; exact to round-off for |u| <= 40).
+
+    Examples
+    --------
+    >>> all(abs(lane_sigmoid(u) - sigmoid(u)) <= 4e-16 * sigmoid(u)
+    ...     for u in (-30.0, -1.0, 0.0, 0.5, 12.0))
+    True
+    """
+    return sigmoid_from(u, exp_neg(-abs(u)))
+
+
+#: largest exp argument of :func:`lane_wang_latch` that is exact to round-off (beyond,
+#: :func:`exp_neg` clamps; the lane kernel then latches with the scalar kernels instead)
+LANE_EXP_LIMIT = -EXP_NEG_FLOOR
+
+
+@njit(cache=True, inline="always")  # in the lane latch: see the module docstring
+def lane_wang_latch(
+    p: np.ndarray, vm: float, sgn_a: float, i: float
+) -> tuple[float, float, float, float, float, float, float]:
+    """Every latched term of :func:`wang_latch_motion` and :func:`wang_latch_current`.
+
+    Returns ``(alpha/2, v_h + v_b, F_t, F_b, k_d C_i, exp(-a4 v_m), largest |exp
+    argument|)``, with the exponentials from :func:`lane_exp` and :func:`lane_sigmoid`
+    (branch-free: a loop over lanes vectorises). The formulas are the scalar kernels' own (``*_from``, :func:`hysteresis_slope`,
+    :func:`wang_shift`, :func:`wang_offset_force`); the results agree with theirs to
+    round-off while the largest argument stays within :data:`LANE_EXP_LIMIT`.
+
+    Examples
+    --------
+    >>> p = np.zeros(W_SIZE)
+    >>> p[W_A0], p[W_A1], p[W_F0], p[W_K2], p[W_A2], p[W_A4], p[W_KD] = 900.0, 5.0, 60.0, 9.0, 7.0, 7.5, 1.0
+    >>> wang_derive(p)
+    >>> s = np.zeros(STATE_SIZE)
+    >>> wang_latch_motion(p, s, 0.2, 1.0)
+    >>> wang_latch_current(p, s, 0.3)
+    >>> lane = lane_wang_latch(p, 0.2, 1.0, 0.3)
+    >>> exact = (s[WS_HALF_ALPHA], s[WS_SHIFT], s[WS_FT], s[WS_FB], s[WS_CI], s[WS_DECAY])
+    >>> all(abs(a - b) <= 1e-15 * abs(b) for a, b in zip(lane[:6], exact))
+    True
+    """
+    x1 = p[W_A1] * vm
+    x4 = -p[W_A4] * vm
+    u2 = p[W_A2] * (i + p[W_I0])
+    u3 = p[W_A3] * (i + p[W_I1])
+    decay = lane_exp(x4)
+    ft = transition_force_from(p, lane_exp(x1))
+    s2, s3 = lane_sigmoid(u2), lane_sigmoid(u3)
+    ci = current_gain_from(p, s2)
+    shift = wang_shift(p, sgn_a, vm, hysteresis_factor_from(p, s3))
+    largest = max(max(abs(x1), abs(x4)), max(abs(u2), abs(u3)))
+    return (
+        0.5 * hysteresis_slope(p, vm), shift, ft, wang_offset_force(p, ci, ft),
+        p[W_KD] * ci, decay, largest,
+    )  # fmt: skip
 
 
 @njit(cache=True, **INLINED)

@@ -4,9 +4,10 @@ A frequency sweep runs the same car, damper and controller under many road input
 scalar step (:func:`mrsuspension.engine.kernel.step`) is a chain of dependent operations
 (five damper evaluations per step, each waiting for the previous one), so one run leaves
 most of the core idle. Here :data:`LANES` runs advance together: each step, the
-per-run bookkeeping (peak-velocity estimator, latching, controller, checks, record) runs
-run by run with the scalar kernels, and the RK4 stages of all the runs (where the time
-goes) run as one loop over the lanes that compiles to vector instructions. When a run
+per-run bookkeeping (peak-velocity estimators, controller, checks, record) runs run by run
+with the scalar kernels, and the damper's latching (:func:`lane_latch`) and the RK4
+stages of all the runs (where the time goes) run as loops over the lanes that compile to
+vector instructions. When a run
 ends, its lane takes the next one, so lanes stay busy whatever the run lengths.
 
 Three things make that loop vectorise: it calls nothing (the damper's tanh uses
@@ -124,9 +125,26 @@ LANES = 16
 N_IN = 18
 O_ZS, O_VS, O_ZU, O_VU, O_Z0, O_V0, O_AS, O_AU, O_A0, O_FD, O_FT = range(11)
 N_OUT = 11
+# fields of the latch input (what the damper latches from: v_m, sgn(a_d), i_d) and the
+# latch's largest exp argument per lane
+L_VM, L_SGN, L_I, L_ARG = range(4)
+N_LAT = 4
 
 
-@njit(cache=True, inline="always")
+#: numba options of the functions only the vectorised lane loops call: compiled once each
+#: and inlined by LLVM, like :data:`~mrsuspension._numba_cache.INLINED`, but with the
+#: lanes' error model and contraction (no division checks, fused multiply-adds), which the
+#: vectoriser needs. numba's IR inlining of the four stages and the final rates made
+#: ``lane_stages`` take 2.6 s of CPU to compile; inlined by LLVM 0.7 s, at the same speed.
+LANE_INLINED: dict[str, Any] = {
+    "forceinline": True,
+    "_nrt": False,
+    "error_model": "numpy",
+    "fastmath": {"contract"},
+}
+
+
+@njit(cache=True, **LANE_INLINED)
 def _lane_rates(
     zs: float,
     vs: float,
@@ -158,7 +176,7 @@ def _lane_rates(
     return a_s, a_u, a_0, fd, ft
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, **LANE_INLINED)
 def _lane_stage(
     y: tuple[float, float, float, float, float, float],
     t: tuple[float, float, float, float, float, float],
@@ -235,6 +253,40 @@ def lane_stages(
         lout[O_FD * n + q], lout[O_FT * n + q] = fd, ft
 
 
+@njit(cache=True, error_model="numpy", fastmath={"contract"}, **NO_REFCOUNT)
+def lane_latch(lat: np.ndarray, lin: np.ndarray, dp: np.ndarray, dss: np.ndarray) -> None:
+    """Latch the damper of every lane from ``lat`` (:data:`N_LAT` fields) into ``lin``.
+
+    The step's part of :func:`~mrsuspension.dampers.kernels.wang_latch_motion` and
+    :func:`~mrsuspension.dampers.kernels.wang_latch_current`, as one loop over the lanes
+    that compiles to vector instructions (their four exps per run and step were the
+    largest per-run cost: :func:`~mrsuspension.dampers.kernels.lane_wang_latch`). When
+    an exp argument exceeds :data:`~mrsuspension.dampers.kernels.LANE_EXP_LIMIT` (beyond
+    any identified set), the lanes latch again with the scalar kernels, in the lanes'
+    damper states ``dss``.
+    """
+    n = LANES
+    for q in range(LANES):
+        ha, sh, ft, fb, kdci, dec, arg = DK.lane_wang_latch(
+            dp, lat[L_VM * n + q], lat[L_SGN * n + q], lat[L_I * n + q]
+        )
+        lin[I_HA * n + q], lin[I_SH * n + q], lin[I_FT * n + q] = ha, sh, ft
+        lin[I_FB * n + q], lin[I_KDCI * n + q], lin[I_DEC * n + q] = fb, kdci, dec
+        lat[L_ARG * n + q] = arg
+    largest = 0.0
+    for q in range(LANES):
+        largest = max(largest, lat[L_ARG * n + q])
+    if largest <= DK.LANE_EXP_LIMIT:
+        return
+    for q in range(LANES):
+        s = dss[q]
+        DK.wang_latch_motion(dp, s, lat[L_VM * n + q], lat[L_SGN * n + q])
+        DK.wang_latch_current(dp, s, lat[L_I * n + q])
+        lin[I_HA * n + q], lin[I_SH * n + q] = s[DK.WS_HALF_ALPHA], s[DK.WS_SHIFT]
+        lin[I_FT * n + q], lin[I_FB * n + q] = s[DK.WS_FT], s[DK.WS_FB]
+        lin[I_KDCI * n + q], lin[I_DEC * n + q] = dp[DK.W_KD] * s[DK.WS_CI], s[DK.WS_DECAY]
+
+
 @njit(cache=True, inline="always")
 def _output(
     reduced: bool, rec: np.ndarray, rec_row: int, row: int, j: int, acc: np.ndarray,
@@ -244,7 +296,7 @@ def _output(
     """Output sample ``row`` of run ``j``: a record row, or (``reduced``) its accumulators
     (:func:`~mrsuspension.engine.reduced.accumulate`) and, with a ``trace``, ``z_s''``."""
     if reduced:
-        RD.accumulate(acc[j], row, starts[j], shifts[j], thresholds[j], y, zr, mem)
+        RD.accumulate(acc[j], row >= starts[j], shifts[j], thresholds[j], y, zr, mem)
         if trace.size > 0:
             trace[rec_row] = mem[EK.M_AS]
     else:
@@ -255,7 +307,7 @@ def _output(
 def _start_lane(
     j: int, y: np.ndarray, mem: np.ndarray, ds: np.ndarray, des: np.ndarray, ces: np.ndarray,
     ds0: np.ndarray, des0: np.ndarray, ces0: np.ndarray, zr: float, zrd: float, vp: np.ndarray,
-    dk: int, dp: np.ndarray, dek: int, dep: np.ndarray, ck: int, cp: np.ndarray, cek: int,
+    fk: int, dk: int, dp: np.ndarray, dek: int, dep: np.ndarray, ck: int, cp: np.ndarray, cek: int,
     cep: np.ndarray, scratch: np.ndarray,
 ) -> None:  # fmt: skip
     """Fresh state for run ``j`` on a road starting at ``(zr, zrd)`` and its initial rates
@@ -270,20 +322,18 @@ def _start_lane(
         des[m] = des0[m]
     for m in range(ces.size):
         ces[m] = ces0[m]
-    EK.start(
-        y, zr, zrd, vp, F_MODEL, dk, dp, ds, dek, dep, des, ck, cp, cek, cep, ces, mem, scratch
-    )
+    EK.start(y, zr, zrd, vp, fk, dk, dp, ds, dek, dep, des, ck, cp, cek, cep, ces, mem, scratch)
 
 
 @njit(cache=True, error_model="numpy", **NO_REFCOUNT)
 def run_lanes_kernel(
     n_steps: np.ndarray, base: np.ndarray, zr: np.ndarray, zrd: np.ndarray,
     rec_off: np.ndarray, rec: np.ndarray, decimate: int, status: np.ndarray, dt: float,
-    vp: np.ndarray, dk: int, dp: np.ndarray, ds0: np.ndarray, dek: int, dep: np.ndarray,
+    vp: np.ndarray, fk: int, dk: int, dp: np.ndarray, ds0: np.ndarray, dek: int, dep: np.ndarray,
     des0: np.ndarray, ck: int, cp: np.ndarray, cek: int, cep: np.ndarray, ces0: np.ndarray,
     limits: np.ndarray, consts: np.ndarray, ys: np.ndarray, mems: np.ndarray,
     dss: np.ndarray, dess: np.ndarray, cess: np.ndarray, lin: np.ndarray, lout: np.ndarray,
-    lane_run: np.ndarray, lane_k: np.ndarray, scratch: np.ndarray, reduced: bool,
+    lat: np.ndarray, lane_run: np.ndarray, lane_k: np.ndarray, scratch: np.ndarray, reduced: bool,
     acc: np.ndarray, starts: np.ndarray, shifts: np.ndarray, thresholds: np.ndarray,
     trace: np.ndarray, need: np.ndarray, ctl: np.ndarray,
 ) -> None:  # fmt: skip
@@ -334,7 +384,7 @@ def run_lanes_kernel(
         if j >= 0 and lane_k[q] < 0:
             _start_lane(
                 j, ys[q], mems[q], dss[q], dess[q], cess[q], ds0, des0, ces0, zr[q, 0],
-                zrd[q, 0], vp, dk, dp, dek, dep, ck, cp, cek, cep, scratch,
+                zrd[q, 0], vp, fk, dk, dp, dek, dep, ck, cp, cek, cep, scratch,
             )  # fmt: skip
             _output(
                 reduced, rec, rec_off[j], 0, j, acc, starts, shifts, thresholds, trace, ys[q],
@@ -355,33 +405,28 @@ def run_lanes_kernel(
             j = lane_run[q]
             if j < 0:
                 continue
-            y, mem, ds = ys[q], mems[q], dss[q]
-            # kernel.step's part before the stages, run by run
+            y, mem = ys[q], mems[q]
+            # kernel.step's part before the stages, run by run: the damper's estimator
+            # (as damper_sample feeds it), the controller's, the control law; the latch
+            # itself runs for all lanes at once (lane_latch)
             xd = y[2] - y[0]
             vd = y[3] - y[1]
             ad = mem[EK.M_AD]
-            DK.damper_sample(dk, dp, ds, dek, dep, dess[q], xd, vd, ad, mem[EK.M_ID])
-            if cek == EST_SHARED:
-                vm = ds[DK.WS_VM]
-            else:
+            vm = DK.estimator_update(dek, dep, dess[q], xd, vd, ad)
+            lat[L_VM * n + q] = vm
+            lat[L_SGN * n + q] = DK.sign(ad)
+            if cek != EST_SHARED:
                 vm = DK.estimator_update(cek, cep, cess[q], xd, vd, ad)
             mem[EK.M_VM] = vm
             EK.apply_control(ck, cp, vp, dp, y, ad, vm, mem)
-            i = mem[EK.M_ID]
-            if i != ds[DK.WS_I]:
-                DK.wang_latch_current(dp, ds, i)
+            lat[L_I * n + q] = mem[EK.M_ID]
             lin[I_ZS * n + q], lin[I_VS * n + q], lin[I_ZU * n + q] = y[0], y[1], y[2]
             lin[I_VU * n + q], lin[I_Z0 * n + q], lin[I_V0 * n + q] = y[3], y[4], y[5]
-            lin[I_HA * n + q] = ds[DK.WS_HALF_ALPHA]
-            lin[I_SH * n + q] = ds[DK.WS_SHIFT]
-            lin[I_FT * n + q] = ds[DK.WS_FT]
-            lin[I_FB * n + q] = ds[DK.WS_FB]
-            lin[I_KDCI * n + q] = dp[DK.W_KD] * ds[DK.WS_CI]
-            lin[I_DEC * n + q] = ds[DK.WS_DECAY]
             o = 2 * (lane_k[q] - base[q])
             lin[I_R0 * n + q], lin[I_D0 * n + q] = zr[q, o], zrd[q, o]
             lin[I_R1 * n + q], lin[I_D1 * n + q] = zr[q, o + 1], zrd[q, o + 1]
             lin[I_R2 * n + q], lin[I_D2 * n + q] = zr[q, o + 2], zrd[q, o + 2]
+        lane_latch(lat, lin, dp, dss)
         lane_stages(lin, lout, dt, k1c, k1e, consts, reference)
         for q in range(LANES):
             j = lane_run[q]
@@ -553,13 +598,14 @@ def run_lanes(
     need = np.full(w, -1, dtype=np.int64)
     ctl = np.zeros(3, dtype=np.int64)
     args = (
-        steps, base, zr, zrd, rec_off, rec, decimate, status, dt, a.vehicle, a.damper_kind,
+        steps, base, zr, zrd, rec_off, rec, decimate, status, dt, a.vehicle, a.force_source,
+        a.damper_kind,
         a.damper_params, ds0, a.damper_estimator_kind, a.damper_estimator_params, des0,
         a.controller_kind, a.controller_params, a.controller_estimator_kind,
         a.controller_estimator_params, ces0, EK.LIMITS,
         _constants(a.vehicle, a.controller_params), np.zeros((w, VK.NY)),
         np.zeros((w, EK.MEM_SIZE)), np.zeros((w, ds0.size)), np.zeros((w, des0.size)),
-        np.zeros((w, ces0.size)), np.zeros(N_IN * w), np.zeros(N_OUT * w),
+        np.zeros((w, ces0.size)), np.zeros(N_IN * w), np.zeros(N_OUT * w), np.zeros(N_LAT * w),
         np.full(w, -1, dtype=np.int64), np.zeros(w, dtype=np.int64), np.zeros(EK.SCRATCH_SIZE),
         measures, acc, starts, shifts, thresholds, trace, need, ctl,
     )  # fmt: skip

@@ -31,7 +31,7 @@ import numpy as np
 from numba import njit
 
 from mrsuspension import shaping as _shaping
-from mrsuspension._numba_cache import invalidate_if_changed
+from mrsuspension._numba_cache import INLINED, invalidate_if_changed
 from mrsuspension.control import kernel as CK
 from mrsuspension.dampers import kernels as DK
 from mrsuspension.dampers.kernels import NO_REFCOUNT
@@ -89,18 +89,23 @@ def new_accumulators(runs: int) -> np.ndarray:
     return acc
 
 
-@njit(cache=True, inline="always")
+# compiled once and inlined by LLVM (numba's IR inlining of its two call sites here and
+# two in the lane kernel cost compile time); whether the sample is in the steady window
+# comes as a bool: a literal row number would compile a specialisation of its own
+@njit(cache=True, **INLINED)
 def accumulate(
     acc: np.ndarray,
-    row: int,
-    window_start: int,
+    in_window: bool,
     shift: float,
     threshold: float,
     y: np.ndarray,
     zr: float,
     mem: np.ndarray,
 ) -> None:
-    """Add output sample ``row`` (state ``y``, road ``zr``, outputs in ``mem``) to ``acc``.
+    """Add an output sample (state ``y``, road ``zr``, outputs in ``mem``) to ``acc``.
+
+    ``in_window``: whether the sample is in the steady window (its row at or after
+    :attr:`Reduction.window_start`).
 
     The signals are those :meth:`~mrsuspension.engine.Simulation.result_from_record`
     reads from a record row, computed the same way.
@@ -128,7 +133,7 @@ def accumulate(
     acc[A_FTMAX] = max(acc[A_FTMAX], mem[EK.M_FT])
     if mem[EK.M_VM] >= threshold:
         acc[A_CLAMP] += 1.0
-    if row >= window_start:
+    if in_window:
         acc[A_NW] += 1.0
         acc[A_WAS2] += a_s * a_s
         acc[A_WAU2] += a_u * a_u
@@ -183,7 +188,7 @@ def run_reduced(
     EK.start(
         y, zr[0], zrd[0], vp, fk, dk, dp, ds, dek, dep, des, ck, cp, cek, cep, ces, mem, scratch
     )
-    accumulate(acc, 0, window_start, shift, threshold, y, zr[0], mem)
+    accumulate(acc, window_start <= 0, shift, threshold, y, zr[0], mem)
     keep = trace.size > 0
     if keep:
         trace[0] = mem[EK.M_AS]
@@ -198,7 +203,7 @@ def run_reduced(
         if status != EK.D_OK:
             return status, k + 1, q, value
         if (k + 1) % decimate == 0:
-            accumulate(acc, row, window_start, shift, threshold, y, zr[j + 2], mem)
+            accumulate(acc, row >= window_start, shift, threshold, y, zr[j + 2], mem)
             if keep:
                 trace[row] = mem[EK.M_AS]
             row += 1

@@ -75,6 +75,52 @@ def test_wang_combine_is_the_models_force() -> None:
         assert DK.wang_combine(kdci, s[DK.WS_FT], s[DK.WS_FB], tanh, k1, s[DK.WS_DECAY], v) == f
 
 
+def _scalar_latch(dp: np.ndarray, vm: float, sgn: float, i: float) -> list[float]:
+    s = np.zeros(DK.STATE_SIZE)
+    DK.wang_latch_motion(dp, s, vm, sgn)
+    DK.wang_latch_current(dp, s, i)
+    return [
+        s[DK.WS_HALF_ALPHA], s[DK.WS_SHIFT], s[DK.WS_FT], s[DK.WS_FB], dp[DK.W_KD] * s[DK.WS_CI],
+        s[DK.WS_DECAY],
+    ]  # fmt: skip
+
+
+def _lane_latch(dp: np.ndarray, vm: np.ndarray, sgn: np.ndarray, i: np.ndarray) -> np.ndarray:
+    n = LN.LANES
+    lat = np.zeros(LN.N_LAT * n)
+    lat[LN.L_VM * n : (LN.L_VM + 1) * n] = vm
+    lat[LN.L_SGN * n : (LN.L_SGN + 1) * n] = sgn
+    lat[LN.L_I * n : (LN.L_I + 1) * n] = i
+    lin = np.zeros(LN.N_IN * n)
+    LN.lane_latch(lat, lin, dp, np.zeros((n, DK.STATE_SIZE)))
+    fields = (LN.I_HA, LN.I_SH, LN.I_FT, LN.I_FB, LN.I_KDCI, LN.I_DEC)
+    return np.array([[lin[f * n + q] for f in fields] for q in range(n)])
+
+
+@pytest.mark.parametrize("vh_variant", ["2.12", "2.13"])
+def test_the_lane_latch_is_the_scalar_latch_to_round_off(vh_variant: str) -> None:
+    dp = WangAsymmetric(force_gain=1.7, vh_variant=vh_variant).kernel(1e-4).params
+    rng = np.random.default_rng(3)
+    vm = rng.uniform(1e-3, 0.75, LN.LANES)
+    sgn = rng.choice([-1.0, 0.0, 1.0], LN.LANES)
+    i = rng.uniform(0.0, 0.5, LN.LANES)
+    got = _lane_latch(dp, vm, sgn, i)
+    for q in range(LN.LANES):
+        want = _scalar_latch(dp, vm[q], sgn[q], i[q])
+        np.testing.assert_allclose(got[q], want, rtol=2e-15, atol=0.0)
+
+
+def test_the_lane_latch_falls_back_to_libm_beyond_its_exp_range() -> None:
+    # a1 v_m and a4 v_m beyond LANE_EXP_LIMIT in one lane: every lane latches exactly
+    dp = WangSymmetric().kernel(1e-4).params
+    vm = np.full(LN.LANES, 0.3)
+    vm[5] = 1.5 * DK.LANE_EXP_LIMIT / dp[DK.W_A4]
+    sgn, i = np.ones(LN.LANES), np.full(LN.LANES, 0.2)
+    got = _lane_latch(dp, vm, sgn, i)
+    for q in range(LN.LANES):
+        assert list(got[q]) == _scalar_latch(dp, vm[q], sgn[q], i[q])
+
+
 # -- lanes against single runs --------------------------------------------------------
 @pytest.mark.parametrize("law", THROUGH_DAMPER)
 def test_every_controller_matches_single_runs(law: str) -> None:
