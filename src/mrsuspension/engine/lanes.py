@@ -116,6 +116,18 @@ class LaneRun(Protocol):
 #: with 8 it judged the loop not worth vectorising, 32 measured no faster than 16)
 LANES = 16
 
+#: doubles in one vector register as LLVM vectorises the lane loops here (ymm: 4); the
+#: loops run over the busy slots rounded up to a multiple of it, so that no slot takes
+#: the scalar remainder loop (a scalar slot costs about as much as a vector of 4)
+VECTOR = 4
+
+
+@njit(cache=True, inline="always")
+def _vector_count(m: int) -> int:
+    """``m`` slots rounded up to whole vectors of :data:`VECTOR` (at most :data:`LANES`)."""
+    return min(LANES, (m + VECTOR - 1) // VECTOR * VECTOR)
+
+
 # fields of the lane input (IN) and output (OUT) arrays, LANES values each
 (
     I_ZS, I_VS, I_ZU, I_VU, I_Z0, I_V0,  # state at the start of the step
@@ -211,18 +223,21 @@ def _lane_stage(
 @njit(cache=True, error_model="numpy", fastmath={"contract"}, **NO_REFCOUNT)
 def lane_stages(
     lin: np.ndarray, lout: np.ndarray, dt: float, k1c: float, k1e: float, c: np.ndarray,
-    reference: bool,
+    reference: bool, m: int = LANES,
 ) -> None:  # fmt: skip
-    """One RK4 step of every lane (the arithmetic of :func:`~mrsuspension.engine.kernel.step`).
+    """One RK4 step of the first ``m`` slots (the arithmetic of
+    :func:`~mrsuspension.engine.kernel.step`).
 
-    ``lin`` holds :data:`N_IN` fields of :data:`LANES` values (field-major), ``lout``
-    :data:`N_OUT`; ``c`` the car's constants (see :func:`_constants`). Lanes without a
-    run compute on stale values, which nobody reads.
+    ``lin`` holds :data:`N_IN` fields of :data:`LANES` slots (field-major), ``lout``
+    :data:`N_OUT`; ``c`` the car's constants (see :func:`_constants`). The kernel packs
+    the lanes holding a run into slots ``0..m-1``; slots up to the next multiple of
+    :data:`VECTOR` compute on stale values, which nobody reads.
     """
     h = 0.5 * dt
     w6 = dt / 6.0
-    n = LANES
-    for q in range(LANES):
+    n = LANES  # the field stride stays a compile-time constant (fixed offsets); the trip
+    # count m is a runtime value, for which the vectoriser adds a remainder loop
+    for q in range(_vector_count(m)):  # q: a slot
         zs, vs, zu, vu = lin[I_ZS * n + q], lin[I_VS * n + q], lin[I_ZU * n + q], lin[I_VU * n + q]
         z0, v0 = lin[I_Z0 * n + q], lin[I_V0 * n + q]
         ha, sh, ftr = lin[I_HA * n + q], lin[I_SH * n + q], lin[I_FT * n + q]
@@ -254,37 +269,53 @@ def lane_stages(
 
 
 @njit(cache=True, error_model="numpy", fastmath={"contract"}, **NO_REFCOUNT)
-def lane_latch(lat: np.ndarray, lin: np.ndarray, dp: np.ndarray, dss: np.ndarray) -> None:
-    """Latch the damper of every lane from ``lat`` (:data:`N_LAT` fields) into ``lin``.
+def lane_latch(
+    lat: np.ndarray, lin: np.ndarray, dp: np.ndarray, dss: np.ndarray,
+    lanes: np.ndarray | None = None, m: int = LANES,
+) -> None:  # fmt: skip
+    """Latch the damper of the first ``m`` slots from ``lat`` (:data:`N_LAT` fields) into ``lin``.
 
     The step's part of :func:`~mrsuspension.dampers.kernels.wang_latch_motion` and
-    :func:`~mrsuspension.dampers.kernels.wang_latch_current`, as one loop over the lanes
+    :func:`~mrsuspension.dampers.kernels.wang_latch_current`, as one loop over the slots
     that compiles to vector instructions (their four exps per run and step were the
     largest per-run cost: :func:`~mrsuspension.dampers.kernels.lane_wang_latch`). When
     an exp argument exceeds :data:`~mrsuspension.dampers.kernels.LANE_EXP_LIMIT` (beyond
-    any identified set), the lanes latch again with the scalar kernels, in the lanes'
-    damper states ``dss``.
+    any identified set), the slots latch again with the scalar kernels, in the damper
+    state ``dss[lanes[p]]`` of the lane that slot ``p`` holds (``lanes`` None: slot ``p``
+    is lane ``p``). Slots from ``m`` to the next multiple of :data:`VECTOR` latch stale
+    values, which nobody reads.
     """
     n = LANES
-    for q in range(LANES):
+    for p in range(_vector_count(m)):
         ha, sh, ft, fb, kdci, dec, arg = DK.lane_wang_latch(
-            dp, lat[L_VM * n + q], lat[L_SGN * n + q], lat[L_I * n + q]
+            dp, lat[L_VM * n + p], lat[L_SGN * n + p], lat[L_I * n + p]
         )
-        lin[I_HA * n + q], lin[I_SH * n + q], lin[I_FT * n + q] = ha, sh, ft
-        lin[I_FB * n + q], lin[I_KDCI * n + q], lin[I_DEC * n + q] = fb, kdci, dec
-        lat[L_ARG * n + q] = arg
+        lin[I_HA * n + p], lin[I_SH * n + p], lin[I_FT * n + p] = ha, sh, ft
+        lin[I_FB * n + p], lin[I_KDCI * n + p], lin[I_DEC * n + p] = fb, kdci, dec
+        lat[L_ARG * n + p] = arg
     largest = 0.0
-    for q in range(LANES):
-        largest = max(largest, lat[L_ARG * n + q])
+    for p in range(m):
+        largest = max(largest, lat[L_ARG * n + p])
     if largest <= DK.LANE_EXP_LIMIT:
         return
+    for p in range(m):
+        s = dss[p] if lanes is None else dss[lanes[p]]
+        DK.wang_latch_motion(dp, s, lat[L_VM * n + p], lat[L_SGN * n + p])
+        DK.wang_latch_current(dp, s, lat[L_I * n + p])
+        lin[I_HA * n + p], lin[I_SH * n + p] = s[DK.WS_HALF_ALPHA], s[DK.WS_SHIFT]
+        lin[I_FT * n + p], lin[I_FB * n + p] = s[DK.WS_FT], s[DK.WS_FB]
+        lin[I_KDCI * n + p], lin[I_DEC * n + p] = dp[DK.W_KD] * s[DK.WS_CI], s[DK.WS_DECAY]
+
+
+@njit(cache=True, inline="always")
+def _busy(lane_run: np.ndarray, slots: np.ndarray) -> int:
+    """Pack the lanes holding a run into ``slots`` (in lane order); their count."""
+    m = 0
     for q in range(LANES):
-        s = dss[q]
-        DK.wang_latch_motion(dp, s, lat[L_VM * n + q], lat[L_SGN * n + q])
-        DK.wang_latch_current(dp, s, lat[L_I * n + q])
-        lin[I_HA * n + q], lin[I_SH * n + q] = s[DK.WS_HALF_ALPHA], s[DK.WS_SHIFT]
-        lin[I_FT * n + q], lin[I_FB * n + q] = s[DK.WS_FT], s[DK.WS_FB]
-        lin[I_KDCI * n + q], lin[I_DEC * n + q] = dp[DK.W_KD] * s[DK.WS_CI], s[DK.WS_DECAY]
+        if lane_run[q] >= 0:
+            slots[m] = q
+            m += 1
+    return m
 
 
 @njit(cache=True, inline="always")
@@ -335,7 +366,7 @@ def run_lanes_kernel(
     dss: np.ndarray, dess: np.ndarray, cess: np.ndarray, lin: np.ndarray, lout: np.ndarray,
     lat: np.ndarray, lane_run: np.ndarray, lane_k: np.ndarray, scratch: np.ndarray, reduced: bool,
     acc: np.ndarray, starts: np.ndarray, shifts: np.ndarray, thresholds: np.ndarray,
-    trace: np.ndarray, need: np.ndarray, ctl: np.ndarray,
+    trace: np.ndarray, need: np.ndarray, ctl: np.ndarray, slots: np.ndarray,
 ) -> None:  # fmt: skip
     """Every run of one configuration, :data:`LANES` at a time (see the module docstring).
 
@@ -351,7 +382,8 @@ def run_lanes_kernel(
     index, value)`` as :func:`~mrsuspension.engine.kernel.run` returns them. The rest is
     work space: per-lane state rows (``ys``, ``mems``, ``dss``, ``dess``, ``cess``,
     initialised from ``ds0``, ``des0``, ``ces0``), the lane arrays and the lane
-    bookkeeping (``lane_k[q]`` -1: a run waiting for its first chunk).
+    bookkeeping (``lane_k[q]`` -1: a run waiting for its first chunk; ``slots[:m]`` the
+    lanes holding a run, whose values the lane arrays hold at positions ``0..m-1``).
 
     With ``reduced``, nothing is recorded (``rec`` may be empty): each output sample of
     run ``j`` goes to its accumulators ``acc[j]`` (steady window from row
@@ -391,56 +423,57 @@ def run_lanes_kernel(
                 zr[q, 0], zrd[q, 0], mems[q],
             )  # fmt: skip
             lane_k[q] = 0
+    # the lanes holding a run, packed into slots 0..m-1: the lane arrays (lat, lin, lout)
+    # hold slot p's values, and the vectorised loops cover the m busy slots only
+    m = _busy(lane_run, slots)
     while active > 0:
         wait = False
-        for q in range(LANES):
-            j = lane_run[q]
-            if j >= 0 and lane_k[q] - base[q] == chunk:
+        for p in range(m):
+            q = slots[p]
+            if lane_k[q] - base[q] == chunk:
                 base[q] += chunk
-                need[q] = j
+                need[q] = lane_run[q]
                 wait = True
         if wait:
             break
-        for q in range(LANES):
-            j = lane_run[q]
-            if j < 0:
-                continue
+        for p in range(m):
+            q = slots[p]
             y, mem = ys[q], mems[q]
             # kernel.step's part before the stages, run by run: the damper's estimator
             # (as damper_sample feeds it), the controller's, the control law; the latch
-            # itself runs for all lanes at once (lane_latch)
+            # itself runs for all busy lanes at once (lane_latch)
             xd = y[2] - y[0]
             vd = y[3] - y[1]
             ad = mem[EK.M_AD]
             vm = DK.estimator_update(dek, dep, dess[q], xd, vd, ad)
-            lat[L_VM * n + q] = vm
-            lat[L_SGN * n + q] = DK.sign(ad)
+            lat[L_VM * n + p] = vm
+            lat[L_SGN * n + p] = DK.sign(ad)
             if cek != EST_SHARED:
                 vm = DK.estimator_update(cek, cep, cess[q], xd, vd, ad)
             mem[EK.M_VM] = vm
             EK.apply_control(ck, cp, vp, dp, y, ad, vm, mem)
-            lat[L_I * n + q] = mem[EK.M_ID]
-            lin[I_ZS * n + q], lin[I_VS * n + q], lin[I_ZU * n + q] = y[0], y[1], y[2]
-            lin[I_VU * n + q], lin[I_Z0 * n + q], lin[I_V0 * n + q] = y[3], y[4], y[5]
+            lat[L_I * n + p] = mem[EK.M_ID]
+            lin[I_ZS * n + p], lin[I_VS * n + p], lin[I_ZU * n + p] = y[0], y[1], y[2]
+            lin[I_VU * n + p], lin[I_Z0 * n + p], lin[I_V0 * n + p] = y[3], y[4], y[5]
             o = 2 * (lane_k[q] - base[q])
-            lin[I_R0 * n + q], lin[I_D0 * n + q] = zr[q, o], zrd[q, o]
-            lin[I_R1 * n + q], lin[I_D1 * n + q] = zr[q, o + 1], zrd[q, o + 1]
-            lin[I_R2 * n + q], lin[I_D2 * n + q] = zr[q, o + 2], zrd[q, o + 2]
-        lane_latch(lat, lin, dp, dss)
-        lane_stages(lin, lout, dt, k1c, k1e, consts, reference)
-        for q in range(LANES):
+            lin[I_R0 * n + p], lin[I_D0 * n + p] = zr[q, o], zrd[q, o]
+            lin[I_R1 * n + p], lin[I_D1 * n + p] = zr[q, o + 1], zrd[q, o + 1]
+            lin[I_R2 * n + p], lin[I_D2 * n + p] = zr[q, o + 2], zrd[q, o + 2]
+        lane_latch(lat, lin, dp, dss, slots, m)
+        lane_stages(lin, lout, dt, k1c, k1e, consts, reference, m)
+        ended = False
+        for p in range(m):
+            q = slots[p]
             j = lane_run[q]
-            if j < 0:
-                continue
             y, mem = ys[q], mems[q]
-            y[0], y[1], y[2] = lout[O_ZS * n + q], lout[O_VS * n + q], lout[O_ZU * n + q]
-            y[3], y[4], y[5] = lout[O_VU * n + q], lout[O_Z0 * n + q], lout[O_V0 * n + q]
-            s5, u5 = lout[O_AS * n + q], lout[O_AU * n + q]
+            y[0], y[1], y[2] = lout[O_ZS * n + p], lout[O_VS * n + p], lout[O_ZU * n + p]
+            y[3], y[4], y[5] = lout[O_VU * n + p], lout[O_Z0 * n + p], lout[O_V0 * n + p]
+            s5, u5 = lout[O_AS * n + p], lout[O_AU * n + p]
             mem[EK.M_AS] = s5
             mem[EK.M_AU] = u5
-            mem[EK.M_A0] = lout[O_A0 * n + q]
-            mem[EK.M_FD] = lout[O_FD * n + q]
-            mem[EK.M_FT] = lout[O_FT * n + q]
+            mem[EK.M_A0] = lout[O_A0 * n + p]
+            mem[EK.M_FD] = lout[O_FD * n + p]
+            mem[EK.M_FT] = lout[O_FT * n + p]
             mem[EK.M_AD] = u5 - s5
             # (the dissertation's model has no internal dynamics to advance)
             k = lane_k[q] + 1
@@ -462,6 +495,7 @@ def run_lanes_kernel(
             status[j, 3] = value
             lane_run[q] = -1
             active -= 1
+            ended = True
             if nxt < runs:  # the lane's next run, once the caller has filled its chunk
                 lane_run[q] = nxt
                 lane_k[q] = -1
@@ -472,6 +506,8 @@ def run_lanes_kernel(
                 active += 1
         if wait:
             break
+        if ended:  # a lane fell idle: pack the slots again (at most LANES entries)
+            m = _busy(lane_run, slots)
     ctl[0] = nxt
     ctl[1] = active
 
@@ -607,7 +643,7 @@ def run_lanes(
         np.zeros((w, EK.MEM_SIZE)), np.zeros((w, ds0.size)), np.zeros((w, des0.size)),
         np.zeros((w, ces0.size)), np.zeros(N_IN * w), np.zeros(N_OUT * w), np.zeros(N_LAT * w),
         np.full(w, -1, dtype=np.int64), np.zeros(w, dtype=np.int64), np.zeros(EK.SCRATCH_SIZE),
-        measures, acc, starts, shifts, thresholds, trace, need, ctl,
+        measures, acc, starts, shifts, thresholds, trace, need, ctl, np.zeros(w, dtype=np.int64),
     )  # fmt: skip
     while True:
         run_lanes_kernel(*args)

@@ -20,7 +20,7 @@ from mrsuspension.engine import Simulation, SimulationDiverged, measures_of, run
 from mrsuspension.engine import kernel as EK
 from mrsuspension.engine import lanes as LN
 from mrsuspension.errors import ValidationError
-from mrsuspension.excitation import Harmonic, RoundedPulse
+from mrsuspension.excitation import Harmonic, RoundedPulse, log_frequencies
 
 SIGNALS = ("z_s", "z_u", "z_s_ddot", "z_u_ddot", "F_d", "F_T", "i_d", "v_m", "z_s0")
 THROUGH_DAMPER = [law for law in CONTROLLERS if not law.startswith("ideal-")]
@@ -121,6 +121,29 @@ def test_the_lane_latch_falls_back_to_libm_beyond_its_exp_range() -> None:
         assert list(got[q]) == _scalar_latch(dp, vm[q], sgn[q], i[q])
 
 
+def test_the_lane_latch_falls_back_in_the_damper_state_of_each_slots_lane() -> None:
+    # three busy lanes (9, 2, 14) packed into slots 0..2, one beyond the exp range: the
+    # scalar latch uses (and writes) each slot's own lane's damper state, no other
+    dp = WangSymmetric().kernel(1e-4).params
+    n = LN.LANES
+    lanes = np.array([9, 2, 14] + [0] * (n - 3), dtype=np.int64)
+    vm = np.array([0.3, 1.5 * DK.LANE_EXP_LIMIT / dp[DK.W_A4], 0.1])
+    sgn, i = np.array([1.0, -1.0, 0.0]), np.array([0.2, 0.0, 0.4])
+    lat = np.zeros(LN.N_LAT * n)
+    for field, values in ((LN.L_VM, vm), (LN.L_SGN, sgn), (LN.L_I, i)):
+        lat[field * n : field * n + 3] = values
+    lin = np.zeros(LN.N_IN * n)
+    dss = np.zeros((n, DK.STATE_SIZE))
+    LN.lane_latch(lat, lin, dp, dss, lanes, 3)
+    fields = (LN.I_HA, LN.I_SH, LN.I_FT, LN.I_FB, LN.I_KDCI, LN.I_DEC)
+    for p, q in enumerate(lanes[:3]):
+        assert [lin[f * n + p] for f in fields] == _scalar_latch(dp, vm[p], sgn[p], i[p])
+        assert dss[q, DK.WS_VM] == vm[p]
+        assert dss[q, DK.WS_I] == i[p]
+    idle = [q for q in range(n) if q not in lanes[:3]]
+    assert not dss[idle].any()
+
+
 # -- lanes against single runs --------------------------------------------------------
 @pytest.mark.parametrize("law", THROUGH_DAMPER)
 def test_every_controller_matches_single_runs(law: str) -> None:
@@ -154,6 +177,34 @@ def test_more_runs_than_lanes_of_different_lengths_refill_the_lanes() -> None:
     lanes = LN.run_lanes(sims, output_rate=500.0)
     for sim, lane in zip(sims, lanes, strict=True):
         agree(lane, sim.run(output_rate=500.0))
+
+
+# relative to each signal's range, as the lanes module docstring states them
+DOCUMENTED = {"z_s": 2.2e-13, "F_d": 1.8e-11, "i_d": 3.3e-11}
+
+
+@pytest.mark.parametrize("law", ["skyhook-hilo", "sliding-mode"])
+def test_runs_of_very_different_lengths_agree_while_lanes_fall_idle(law: str) -> None:
+    # a frequency-response group: 10 harmonic runs from 0.5 to 15 Hz, each its own
+    # length (40 s down to 7 s), so that most lanes idle for most of the group's time and
+    # the busy lanes are packed into fewer and fewer slots; and a group of 3 runs
+    controller = make_controller(law)
+    damper = WangSymmetric(force_gain=2.5 if controller.needs_inverse else 1.0)
+    group = [
+        Simulation(Harmonic(f, 0.01), controller=controller, damper=damper)
+        for f in log_frequencies(10, 0.5, 15.0)
+    ]
+    lengths = [s.excitation.duration for s in group]
+    assert max(lengths) > 5.0 * min(lengths)
+    for sims in (group, [group[0], group[4], group[9]]):
+        lanes = LN.run_lanes(sims, output_rate=200.0)
+        for sim, lane in zip(sims, lanes, strict=True):
+            single = sim.run(output_rate=200.0)
+            assert not isinstance(lane, Exception)
+            np.testing.assert_array_equal(lane.time, single.time)
+            for name, rtol in DOCUMENTED.items():
+                a, b = lane.signals[name], single.signals[name]
+                assert float(np.max(np.abs(a - b))) <= rtol * float(np.ptp(b)), name
 
 
 def test_the_asymmetric_model_runs_in_lanes() -> None:
