@@ -759,7 +759,9 @@ def run_many(
     (:mod:`mrsuspension.engine.lanes`), at least
     :data:`~mrsuspension.engine.lanes.MIN_GROUP` at a time; ``lanes=False`` runs each on
     its own. Lane results agree with :meth:`Simulation.run` to round-off (the lanes
-    compute exp differently), not bit for bit. Progress is then reported per batch.
+    compute exp differently), not bit for bit. Progress is then reported per batch. The
+    batches go to the workers costliest first
+    (:func:`~mrsuspension.engine.lanes.batch_cost`), so that the workers end together.
 
     Examples
     --------
@@ -792,13 +794,18 @@ def run_many(
 def _tasks(
     sims: list[Simulation], plan: RunSettings, reduce: Reducer | None, lanes: bool, parts: int
 ) -> tuple[list[tuple[bool, Any]], list[list[int]]]:
-    """The tasks of a batch of runs with equal settings, and the runs of each task."""
+    """The tasks of a batch of runs with equal settings, and the runs of each task.
+
+    Costliest first (:func:`~mrsuspension.engine.lanes.batch_cost`): a pool takes them in
+    that order, so the longest starts first and the workers end together.
+    """
     for sim in sims:  # before any work: a record that would alias the excitation
         plan.check_for(sim.excitation)
     if lanes:
         batches = LN.plan_batches(sims, plan.dt, plan.duration, parts)
     else:
-        batches = [[j] for j in range(len(sims))]
+        cost = [LN.batch_cost(sims, [j], plan.dt, plan.duration) for j in range(len(sims))]
+        batches = [[j] for j in sorted(range(len(sims)), key=lambda j: -cost[j])]
     tasks = [
         (False, (sims[b[0]], plan, reduce))
         if len(b) == 1
@@ -829,7 +836,9 @@ def measure_many(
 
     Runs with equal settings share lane batches (:func:`run_many`); a diverged run gives
     its :class:`SimulationDiverged` in its place. ``pool``: an open process pool (e.g.
-    :func:`mrsuspension._pool.process_pool`) to run on; None: this process.
+    :func:`mrsuspension._pool.process_pool`) to run on; None: this process. The batches
+    of all settings go to the pool costliest first
+    (:func:`~mrsuspension.engine.lanes.batch_cost`).
 
     Examples
     --------
@@ -848,9 +857,13 @@ def measure_many(
     parts = getattr(pool, "_max_workers", 1) if pool is not None else 1
     tasks: list[tuple[bool, Any]] = []
     where: list[list[int]] = []
+    cost: list[float] = []
     for plan, idx in groups.items():
-        t, batches = _tasks([simulations[j] for j in idx], plan, MeasuresOf(road_peak), True, parts)
+        own = [simulations[j] for j in idx]
+        t, batches = _tasks(own, plan, MeasuresOf(road_peak), True, parts)
         tasks.extend(t)
         where.extend([idx[k] for k in b] for b in batches)
-    values = pool_map(_run_task_keep, tasks, pool=pool, workers=1)
-    return _in_order(len(simulations), where, values)
+        cost.extend(LN.batch_cost(own, b, plan.dt, plan.duration) for b in batches)
+    order = sorted(range(len(tasks)), key=lambda k: -cost[k])  # costliest first, all groups
+    values = pool_map(_run_task_keep, [tasks[k] for k in order], pool=pool, workers=1)
+    return _in_order(len(simulations), [where[k] for k in order], values)

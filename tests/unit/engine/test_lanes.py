@@ -288,6 +288,42 @@ def test_plan_batches_groups_splits_and_leaves_the_rest_single() -> None:
     assert [len(b) for b in two[2:]] == [1] * (len(group_b) + 1)
 
 
+def test_plan_batches_hands_out_the_costliest_first() -> None:
+    # equal runs: a sliding-mode step costs LAW_COST more than a passive one, so its group
+    # of 8 goes first, behind a passive group of 12; single runs (the linear damper's and
+    # a group too small for lanes) last, the longest of them first
+    sliding = make_controller("sliding-mode")
+    damper = WangSymmetric(force_gain=2.5)
+    passive = [Simulation(Harmonic(2.0, 0.01)) for _ in range(LN.MIN_GROUP)]
+    more = [Simulation(Harmonic(2.0, 0.01)) for _ in range(12)]
+    sm = [Simulation(Harmonic(2.0, 0.01), controller=sliding, damper=damper)] * LN.MIN_GROUP
+    linear = [
+        Simulation(Harmonic(f, 0.01), damper=LinearViscous(damping=1500.0)) for f in (4.0, 0.5)
+    ]
+    sims = linear + passive + sm
+    plan = LN.plan_batches(sims, 1e-4, 1.0, parts=1)
+    assert plan == [list(range(10, 18)), list(range(2, 10)), [0], [1]]
+    cost = [LN.batch_cost(sims, b, 1e-4, 1.0) for b in plan]
+    assert cost == sorted(cost, reverse=True)
+    assert LN.plan_batches(sims, 1e-4, None, parts=1)[2:] == [[1], [0]]  # 0.5 Hz: longer
+    sims = sm + more
+    assert LN.plan_batches(sims, 1e-4, 1.0, parts=1) == [list(range(8, 20)), list(range(8))]
+
+
+def test_run_many_keeps_the_input_order_whatever_the_submission_order() -> None:
+    sliding = make_controller("sliding-mode")
+    damper = WangSymmetric(force_gain=2.5)
+    sims = [Simulation(Harmonic(1.0 + k, 0.01)) for k in range(LN.MIN_GROUP)]
+    sims += [
+        Simulation(Harmonic(1.0 + k, 0.01), controller=sliding, damper=damper)
+        for k in range(LN.MIN_GROUP)
+    ]
+    sims.insert(3, Simulation(Harmonic(3.0, 0.01), damper=LinearViscous(damping=1500.0)))
+    out = run_many(sims, duration=0.3, output_rate=200.0, workers=1)
+    for sim, got in zip(sims, out, strict=True):
+        np.testing.assert_allclose(got.z_s, sim.run(0.3, output_rate=200.0).z_s, rtol=0, atol=1e-15)
+
+
 # -- through run_many -----------------------------------------------------------------
 def test_run_many_with_lanes_matches_without(monkeypatch: pytest.MonkeyPatch) -> None:
     batches: list[int] = []
