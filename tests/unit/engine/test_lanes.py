@@ -290,12 +290,12 @@ def test_plan_batches_groups_splits_and_leaves_the_rest_single() -> None:
 
 def test_plan_batches_hands_out_the_costliest_first() -> None:
     # equal runs: a sliding-mode step costs LAW_COST more than a passive one, so its group
-    # of 8 goes first, behind a passive group of 12; single runs (the linear damper's and
+    # of 8 goes before a passive group of 8 and after one of 16; single runs (the linear damper's and
     # a group too small for lanes) last, the longest of them first
     sliding = make_controller("sliding-mode")
     damper = WangSymmetric(force_gain=2.5)
     passive = [Simulation(Harmonic(2.0, 0.01)) for _ in range(LN.MIN_GROUP)]
-    more = [Simulation(Harmonic(2.0, 0.01)) for _ in range(12)]
+    more = [Simulation(Harmonic(2.0, 0.01)) for _ in range(2 * LN.MIN_GROUP)]
     sm = [Simulation(Harmonic(2.0, 0.01), controller=sliding, damper=damper)] * LN.MIN_GROUP
     linear = [
         Simulation(Harmonic(f, 0.01), damper=LinearViscous(damping=1500.0)) for f in (4.0, 0.5)
@@ -307,7 +307,7 @@ def test_plan_batches_hands_out_the_costliest_first() -> None:
     assert cost == sorted(cost, reverse=True)
     assert LN.plan_batches(sims, 1e-4, None, parts=1)[2:] == [[1], [0]]  # 0.5 Hz: longer
     sims = sm + more
-    assert LN.plan_batches(sims, 1e-4, 1.0, parts=1) == [list(range(8, 20)), list(range(8))]
+    assert LN.plan_batches(sims, 1e-4, 1.0, parts=1) == [list(range(8, 24)), list(range(8))]
 
 
 def test_run_many_keeps_the_input_order_whatever_the_submission_order() -> None:
