@@ -717,9 +717,12 @@ def batch_cost(
         return 0.0
     first = simulations[batch[0]]
     try:
-        kind = int(first.kernel_arrays(first.check_dt(dt), check_stability=False).controller_kind)
+        arrays = first.kernel_arrays(first.check_dt(dt), check_stability=False)
     except Exception:  # a bad dt is reported by the run itself
-        kind = -1
+        kind, acm = -1, False
+    else:
+        kind = int(arrays.controller_kind)
+        acm = kind != CK.C_PASSIVE and float(arrays.controller_params[P_P]) != 1.0
     steps = (
         sum(
             float(duration if duration is not None else simulations[j].excitation.duration)
@@ -727,7 +730,8 @@ def batch_cost(
         )
         / dt
     )
-    return steps * LAW_COST.get(kind, 1.0) * (SINGLE_COST if len(batch) == 1 else 1.0)
+    per_step = LAW_COST.get(kind, 1.0) + (ACM_COST if acm else 0.0)
+    return steps * per_step * (SINGLE_COST if len(batch) == 1 else 1.0)
 
 
 #: fewest runs worth a lane group (the stages cost the same for idle lanes)
