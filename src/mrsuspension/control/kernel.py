@@ -152,6 +152,7 @@ def control(
     y: np.ndarray,
     ad: float,
     vm: float,
+    memo: np.ndarray,
 ) -> tuple[float, float, float, float]:
     """The control law ``ck`` at the sampled state (spec section 6).
 
@@ -172,6 +173,11 @@ def control(
         of the hysteretic inverse model).
     vm : float
         The controller's peak velocity ``v_m`` [m/s].
+    memo : ndarray
+        The inverse-model laws' memo of the damper's v_m terms, kept by the caller
+        between the steps of a run (``DK.PH_SIZE`` values,
+        :func:`~mrsuspension.dampers.kernels.passive_hysteron_memo`; zero-filled at
+        the start of a run).
 
     Returns
     -------
@@ -184,7 +190,8 @@ def control(
     --------
     >>> cp = np.zeros(CP_SIZE)
     >>> cp[P_CURRENT], cp[P_IMAX] = 0.2, 0.5
-    >>> control(C_PASSIVE, cp, np.zeros(8), np.zeros(1), np.zeros(6), 0.0, 0.1)[:2]
+    >>> control(C_PASSIVE, cp, np.zeros(8), np.zeros(1), np.zeros(6), 0.0, 0.1,
+    ...         np.zeros(DK.PH_SIZE))[:2]
     (0.2, 0.2)
     """
     zs, vs, zu, vu = y[0], y[1], y[2], y[3]
@@ -231,8 +238,8 @@ def control(
     elif ck == C_INVERSE_HILO:
         target = vp[V_KS] * xd  # F* = F_k, (3.17)
         sa = sgn_a * cp[P_INV_HYST]  # 0: the mean inverse model (v_h = 0)
-        fh = DK.passive_hysteron(dp, vd, sa, vm)
-        iz = DK.wang_inverse(dp, target, vd, sa, vm, imax)
+        fh = DK.passive_hysteron_memo(dp, memo, vd, sa, vm)
+        iz = DK.wang_inverse_from(dp, target, fh, imax)
         zc = fh * target
     else:  # C_SLIDING, (3.19)-(3.35) in the up-positive frame (erratum 4)
         z0, v0 = y[4], y[5]
@@ -254,8 +261,8 @@ def control(
             sat = -1.0
         target = fd0 - gain * sat  # (3.34), erratum 5
         sa = sgn_a * cp[P_INV_HYST]
-        fh = DK.passive_hysteron(dp, vd, sa, vm)
-        iz = DK.wang_inverse(dp, target, vd, sa, vm, imax)
+        fh = DK.passive_hysteron_memo(dp, memo, vd, sa, vm)
+        iz = DK.wang_inverse_from(dp, target, fh, imax)
         zc = -fh * target  # (3.35)
     # drive current (3.9)/(3.16)
     i = drive_current_kernel(iz, vd, vm, zc, cp[P_P], cp[P_XI], cp[P_PC], cp[P_XIC], imax)

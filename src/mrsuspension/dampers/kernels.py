@@ -84,6 +84,12 @@ W_SIZE = 20
 # latched one (so a held current costs nothing in the RK4 stages).
 WS_VM, WS_SGN, WS_I, WS_CI, WS_SHIFT, WS_FT, WS_HALF_ALPHA, WS_DECAY, WS_FB = range(9)
 
+# The inverse-model control laws' memo of the passive hysteron's v_m terms, held by the
+# caller between steps (see passive_hysteron_memo): the v_m they belong to, F_t (2.7),
+# alpha/2 (2.11) and exp(-a4 v_m). Zero-filled (PH_FT = 0): empty.
+PH_VM, PH_FT, PH_HALF_ALPHA, PH_DECAY = range(4)
+PH_SIZE = 4
+
 # Spencer et al. (1997) modified Bouc-Wen, MODEL_SPEC section 2.5.
 S_C0A, S_C0B, S_K0, S_C1A, S_C1B, S_K1, S_X0 = 0, 1, 2, 3, 4, 5, 6
 S_ALA, S_ALB, S_GAM, S_BET, S_A, S_N, S_ETA, S_VPA = 7, 8, 9, 10, 11, 12, 13, 14
@@ -313,19 +319,73 @@ def hysteresis_slope(p: np.ndarray, vm: float) -> float:
 @njit(cache=True, **INLINED)
 def linear_rise(p: np.ndarray, v: float, vm: float) -> float:
     """1 + k_v |v_d| with k_v = k1 exp(-a4 v_m), eqs. (2.5), (2.10), (2.18), (2.21)."""
+    return linear_rise_from(p, v, math.exp(-p[W_A4] * vm))
+
+
+@njit(cache=True, **INLINED)
+def linear_rise_from(p: np.ndarray, v: float, decay: float) -> float:
+    """1 + k_v |v_d| of :func:`linear_rise` from ``decay = exp(-a4 v_m)``."""
     k1 = p[W_K1C] if v >= 0.0 else p[W_K1E]
-    return 1.0 + k1 * math.exp(-p[W_A4] * vm) * abs(v)
+    return 1.0 + k1 * decay * abs(v)
+
+
+@njit(cache=True, **INLINED)
+def motion_terms(p: np.ndarray, vm: float) -> tuple[float, float, float]:
+    """The terms of v_m only: ``(F_t, alpha/2, exp(-a4 v_m))``, eqs. (2.7), (2.11), (2.10).
+
+    What :func:`wang_latch_motion` and :func:`passive_hysteron_memo` latch.
+
+    Examples
+    --------
+    >>> p = np.zeros(W_SIZE)
+    >>> p[W_F0], p[W_A0], p[W_K0] = 100.0, 40.0, 1.0
+    >>> motion_terms(p, 0.5)
+    (200.0, 13.333333333333334, 1.0)
+    """
+    return transition_force(p, vm), 0.5 * hysteresis_slope(p, vm), math.exp(-p[W_A4] * vm)
 
 
 @njit(cache=True, **INLINED)
 def passive_hysteron(p: np.ndarray, v: float, sgn_a: float, vm: float) -> float:
     """Passive hysteron F_h of eq. (2.8) with v_h of (2.13), as used by the inverse model."""
+    ft, half_alpha, decay = motion_terms(p, vm)
+    return passive_hysteron_latched(p, v, sgn_a, vm, ft, half_alpha, decay)
+
+
+@njit(cache=True, **INLINED)
+def passive_hysteron_latched(
+    p: np.ndarray, v: float, sgn_a: float, vm: float, ft: float, half_alpha: float, decay: float
+) -> float:
+    """:func:`passive_hysteron` from its v_m terms (as :func:`motion_terms` gives them)."""
     vh = sgn_a * p[W_K4] * vm
-    return (
-        transition_force(p, vm)
-        * fast_tanh(0.5 * hysteresis_slope(p, vm) * (v + vh))
-        * linear_rise(p, v, vm)
-    )
+    return ft * fast_tanh(half_alpha * (v + vh)) * linear_rise_from(p, v, decay)
+
+
+@njit(cache=True, **INLINED)
+def passive_hysteron_memo(p: np.ndarray, m: np.ndarray, v: float, sgn_a: float, vm: float) -> float:
+    """:func:`passive_hysteron`, its v_m terms kept in the memo ``m`` (``PH_*`` layout).
+
+    The terms are recomputed only when ``vm`` differs from the memo's (exact equality:
+    the windowed v_m changes rarely) or the memo is empty (``m[PH_FT] == 0``, e.g.
+    zero-filled); the result is bit for bit :func:`passive_hysteron`'s. ``m`` belongs
+    to one damper parameter vector ``p``: empty it (``m[PH_FT] = 0``) when ``p``
+    changes or a run starts.
+
+    Examples
+    --------
+    >>> p = np.zeros(W_SIZE)
+    >>> p[W_F0], p[W_A0], p[W_A1], p[W_K1C], p[W_K4] = 100.0, 40.0, 1.5, 0.3, -0.2
+    >>> m = np.zeros(PH_SIZE)
+    >>> passive_hysteron_memo(p, m, 0.1, 1.0, 0.4) == passive_hysteron(p, 0.1, 1.0, 0.4)
+    True
+    >>> float(m[PH_VM]), passive_hysteron_memo(p, m, -0.2, -1.0, 0.4) == passive_hysteron(
+    ...     p, -0.2, -1.0, 0.4)
+    (0.4, True)
+    """
+    if vm != m[PH_VM] or m[PH_FT] == 0.0:
+        m[PH_VM] = vm
+        m[PH_FT], m[PH_HALF_ALPHA], m[PH_DECAY] = motion_terms(p, vm)
+    return passive_hysteron_latched(p, v, sgn_a, vm, m[PH_FT], m[PH_HALF_ALPHA], m[PH_DECAY])
 
 
 @njit(cache=True, **INLINED)
@@ -340,9 +400,7 @@ def wang_latch_motion(p: np.ndarray, s: np.ndarray, vm: float, sgn_a: float) -> 
     s[WS_VM] = vm
     s[WS_SGN] = sgn_a
     s[WS_I] = math.nan  # current terms must be recomputed
-    s[WS_FT] = transition_force(p, vm)
-    s[WS_HALF_ALPHA] = 0.5 * hysteresis_slope(p, vm)
-    s[WS_DECAY] = math.exp(-p[W_A4] * vm)
+    s[WS_FT], s[WS_HALF_ALPHA], s[WS_DECAY] = motion_terms(p, vm)
 
 
 @njit(cache=True, **INLINED)
@@ -489,7 +547,22 @@ def wang_inverse(
     dissertation, so the inverse is exact for the (2.13) variant. (2.9) is inverted
     directly (the printed closed form (2.17) is garbled, erratum 6).
     """
-    denom = p[W_KD] * abs(passive_hysteron(p, v, sgn_a, vm))
+    return wang_inverse_from(p, target, passive_hysteron(p, v, sgn_a, vm), i_max)
+
+
+@njit(cache=True, **INLINED)
+def wang_inverse_from(p: np.ndarray, target: float, fh: float, i_max: float) -> float:
+    """:func:`wang_inverse` from the passive hysteron ``fh`` (:func:`passive_hysteron`).
+
+    Examples
+    --------
+    >>> p = np.zeros(W_SIZE)
+    >>> p[W_KD], p[W_K2], p[W_A2], p[W_I0] = 1.0, 2.0, 5.0, 0.1
+    >>> wang_derive(p)
+    >>> wang_inverse_from(p, 50.0, 100.0, 0.5), wang_inverse_from(p, 1e4, -100.0, 0.5)
+    (0.0, 0.5)
+    """
+    denom = p[W_KD] * abs(fh)
     if denom == 0.0:
         # the damper produces no force at this state whatever the current
         return 0.0 if target == 0.0 else i_max
@@ -790,5 +863,6 @@ def wang_inverse_array(
     for k in range(target.shape[0]):
         m = vm[k] if not math.isnan(vm[k]) else estimator_pointwise(ek, ep, x[k], v[k], a[k])
         sa = sign(a[k])
-        current[k] = wang_inverse(p, target[k], v[k], sa, m, i_max)
-        hysteron[k] = passive_hysteron(p, v[k], sa, m)
+        fh = passive_hysteron(p, v[k], sa, m)
+        current[k] = wang_inverse_from(p, target[k], fh, i_max)
+        hysteron[k] = fh

@@ -89,7 +89,8 @@ invalidate_if_changed(__file__, DK.__file__, _shaping.__file__, CK.__file__, VK.
     M_FT,  # F_T at the end of the step
     M_A0,  # z_s0'' (reference) at the end of the step
 ) = range(12)
-MEM_SIZE = 12
+M_PH = 12  # first of DK.PH_SIZE slots: the control laws' memo of the damper's v_m terms
+MEM_SIZE = M_PH + DK.PH_SIZE
 
 SCRATCH_SIZE = 6 * NY  # work space of the callers (rates of start())
 
@@ -176,9 +177,10 @@ def apply_control(
 ) -> None:
     """Run the control law (:func:`mrsuspension.control.kernel.control`) into ``mem``.
 
-    Sets ``mem[M_ID]`` (held over the step), ``M_IZ``, ``M_ZC`` and ``M_TARGET``.
+    Sets ``mem[M_ID]`` (held over the step), ``M_IZ``, ``M_ZC`` and ``M_TARGET``, and
+    keeps the law's memo at ``M_PH`` (emptied by :func:`start`).
     """
-    i_d, i_z, z_c, target = CK.control(ck, cp, vp, dp, y, ad, vm)
+    i_d, i_z, z_c, target = CK.control(ck, cp, vp, dp, y, ad, vm, mem[M_PH : M_PH + DK.PH_SIZE])
     mem[M_ID] = i_d
     mem[M_IZ] = i_z
     mem[M_ZC] = z_c
@@ -340,7 +342,9 @@ def start(
     """Initial accelerations and forces (for the record and the first step's a_d).
 
     Takes the arrays of :func:`step` (the controller estimator's are not used here).
+    Empties the control law's memo (a new run, perhaps of another damper).
     """
+    mem[M_PH + DK.PH_FT] = 0.0
     DK.damper_sample(dk, dp, ds, dek, dep, des, y[2] - y[0], y[3] - y[1], 0.0, mem[M_ID])
     fd, ft = rates(y, zr, zrd, vp, fk, dk, dp, ds, cp, mem, CK.needs_reference(ck), scratch[0:NY])
     mem[M_AS] = scratch[1]

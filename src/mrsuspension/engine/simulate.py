@@ -237,7 +237,7 @@ class Simulation:
         >>> from mrsuspension.excitation import Harmonic
         >>> a = Simulation(Harmonic(1.0, 0.01)).kernel_arrays(1e-4)
         >>> a.controller_params.size, a.memory.size
-        (17, 12)
+        (17, 16)
         """
         if check_stability:
             dt = self.check_dt(dt)
@@ -560,6 +560,7 @@ class Stepper:
                 "damper_estimator_state",
             ):
                 changes[key] = getattr(new, key)
+            a.memory[EK.M_PH + DK.PH_FT] = 0.0  # the control law's memo was of the old damper
         self._use(a.replace(**changes))
         self.simulation = simulation
 

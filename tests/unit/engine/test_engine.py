@@ -20,6 +20,7 @@ from mrsuspension.control import (
 )
 from mrsuspension.control import kernel as CK
 from mrsuspension.dampers import InstantaneousPeak, LinearViscous, WangSymmetric
+from mrsuspension.dampers import kernels as DK
 from mrsuspension.engine import Simulation, SimulationDiverged, run_many
 from mrsuspension.excitation import Harmonic, RoadProfile, RoundedPulse, preset_road
 from mrsuspension.vehicle import GRAVITY, QuarterCar
@@ -195,7 +196,7 @@ def test_sliding_condition_holds_for_the_load_range() -> None:
         s = ed + ctl.slope * e
         if abs(s) <= ctl.boundary_layer:
             continue
-        f_c = CK.control(CK.C_SLIDING, cp, vp, dp, y, 0.0, 0.3)[3]
+        f_c = CK.control(CK.C_SLIDING, cp, vp, dp, y, 0.0, 0.3, np.zeros(DK.PH_SIZE))[3]
         a0 = (-ctl.passive_damping * (v0 - vu) - ctl.skyhook_damping * v0
               - car.suspension_stiffness * (z0 - zu)) / ctl.nominal_mass  # fmt: skip
         for m_s in (ctl.nominal_mass / ctl.beta, ctl.nominal_mass, ctl.beta * ctl.nominal_mass):

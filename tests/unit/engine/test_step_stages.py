@@ -44,8 +44,9 @@ def reference_step(y: np.ndarray, road: list[tuple[float, float]], a: KernelArra
         )  # fmt: skip
     mem[EK.M_VM] = vm
     i_d, i_z, z_c, target = CK.control(
-        a.controller_kind, a.controller_params, a.vehicle, a.damper_params, y, ad, vm
-    )
+        a.controller_kind, a.controller_params, a.vehicle, a.damper_params, y, ad, vm,
+        mem[EK.M_PH : EK.M_PH + DK.PH_SIZE],
+    )  # fmt: skip
     mem[EK.M_ID], mem[EK.M_IZ], mem[EK.M_ZC], mem[EK.M_TARGET] = i_d, i_z, z_c, target
     reference = a.controller_kind == CK.C_SLIDING
 
