@@ -58,7 +58,8 @@ import itertools
 import json
 import math
 import time
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Callable, Iterator, Mapping, Sequence
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, NamedTuple
@@ -1128,6 +1129,27 @@ def process_age() -> float | None:
     return max(0.0, uptime - started / os.sysconf("SC_CLK_TCK"))
 
 
+@contextmanager
+def _frozen_heap(active: bool = True) -> Iterator[None]:
+    """Keep the objects alive now out of the garbage collector's passes (``gc.freeze``)
+    while the block runs, as Python's ``gc`` documentation advises before forking.
+
+    The pool's workers fork from this process: without it every full collection in a
+    worker walks (and so copies, page by page) the parent's whole heap of modules, numba
+    and scipy included.
+    """
+    import gc
+
+    if not active:
+        yield
+        return
+    gc.freeze()
+    try:
+        yield
+    finally:
+        gc.unfreeze()
+
+
 #: A call of the report's pool: ``(function, args)``
 Call = tuple[Callable[..., Any], tuple[Any, ...]]
 
@@ -1274,7 +1296,7 @@ def build_all(
 
     busy = 0.0  # seconds the workers spent in tasks
     queued: set[str] = set()
-    with process_pool(n_workers, total) as pool:
+    with _frozen_heap(n_workers > 1), process_pool(n_workers, total) as pool:
         if pool is None:
             add_later()
             for name, (func, args) in calls_all.items():
