@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import time
 from pathlib import Path
 
 import pytest
@@ -24,6 +25,9 @@ from mrsuspension.report.families import (
     render,
     run_unit,
     shock_table,
+    task_cost,
+    unit_cost,
+    unit_steps,
     vary,
 )
 
@@ -186,6 +190,44 @@ def test_build_all_in_process_shares_runs(tmp_path: Path) -> None:
     for rec in built.figures.values():
         assert rec["render time [s]"] > 0.0
         assert all(math.isfinite(v) for v in rec["data"]["F_d a"])
+
+
+def test_unit_costs_follow_the_simulated_steps() -> None:
+    pulse, freq = make_unit("pulse", {}, quick=True), make_unit("freq", {}, quick=True)
+    assert unit_steps(pulse) == 4.0 / 5e-4
+    assert unit_steps(make_unit("pulse", {}, quick=False)) == 4.0 / 1e-4
+    # the quick sweep: 10 harmonic runs of at least 5 s settling and 2 s measuring each
+    assert 10 * 7.0 / 5e-4 < unit_steps(freq) < 10 * 30.0 / 5e-4
+    road = make_unit("psd", {}, quick=True)
+    assert unit_steps(road) == pytest.approx(500.0 / (50.0 / 3.6) / 5e-4)
+    assert unit_cost(freq) > unit_cost(road) > unit_cost(pulse) > 0.0
+    assert task_cost("beyond", quick=True) < task_cost("beyond", quick=False)
+    assert task_cost("no such task", quick=True) > 0.0
+
+
+def _started(seconds: float) -> float:
+    """When this task started (monotonic clock, shared by the processes) after sleeping."""
+    start = time.monotonic()
+    time.sleep(seconds)
+    return start
+
+
+def test_pool_starts_the_longest_tasks_first_and_counts_idle_time(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    from mrsuspension.report import families
+
+    costs = {"a": (1.0, 1.0), "b": (4.0, 4.0), "c": (2.0, 2.0), "d": (3.0, 3.0)}
+    monkeypatch.setattr(families, "TASK_COST", costs)
+    sleep = {"a": 0.1, "b": 0.3, "c": 0.2, "d": 0.1}  # c starts at 0.1 s, a at 0.3 s
+    calls = {name: (_started, (sleep[name],)) for name in costs}  # given in another order
+    built = build_all({}, [], quick=True, out=tmp_path, calls=calls, workers=2)
+    by_start = sorted(built.calls, key=built.calls.__getitem__)
+    assert set(by_start[:2]) == {"b", "d"}
+    assert by_start[2:] == ["c", "a"]
+    assert built.timing["workers"] == 2
+    assert 0.0 <= built.timing["idle worker time [s]"] < built.timing["wall time [s]"]
+    assert built.timing["started after [s]"] > 0.0
 
 
 def test_docs_report_page_is_generated_from_the_specs() -> None:

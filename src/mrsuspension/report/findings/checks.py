@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import functools
 import json
 import math
 import operator
@@ -105,6 +106,21 @@ ABOUT = 0.25
 FREQUENCIES = "log:40:0.5:15"
 
 
+@functools.cache
+def _unit(kind: str, tables: str, quick: bool) -> Unit:
+    """:meth:`Run.unit`, made once per run (the scorecard asks about 1000 times)."""
+    return make_unit("time" if kind == "history" else kind, json.loads(tables), quick)
+
+
+@functools.cache
+def _check_scenario(tables: str) -> None:
+    """Build the scenario of a unit's canonical tables (raises on a bad table); once per
+    distinct scenario (the claims name about 240 runs, half of them shared)."""
+    from mrsuspension.scenario import Scenario
+
+    Scenario.from_dict(json.loads(tables))
+
+
 @dataclass(frozen=True)
 class Run:
     """A scenario under one kind of analysis (``time``, ``freq``, ``pulse``, ``psd``,
@@ -128,8 +144,6 @@ class Run:
             raise ValidationError(
                 f"run kind {kind!r} is not valid; valid: time, freq, pulse, psd, history"
             )
-        from mrsuspension.scenario import Scenario
-
         data = dict(tables)
         if kind == "freq" and "frequencies" not in data.get("excitation", {}):
             from mrsuspension.studies import expand_frequencies
@@ -137,7 +151,7 @@ class Run:
             grid = [round(float(f), 4) for f in expand_frequencies(FREQUENCIES)]
             data["excitation"] = {**data.get("excitation", {}), "frequencies": grid}
         run = cls(kind, json.dumps(data, sort_keys=True))
-        Scenario.from_dict(run.unit(quick=True).scenario)  # fails early on a bad table
+        _check_scenario(run.unit(quick=True).tables)  # fails early on a bad table
         return run
 
     @property
@@ -148,7 +162,7 @@ class Run:
 
     def unit(self, quick: bool) -> Unit:
         """The report unit this run needs (``history`` runs: the harmonic ``time`` unit)."""
-        return make_unit("time" if self.kind == "history" else self.kind, self.scenario, quick)
+        return _unit(self.kind, self.tables, quick)
 
     def key(self, quick: bool) -> tuple[str, Unit]:
         """Cache key: the payload kind and the unit."""
