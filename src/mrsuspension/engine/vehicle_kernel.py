@@ -363,8 +363,12 @@ def start(
     scratch: np.ndarray,
     work: np.ndarray,
 ) -> None:
-    """Initial accelerations and forces (for the record and the first step's ``a_d``)."""
+    """Initial accelerations and forces (for the record and the first step's ``a_d``).
+
+    Empties each corner's control-law memo (a new run, as :func:`EK.start` does).
+    """
     for c in range(int(vp[B_NC])):
+        mem[c, EK.M_PH + DK.PH_FT] = 0.0
         o = B_SIZE + c * CORNER_SIZE
         zs, vs = _corner_body(y, vp[o + C_X], vp[o + C_Y])
         q = NB + NQ * c
