@@ -368,7 +368,7 @@ def run_lanes_kernel(
     n_steps: np.ndarray, base: np.ndarray, zr: np.ndarray, zrd: np.ndarray,
     rec_off: np.ndarray, rec: np.ndarray, decimate: int, status: np.ndarray, dt: float,
     vp: np.ndarray, fk: int, dk: int, dp: np.ndarray, ds0: np.ndarray, dek: int, dep: np.ndarray,
-    des0: np.ndarray, ck: int, cp: np.ndarray, cek: int, cep: np.ndarray, ces0: np.ndarray,
+    des0: np.ndarray, ck: int, cps: np.ndarray, cek: int, cep: np.ndarray, ces0: np.ndarray,
     limits: np.ndarray, consts: np.ndarray, ys: np.ndarray, mems: np.ndarray,
     dss: np.ndarray, dess: np.ndarray, cess: np.ndarray, lin: np.ndarray, lout: np.ndarray,
     lat: np.ndarray, lane_run: np.ndarray, lane_k: np.ndarray, scratch: np.ndarray, reduced: bool,
@@ -423,7 +423,7 @@ def run_lanes_kernel(
         if j >= 0 and lane_k[q] < 0:
             _start_lane(
                 j, ys[q], mems[q], dss[q], dess[q], cess[q], ds0, des0, ces0, zr[q, 0],
-                zrd[q, 0], vp, fk, dk, dp, dek, dep, ck, cp, cek, cep, scratch,
+                zrd[q, 0], vp, fk, dk, dp, dek, dep, ck, cps[j], cek, cep, scratch,
             )  # fmt: skip
             _output(
                 reduced, rec, rec_off[j], 0, j, acc, starts, shifts, thresholds, trace, ys[q],
@@ -458,7 +458,7 @@ def run_lanes_kernel(
             if cek != EST_SHARED:
                 vm = DK.estimator_update(cek, cep, cess[q], xd, vd, ad)
             mem[EK.M_VM] = vm
-            EK.apply_control(ck, cp, vp, dp, y, ad, vm, mem)
+            EK.apply_control(ck, cps[lane_run[q]], vp, dp, y, ad, vm, mem)
             lat[L_I * n + p] = mem[EK.M_ID]
             lin[I_ZS * n + p], lin[I_VS * n + p], lin[I_ZU * n + p] = y[0], y[1], y[2]
             lin[I_VU * n + p], lin[I_Z0 * n + p], lin[I_V0 * n + p] = y[3], y[4], y[5]
@@ -543,7 +543,9 @@ def lane_key(simulation: LaneRun, dt: float) -> tuple[Any, ...] | None:
     """What runs must share to step in one lane group; None when the run is not eligible.
 
     Eligible: the damper is the dissertation's model and the controller acts through it
-    (not an ideal reference force). The key holds every kernel array except the road.
+    (not an ideal reference force). The key holds every kernel array except the road and
+    the controller's parameters (each run's own: a sweep of gains or currents shares
+    lanes), of which it keeps those the lanes' stages share (:func:`_constants`).
     """
     a = simulation.kernel_arrays(dt, check_stability=False)
     if a.force_source != F_MODEL or a.damper_kind != DK.WANG:
@@ -552,8 +554,8 @@ def lane_key(simulation: LaneRun, dt: float) -> tuple[Any, ...] | None:
         np.asarray(v, dtype=float).tobytes()
         for v in (
             a.vehicle, a.damper_params, a.damper_state, a.damper_estimator_params,
-            a.damper_estimator_state, a.controller_params, a.controller_estimator_params,
-            a.controller_estimator_state,
+            a.damper_estimator_state, _constants(a.vehicle, a.controller_params),
+            a.controller_estimator_params, a.controller_estimator_state,
         )
     )  # fmt: skip
     kinds = (a.damper_kind, a.damper_estimator_kind, a.controller_kind, a.controller_estimator_kind)
@@ -608,8 +610,9 @@ def run_lanes(
     keys = {lane_key(s, dt) for s in sims}
     if len(keys) != 1 or None in keys:
         raise ValidationError(
-            "run_lanes needs simulations that differ only in their excitation, with the "
-            "dissertation's damper model (see lane_key); use run_many for any mix"
+            "run_lanes needs simulations that differ only in their excitation and controller "
+            "parameters, with the dissertation's damper model (see lane_key); use run_many "
+            "for any mix"
         )
     reductions = (
         [RD.reduction_of(s, p) for s, p in zip(sims, plans, strict=True)] if measures else []
@@ -631,6 +634,8 @@ def run_lanes(
         starts = np.zeros(0, dtype=np.int64)
         shifts = thresholds = trace = np.zeros(0)
     a = sims[0].kernel_arrays(dt, check_stability=False)
+    # the controller's parameters are each run's own (a gain or current sweep shares lanes)
+    cps = np.stack([s.kernel_arrays(dt, check_stability=False).controller_params for s in sims])
     ds0, des0 = a.damper_state, a.damper_estimator_state
     ces0 = a.controller_estimator_state
     w = LANES
@@ -644,7 +649,7 @@ def run_lanes(
         steps, base, zr, zrd, rec_off, rec, decimate, status, dt, a.vehicle, a.force_source,
         a.damper_kind,
         a.damper_params, ds0, a.damper_estimator_kind, a.damper_estimator_params, des0,
-        a.controller_kind, a.controller_params, a.controller_estimator_kind,
+        a.controller_kind, cps, a.controller_estimator_kind,
         a.controller_estimator_params, ces0, EK.LIMITS,
         _constants(a.vehicle, a.controller_params), np.zeros((w, VK.NY)),
         np.zeros((w, EK.MEM_SIZE)), np.zeros((w, ds0.size)), np.zeros((w, des0.size)),
@@ -734,8 +739,11 @@ def batch_cost(
     return steps * per_step * (SINGLE_COST if len(batch) == 1 else 1.0)
 
 
-#: fewest runs worth a lane group (the stages cost the same for idle lanes)
-MIN_GROUP = LANES // 2
+#: fewest runs worth a lane group: idle lanes cost next to nothing, so a few runs already
+#: gain. Measured 2026-11-24, 5 s harmonic runs, ns per run and step in lanes against on
+#: their own: 2 runs 152-200 against 167-224, 3 runs 118-167 against 165-222, 4 runs
+#: 101-151 against 163-222 (passive, skyhook hi-lo, sliding mode)
+MIN_GROUP = 3
 #: most steps in one lane batch: a batch that records holds its records at once, about
 #: 13 bytes per step at the default output rate (130 MB here; the roads come in chunks
 #: of ROAD_CHUNK steps per lane); larger groups are split
@@ -748,7 +756,7 @@ def plan_batches(
     """Split runs into batches (lane groups and single runs), costliest first.
 
     Runs that share a :func:`lane_key` and number at least :data:`MIN_GROUP` become lane
-    batches. A group is split (into batches of similar total length and at least
+    batches. A group is split (into batches of similar total length, at most one per
     :data:`MIN_GROUP` runs) only as far as needed to give each of ``parts`` workers a
     batch (the fewer the batches, the better the lanes are used) and to keep each batch
     under :data:`MAX_BATCH_STEPS` steps (records' memory). Every other run is a batch of its own.
