@@ -81,6 +81,8 @@ def drive_current_kernel(
     max_current: float,
 ) -> float:
     """i_d = clip(M_p M_c i_z, 0, i_max), eqs. (3.9)/(3.16)."""
+    if i_z == 0.0:  # M_p, M_c in [0, 1]: no current whatever they are (saves two arctans)
+        return 0.0
     mp = 1.0 if p == 1.0 else adfg_kernel(velocity, peak_velocity, p, xi)  # SCM: M_p = 1
     i = mp * cm_kernel(switching, p_c, xi_c) * i_z
     if i < 0.0:

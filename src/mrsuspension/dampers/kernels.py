@@ -461,6 +461,28 @@ def lane_sigmoid(u: float) -> float:
 LANE_EXP_LIMIT = -EXP_NEG_FLOOR
 
 
+@njit(cache=True, inline="always")  # in the lane loops: see the module docstring
+def lane_motion_terms(p: np.ndarray, vm: float) -> tuple[float, float, float, float]:
+    """:func:`motion_terms` with :func:`lane_exp`, and the largest |exp argument|.
+
+    ``(F_t, alpha/2, exp(-a4 v_m), largest)``: branch-free, so a loop over lanes
+    vectorises; within round-off of :func:`motion_terms` while ``largest`` stays within
+    :data:`LANE_EXP_LIMIT`.
+
+    Examples
+    --------
+    >>> p = np.zeros(W_SIZE)
+    >>> p[W_F0], p[W_A0], p[W_A1], p[W_K0], p[W_A4] = 100.0, 40.0, 5.0, 1.0, 7.5
+    >>> lane, exact = lane_motion_terms(p, 0.3), motion_terms(p, 0.3)
+    >>> all(abs(a - b) <= 1e-15 * abs(b) for a, b in zip(lane, exact)), lane[3]
+    (True, 2.25)
+    """
+    x1 = p[W_A1] * vm
+    x4 = -p[W_A4] * vm
+    ft = transition_force_from(p, lane_exp(x1))
+    return ft, 0.5 * hysteresis_slope(p, vm), lane_exp(x4), max(abs(x1), abs(x4))
+
+
 @njit(cache=True, inline="always")  # in the lane latch: see the module docstring
 def lane_wang_latch(
     p: np.ndarray, vm: float, sgn_a: float, i: float
@@ -486,20 +508,14 @@ def lane_wang_latch(
     >>> all(abs(a - b) <= 1e-15 * abs(b) for a, b in zip(lane[:6], exact))
     True
     """
-    x1 = p[W_A1] * vm
-    x4 = -p[W_A4] * vm
+    ft, half_alpha, decay, motion = lane_motion_terms(p, vm)
     u2 = p[W_A2] * (i + p[W_I0])
     u3 = p[W_A3] * (i + p[W_I1])
-    decay = lane_exp(x4)
-    ft = transition_force_from(p, lane_exp(x1))
     s2, s3 = lane_sigmoid(u2), lane_sigmoid(u3)
     ci = current_gain_from(p, s2)
     shift = wang_shift(p, sgn_a, vm, hysteresis_factor_from(p, s3))
-    largest = max(max(abs(x1), abs(x4)), max(abs(u2), abs(u3)))
-    return (
-        0.5 * hysteresis_slope(p, vm), shift, ft, wang_offset_force(p, ci, ft),
-        p[W_KD] * ci, decay, largest,
-    )  # fmt: skip
+    largest = max(motion, max(abs(u2), abs(u3)))
+    return half_alpha, shift, ft, wang_offset_force(p, ci, ft), p[W_KD] * ci, decay, largest
 
 
 @njit(cache=True, **INLINED)

@@ -146,8 +146,8 @@ O_ZS, O_VS, O_ZU, O_VU, O_Z0, O_V0, O_AS, O_AU, O_A0, O_FD, O_FT = range(11)
 N_OUT = 11
 # fields of the latch input (what the damper latches from: v_m, sgn(a_d), i_d) and the
 # latch's largest exp argument per lane
-L_VM, L_SGN, L_I, L_ARG = range(4)
-N_LAT = 4
+L_VM, L_SGN, L_I, L_ARG, L_FT, L_HA, L_DEC, L_MARG = range(8)
+N_LAT = 8
 
 
 #: numba options of the functions only the vectorised lane loops call: compiled once each
@@ -314,6 +314,24 @@ def lane_latch(
         lin[I_KDCI * n + p], lin[I_DEC * n + p] = dp[DK.W_KD] * s[DK.WS_CI], s[DK.WS_DECAY]
 
 
+@njit(cache=True, error_model="numpy", fastmath={"contract"}, **NO_REFCOUNT)
+def lane_motion(lat: np.ndarray, dp: np.ndarray, m: int) -> None:
+    """The passive hysteron's v_m terms of the first ``m`` slots, for the inverse laws.
+
+    :func:`~mrsuspension.dampers.kernels.lane_motion_terms` of ``lat[L_VM]`` into
+    ``lat[L_FT]``, ``lat[L_HA]``, ``lat[L_DEC]`` and ``lat[L_MARG]`` (its largest exp
+    argument), in one loop that compiles to vector instructions. The cycle-rms v_m
+    changes every step, so the laws' memo of these terms
+    (:func:`~mrsuspension.dampers.kernels.passive_hysteron_memo`) would compute them
+    again, with two scalar exps, in every run at every step; the lanes fill it from here.
+    """
+    n = LANES
+    for p in range(_vector_count(m)):
+        ft, half_alpha, decay, largest = DK.lane_motion_terms(dp, lat[L_VM * n + p])
+        lat[L_FT * n + p], lat[L_HA * n + p] = ft, half_alpha
+        lat[L_DEC * n + p], lat[L_MARG * n + p] = decay, largest
+
+
 @njit(cache=True, inline="always")
 def _busy(lane_run: np.ndarray, slots: np.ndarray) -> int:
     """Pack the lanes holding a run into ``slots`` (in lane order); their count."""
@@ -402,6 +420,7 @@ def run_lanes_kernel(
     n = LANES
     chunk = (zr.shape[1] - 1) // 2
     reference = CK.needs_reference(ck)
+    hysteron = ck == CK.C_INVERSE_HILO or ck == CK.C_SLIDING  # laws with the memo
     k1c, k1e = dp[DK.W_K1C], dp[DK.W_K1E]
     if ctl[2] == 0:  # first call: a run for each lane, whose first chunk the caller fills
         ctl[2] = 1
@@ -447,8 +466,8 @@ def run_lanes_kernel(
             q = slots[p]
             y, mem = ys[q], mems[q]
             # kernel.step's part before the stages, run by run: the damper's estimator
-            # (as damper_sample feeds it), the controller's, the control law; the latch
-            # itself runs for all busy lanes at once (lane_latch)
+            # (as damper_sample feeds it), the controller's; then (below) the control law.
+            # The latch itself runs for all busy lanes at once (lane_latch)
             xd = y[2] - y[0]
             vd = y[3] - y[1]
             ad = mem[EK.M_AD]
@@ -458,7 +477,19 @@ def run_lanes_kernel(
             if cek != EST_SHARED:
                 vm = DK.estimator_update(cek, cep, cess[q], xd, vd, ad)
             mem[EK.M_VM] = vm
-            EK.apply_control(ck, cps[lane_run[q]], vp, dp, y, ad, vm, mem)
+        if hysteron:
+            lane_motion(lat, dp, m)
+        for p in range(m):
+            q = slots[p]
+            y, mem = ys[q], mems[q]
+            if hysteron and lat[L_MARG * n + p] <= DK.LANE_EXP_LIMIT:
+                # the law's memo of the damper's v_m terms, from the vector loop (used
+                # when the law's v_m is the damper's, as with a shared estimator)
+                mem[EK.M_PH + DK.PH_VM] = lat[L_VM * n + p]
+                mem[EK.M_PH + DK.PH_FT] = lat[L_FT * n + p]
+                mem[EK.M_PH + DK.PH_HALF_ALPHA] = lat[L_HA * n + p]
+                mem[EK.M_PH + DK.PH_DECAY] = lat[L_DEC * n + p]
+            EK.apply_control(ck, cps[lane_run[q]], vp, dp, y, mem[EK.M_AD], mem[EK.M_VM], mem)
             lat[L_I * n + p] = mem[EK.M_ID]
             lin[I_ZS * n + p], lin[I_VS * n + p], lin[I_ZU * n + p] = y[0], y[1], y[2]
             lin[I_VU * n + p], lin[I_Z0 * n + p], lin[I_V0 * n + p] = y[3], y[4], y[5]
@@ -686,13 +717,12 @@ def run_lanes(
 
 #: CPU per step of a run in lanes, relative to passive, by controller kind (kernel codes of
 #: :mod:`mrsuspension.control.kernel`; 1 if not listed), and what these laws' ADFG current
-#: shaping adds (ACM, ``p != 1``). Measured 2026-11-24, 16 harmonic runs of 2 s at full
-#: width, ns per run and step: passive 85, on-off ADFG 83, skyhook hi-lo SCM 97 / ACM 104,
-#: policy IV ACM 109, inverse hi-lo SCM 122 / ACM 131, sliding mode SCM 133 / ACM 143
-#: (the benchmark sweep's groups, 60 runs each: passive 1, hi-lo SCM 1.07, ACM 1.27,
-#: sliding mode 1.60)
-LAW_COST = {CK.C_POLICY: 1.12, CK.C_INVERSE_HILO: 1.44, CK.C_SLIDING: 1.57}
-ACM_COST = 0.1
+#: shaping adds (ACM, ``p != 1``). Measured 2026-11-24, 32 runs of a two-stage sweep
+#: (0.5-15 Hz) in lanes with in-kernel measures, ns per run and step: passive 76,
+#: skyhook hi-lo SCM 81 / ACM 89, inverse hi-lo SCM 101 / ACM 91, sliding mode SCM 104 /
+#: ACM 110
+LAW_COST = {CK.C_POLICY: 1.08, CK.C_INVERSE_HILO: 1.25, CK.C_SLIDING: 1.37}
+ACM_COST = 0.08
 #: a step of a run on its own (the scalar kernel) against a run's step in lanes: measured
 #: 170-185 ns (passive, hi-lo) and 212-220 ns (inverse laws) against the figures above
 SINGLE_COST = 1.7
@@ -716,7 +746,7 @@ def batch_cost(
     >>> from mrsuspension.excitation import Harmonic
     >>> sims = [Simulation(Harmonic(2.0, 0.01)), Simulation(Harmonic(2.0, 0.01), controller=SlidingMode())]
     >>> batch_cost(sims, [0], 1e-4, 1.0), batch_cost(sims, [1], 1e-4, 1.0)
-    (17000.0, 26690.0)
+    (17000.0, 23290.0)
     """
     if not batch:
         return 0.0

@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 from mrsuspension.control import CONTROLLERS, make_controller
-from mrsuspension.dampers import LinearViscous, WangAsymmetric, WangSymmetric
+from mrsuspension.dampers import CycleRms, LinearViscous, WangAsymmetric, WangSymmetric
 from mrsuspension.dampers import kernels as DK
 from mrsuspension.engine import Simulation, SimulationDiverged, measures_of, run_many
 from mrsuspension.engine import kernel as EK
@@ -201,6 +201,27 @@ def test_lane_key_keeps_the_constants_the_stages_share() -> None:
         Harmonic(1.0, 0.01), controller=make_controller("sliding-mode", skyhook_damping=5000.0)
     )
     assert LN.lane_key(a, 1e-4) != LN.lane_key(b, 1e-4)
+
+
+@pytest.mark.parametrize("law", ["inverse-hilo", "sliding-mode"])
+@pytest.mark.parametrize("estimator", [None, CycleRms(window=0.5)], ids=["shared", "own"])
+def test_inverse_laws_take_the_lanes_v_m_terms_only_for_their_own_v_m(
+    law: str, estimator: CycleRms | None
+) -> None:
+    # the lanes fill the laws' memo with the damper's v_m terms (lane_motion); a
+    # controller with its own estimator (another v_m) must compute its own
+    sims = [
+        Simulation(
+            Harmonic(f, 0.02),
+            controller=make_controller(law, mode="ACM"),
+            damper=WangSymmetric(force_gain=2.5),
+            estimator=estimator,
+        )
+        for f in (0.8, 2.5, 7.0)
+    ]
+    for sim, lane in zip(sims, LN.run_lanes(sims, duration=1.5), strict=True):
+        assert not isinstance(lane, Exception)
+        agree(lane, sim.run(1.5))
 
 
 def test_more_runs_than_lanes_of_different_lengths_refill_the_lanes() -> None:
