@@ -164,6 +164,50 @@ def subplots(
 #: Resolution of the report's PNG figures [dots per inch]
 DPI = 110
 
+#: zlib level of the report's PNGs (1-9; Pillow's default is 6). Measured on the quick
+#: report's 91 PNGs: level 3 encodes in 0.70 of the time for 8 % larger files.
+PNG_COMPRESSION = 3
+
+_MATHTEXT: Any = None
+
+
+def _mathtext_parser() -> Any:
+    """The process's one mathtext parser for Agg renderers (created on first use)."""
+    global _MATHTEXT
+    if _MATHTEXT is None:
+        from matplotlib.mathtext import MathTextParser
+
+        _MATHTEXT = MathTextParser("path")  # what RendererAgg makes for itself
+    return _MATHTEXT
+
+
+def lighten(fig: Any) -> Any:
+    """Make ``fig`` cheaper to draw as a PNG at :data:`DPI` without changing what it shows.
+
+    - Its resolution becomes :data:`DPI`, so a legibility check's draw and the PNG's draw
+      share one renderer (and its cache of text sizes).
+    - That renderer gets the process's one mathtext parser: matplotlib caches parsed math
+      (``$a_s$``, log tick labels ``10^{-2}``) per parser and makes a new parser with
+      each renderer, i.e. each figure, so the same few labels were parsed again in every
+      figure (605 parses of 34 strings for the 70 family figures of the quick report;
+      sharing the parser saves about 15 % of their CPU).
+
+    :meth:`FigureRecord.save` calls it; calling it again is harmless.
+
+    Examples
+    --------
+    >>> fig, axes = subplots(1, 1, layout="fixed")
+    >>> _ = axes[0, 0].set_ylabel("$a_s$ [m/s$^2$]")
+    >>> lighten(fig).canvas.get_renderer().mathtext_parser is _mathtext_parser()
+    True
+    >>> import matplotlib.pyplot as plt; plt.close(fig)
+    """
+    fig.set_dpi(DPI)
+    renderer = getattr(fig.canvas, "get_renderer", lambda: None)()
+    if renderer is not None and hasattr(renderer, "mathtext_parser"):
+        renderer.mathtext_parser = _mathtext_parser()
+    return fig
+
 
 #: Height of one row of a figure legend above fixed-layout panels [in]
 _LEGEND_ROW = 0.22
@@ -340,6 +384,7 @@ class FigureRecord:
 
         folder.mkdir(parents=True, exist_ok=True)
         self.figure.suptitle(f"Fig. {self.number}: {self.title}", fontsize=10)
+        lighten(self.figure)
         if check:
             from mrsuspension.report.legibility import layout_issues
 
@@ -347,7 +392,8 @@ class FigureRecord:
         paths = []
         for fmt in formats:
             path = folder / f"{self.slug}.{fmt}"
-            self.figure.savefig(path, dpi=DPI)
+            png = {"pil_kwargs": {"compress_level": PNG_COMPRESSION}} if fmt == "png" else {}
+            self.figure.savefig(path, dpi=DPI, **png)
             paths.append(path)
         plt.close(self.figure)
         self.files = [p.name for p in paths]
