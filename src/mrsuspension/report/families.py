@@ -75,7 +75,9 @@ from mrsuspension.report.toolkit import (
     FigureRecord,
     figure_legend,
     in_worker,
+    label_outer_x,
     legend_columns,
+    share_x,
     subplots,
 )
 
@@ -524,6 +526,7 @@ def _render_histories(
     rows, cols = _grid(len(spec.signals))
     fig, axes = _subplots(rows, cols, list(payloads))
     flat = axes.ravel()
+    share_x(flat[: len(spec.signals)])
     data: dict[str, Any] = {}
     every = 10
     for label, p in payloads.items():
@@ -551,6 +554,7 @@ def _render_histories(
     for ax in flat[: len(spec.signals)]:
         ax.set_xlabel("time [s]")
         ax.grid(True, alpha=0.3)
+    label_outer_x(axes)
     figure_legend(fig, flat[0])
     return fig, data
 
@@ -559,6 +563,7 @@ def _render_freq(
     spec: FigureSpec, payloads: Mapping[str, dict[str, Any]]
 ) -> tuple[Any, dict[str, Any]]:
     fig, axes = _subplots(2, 2, list(payloads))
+    share_x(axes.ravel())
     data: dict[str, Any] = {}
     for label, p in payloads.items():
         f = p["frequency"]
@@ -581,6 +586,7 @@ def _render_freq(
         ax.xaxis.set_minor_locator(NullLocator())
         ax.set_xlabel("frequency [Hz]")
         ax.grid(True, alpha=0.3)
+    label_outer_x(axes)
     figure_legend(fig, axes[0, 0])
     return fig, data
 
@@ -590,6 +596,7 @@ def _render_psd(
 ) -> tuple[Any, dict[str, Any]]:
     fig, axes = _subplots(2, 3, list(payloads))
     flat = axes.ravel()
+    share_x(flat[:5])
     data: dict[str, Any] = {}
     for label, p in payloads.items():
         f = p["frequency"]
@@ -618,6 +625,7 @@ def _render_psd(
         ax.grid(True, alpha=0.3)
     flat[5].set_xlabel("time [s]")
     flat[5].set_ylabel("$i_d$ [A]")
+    label_outer_x(axes)
     figure_legend(fig, flat[0])
     return fig, data
 

@@ -65,11 +65,13 @@ __all__ = [
     "harmonic_runs",
     "in_worker",
     "inverse_model_step",
+    "label_outer_x",
     "legend_columns",
     "plot_selections",
     "plot_sweep",
     "run_sweep",
     "save_figure",
+    "share_x",
     "shock_table_html",
     "shown",
     "side_legend",
@@ -207,6 +209,66 @@ def lighten(fig: Any) -> Any:
     if renderer is not None and hasattr(renderer, "mathtext_parser"):
         renderer.mathtext_parser = _mathtext_parser()
     return fig
+
+
+def share_x(axes: Any) -> Any:
+    """Let the panels of ``axes`` share the first one's x axis; returns ``axes``.
+
+    Examples
+    --------
+    >>> fig, axes = subplots(2, 1, layout="fixed")
+    >>> _ = share_x(axes.ravel())
+    >>> _ = axes[1, 0].set_xlim(2.0, 3.0); [float(v) for v in axes[0, 0].get_xlim()]
+    [2.0, 3.0]
+    >>> import matplotlib.pyplot as plt; plt.close(fig)
+    """
+    first, *rest = list(axes)
+    for ax in rest:
+        ax.sharex(first)
+    return axes
+
+
+def label_outer_x(axes: Any) -> int:
+    """Hide the x tick labels and x label of each panel that has, right below it, a
+    visible panel sharing its x axis (:func:`share_x`): the bottom one says it for both.
+
+    Fewer texts to lay out and draw (about a tenth of a stacked figure's CPU), and the
+    panels read as one column.
+
+    Parameters
+    ----------
+    axes : numpy.ndarray
+        The figure's 2-D axes array (:func:`subplots`), with x labels and visibility set.
+
+    Returns
+    -------
+    int
+        Panels whose x labels were hidden.
+
+    Examples
+    --------
+    >>> fig, axes = subplots(2, 2, layout="fixed")
+    >>> _ = share_x(axes[:, 0])
+    >>> for ax in axes.ravel():
+    ...     _ = ax.set_xlabel("time [s]")
+    >>> label_outer_x(axes), axes[0, 0].get_xlabel(), axes[0, 1].get_xlabel()
+    (1, '', 'time [s]')
+    >>> import matplotlib.pyplot as plt; plt.close(fig)
+    """
+    hidden = 0
+    rows, cols = axes.shape
+    for r in range(rows - 1):
+        for c in range(cols):
+            ax, below = axes[r, c], axes[r + 1, c]
+            if (
+                ax.get_visible()
+                and below.get_visible()
+                and ax.get_shared_x_axes().joined(ax, below)
+            ):
+                ax.tick_params(axis="x", labelbottom=False)
+                ax.set_xlabel("")
+                hidden += 1
+    return hidden
 
 
 #: Height of one row of a figure legend above fixed-layout panels [in]
