@@ -99,6 +99,7 @@ def subplots(
     *,
     layout: str = "constrained",
     legend_rows: int = 0,
+    title_rows: int = 0,
 ) -> tuple[Any, Any]:
     """A figure with an ``nrows`` x ``ncols`` grid of panels (always a 2-D axes array).
 
@@ -109,13 +110,17 @@ def subplots(
     width, height : float
         Size of one panel [in].
     layout : {"constrained", "fixed"}
-        ``"constrained"``: matplotlib's constrained layout (the special figures of
-        Chapters 2-6). ``"fixed"``: fixed margins and a 0.35 in title strip; constrained
-        layout costs about 60 % of a figure's rendering time, and the figure families
-        (:mod:`~mrsuspension.report.families`) all share a few shapes.
+        ``"fixed"``: fixed margins and a 0.35 in title strip, for every figure whose texts
+        fit them (``--check-layout`` says so); drawing is about a sixth cheaper.
+        ``"constrained"``: matplotlib's constrained layout, for figures with texts
+        outside the panels' usual margins (a legend beside or below a panel, a twin y
+        axis on the right).
     legend_rows : int
         ``"fixed"`` only: rows of a figure legend to leave room for between the title
         and the panels (:func:`figure_legend`), 0.22 in each.
+    title_rows : int
+        ``"fixed"`` only: lines of panel titles (``ax.set_title``) above the first row
+        of panels to leave room for, 0.25 in each.
 
     Returns
     -------
@@ -149,7 +154,7 @@ def subplots(
             squeeze=False,
             layout="constrained",
         )
-    strip = _LEGEND_ROW * legend_rows
+    strip = _LEGEND_ROW * legend_rows + _TITLE_ROW * title_rows
     fig_w, fig_h = width * ncols, height * nrows + 0.35 + strip
     fig, axes = plt.subplots(nrows, ncols, figsize=(fig_w, fig_h), squeeze=False)
     fig.subplots_adjust(
@@ -273,6 +278,8 @@ def label_outer_x(axes: Any) -> int:
 
 #: Height of one row of a figure legend above fixed-layout panels [in]
 _LEGEND_ROW = 0.22
+#: Height of one line of panel titles above fixed-layout panels [in]
+_TITLE_ROW = 0.25
 
 
 def legend_columns(labels: Sequence[str], width: float, fontsize: float = 7.0) -> int:
@@ -1081,7 +1088,7 @@ def plot_selections(
     """
     ds = result.to_xarray()
     f = ds["frequency"].values
-    fig, axes = subplots(2, 2)
+    fig, axes = subplots(2, 2, layout="fixed")
     data: dict[str, Any] = {"frequency [Hz]": [float(v) for v in f]}
     for label, where in selections.items():
         sel = ds.sel(dict(where))
@@ -1254,7 +1261,7 @@ def error_figure(law: str, quick: bool) -> tuple[Any, dict[str, Any]]:
         for k, mode in enumerate(modes)
     }
     runs = every[:n]
-    fig, grid = subplots(1, 3)
+    fig, grid = subplots(1, 3, layout="fixed")
     axes = grid[0]
     data: dict[str, Any] = {"k_d": list(FORCE_GAINS)}
     for mode, values in errors.items():
