@@ -77,8 +77,8 @@ from mrsuspension.report.toolkit import (
     in_worker,
     label_outer_x,
     legend_columns,
+    reused_subplots,
     share_x,
-    subplots,
 )
 
 __all__ = [
@@ -501,11 +501,16 @@ def run_unit(unit: Unit) -> dict[str, Any]:
 
 
 # -- rendering ----------------------------------------------------------------------------
-def _subplots(rows: int, cols: int, labels: Sequence[str]) -> tuple[Any, Any]:
+def _subplots(rows: int, cols: int, labels: Sequence[str], key: Any) -> tuple[Any, Any]:
     """The family figures' panel grid: 3.3 x 2.5 in panels with fixed margins, and a strip
-    for the legend of ``labels`` between the title and the panels (off the data)."""
+    for the legend of ``labels`` between the title and the panels (off the data); one
+    figure per ``key`` (the family and its panels) and shape, reused
+    (:func:`~mrsuspension.report.toolkit.reused_subplots`)."""
     per_row = legend_columns(labels, 3.3 * cols)
-    return subplots(rows, cols, 3.3, 2.5, layout="fixed", legend_rows=-(-len(labels) // per_row))
+    legend_rows = -(-len(labels) // per_row)
+    return reused_subplots(
+        (key, rows, cols, legend_rows), rows, cols, 3.3, 2.5, legend_rows=legend_rows
+    )
 
 
 def _grid(n: int) -> tuple[int, int]:
@@ -524,7 +529,7 @@ def _render_histories(
     spec: FigureSpec, payloads: Mapping[str, dict[str, Any]]
 ) -> tuple[Any, dict[str, Any]]:
     rows, cols = _grid(len(spec.signals))
-    fig, axes = _subplots(rows, cols, list(payloads))
+    fig, axes = _subplots(rows, cols, list(payloads), ("histories", len(spec.signals)))
     flat = axes.ravel()
     share_x(flat[: len(spec.signals)])
     data: dict[str, Any] = {}
@@ -562,7 +567,7 @@ def _render_histories(
 def _render_freq(
     spec: FigureSpec, payloads: Mapping[str, dict[str, Any]]
 ) -> tuple[Any, dict[str, Any]]:
-    fig, axes = _subplots(2, 2, list(payloads))
+    fig, axes = _subplots(2, 2, list(payloads), "freq")
     share_x(axes.ravel())
     data: dict[str, Any] = {}
     for label, p in payloads.items():
@@ -594,7 +599,7 @@ def _render_freq(
 def _render_psd(
     spec: FigureSpec, payloads: Mapping[str, dict[str, Any]]
 ) -> tuple[Any, dict[str, Any]]:
-    fig, axes = _subplots(2, 3, list(payloads))
+    fig, axes = _subplots(2, 3, list(payloads), "psd")
     flat = axes.ravel()
     share_x(flat[:5])
     data: dict[str, Any] = {}
