@@ -80,7 +80,7 @@ def _peaks(loops: Sequence[HarmonicLoop]) -> list[float]:
 def fig_2_3() -> FigureRecord:
     """Model F-v and F-x loops under different drive currents and excitations."""
     conditions = [(0.5, 0.025), (1.5, 0.0125), (2.5, 0.0125)]
-    fig, axes = subplots(2, len(conditions))
+    fig, axes = subplots(2, len(conditions), layout="fixed", title_rows=1)
     data: dict[str, Any] = {}
     for col, (f, a) in enumerate(conditions):
         model = band_model(f)
@@ -108,7 +108,7 @@ def fig_2_4() -> FigureRecord:
     """Model loops at 2.5 mm under different frequencies and currents."""
     freqs = (0.5, 1.5, 2.5, 5.0, 7.5, 10.0, 12.5, 15.0)
     currents = (0.0, 0.2, 0.4)
-    fig, axes = subplots(1, len(currents))
+    fig, axes = subplots(1, len(currents), layout="fixed", title_rows=1)
     data: dict[str, Any] = {}
     for col, i in enumerate(currents):
         loops = [harmonic_loop(band_model(f), f, 0.0025, i) for f in freqs]
@@ -132,7 +132,7 @@ def fig_2_5() -> FigureRecord:
     """Model loops at 0.5 Hz under different amplitudes and currents."""
     amps = (0.0025, 0.0125, 0.025, 0.05, 0.075)
     currents = (0.0, 0.2, 0.4)
-    fig, axes = subplots(1, len(currents))
+    fig, axes = subplots(1, len(currents), layout="fixed", title_rows=1)
     model = band_model(0.5)
     data: dict[str, Any] = {}
     for col, i in enumerate(currents):
@@ -153,7 +153,7 @@ def fig_2_5() -> FigureRecord:
 def fig_2_6() -> FigureRecord:
     """ADFG multiplier M_p against v_d/v_m."""
     ratio = np.linspace(-2.0, 2.0, 801)
-    fig, axes = subplots(1, 2)
+    fig, axes = subplots(1, 2, layout="fixed", title_rows=1)
     data: dict[str, Any] = {}
     for p in (0.0, 0.25, 0.5, 1.0):
         m = adfg_multiplier(ratio, 1.0, p=p, xi=2.0)
@@ -224,7 +224,7 @@ def fig_2_8() -> FigureRecord:
     """Asymmetric loops: the asymmetric model, and the symmetric model through ADFG."""
     conditions = [(0.5, 0.025), (1.5, 0.0125)]
     currents = (0.0, 0.1, 0.2, 0.3)
-    fig, axes = subplots(2, len(conditions))
+    fig, axes = subplots(2, len(conditions), layout="fixed", title_rows=1)
     asym = WangAsymmetric()
     sym = WangSymmetric()
 
@@ -242,7 +242,7 @@ def fig_2_8() -> FigureRecord:
             f"({'ab'[col]}) asymmetric model; {f:g} Hz, {a * 1e3:g} mm", fontsize=10
         )
         axes[1, col].set_title(
-            f"({'cd'[col]}) symmetric + ADFG (p = 0, ξ = 2); {f:g} Hz, {a * 1e3:g} mm", fontsize=10
+            f"({'cd'[col]}) symmetric + ADFG (p = 0, ξ = 2)\n{f:g} Hz, {a * 1e3:g} mm", fontsize=10
         )
         data[f"gamma asymmetric model {f:g} Hz"] = [
             lp.max_rebound_force / lp.max_compression_force for lp in loops_a
@@ -359,7 +359,7 @@ def fig_2_10() -> FigureRecord:
 def fig_models() -> FigureRecord:
     """Every damper model of the toolkit under the same test (beyond the dissertation)."""
     f, a = 1.5, 0.0125
-    fig, axes = subplots(1, 2)
+    fig, axes = subplots(1, 2, layout="fixed", title_rows=1)
     data: dict[str, Any] = {}
     for col, i in enumerate((0.0, 0.4)):
         loops, labels = [], []

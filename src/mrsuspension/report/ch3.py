@@ -81,7 +81,7 @@ def fig_3_4(quick: bool = False) -> FigureRecord:
     f = np.geomspace(0.5, 15.0, 80 if quick else 400)
     car = QuarterCar.reference()
     amp = np.asarray(two_stage_amplitude(f, SWEEP_AMPLITUDE))
-    fig, axes = subplots(2, 2)
+    fig, axes = subplots(2, 2, layout="fixed")
     panels = (("T_as", "$T_{as}$"), ("T_au", "$T_{au}$"), ("T_dr", "$T_{dr}$"), ("DLC", "DLC"))
     data: dict[str, Any] = {"frequency [Hz]": [float(v) for v in f[:: max(1, f.size // 40)]]}
     for c0 in REFERENCE_DAMPING:
@@ -114,7 +114,7 @@ def fig_3_4(quick: bool = False) -> FigureRecord:
 def fig_3_9(quick: bool = False) -> FigureRecord:
     """Rounded pulse displacement: severity, peak displacement, fundamental frequency."""
     n = 300 if quick else 1500
-    fig, axes = subplots(1, 3)
+    fig, axes = subplots(1, 3, layout="fixed", title_rows=1)
     data: dict[str, Any] = {}
     groups: list[tuple[str, list[tuple[str, RoundedPulse]]]] = [
         (
@@ -162,7 +162,7 @@ def fig_3_9(quick: bool = False) -> FigureRecord:
 
 def fig_3_10(quick: bool = False) -> FigureRecord:
     """Road spectra: spatial PSDs of the presets and temporal PSDs at 50 and 100 km/h."""
-    fig, axes = subplots(1, 3)
+    fig, axes = subplots(1, 3, layout="fixed", title_rows=1)
     data: dict[str, Any] = {}
     nn = np.geomspace(0.011, 2.83, 50)
     for name, preset in PRESET_ROADS.items():

@@ -112,7 +112,7 @@ def tracking_figure(law: str, quick: bool, target: str) -> tuple[Any, dict[str, 
         for hyst, kd in grid
     ]
     results = harmonic_runs(cases, quick)
-    fig, axes = subplots(2, 2)
+    fig, axes = subplots(2, 2, layout="fixed", title_rows=1)
     data: dict[str, Any] = {}
     for ax, (hyst, kd), r in zip(axes.ravel(), grid, results, strict=True):
         w = shown(r)

@@ -78,8 +78,10 @@ from mrsuspension.report.toolkit import (
     FigureRecord,
     figure_legend,
     in_worker,
+    label_outer_x,
     legend_columns,
-    subplots,
+    reused_subplots,
+    share_x,
 )
 
 __all__ = [
@@ -502,11 +504,16 @@ def run_unit(unit: Unit) -> dict[str, Any]:
 
 
 # -- rendering ----------------------------------------------------------------------------
-def _subplots(rows: int, cols: int, labels: Sequence[str]) -> tuple[Any, Any]:
+def _subplots(rows: int, cols: int, labels: Sequence[str], key: Any) -> tuple[Any, Any]:
     """The family figures' panel grid: 3.3 x 2.5 in panels with fixed margins, and a strip
-    for the legend of ``labels`` between the title and the panels (off the data)."""
+    for the legend of ``labels`` between the title and the panels (off the data); one
+    figure per ``key`` (the family and its panels) and shape, reused
+    (:func:`~mrsuspension.report.toolkit.reused_subplots`)."""
     per_row = legend_columns(labels, 3.3 * cols)
-    return subplots(rows, cols, 3.3, 2.5, layout="fixed", legend_rows=-(-len(labels) // per_row))
+    legend_rows = -(-len(labels) // per_row)
+    return reused_subplots(
+        (key, rows, cols, legend_rows), rows, cols, 3.3, 2.5, legend_rows=legend_rows
+    )
 
 
 def _grid(n: int) -> tuple[int, int]:
@@ -525,8 +532,9 @@ def _render_histories(
     spec: FigureSpec, payloads: Mapping[str, dict[str, Any]]
 ) -> tuple[Any, dict[str, Any]]:
     rows, cols = _grid(len(spec.signals))
-    fig, axes = _subplots(rows, cols, list(payloads))
+    fig, axes = _subplots(rows, cols, list(payloads), ("histories", len(spec.signals)))
     flat = axes.ravel()
+    share_x(flat[: len(spec.signals)])
     data: dict[str, Any] = {}
     every = 10
     for label, p in payloads.items():
@@ -554,6 +562,7 @@ def _render_histories(
     for ax in flat[: len(spec.signals)]:
         ax.set_xlabel("time [s]")
         ax.grid(True, alpha=0.3)
+    label_outer_x(axes)
     figure_legend(fig, flat[0])
     return fig, data
 
@@ -561,7 +570,8 @@ def _render_histories(
 def _render_freq(
     spec: FigureSpec, payloads: Mapping[str, dict[str, Any]]
 ) -> tuple[Any, dict[str, Any]]:
-    fig, axes = _subplots(2, 2, list(payloads))
+    fig, axes = _subplots(2, 2, list(payloads), "freq")
+    share_x(axes.ravel())
     data: dict[str, Any] = {}
     for label, p in payloads.items():
         f = p["frequency"]
@@ -584,6 +594,7 @@ def _render_freq(
         ax.xaxis.set_minor_locator(NullLocator())
         ax.set_xlabel("frequency [Hz]")
         ax.grid(True, alpha=0.3)
+    label_outer_x(axes)
     figure_legend(fig, axes[0, 0])
     return fig, data
 
@@ -591,8 +602,9 @@ def _render_freq(
 def _render_psd(
     spec: FigureSpec, payloads: Mapping[str, dict[str, Any]]
 ) -> tuple[Any, dict[str, Any]]:
-    fig, axes = _subplots(2, 3, list(payloads))
+    fig, axes = _subplots(2, 3, list(payloads), "psd")
     flat = axes.ravel()
+    share_x(flat[:5])
     data: dict[str, Any] = {}
     for label, p in payloads.items():
         f = p["frequency"]
@@ -621,6 +633,7 @@ def _render_psd(
         ax.grid(True, alpha=0.3)
     flat[5].set_xlabel("time [s]")
     flat[5].set_ylabel("$i_d$ [A]")
+    label_outer_x(axes)
     figure_legend(fig, flat[0])
     return fig, data
 

@@ -2,7 +2,7 @@
 
 :func:`layout_issues` draws a matplotlib figure once and lists what would make it hard to
 read: two text boxes (tick labels, axis labels, titles, annotations, legends, the
-suptitle) that overlap, a legend that hides more than a small share of an axes' data
+suptitle) that overlap, a text box cut off by the figure's edge, a legend that hides more than a small share of an axes' data
 points, and a figure without a title. ``mrsus reproduce`` records the issues of every
 figure in ``manifest.json`` when asked (``build_report(..., check_layout=True)``), and the
 report's tests require the list to be empty for every figure of the quick report.
@@ -144,7 +144,8 @@ def legend_cover(ax: Any) -> float:
 
 
 def layout_issues(fig: Any, *, cover_limit: float = COVER_LIMIT) -> list[str]:
-    """What makes ``fig`` hard to read: overlapping texts, legends over data, no title.
+    """What makes ``fig`` hard to read: overlapping or cut-off texts, legends over data,
+    no title.
 
     Parameters
     ----------
@@ -164,10 +165,14 @@ def layout_issues(fig: Any, *, cover_limit: float = COVER_LIMIT) -> list[str]:
     >>> matplotlib.use("Agg")
     >>> import matplotlib.pyplot as plt
     >>> fig, ax = plt.subplots(figsize=(2, 2))
+    >>> fig.subplots_adjust(left=0.25, bottom=0.15)
     >>> _ = ax.set_xticks([0.0, 0.01], ["-0.0750", "-0.0500"])
     >>> _ = fig.suptitle("Two ticks")
     >>> layout_issues(fig)
     ["axes 0 xtick '-0.0750' overlaps axes 0 xtick '-0.0500'"]
+    >>> _ = ax.legend(["a curve"], loc="upper left", bbox_to_anchor=(1.5, 1.0))
+    >>> layout_issues(fig)[-1]
+    'legend of axes 0 is cut off by the figure edge'
     >>> plt.close(fig)
     """
     boxes = text_boxes(fig)
@@ -176,6 +181,15 @@ def layout_issues(fig: Any, *, cover_limit: float = COVER_LIMIT) -> list[str]:
         for i, (na, a) in enumerate(boxes)
         for nb, b in boxes[i + 1 :]
         if overlap(a, b)
+    ]
+    page = fig.bbox
+    issues += [
+        f"{name} is cut off by the figure edge"
+        for name, box in boxes
+        if box.x0 < page.x0 - _SLACK
+        or box.y0 < page.y0 - _SLACK
+        or box.x1 > page.x1 + _SLACK
+        or box.y1 > page.y1 + _SLACK
     ]
     for k, ax in enumerate(a for a in fig.axes if a.get_visible()):
         share = legend_cover(ax)
