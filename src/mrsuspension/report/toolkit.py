@@ -156,18 +156,27 @@ def subplots(
             squeeze=False,
             layout="constrained",
         )
+    size, margins = _fixed_layout(nrows, ncols, width, height, legend_rows, title_rows)
+    fig, axes = plt.subplots(nrows, ncols, figsize=size, squeeze=False)
+    fig.subplots_adjust(**margins)
+    return fig, axes
+
+
+def _fixed_layout(
+    nrows: int, ncols: int, width: float, height: float, legend_rows: int, title_rows: int
+) -> tuple[tuple[float, float], dict[str, float]]:
+    """The fixed layout's figure size [in] and ``subplots_adjust`` margins."""
     strip = _LEGEND_ROW * legend_rows + _TITLE_ROW * title_rows
     fig_w, fig_h = width * ncols, height * nrows + 0.35 + strip
-    fig, axes = plt.subplots(nrows, ncols, figsize=(fig_w, fig_h), squeeze=False)
-    fig.subplots_adjust(
-        left=0.95 / fig_w,
-        right=1 - 0.15 / fig_w,
-        bottom=0.5 / fig_h,
-        top=1 - (0.45 + strip) / fig_h,
-        wspace=0.5,
-        hspace=0.42,
-    )
-    return fig, axes
+    margins = {
+        "left": 0.95 / fig_w,
+        "right": 1 - 0.15 / fig_w,
+        "bottom": 0.5 / fig_h,
+        "top": 1 - (0.45 + strip) / fig_h,
+        "wspace": 0.5,
+        "hspace": 0.42,
+    }
+    return (fig_w, fig_h), margins
 
 
 #: the figures of :func:`reused_subplots`, by key (one set per process)
@@ -228,19 +237,11 @@ def reused_subplots(
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
 
-    strip = _LEGEND_ROW * legend_rows + _TITLE_ROW * title_rows
-    fig_w, fig_h = width * ncols, height * nrows + 0.35 + strip
-    fig = Figure(figsize=(fig_w, fig_h), dpi=DPI)  # outside pyplot: plt.close leaves it
+    size, margins = _fixed_layout(nrows, ncols, width, height, legend_rows, title_rows)
+    fig = Figure(figsize=size, dpi=DPI)  # outside pyplot: plt.close leaves it
     FigureCanvasAgg(fig)
     axes = fig.subplots(nrows, ncols, squeeze=False)
-    fig.subplots_adjust(
-        left=0.95 / fig_w,
-        right=1 - 0.15 / fig_w,
-        bottom=0.5 / fig_h,
-        top=1 - (0.45 + strip) / fig_h,
-        wspace=0.5,
-        hspace=0.42,
-    )
+    fig.subplots_adjust(**margins)
     _REUSED[key] = (fig, axes)
     return fig, axes
 
