@@ -1,11 +1,17 @@
-"""Run issue 17's audit (``test_audit.py``) and print ``category | cases | clean``.
+"""Run an audit's cases and print ``category | cases | clean``.
 
 Usage::
 
-    python tests/integration/audit_summary.py [pytest options]
+    python tests/integration/audit_summary.py [pytest options]            # issue 17
+    python tests/integration/audit_summary.py --marked [pytest options]   # issue 26
 
-A case is clean when it passed; a skipped case (a check owned by another branch) is
-counted in ``skipped`` and not as clean. The exit code is pytest's.
+Issue 17's audit is ``test_audit.py`` (ids ``category/name``). Issue 26's audit (safe rig,
+safe files, locked monitor) is every test of ``tests/`` marked
+``@pytest.mark.audit("category")``, wherever it lives: the tests that do the checking are
+the cases, so a case cannot pass without its check running.
+
+A case is clean when it passed; a skipped case is counted in ``skipped`` and not as
+clean. The exit code is pytest's.
 """
 
 from __future__ import annotations
@@ -23,13 +29,31 @@ HERE = Path(__file__).resolve().parent
 class AuditSummary:
     """A pytest plugin collecting each audit case's outcome by category."""
 
-    def __init__(self) -> None:
+    def __init__(self, marked: bool = False) -> None:
         self.outcomes: dict[str, dict[str, str]] = defaultdict(dict)
+        self.marked = marked
+        self.categories: dict[str, str] = {}  # nodeid -> category (marked audits)
+
+    def pytest_collection_modifyitems(self, items: list[Any]) -> None:
+        for item in items:
+            marker = item.get_closest_marker("audit")
+            if marker is not None and marker.args:
+                self.categories[item.nodeid] = str(marker.args[0])
+
+    def _case(self, nodeid: str) -> tuple[str, str] | None:
+        if self.marked:
+            category = self.categories.get(nodeid)
+            return None if category is None else (category, nodeid)
+        if "[" not in nodeid or "test_audit.py" not in nodeid:
+            return None
+        category, _, name = nodeid.split("[", 1)[1].rstrip("]").partition("/")
+        return category, name
 
     def pytest_runtest_logreport(self, report: Any) -> None:
-        if "[" not in report.nodeid or "test_audit.py" not in report.nodeid:
+        case = self._case(report.nodeid)
+        if case is None:
             return
-        category, _, name = report.nodeid.split("[", 1)[1].rstrip("]").partition("/")
+        category, name = case
         # the call's outcome; a setup error or skip, or a later teardown error, overrides it
         if report.outcome != "passed" or (
             report.when == "call" and name not in self.outcomes[category]
@@ -59,12 +83,14 @@ class AuditSummary:
 
 def main(argv: list[str]) -> int:
     """Run the audit with the summary plugin; pytest's exit code."""
-    return int(
-        pytest.main(
-            [str(HERE / "test_audit.py"), "-q", "-p", "no:cacheprovider", *argv],
-            plugins=[AuditSummary()],
-        )
-    )
+    if "--marked" in argv:
+        argv = [a for a in argv if a != "--marked"]
+        paths = [str(HERE.parent), "-m", "audit"]
+        plugin = AuditSummary(marked=True)
+    else:
+        paths = [str(HERE / "test_audit.py")]
+        plugin = AuditSummary()
+    return int(pytest.main([*paths, "-q", "-p", "no:cacheprovider", *argv], plugins=[plugin]))
 
 
 if __name__ == "__main__":
