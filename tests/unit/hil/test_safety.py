@@ -7,6 +7,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from _rig_faults import check_interlock_stop, faulty_rig
 from mrsuspension.control import HiLo, Passive
 from mrsuspension.engine.simulate import Simulation
 from mrsuspension.excitation import Harmonic
@@ -299,59 +300,6 @@ def test_driver_never_raises_on_non_finite_values() -> None:
     for ref in (NAN, INF, -INF):
         assert drv.direct(ref) == 0.0
     assert PICurrentDriver(bits=0).direct(NAN) == 0.0
-
-
-class FaultyRig(SimulatedRig):
-    """Reads ``fault`` (channel, value) from the ``at``-th read after the last reset on,
-    and remembers the last command it was given (the rig's side of a safe stop)."""
-
-    fault: tuple[str, float] = ("current", NAN)
-    at: int = 200
-
-    def reset(self, period: float) -> None:
-        super().reset(period)
-        self.reads = 0
-        self.last_command: tuple[float, float] | None = None
-
-    def command(self, stroke: float, current_command: float, velocity: float = 0.0) -> None:
-        self.last_command = (stroke, current_command)
-        super().command(stroke, current_command, velocity)
-
-    def read(self) -> RigSample:
-        self.reads += 1
-        sample = super().read()
-        if self.reads >= self.at:
-            return sample._replace(**{self.fault[0]: self.fault[1]})
-        return sample
-
-
-def faulty_rig(damper: object, channel: str, value: float, at: int) -> FaultyRig:
-    rig = FaultyRig(damper)  # type: ignore[arg-type]
-    rig.fault = (channel, value)
-    rig.at = at
-    return rig
-
-
-def check_interlock_stop(result: HilResult, rig: FaultyRig, reason: str, out: Path) -> int:
-    """A trip with ``reason``; current 0 from the trip tick; the rig commanded home with
-    the coil off (its side); the recording on disk complete. Returns the trip tick."""
-    rec = result.recording
-    assert result.tripped
-    assert result.reason.startswith(reason), result.reason
-    trip = int(np.argmax(rec["state"] == STATE_TRIPPED))
-    assert np.all(rec["state"][trip:] == STATE_TRIPPED)
-    assert rec["i_cmd"][:trip].max() > 0.0  # the rig was driven until then
-    assert np.all(rec["i_cmd"][trip:] == 0.0)
-    assert rec["x_cmd"][-1] == 0.0
-    # the rig's side: its last command is mid-stroke with the coil off, and it went there
-    assert rig.last_command == (0.0, 0.0)
-    assert abs(rig.true_state["displacement"]) < 3e-3
-    back = load_recording(out)
-    assert back.complete
-    assert back.reason.startswith(reason)
-    assert back.stop["tripped"] is True
-    assert len(back) == len(rec) == int(back.stop["rows"])
-    return trip
 
 
 @pytest.mark.audit("rig interlocks")
