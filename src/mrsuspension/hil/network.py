@@ -590,8 +590,9 @@ def serve_rig(
 
 #: the longest tick period a reset may ask for [s] (as :meth:`UdpRig.reset` checks)
 _MAX_PERIOD = 0.1
-#: strangers named in the server's log (the rest are only counted)
-_MAX_LOGGED_STRANGERS = 16
+#: events of a kind that can repeat (refused resets, strangers, socket errors) logged
+#: one by one; the rest are only counted
+_MAX_LOGGED = 16
 
 
 def _finite(*values: float) -> bool:
@@ -639,18 +640,22 @@ def _serve(
     home_at = math.inf  # when the safe-state return reached mid-stroke
     logged: set[Any] = set()  # strangers named in the log
 
-    def note(line: str) -> None:
-        if log is not None:
-            with contextlib.suppress(Exception):
-                log(line)
+    def note(line: str, count: int = 1, what: str = "") -> None:
+        """Log a line; the ``count``-th event of a kind that can repeat (``what``) only
+        up to :data:`_MAX_LOGGED` (an unread pipe must not fill up and block the server)."""
+        if log is None or count > _MAX_LOGGED + 1:
+            return
+        if count == _MAX_LOGGED + 1:
+            line = f"further {what} are only counted"
+        with contextlib.suppress(Exception):
+            log(line)
 
     def send(data: bytes, addr: Any) -> bool:
         try:
             sock.sendto(data, addr)
         except OSError as exc:  # e.g. an unreachable or forbidden address: serve on
             counts["errors"] += 1
-            if counts["errors"] <= _MAX_LOGGED_STRANGERS:
-                note(f"could not send to {addr}: {exc}")
+            note(f"could not send to {addr}: {exc}", counts["errors"], "socket errors")
             return False
         return True
 
@@ -695,17 +700,20 @@ def _serve(
                     data, addr = sock.recvfrom(_BUF)
                 except OSError as exc:  # a pending ICMP error and the like: serve on
                     counts["errors"] += 1
-                    if counts["errors"] <= _MAX_LOGGED_STRANGERS:
-                        note(f"socket error while receiving: {exc}")
+                    note(f"socket error while receiving: {exc}", counts["errors"], "socket errors")
                     data = b""
             if data:
                 kind = _kind(data)
                 if kind == COMMAND and (client is None or addr != client):
                     counts["strangers"] += 1  # not the client of the last reset: dropped
-                    if addr not in logged and len(logged) < _MAX_LOGGED_STRANGERS:
+                    if addr not in logged and len(logged) <= _MAX_LOGGED:
                         logged.add(addr)
                         owner = "no reset yet" if client is None else f"the client is {client}"
-                        note(f"dropped a command from {addr}: not the client ({owner})")
+                        note(
+                            f"dropped a command from {addr}: not the client ({owner})",
+                            len(logged),
+                            "strangers",
+                        )
                 elif kind == COMMAND:
                     _, _, _, seq, _, stroke, velocity, i_cmd = _COMMAND.unpack(data)
                     counts["commands"] += 1
@@ -745,7 +753,9 @@ def _serve(
                         counts["refused_resets"] += 1
                         note(
                             f"refused a reset from {addr}: period {new_period!r} s is not in "
-                            f"(0, {_MAX_PERIOD:g}] s; serving on"
+                            f"(0, {_MAX_PERIOD:g}] s; serving on",
+                            counts["refused_resets"],
+                            "refused resets",
                         )
                         send(_pack_sample(seq, last, STATUS_RESET | STATUS_FAULT), addr)
                         continue
@@ -755,7 +765,11 @@ def _serve(
                         last = rig.read()
                     except Exception as exc:  # the rig refused: it goes safe, serve on
                         counts["refused_resets"] += 1
-                        note(f"the rig failed its reset ({exc}): coil off, back to mid-stroke")
+                        note(
+                            f"the rig failed its reset ({exc}): coil off, back to mid-stroke",
+                            counts["refused_resets"],
+                            "refused resets",
+                        )
                         go_safe(perf())
                         armed = False
                         send(_pack_sample(seq, last, STATUS_RESET | STATUS_FAULT), addr)

@@ -416,6 +416,7 @@ def test_malformed_datagrams_and_nan_commands_never_end_the_server() -> None:
         ]  # fmt: skip
         rng = random.Random(7)
         junk += [rng.randbytes(rng.randrange(1, 300)) for _ in range(50)]
+        junk += [_reset_msg(seq, -1.0) for seq in range(40)]  # a flood of bad resets
         for data in junk:
             raw.sendto(data, addr)
         client = UdpRig(LOCAL, srv.port, timeout=0.05)
@@ -434,6 +435,10 @@ def test_malformed_datagrams_and_nan_commands_never_end_the_server() -> None:
     print(f"server counts {counts}")
     assert counts["bad_commands"] == 1
     assert counts["invalid"] >= 50
+    assert counts["refused_resets"] == 40
+    # a flood is counted, not logged line by line (an unread stdout pipe must not fill up)
+    assert sum(s.startswith("refused a reset") for s in srv.lines) == 16
+    assert "further refused resets are only counted" in srv.lines
     assert any("is not a number (stroke nan m" in s for s in srv.lines), srv.lines
 
 
