@@ -850,14 +850,22 @@ def _safe_tick(
     return x, last
 
 
+#: longest return to mid-stroke when the server stops [s] (then mid-stroke is commanded)
+_MAX_HOMING = 10.0
+
+
 def _home(rig: Rig, x: float, period: float, return_rate: float) -> None:
-    """Ramp the rig to mid-stroke with the coil off, in real time (the server's end)."""
+    """Ramp the rig to mid-stroke with the coil off, in real time (the server's end).
+
+    At most :data:`_MAX_HOMING` seconds (a stroke no rig has): then mid-stroke at once.
+    """
     step = return_rate * period
     sample = RigSample(0.0, 0.0, 0.0, 0.0)
     next_t = time.perf_counter()
-    while True:
+    for _ in range(math.ceil(_MAX_HOMING / period)):
         x, sample = _safe_tick(rig, x, step, return_rate, sample)
         if x == 0.0:
             return
         next_t += period
         time.sleep(max(0.0, next_t - time.perf_counter()))
+    _safe_tick(rig, 0.0, step, return_rate, sample)
