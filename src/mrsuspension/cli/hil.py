@@ -525,8 +525,10 @@ def rig_emulator_command(
 ) -> None:
     """Serve a simulated rig over UDP (the network rig protocol, docs/hil.md).
 
-    Runs until Ctrl-C (or SIGTERM, e.g. `kill`), then prints its packet counts. Connect a
-    loop with `mrsus hil run SCENARIO --rig udp://HOST:PORT`.
+    Runs until Ctrl-C (or SIGTERM, e.g. `kill`), then ramps a driven rig home and prints
+    its packet counts; refused resets, commands from strangers and watchdog trips are
+    printed as they happen. Connect a loop with `mrsus hil run SCENARIO --rig
+    udp://HOST:PORT`.
     """
     import signal
 
@@ -557,6 +559,6 @@ def rig_emulator_command(
 
         counts = serve_rig(
             served, host=host, port=port, rate=rate, drop=drop, delay=delay, ready=ready,
-            heartbeat=heartbeat, watchdog=watchdog, realtime=realtime,
+            heartbeat=heartbeat, watchdog=watchdog, realtime=realtime, log=typer.echo,
         )  # fmt: skip
     typer.echo("stopped: " + ", ".join(f"{k} {v}" for k, v in counts.items()))

@@ -14,6 +14,8 @@ from mrsuspension.errors import check_range
 
 __all__ = ["PICurrentDriver"]
 
+_INF = math.inf
+
 
 @dataclass
 class PICurrentDriver:
@@ -24,6 +26,9 @@ class PICurrentDriver:
     ``[0, current_limit]`` and converted by a ``bits``-bit unipolar D/A over
     ``[0, da_full_scale]``. Anti-windup: the integrator is frozen while the output is
     saturated in the direction the error pushes it (conditional integration).
+
+    A demand or a measured current that is NaN or infinite never raises: the output is
+    0 A and the integrator is cleared (the safety supervisor trips on the same reading).
 
     Parameters
     ----------
@@ -46,6 +51,10 @@ class PICurrentDriver:
     0.1
     >>> round(drv.update(0.1, 0.1), 4)  # on target: the output holds
     0.1
+    >>> drv.update(0.1, float("nan")), drv.integral  # a broken reading: coil off
+    (0.0, 0.0)
+    >>> drv.direct(float("inf"))
+    0.0
     """
 
     kp: float = 1.0
@@ -71,9 +80,9 @@ class PICurrentDriver:
         self.output = 0.0
 
     def _da(self, u: float) -> float:
-        if u < 0.0:
-            u = 0.0
-        elif u > self.current_limit:
+        if not 0.0 < u < _INF:  # negative, zero, NaN or infinite: no current
+            return 0.0
+        if u > self.current_limit:
             u = self.current_limit
         if self._lsb:
             u = math.floor(u / self._lsb + 0.5) * self._lsb
@@ -88,6 +97,8 @@ class PICurrentDriver:
         """One regulator tick: the D/A output (amplifier demand [A]) for this period."""
         measured = sense_voltage / self.sense_resistance
         e = reference - measured
+        if not -_INF < e < _INF:  # a demand or a reading that is not a number: coil off
+            return self.off()
         integral = self.integral + self.ki * self.period * e
         u = self.kp * e + integral
         # conditional integration: do not wind up against a saturated output

@@ -29,17 +29,24 @@ heartbeat ack  5     ``<IHHIdd``        t_echo [s] (the heartbeat's t_send), t_s
   reached under that command, stamped with the rig's time ``t_rig``.
 - **reset** puts the rig at mid-stroke with the coil off for the given tick period; the
   server answers with a sample (same ``seq``) whose status has :data:`STATUS_RESET` set
-  (and :data:`STATUS_IDEAL_CURRENT` when the coil follows its command at once).
+  (and :data:`STATUS_IDEAL_CURRENT` when the coil follows its command at once). A reset
+  whose period is not in (0, 0.1] s (0, negative, NaN, huge) is refused: the reply has
+  :data:`STATUS_RESET` and :data:`STATUS_FAULT` set, the server keeps its state (client,
+  watchdog) and serves on. The sender of the last accepted reset is **the client**: only
+  its commands are applied; commands from any other address are dropped (not answered)
+  and counted (``strangers``).
 - **heartbeat**: both sides send one every heartbeat period (their own ``seq`` counter,
   apart from the commands'; the server to the client of the last reset); the receiver
   answers with a **heartbeat ack** echoing ``seq`` and ``t_send`` (liveness and
   round-trip time on both sides).
-- **server watchdog**: armed by the first command after a reset; when nothing (command
-  or heartbeat) has come from the client for the server's watchdog timeout, the server
-  puts its rig in the safe state
-  by itself: coil off, actuator ramped back to mid-stroke. Until the next reset it
-  ignores commands and answers them with samples carrying :data:`STATUS_SAFE`, which
-  the client does not take as fresh (so the loop's own watchdog trips).
+- **server watchdog**: armed by the first command after a reset; when no command has
+  come from the client for the server's watchdog timeout, the server puts its rig in the
+  safe state by itself: coil off, actuator ramped back to mid-stroke. Until the next
+  reset it ignores commands and answers them with samples carrying :data:`STATUS_SAFE`,
+  which the client does not take as fresh (so the loop's own watchdog trips). A command
+  with a NaN or infinite value puts the rig in the safe state the same way (answered
+  with :data:`STATUS_FAULT`), and so does the server's own end (Ctrl-C, ``duration``,
+  ``should_stop``): it ramps a driven rig home before it returns.
 - Status bits of a sample: :data:`STATUS_RESET` (reply to a reset),
   :data:`STATUS_IDEAL_CURRENT`, :data:`STATUS_FAULT` (the rig raised; the sample repeats
   the last good one), :data:`STATUS_SAFE` (the server's watchdog tripped).
@@ -47,7 +54,8 @@ heartbeat ack  5     ``<IHHIdd``        t_echo [s] (the heartbeat's t_send), t_s
 Version 2 differs from version 1 by the heartbeat ack (version 1 echoed type 3), the
 periodic heartbeats and the server watchdog.
 
-Datagrams with a wrong magic, version, type or size are ignored. Nothing is retransmitted:
+Datagrams with a wrong magic, version, type or size are ignored (counted as ``invalid``);
+no datagram and no socket error ends the server. Nothing is retransmitted:
 the client keeps the last good sample when a reply is late or lost, so its timestamp
 stops advancing and the safety supervisor's watchdog trips after its timeout.
 """
@@ -307,6 +315,11 @@ class UdpRig(Rig):
             _RESET.pack(MAGIC, VERSION, RESET, seq, time.perf_counter(), period), seq, SAMPLE
         )
         _, _, _, _, t_rig, f, x, i, status = _SAMPLE.unpack(data)
+        if status & STATUS_FAULT:
+            raise MRSuspensionError(
+                f"the rig at udp://{self.host}:{self.port} refused the reset "
+                f"(period {period:g} s); it stays in its previous state"
+            )
         self.ideal_current = bool(status & STATUS_IDEAL_CURRENT)
         self._sample = RigSample(f, x, i, t_rig)
         self._last_seq = seq
@@ -482,8 +495,15 @@ def serve_rig(
     watchdog: float = 0.25,
     return_rate: float = 0.05,
     realtime: bool | str = "off",
+    log: Callable[[str], None] | None = None,
 ) -> dict[str, int]:
     """Serve ``rig`` over UDP until stopped (Ctrl-C, ``duration`` or ``should_stop``).
+
+    Only the client of the last accepted reset drives the rig; a reset with a bad period
+    is refused and the server serves on; no datagram ends it; when the client's commands
+    stop for ``watchdog`` seconds, or one is not a number, the rig goes to the safe state
+    (coil off, ramped to mid-stroke); when the server stops, it ramps a driven rig home
+    first.
 
     Parameters
     ----------
@@ -514,9 +534,9 @@ def serve_rig(
     heartbeat : float
         Period [s] of the server's heartbeats to the client of the last reset (0: none).
     watchdog : float
-        Server watchdog [s]: with nothing (command or heartbeat) from the client for this
-        long, once it has sent a command after its reset, the rig goes to the safe state (coil off, actuator ramped to
-        mid-stroke at ``return_rate``) until the next reset; 0 disables it.
+        Server watchdog [s]: with no command from the client for this long, once it has
+        sent one after its reset, the rig goes to the safe state (coil off, actuator
+        ramped to mid-stroke at ``return_rate``) until the next reset; 0 disables it.
     return_rate : float
         Stroke rate [m/s] of the safe-state return.
     realtime : bool or str
@@ -525,12 +545,19 @@ def serve_rig(
         than the loop's). With ``"spin"`` the server polls its socket instead of sleeping
         in ``select`` (it keeps one core busy; a sleeping virtual CPU can take
         milliseconds to wake).
+    log : callable, optional
+        Called with one line for each event worth an operator's eye: a refused reset, a
+        new client, the first command from each stranger, a command that is not a
+        number, a watchdog trip, a socket error, the return home at the end.
 
     Returns
     -------
     dict
-        Counters: commands, replies, dropped, delayed, resets, heartbeats (received),
-        invalid, heartbeats_sent, heartbeat_acks (received), watchdog_trips.
+        Counters: commands (applied or answered, from the client), replies, dropped,
+        delayed, resets (accepted), heartbeats (received), invalid, heartbeats_sent,
+        heartbeat_acks (received), watchdog_trips, refused_resets, strangers (commands
+        from another address, dropped), bad_commands (not a number), errors (socket
+        errors survived).
 
     Notes
     -----
@@ -557,8 +584,19 @@ def serve_rig(
     with realtime_session(mode, cpu=pick_cpu("emulator")) as rt:
         return _serve(
             rig, host, port, rate, drop, delay, delay_probability, drop_after, seed, duration,
-            ready, should_stop, heartbeat, watchdog, return_rate, rt.spin,
+            ready, should_stop, heartbeat, watchdog, return_rate, rt.spin, log,
         )  # fmt: skip
+
+
+#: the longest tick period a reset may ask for [s] (as :meth:`UdpRig.reset` checks)
+_MAX_PERIOD = 0.1
+#: events of a kind that can repeat (refused resets, strangers, socket errors) logged
+#: one by one; the rest are only counted
+_MAX_LOGGED = 16
+
+
+def _finite(*values: float) -> bool:
+    return all(-math.inf < v < math.inf for v in values)
 
 
 def _serve(
@@ -578,6 +616,7 @@ def _serve(
     watchdog: float,
     return_rate: float,
     spin: bool = False,
+    log: Callable[[str], None] | None = None,
 ) -> dict[str, int]:
     rng = random.Random(seed)
     perf = time.perf_counter
@@ -586,17 +625,46 @@ def _serve(
         ("commands", "replies", "dropped", "delayed", "resets", "heartbeats", "invalid"), 0
     )
     counts.update(dict.fromkeys(("heartbeats_sent", "heartbeat_acks", "watchdog_trips"), 0))
+    counts.update(dict.fromkeys(("refused_resets", "strangers", "bad_commands", "errors"), 0))
     pending: list[tuple[float, int, bytes, Any]] = []
     period = 1.0 / rate
-    client: Any = None  # address of the client of the last reset
-    last_rx = 0.0  # when the client was last heard [perf s]
+    client: Any = None  # address of the client of the last accepted reset
+    last_rx = 0.0  # when the client's last command came [perf s]
     next_hb = math.inf
     hb_seq = 0
-    safe = False  # the server watchdog tripped
+    safe = False  # the rig is in the safe state (watchdog, bad command, failed reset)
     armed = False  # the watchdog runs from the first command after a reset
     next_safe = math.inf  # next tick of the safe-state return
     x_last = 0.0  # last stroke commanded to the rig
+    i_last = 0.0  # last current commanded to the rig
     home_at = math.inf  # when the safe-state return reached mid-stroke
+    logged: set[Any] = set()  # strangers named in the log
+
+    def note(line: str, count: int = 1, what: str = "") -> None:
+        """Log a line; the ``count``-th event of a kind that can repeat (``what``) only
+        up to :data:`_MAX_LOGGED` (an unread pipe must not fill up and block the server)."""
+        if log is None or count > _MAX_LOGGED + 1:
+            return
+        if count == _MAX_LOGGED + 1:
+            line = f"further {what} are only counted"
+        with contextlib.suppress(Exception):
+            log(line)
+
+    def send(data: bytes, addr: Any) -> bool:
+        try:
+            sock.sendto(data, addr)
+        except OSError as exc:  # e.g. an unreachable or forbidden address: serve on
+            counts["errors"] += 1
+            note(f"could not send to {addr}: {exc}", counts["errors"], "socket errors")
+            return False
+        return True
+
+    def go_safe(t: float) -> None:
+        nonlocal safe, next_safe, home_at
+        safe = True
+        pending.clear()
+        next_safe, home_at = t, math.inf
+
     try:
         sock.bind((host, port))
         # warm up (compile or load the rig's kernels) before announcing the port
@@ -626,24 +694,48 @@ def _serve(
             if spin:  # poll: a sleeping virtual CPU can take milliseconds to wake
                 wait = 0.0
             ready_r, _, _ = select.select([sock], [], [], wait)
+            data = b""
             if ready_r:
-                data, addr = sock.recvfrom(_BUF)
+                try:
+                    data, addr = sock.recvfrom(_BUF)
+                except OSError as exc:  # a pending ICMP error and the like: serve on
+                    counts["errors"] += 1
+                    note(f"socket error while receiving: {exc}", counts["errors"], "socket errors")
+                    data = b""
+            if data:
                 kind = _kind(data)
-                if kind and addr == client:
-                    last_rx = perf()
-                if kind == COMMAND:
+                if kind == COMMAND and (client is None or addr != client):
+                    counts["strangers"] += 1  # not the client of the last reset: dropped
+                    if addr not in logged and len(logged) <= _MAX_LOGGED:
+                        logged.add(addr)
+                        owner = "no reset yet" if client is None else f"the client is {client}"
+                        note(
+                            f"dropped a command from {addr}: not the client ({owner})",
+                            len(logged),
+                            "strangers",
+                        )
+                elif kind == COMMAND:
                     _, _, _, seq, _, stroke, velocity, i_cmd = _COMMAND.unpack(data)
                     counts["commands"] += 1
-                    if client is None:
-                        client, last_rx = addr, perf()
-                    armed = watchdog > 0.0 and addr == client
+                    last_rx = perf()
+                    armed = watchdog > 0.0
                     status = 0
-                    if safe:
+                    if not _finite(stroke, velocity, i_cmd):
+                        counts["bad_commands"] += 1
+                        status = STATUS_FAULT
+                        if not safe:
+                            note(
+                                f"command from {addr} is not a number (stroke {stroke!r} m, "
+                                f"velocity {velocity!r} m/s, current {i_cmd!r} A): coil off, "
+                                "returning to mid-stroke until the next reset"
+                            )
+                            go_safe(perf())
+                    elif safe:
                         status = STATUS_SAFE  # ignored until the next reset
                     else:
                         try:
                             rig.command(stroke, i_cmd, velocity)
-                            x_last = stroke
+                            x_last, i_last = stroke, i_cmd
                             last = rig.read()
                         except Exception:  # a faulty rig: report it, keep serving
                             status = STATUS_FAULT
@@ -653,27 +745,50 @@ def _serve(
                     elif delay > 0.0 and rng.random() < delay_probability:
                         counts["delayed"] += 1
                         heapq.heappush(pending, (perf() + delay, seq, reply, addr))
-                    else:
-                        sock.sendto(reply, addr)
+                    elif send(reply, addr):
                         counts["replies"] += 1
                 elif kind == RESET:
-                    _, _, _, seq, _, period = _RESET.unpack(data)
-                    counts["resets"] += 1
+                    _, _, _, seq, _, new_period = _RESET.unpack(data)
+                    if not 0.0 < new_period <= _MAX_PERIOD:  # NaN fails too
+                        counts["refused_resets"] += 1
+                        note(
+                            f"refused a reset from {addr}: period {new_period!r} s is not in "
+                            f"(0, {_MAX_PERIOD:g}] s; serving on",
+                            counts["refused_resets"],
+                            "refused resets",
+                        )
+                        send(_pack_sample(seq, last, STATUS_RESET | STATUS_FAULT), addr)
+                        continue
                     pending.clear()
-                    rig.reset(period)
-                    x_last = 0.0
+                    try:
+                        rig.reset(new_period)
+                        last = rig.read()
+                    except Exception as exc:  # the rig refused: it goes safe, serve on
+                        counts["refused_resets"] += 1
+                        note(
+                            f"the rig failed its reset ({exc}): coil off, back to mid-stroke",
+                            counts["refused_resets"],
+                            "refused resets",
+                        )
+                        go_safe(perf())
+                        armed = False
+                        send(_pack_sample(seq, last, STATUS_RESET | STATUS_FAULT), addr)
+                        continue
+                    counts["resets"] += 1
+                    period = new_period
+                    x_last = i_last = 0.0
                     safe, next_safe, armed = False, math.inf, False
+                    if client is not None and addr != client:
+                        note(f"new client {addr} (was {client})")
                     client, last_rx = addr, perf()
                     next_hb = last_rx + heartbeat if heartbeat > 0.0 else math.inf
-                    last = rig.read()
                     ideal = STATUS_IDEAL_CURRENT if rig.ideal_current else 0
-                    status = STATUS_RESET | ideal
-                    sock.sendto(_pack_sample(seq, last, status), addr)
+                    send(_pack_sample(seq, last, STATUS_RESET | ideal), addr)
                 elif kind == HEARTBEAT:
                     _, _, _, seq, t_send = _HEARTBEAT.unpack(data)
                     counts["heartbeats"] += 1
                     ack = _HEARTBEAT_ACK.pack(MAGIC, VERSION, HEARTBEAT_ACK, seq, t_send, perf())
-                    sock.sendto(ack, addr)
+                    send(ack, addr)
                 elif kind == HEARTBEAT_ACK:
                     counts["heartbeat_acks"] += 1
                 else:
@@ -681,28 +796,24 @@ def _serve(
             t = perf()
             while pending and pending[0][0] <= t:
                 _, _, reply, addr = heapq.heappop(pending)
-                sock.sendto(reply, addr)
-                counts["replies"] += 1
+                if send(reply, addr):
+                    counts["replies"] += 1
             if client is not None and t >= next_hb:
                 hb_seq = (hb_seq + 1) & _SEQ_MASK
-                sock.sendto(_HEARTBEAT.pack(MAGIC, VERSION, HEARTBEAT, hb_seq, t), client)
+                send(_HEARTBEAT.pack(MAGIC, VERSION, HEARTBEAT, hb_seq, t), client)
                 counts["heartbeats_sent"] += 1
                 next_hb = max(next_hb + heartbeat, t)
             if armed and not safe and t - last_rx > watchdog:
-                safe = True  # the client went silent: coil off, back to mid-stroke
+                # the client went silent: coil off, back to mid-stroke
                 counts["watchdog_trips"] += 1
-                pending.clear()
-                next_safe, home_at = t, math.inf
+                note(
+                    f"watchdog: no command from {client} for {t - last_rx:.3f} s "
+                    f"(limit {watchdog:g} s): coil off, returning to mid-stroke"
+                )
+                go_safe(t)
             if safe and t >= next_safe:
-                step = return_rate * period
-                if abs(x_last) <= step:
-                    x_last = 0.0
-                else:
-                    x_last -= math.copysign(step, x_last)
-                v = 0.0 if x_last == 0.0 else -math.copysign(return_rate, x_last)
-                with contextlib.suppress(Exception):
-                    rig.command(x_last, 0.0, v)
-                    last = rig.read()
+                x_last, last = _safe_tick(rig, x_last, return_rate * period, return_rate, last)
+                i_last = 0.0
                 if x_last != 0.0:
                     home_at = math.inf
                 elif home_at == math.inf:
@@ -712,6 +823,49 @@ def _serve(
     except KeyboardInterrupt:
         pass
     finally:
-        sock.close()
-        rig.close()
+        try:
+            if x_last != 0.0 or i_last != 0.0:  # the server stops with its rig driven
+                note(f"stopping: coil off, returning the rig to mid-stroke from {x_last:.4g} m")
+                _home(rig, x_last, period, return_rate)
+        except KeyboardInterrupt:  # a second Ctrl-C: stop at once
+            pass
+        finally:
+            sock.close()
+            rig.close()
     return counts
+
+
+def _safe_tick(
+    rig: Rig, x: float, step: float, return_rate: float, last: RigSample
+) -> tuple[float, RigSample]:
+    """One tick of the safe-state return: coil off, ``x`` one ``step`` nearer 0."""
+    if not abs(x) > step:  # NaN included: straight to mid-stroke
+        x = 0.0
+    else:
+        x -= math.copysign(step, x)
+    v = 0.0 if x == 0.0 else -math.copysign(return_rate, x)
+    with contextlib.suppress(Exception):
+        rig.command(x, 0.0, v)
+        last = rig.read()
+    return x, last
+
+
+#: longest return to mid-stroke when the server stops [s] (then mid-stroke is commanded)
+_MAX_HOMING = 10.0
+
+
+def _home(rig: Rig, x: float, period: float, return_rate: float) -> None:
+    """Ramp the rig to mid-stroke with the coil off, in real time (the server's end).
+
+    At most :data:`_MAX_HOMING` seconds (a stroke no rig has): then mid-stroke at once.
+    """
+    step = return_rate * period
+    sample = RigSample(0.0, 0.0, 0.0, 0.0)
+    next_t = time.perf_counter()
+    for _ in range(math.ceil(_MAX_HOMING / period)):
+        x, sample = _safe_tick(rig, x, step, return_rate, sample)
+        if x == 0.0:
+            return
+        next_t += period
+        time.sleep(max(0.0, next_t - time.perf_counter()))
+    _safe_tick(rig, 0.0, step, return_rate, sample)

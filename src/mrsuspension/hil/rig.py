@@ -100,7 +100,16 @@ class Rig(ABC):
 
 
 def _quantise(value: float, full_scale: float, bits: int) -> float:
-    """Bipolar A/D conversion of ``value`` over ``[-full_scale, full_scale)`` (saturating)."""
+    """Bipolar A/D conversion of ``value`` over ``[-full_scale, full_scale)`` (saturating).
+
+    A NaN or infinite value (a simulated state that blew up) is returned as it is, for the
+    safety supervisor to trip on, rather than raising (``math.floor(nan)``).
+
+    >>> _quantise(0.1234, 0.5, 12), _quantise(float("nan"), 0.5, 12)
+    (0.123291015625, nan)
+    """
+    if not -math.inf < value < math.inf:
+        return value
     lsb = 2.0 * full_scale / (1 << bits)
     q = math.floor(value / lsb + 0.5) * lsb
     if q > full_scale - lsb:

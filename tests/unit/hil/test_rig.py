@@ -95,3 +95,18 @@ def test_invalid_rig_named() -> None:
         SimulatedRig(order=3)
     with pytest.raises(ValidationError, match="delay"):
         SimulatedRig(delay=-1.0)
+
+
+@pytest.mark.audit("rig interlocks")
+def test_a_non_finite_rig_state_reads_as_such() -> None:
+    """A simulated state that blew up is read as NaN/inf (for the interlocks), not raised."""
+    from mrsuspension.hil import _kernels as RK
+
+    rig = SimulatedRig()
+    rig.reset(1e-3)
+    rig._st[RK.ST_F] = float("nan")
+    rig._st[RK.ST_I] = float("-inf")
+    sample = rig.read()
+    assert math.isnan(sample.force)
+    assert sample.current == float("-inf")
+    assert math.isfinite(sample.displacement)
