@@ -100,6 +100,10 @@ def run(fd: int, path: str, capacity: int, width: int, ppid: int, poll: float) -
                 time.sleep(poll)
         _put(buf, STATE, DONE)
         return 0
+    except OSError as exc:  # a full disk, a write error: one line for the recorder
+        _put(buf, STATE, FAILED)
+        print(f"OSError: {exc}", file=sys.stderr, flush=True)
+        return 1
     except BaseException:
         _put(buf, STATE, FAILED)
         raise
