@@ -355,11 +355,13 @@ def _report_ending(
     info = result.describe()
     if as_json:
         typer.echo(json.dumps(to_jsonable(info), indent=2))
-    if interrupted is not None:
+    if interrupted is not None:  # one line, exit 128 + the signal (SIGHUP included)
+        from mrsuspension.cli.errors import _exit_interrupted
+
         home = "rig commanded to mid-stroke, current 0"
         what = f"the recording in {str(where)!r}" if where is not None else "no recording"
-        keep_on_interrupt(f"{what} (loop stopped: {result.reason}; {home})")
-        raise interrupted
+        signum = int(getattr(interrupted, "signum", signal.SIGINT))
+        _exit_interrupted(signum, [], [f"{what} (loop stopped: {result.reason}; {home})"])
     if not as_json:
         typer.echo(f"stopped: {result.reason}")
         typer.echo(result.stats.summary())

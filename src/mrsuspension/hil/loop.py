@@ -229,7 +229,9 @@ class _Abort:
         return True
 
     def on_signal(self, signum: int, _frame: Any) -> None:
-        if not self.orphaned():  # a parent-death signal says so
+        if signum == DEATH_SIGNAL:  # prctl(PR_SET_PDEATHSIG): the starting thread ended
+            self.request(_orphan_reason(self.parent or 0), "orphaned")
+        elif not self.orphaned():
             self.request(SIGNAL_REASONS.get(signum, f"signal {signum}"), "interrupted", signum)
 
 
@@ -237,6 +239,8 @@ def _orphan_reason(parent: int) -> str:
     return f"the command that started the loop ended (parent process {parent} gone)"
 
 
+#: the signal the kernel sends a bound loop process when its parent ends (Linux)
+DEATH_SIGNAL = signal.SIGUSR1
 #: the parent process a loop process is bound to (:func:`bind_to_parent`)
 _BOUND_PARENT: list[int] = []
 #: ``PR_SET_PDEATHSIG`` of Linux ``prctl``
@@ -249,10 +253,10 @@ def bind_to_parent(parent: int, death_signal: bool = True) -> None:
     For a loop in a process of its own (``run_hil(process=True)``, the monitor's loop):
     every run of this process checks ``os.getppid()`` every few milliseconds and trips
     (ending ``"orphaned"``) once ``parent`` is gone, e.g. after a ``kill -9`` of the
-    command; with ``death_signal`` (Linux) the kernel also sends SIGHUP at once
-    (``prctl(PR_SET_PDEATHSIG)``), which stops a loop that is still starting. Only for a
-    process started from ``parent``'s main thread (the kernel sends it when the starting
-    thread ends).
+    command; with ``death_signal`` (Linux) the kernel also sends :data:`DEATH_SIGNAL`
+    (SIGUSR1) at once (``prctl(PR_SET_PDEATHSIG)``), which stops a loop that is still
+    starting too. Only for a process started from ``parent``'s main thread (the kernel
+    sends it when the starting thread ends).
     """
     _BOUND_PARENT[:] = [int(parent)]
     if death_signal and sys.platform.startswith("linux"):
@@ -260,7 +264,7 @@ def bind_to_parent(parent: int, death_signal: bool = True) -> None:
 
         with contextlib.suppress(OSError, AttributeError):
             libc = ctypes.CDLL(None, use_errno=True)
-            libc.prctl(_PR_SET_PDEATHSIG, int(signal.SIGHUP), 0, 0, 0)
+            libc.prctl(_PR_SET_PDEATHSIG, int(DEATH_SIGNAL), 0, 0, 0)
 
 
 @contextlib.contextmanager
@@ -275,8 +279,9 @@ def _stop_requests(abort: _Abort) -> Iterator[None]:
         yield
         return
     previous: dict[int, Any] = {}
+    bound = (DEATH_SIGNAL,) if abort.parent is not None else ()
     try:
-        for s in LOOP_SIGNALS:
+        for s in (*LOOP_SIGNALS, *bound):
             old = signal.getsignal(s)
             if old == signal.SIG_IGN and s != signal.SIGTERM:
                 continue
@@ -1116,10 +1121,10 @@ def _child(
     """
     if parent is not None:
         bind_to_parent(parent, death_signal)
-    for s in LOOP_SIGNALS:  # ignored (SIGINT) or held back (SIGTERM, SIGHUP) until here
+    for s in (*LOOP_SIGNALS, DEATH_SIGNAL):  # SIGINT was ignored, the others held back
         if s == signal.SIGINT or signal.getsignal(s) != signal.SIG_IGN:
             signal.signal(s, _raise_interrupted)
-    signal.pthread_sigmask(signal.SIG_UNBLOCK, set(LOOP_SIGNALS))
+    signal.pthread_sigmask(signal.SIG_UNBLOCK, {*LOOP_SIGNALS, DEATH_SIGNAL})
     code = 0
     try:
         run_hil(target, rig, duration, rate, out, **kw)
@@ -1188,7 +1193,7 @@ def start_process(
     from multiprocessing import resource_tracker
 
     resource_tracker.ensure_running()
-    mask = signal.pthread_sigmask(signal.SIG_BLOCK, set(LOOP_SIGNALS))
+    mask = signal.pthread_sigmask(signal.SIG_BLOCK, {*LOOP_SIGNALS, DEATH_SIGNAL})
     previous = signal.signal(signal.SIGINT, signal.SIG_IGN)
     try:
         proc.start()
@@ -1210,8 +1215,13 @@ def _run_in_process(
     proc = start_process(target, rig, duration, rate, out, recover=recover, **kw)
     try:
         proc.join()
-    except BaseException:  # Ctrl-C, SIGTERM, SIGHUP here: stop the loop the safe way, bounded
-        _stop_loop(proc, started=(out / META_FILE).exists(), wait=_stop_wait(kw.get("limits")))
+    except BaseException as exc:  # Ctrl-C, SIGTERM, SIGHUP here: stop the loop the safe way
+        signum = int(getattr(exc, "signum", signal.SIGINT))
+        if threading.current_thread() is threading.main_thread():
+            signal.signal(signal.SIGHUP, signal.SIG_IGN)  # the stop is bounded: let it end
+        _stop_loop(
+            proc, (out / META_FILE).exists(), wait=_stop_wait(kw.get("limits")), signum=signum
+        )
         raise
     code = proc.exitcode
     if code == 2 and not (out / META_FILE).exists():
@@ -1231,9 +1241,12 @@ def _run_in_process(
 
 
 def _stop_loop(
-    proc: multiprocessing.process.BaseProcess, started: bool, wait: float | None = None
+    proc: multiprocessing.process.BaseProcess,
+    started: bool,
+    wait: float | None = None,
+    signum: int = signal.SIGINT,
 ) -> None:
-    """Stop a loop process: SIGINT (it trips and ramps home), then SIGTERM, then SIGKILL.
+    """Stop a loop process: ``signum`` (it trips and ramps home), then SIGTERM, then SIGKILL.
 
     A terminal's Ctrl-C has already reached the loop (same process group); a SIGTERM sent
     to this process only has not, so the loop is asked here, and given ``wait`` seconds
@@ -1245,7 +1258,7 @@ def _stop_loop(
     if started:
         with contextlib.suppress(OSError):
             if proc.is_alive() and proc.pid is not None:
-                os.kill(proc.pid, signal.SIGINT)
+                os.kill(proc.pid, signum)  # the signal this process got, or SIGINT
         proc.join(_stop_wait(None) if wait is None else wait)
     if proc.is_alive() and proc.pid is not None:
         # its recording writer drains and ends on SIGTERM too
