@@ -115,7 +115,8 @@ def rig_server(**kw: Any) -> Iterator[Server]:
     thread.start()
     deadline = time.monotonic() + 30
     while not ports:
-        assert thread.is_alive() and time.monotonic() < deadline, "the rig server did not start"
+        assert thread.is_alive(), "the rig server ended"
+        assert time.monotonic() < deadline, "the rig server did not start"
         time.sleep(0.01)
     try:
         yield Server(witness, ports[0])
@@ -223,11 +224,14 @@ def _check_home(rec_dir: Path, witness: Witness | None, driven: bool = True) -> 
     """The recording is complete and ends with the rig home and the current at 0."""
     rec = load_recording(rec_dir)
     assert rec.complete, rec.stop
-    assert len(rec) > 0 and rec.stop["rows"] == len(rec)
-    assert rec["x_cmd"][-1] == 0.0 and rec["i_cmd"][-1] == 0.0  # commanded home, coil off
+    assert len(rec) > 0
+    assert rec.stop["rows"] == len(rec)
+    assert rec["x_cmd"][-1] == 0.0
+    assert rec["i_cmd"][-1] == 0.0
     assert rec["state"][-1] >= STATE_RETURN
     if witness is None:  # the simulated rig measured it
-        assert abs(rec["x_m"][-1]) < 2e-3 and abs(rec["i_dm"][-1]) < 0.02  # sense noise
+        assert abs(rec["x_m"][-1]) < 2e-3
+        assert abs(rec["i_dm"][-1]) < 0.02
     else:  # the last command the rig applied
         assert witness.driven or not driven, "the rig was never driven: the case shows nothing"
         assert witness.last == (0.0, 0.0), witness.last
@@ -279,17 +283,20 @@ def test_every_ending_leaves_the_rig_home(tmp_path: Path, rig: str, how: str) ->
         assert ended.code == -signal.SIGKILL
         kept = tmp_path / "rec.recovered"
         stop = _check_home(kept, witness)
-        assert stop["ending"] == "orphaned" and "parent process" in stop["reason"]
+        assert stop["ending"] == "orphaned"
+        assert "parent process" in stop["reason"]
         assert not list(tmp_path.glob(".rec.*.tmp"))  # nothing a next run would remove
         line = _one_line(ended, "hil run: ")
-        assert str(kept.name) in line and "mid-stroke" in line
+        assert str(kept.name) in line
+        assert "mid-stroke" in line
         assert ended.seconds < 10.0  # the loop stopped at once, not after its 30 s
         return
     stop = _check_home(tmp_path / "rec", witness, driven=how != "trip")  # trips in the start-up
     if how in SIGNALLED:
         code, reason = SIGNALLED[how]
         assert ended.code == code, ended.stderr
-        assert stop["ending"] == "interrupted" and stop["reason"].startswith(reason)
+        assert stop["ending"] == "interrupted"
+        assert stop["reason"].startswith(reason)
         line = _one_line(ended, "interrupted: ")
         assert line.startswith("interrupted: kept the recording in 'rec' (loop stopped: " + reason)
         assert ended.seconds < 10.0
@@ -299,7 +306,8 @@ def test_every_ending_leaves_the_rig_home(tmp_path: Path, rig: str, how: str) ->
         assert _one_line(ended, "stopped: ") == "stopped: completed"
     else:
         assert ended.code == EXIT_CODES["tripped"] == 1, ended.stderr
-        assert stop["ending"] == "tripped" and "exceeds" in stop["reason"]
+        assert stop["ending"] == "tripped"
+        assert "exceeds" in stop["reason"]
         assert _one_line(ended, "stopped: ") == f"stopped: {stop['reason']}"
 
 
@@ -314,7 +322,8 @@ def test_a_dead_link_trips_and_the_rig_is_left_home(tmp_path: Path) -> None:
     print(f"dead link: exit {ended.code}; {ended.stdout[:200]}")
     stop = _check_home(tmp_path / "rec", server.witness)
     assert ended.code == 1
-    assert stop["ending"] == "tripped" and "rig watchdog" in stop["reason"]
+    assert stop["ending"] == "tripped"
+    assert "rig watchdog" in stop["reason"]
     assert _one_line(ended, "stopped: ").startswith("stopped: rig watchdog")
 
 
@@ -362,7 +371,8 @@ def test_a_full_disk_trips_and_keeps_the_rows_recorded(tmp_path: Path) -> None:
         assert ended.code == 1, ended.stderr
         kept = disk / "rec.recovered"
         rec = load_recording(kept)
-        assert rec.complete and rec.stop["ending"] == "recording failed"
+        assert rec.complete
+        assert rec.stop["ending"] == "recording failed"
         assert "recording failed" in rec.stop["reason"]
         assert len(rec) > 100  # the rows written before the disk filled
         assert not (disk / "rec").exists()
@@ -415,13 +425,17 @@ def test_an_exception_in_a_tick_trips_and_returns_home(rig: str, where: str) -> 
         witness = None
     rec = result.recording
     print(f"exception in rig.{where} over {rig}: {result.reason}")
-    assert result.ending == "failed" and result.tripped and EXIT_CODES[result.ending] == 1
-    assert f"OSError: [Errno 101] Network is unreachable" in result.reason
-    assert rec["x_cmd"][-1] == 0.0 and rec["i_cmd"][-1] == 0.0
+    assert result.ending == "failed"
+    assert result.tripped
+    assert EXIT_CODES[result.ending] == 1
+    assert "OSError: [Errno 101] Network is unreachable" in result.reason
+    assert rec["x_cmd"][-1] == 0.0
+    assert rec["i_cmd"][-1] == 0.0
     assert np.all(rec["i_cmd"][rec["state"] == 3] == 0.0)
     assert len(rec) < 2 * RATE  # stopped at the fault (0.8 s), not after 30 s
     if witness is not None:
-        assert witness.driven and witness.last == (0.0, 0.0)
+        assert witness.driven
+        assert witness.last == (0.0, 0.0)
     else:
         assert abs(rec["x_m"][-1]) < 2e-3
 
@@ -440,7 +454,8 @@ def test_a_rig_that_refuses_every_command_is_given_up_bounded() -> None:
     assert "the rig could not be commanded" in result.reason
     assert "gave up commanding the rig after" in result.reason
     assert fault.calls - fault.at <= round(0.1 * RATE) + 2  # bounded tries
-    assert result.recording.complete and result.recording["i_cmd"][-1] == 0.0
+    assert result.recording.complete
+    assert result.recording["i_cmd"][-1] == 0.0
 
 
 @pytest.mark.audit("hil endings")
@@ -456,8 +471,11 @@ def test_a_signal_in_process_stops_the_loop_safely_then_is_delivered() -> None:
     timer.cancel()
     (result,) = seen
     print(f"in-process Ctrl-C: {result.reason}; kept in {result.out}")
-    assert result.ending == "interrupted" and result.signal == signal.SIGINT
-    assert result.recording["x_cmd"][-1] == 0.0 and result.recording["i_cmd"][-1] == 0.0
+    assert result.ending == "interrupted"
+    assert result.signal == signal.SIGINT
+    assert result.recording["x_cmd"][-1] == 0.0
+    assert result.recording["i_cmd"][-1] == 0.0
     assert np.any(result.recording["i_cmd"] > 0.0)  # driven before the signal
-    assert result.out is not None and load_recording(result.out).complete
+    assert result.out is not None
+    assert load_recording(result.out).complete
     json.loads((result.out / "stop.json").read_text())  # a plain JSON stop record

@@ -110,7 +110,7 @@ STOP_REASON = "STOP pressed"
 #: signals that stop a running loop the safe way (their handlers only request the stop)
 LOOP_SIGNALS = (signal.SIGINT, signal.SIGTERM, signal.SIGHUP)
 #: the stop reason of each of them
-SIGNAL_REASONS = {
+SIGNAL_REASONS: dict[int, str] = {
     signal.SIGINT: "interrupted (SIGINT, Ctrl-C)",
     signal.SIGTERM: "terminated (SIGTERM)",
     signal.SIGHUP: "terminal hung up (SIGHUP)",
