@@ -193,6 +193,13 @@ def hil_run_command(
             )  # fmt: skip
             # as `hil run`: a safety trip (or a failed loop) of the attached run exits 1;
             # the operator's STOP (which takes the same safe path) does not
+            if ended.get("signal"):  # Ctrl-C, SIGTERM, SIGHUP: the loop stopped the safe way
+                from mrsuspension.cli.errors import _exit_interrupted
+
+                what = (
+                    f"the run's recording (loop stopped: {ended.get('reason')}; rig commanded to "
+                )
+                _exit_interrupted(int(ended["signal"]), [], [what + "mid-stroke, current 0)"])
             stopped = ended.get("reason") == STOP_REASON
             if (ended.get("tripped") and not stopped) or ended.get("state") == "error":
                 raise typer.Exit(1)
