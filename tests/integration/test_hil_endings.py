@@ -464,11 +464,18 @@ def test_a_signal_in_process_stops_the_loop_safely_then_is_delivered() -> None:
     trips the loop, which ramps home and closes its recording; then KeyboardInterrupt is
     raised as usual. The temporary recording is kept (no result is returned)."""
     seen: list[Any] = []
-    timer = threading.Timer(0.9, lambda: os.kill(os.getpid(), signal.SIGINT))
-    timer.start()
+    rig = SimulatedRig(damper=_sim().damper)
+    command = rig.command
+
+    def ctrl_c_once_driven(stroke: float, current: float, velocity: float = 0.0) -> None:
+        command(stroke, current, velocity)
+        if current > 0.0 and not hasattr(rig, "sent"):  # lands in the tick, then the wait
+            rig.sent = True  # type: ignore[attr-defined]
+            os.kill(os.getpid(), signal.SIGINT)
+
+    rig.command = ctrl_c_once_driven  # type: ignore[method-assign]
     with pytest.raises(KeyboardInterrupt):
-        run_hil(_sim(), duration=30, rate=RATE, realtime="off", on_stop=seen.append)
-    timer.cancel()
+        run_hil(_sim(), rig, duration=30, rate=RATE, realtime="off", on_stop=seen.append)
     (result,) = seen
     print(f"in-process Ctrl-C: {result.reason}; kept in {result.out}")
     assert result.ending == "interrupted"
