@@ -22,6 +22,7 @@ The cache folder of the studies is checked with :func:`check_writable_folder`.
 
 from __future__ import annotations
 
+import errno
 import json
 import os
 import re
@@ -39,6 +40,7 @@ __all__ = [
     "carry_over",
     "check_output_folder",
     "check_writable_folder",
+    "keep_recovered",
     "marked_command",
     "prepare_output",
     "prepare_output_file",
@@ -528,3 +530,44 @@ def prepare_output_file(
         _remove_empty(created)
         discarded.append(path)
         raise
+
+
+def keep_recovered(staged: str | Path, path: str | Path) -> Path:
+    """Keep a staged output that could not be committed as a visible ``NAME.recovered``.
+
+    For ``hil run``'s recording when the run ended in a way its command could not commit
+    (a full disk, the command killed while its loop process finished the safe stop): the
+    temporary folder of :func:`prepare_output` would be removed as a stale sibling by the
+    next run; moved beside ``path`` as ``NAME.recovered`` (``NAME.recovered.2``, ... when
+    taken) it is the user's, and no later run removes it. The move stays on the file
+    system (a rename: it needs no free space).
+
+    Returns
+    -------
+    Path
+        Where the folder is now.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     staged = pathlib.Path(d, ".rec.ab12cd34.tmp")
+    ...     staged.mkdir()
+    ...     keep_recovered(staged, pathlib.Path(d, "rec")).name
+    'rec.recovered'
+    """
+    staged, path = Path(staged), Path(path)
+    for n in range(1, 1000):
+        dest = path.with_name(f"{path.name}.recovered" + (f".{n}" if n > 1 else ""))
+        if dest.exists() or dest.is_symlink():
+            continue
+        try:
+            os.rename(staged, dest)  # never over an existing folder
+        except FileExistsError:
+            continue
+        except OSError as exc:
+            if exc.errno in (errno.EEXIST, errno.ENOTEMPTY):
+                continue
+            raise
+        return dest
+    raise OSError(f"no free name for {path.name}.recovered beside {str(path.parent)!r}")

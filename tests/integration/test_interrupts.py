@@ -211,26 +211,8 @@ def test_signals_during_the_cleanup_change_nothing(tmp_path: Path) -> None:
     _check(interrupt(_commands(tmp_path)["sweep"], "burst", tmp_path), tmp_path, "sweep", "burst")
 
 
-@pytest.mark.parametrize("how", ["sigint", "sigterm"])
-def test_an_interrupted_hil_run_stops_its_loop_the_safe_way(tmp_path: Path, how: str) -> None:
-    """Once the loop runs (its recording exists), it trips, ramps the rig home and writes
-    its stop record, then exits; the recording so far is kept and said so (a SIGTERM to
-    the parent only used to leave the loop running for the whole duration)."""
-    rec = tmp_path / "rec"
-
-    def recording() -> bool:  # written into the staged folder (_output), moved at the end
-        return any(tmp_path.glob(".rec.*.tmp/meta.json")) or (rec / "meta.json").is_file()
-
-    stopped = interrupt(_commands(tmp_path)["hil run"], how, tmp_path, ready=recording)
-    print(f"hil run {how}: exit {stopped.code} after {stopped.seconds:.3f} s")
-    assert stopped.left == [], f"processes left: {stopped.left}"
-    assert stopped.code == (143 if how == "sigterm" else 130), stopped.stderr
-    assert stopped.seconds < LIMIT
-    assert "Traceback" not in stopped.stderr
-    assert stopped.stderr.strip().splitlines()[-1] == (
-        f"interrupted: kept the recording so far in {str(rec)!r}"
-    )
-    assert (rec / "stop.json").is_file()
+# an interrupted `hil run` whose loop runs: tests/integration/test_hil_endings.py (every
+# ending, over the simulated and the UDP rig, the rig's last command checked)
 
 
 @pytest.mark.parametrize("how", ["sigint", "sigterm"])

@@ -121,7 +121,10 @@ def test_hil_run_monitor_json_prints_the_result_when_the_run_ends(tmp_path: Path
         proc.terminate()
         _, err = proc.communicate(timeout=20)
     info = json.loads("".join(lines))  # stdout holds the JSON only
-    assert set(info) == {"reason", "tripped", "rows", "out", "stats", "rms_body_acceleration"}
+    assert set(info) == {
+        *("reason", "tripped", "ending", "signal", "rows", "out", "stats"),
+        "rms_body_acceleration",
+    }
     assert info["reason"] == "completed"
     assert info["out"] is None  # no --out: as `hil run --json`
     assert info["stats"]["ticks"] >= 500

@@ -11,10 +11,14 @@ serves a simulated rig over UDP.
 
 from __future__ import annotations
 
+import contextlib
 import json
 import math
 import shutil
+import signal
 import tempfile
+import threading
+from collections.abc import Iterator
 from pathlib import Path
 from typing import Annotated, Any
 
@@ -135,7 +139,6 @@ def hil_run_command(
         STOP_REASON,
         _simulation_of,
         check_recording_memory,
-        run_hil,
     )
     from mrsuspension.hil.realtime import normalise_mode
     from mrsuspension.hil.rigs import make_rig, rig_kind
@@ -190,51 +193,192 @@ def hil_run_command(
             )  # fmt: skip
             # as `hil run`: a safety trip (or a failed loop) of the attached run exits 1;
             # the operator's STOP (which takes the same safe path) does not
+            if ended.get("signal"):  # Ctrl-C, SIGTERM, SIGHUP: the loop stopped the safe way
+                from mrsuspension.cli.errors import _exit_interrupted
+
+                what = (
+                    f"the run's recording (loop stopped: {ended.get('reason')}; rig commanded to "
+                )
+                _exit_interrupted(int(ended["signal"]), [], [what + "mid-stroke, current 0)"])
             stopped = ended.get("reason") == STOP_REASON
             if (ended.get("tripped") and not stopped) or ended.get("state") == "error":
                 raise typer.Exit(1)
             return
         the_rig = make_rig(rig, sim.damper)
-        tmp = None
-        interrupted: KeyboardInterrupt | None = None
+        with _hangup_interrupts():
+            result, kept, interrupted = _run_recorded(
+                sim, the_rig, out, force=force, duration=duration, rate=rate, realtime=realtime,
+                isolate=isolate, model_dt=DEFAULT_DT if model_dt is None else model_dt,
+            )  # fmt: skip
+    _report_ending(result, kept, out, interrupted, as_json)
+
+
+#: ``hil run``'s exit status per ending of the run (docs/hil.md, "Endings"); a signal
+#: that stopped the run exits 128 + its number (130 SIGINT, 143 SIGTERM, 129 SIGHUP)
+EXIT_CODES = {
+    "completed": 0,
+    "stopped": 0,
+    "tripped": 1,
+    "failed": 1,
+    "recording failed": 1,
+    "orphaned": 1,
+}
+
+
+class _NotCommitted(Exception):
+    """Raised inside :func:`prepare_output` to leave ``--out`` as it was."""
+
+
+@contextlib.contextmanager
+def _hangup_interrupts() -> Iterator[None]:
+    """SIGHUP (a closed terminal, a dropped SSH session) stops ``hil run`` as Ctrl-C
+    does, exit status 129; unless it is ignored (``nohup``). Main thread only."""
+    from mrsuspension._pool import Interrupted
+
+    main = threading.current_thread() is threading.main_thread()
+    previous = signal.getsignal(signal.SIGHUP) if main else signal.SIG_IGN
+    fired: list[int] = []
+
+    def on_hangup(signum: int, _frame: Any) -> None:
+        if not fired:
+            fired.append(signum)
+            raise Interrupted(signum)
+
+    if previous != signal.SIG_IGN:
+        signal.signal(signal.SIGHUP, on_hangup)
+    try:
+        yield
+    finally:
+        if previous != signal.SIG_IGN:
+            signal.signal(signal.SIGHUP, previous if previous is not None else signal.SIG_DFL)
+
+
+def _run_recorded(
+    sim: Any,
+    the_rig: Any,
+    out: Path | None,
+    *,
+    force: bool,
+    duration: float,
+    rate: float,
+    realtime: str,
+    isolate: bool,
+    model_dt: float,
+) -> tuple[Any, Path | None, KeyboardInterrupt | None]:
+    """Run the loop in its own process; keep its recording whatever the ending.
+
+    Returns the result (None when the loop left none), where the recording is when it is
+    not ``out`` (the temporary folder of a run without ``--out`` that ended badly, or
+    ``NAME.recovered`` when it could not be committed), and the interrupt to re-raise.
+    A run that ended through the loop is committed to ``out`` (the recording up to a
+    Ctrl-C included); a failed recording (a full disk) is moved aside, not committed.
+    """
+    from mrsuspension._output import keep_recovered
+    from mrsuspension.errors import MRSuspensionError
+    from mrsuspension.hil.loop import load_result, run_hil
+    from mrsuspension.hil.recorder import META_FILE
+
+    tmp = None
+    result = None
+    kept: Path | None = None
+    interrupted: KeyboardInterrupt | None = None
+    try:
         with prepare_output(out, "hil run", force=force) as staged:
             target = staged
             if target is None:
                 tmp = Path(tempfile.mkdtemp(prefix="mrsus-hil-"))
                 target = tmp / "recording"
+            failure: MRSuspensionError | None = None
             try:
                 result = run_hil(
                     sim, the_rig, duration=duration, rate=rate, out=target, process=True,
-                    realtime=realtime, isolate=isolate,
-                    model_dt=DEFAULT_DT if model_dt is None else model_dt,
+                    realtime=realtime, isolate=isolate, model_dt=model_dt, recover=out,
                 )  # fmt: skip
             except KeyboardInterrupt as exc:  # the loop stopped the safe way: keep the data
                 interrupted = exc
-            finally:
-                if tmp is not None:
+                _ignore_signals()  # the cleanup is bounded: later signals change nothing
+            except MRSuspensionError as exc:  # the loop process died
+                failure = exc
+            if result is None:
+                try:
+                    result = load_result(target)
+                except (MRSuspensionError, ValueError, OSError):
+                    result = None
+            started = (target / META_FILE).exists()
+            bad = result is None or result.ending not in ("completed", "stopped")
+            if tmp is not None:
+                if bad and started:
+                    kept = target  # the run ended badly: the temporary recording stays
+                else:
                     shutil.rmtree(tmp, ignore_errors=True)
-            if staged is not None and out is not None:
+            elif staged is not None and out is not None:
+                if started and (
+                    failure is not None
+                    or (result is not None and result.ending == "recording failed")
+                ):
+                    kept = keep_recovered(staged, out)  # the disk may be full: not committed
+                    raise _NotCommitted
                 relocate_files(staged, out)  # the recording names its final folder
-            if interrupted is None:
-                info = result.describe()
-                if staged is not None and out is not None:
-                    info = relocated(info, staged, out)
-        if interrupted is not None:  # the recording up to the Ctrl-C is in place: say so
-            if out is not None and out.is_dir() and any(out.iterdir()):
-                keep_on_interrupt(f"the recording so far in {str(out)!r}")
+                if result is not None:
+                    result.out = out
+            if failure is not None and not started:
+                raise failure
+            if failure is not None and result is None and interrupted is None:
+                raise failure
+    except _NotCommitted:
+        pass
+    if result is not None and tmp is not None and kept is None:
+        result.out = None
+    if result is not None and kept is not None:
+        result.out = kept
+    if interrupted is None and result is not None and result.signal is not None:
+        from mrsuspension._pool import Interrupted
+
+        interrupted = Interrupted(result.signal)  # the loop got it alone: exit the same way
+    return result, kept, interrupted
+
+
+def _ignore_signals() -> None:
+    if threading.current_thread() is threading.main_thread():
+        for s in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP):
+            signal.signal(s, signal.SIG_IGN)
+
+
+def _report_ending(
+    result: Any,
+    kept: Path | None,
+    out: Path | None,
+    interrupted: KeyboardInterrupt | None,
+    as_json: bool,
+) -> None:
+    """One line saying how the run ended, and ``hil run``'s exit status (:data:`EXIT_CODES`)."""
+    where = kept if kept is not None else out
+    if result is None:  # the loop left no result (it died before its stop record)
+        if interrupted is not None:
+            if where is not None and where.exists():
+                keep_on_interrupt(f"the recording so far in {str(where)!r}")
             raise interrupted
-    if tmp is not None:
-        info["out"] = None
+        raise typer.Exit(1)
+    info = result.describe()
     if as_json:
         typer.echo(json.dumps(to_jsonable(info), indent=2))
-    else:
+    if interrupted is not None:  # one line, exit 128 + the signal (SIGHUP included)
+        from mrsuspension.cli.errors import _exit_interrupted
+
+        home = "rig commanded to mid-stroke, current 0"
+        what = f"the recording in {str(where)!r}" if where is not None else "no recording"
+        signum = int(getattr(interrupted, "signum", signal.SIGINT))
+        _exit_interrupted(signum, [], [f"{what} (loop stopped: {result.reason}; {home})"])
+    if not as_json:
         typer.echo(f"stopped: {result.reason}")
         typer.echo(result.stats.summary())
         typer.echo(f"rms body acceleration: {info['rms_body_acceleration']:.4g} m/s^2")
         if info["out"]:
-            typer.echo(f"recording: {info['out']}")
-    if result.tripped:
-        raise typer.Exit(1)
+            note = " (not committed to --out)" if kept is not None and out is not None else ""
+            typer.echo(f"recording: {info['out']}{note}")
+    code = EXIT_CODES.get(result.ending, 1)
+    if code:
+        raise typer.Exit(code)
 
 
 def _run_settings(scn: Any, duration: float | None) -> tuple[float, float | None]:

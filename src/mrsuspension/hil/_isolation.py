@@ -281,6 +281,7 @@ def _guard_main() -> None:
     restore them here).
     """
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is for the loop
+    signal.signal(signal.SIGHUP, signal.SIG_IGN)  # so is a terminal's hang-up
     moved: dict[int, _Moved] = {}
     since = 0
     for line in sys.stdin:

@@ -13,8 +13,9 @@ the rows are in the operating system's cache at once), reports its progress
 published is written, on SIGTERM (after the same drain), or when the loop process is gone
 (killed: the ring outlives it here, so every row it published is still written). Rows the
 loop overwrote before they were copied are counted as lost, never written torn. Ctrl-C
-(SIGINT, sent to the whole process group from a terminal) is ignored: the loop decides
-when recording ends.
+and a terminal's hang-up (SIGINT, SIGHUP, sent to the whole process group) are ignored:
+the loop decides when recording ends. A write error (a full disk) ends it with one line
+on stderr and exit status 1; the loop sees it and trips.
 """
 
 from __future__ import annotations
@@ -85,6 +86,7 @@ def run(fd: int, path: str, capacity: int, width: int, ppid: int, poll: float) -
     buf = mmap.mmap(fd, size)
     stop = []
     signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGHUP, signal.SIG_IGN)  # a terminal's hang-up: the loop decides too
     signal.signal(signal.SIGTERM, lambda *_: stop.append(True))
     out = os.open(path, os.O_WRONLY | os.O_APPEND | os.O_CREAT, 0o644)
     try:
@@ -100,6 +102,10 @@ def run(fd: int, path: str, capacity: int, width: int, ppid: int, poll: float) -
                 time.sleep(poll)
         _put(buf, STATE, DONE)
         return 0
+    except OSError as exc:  # a full disk, a write error: one line for the recorder
+        _put(buf, STATE, FAILED)
+        print(f"OSError: {exc}", file=sys.stderr, flush=True)
+        return 1
     except BaseException:
         _put(buf, STATE, FAILED)
         raise

@@ -22,6 +22,17 @@ thread in the loop's process).
 On a trip (or at the end of the run) the drive current goes to 0 in the same tick and
 the actuator is ramped back to mid-stroke before the loop stops.
 
+Every ending takes that path (docs/hil.md, "Endings"): a safety trip, the operator's
+STOP, an exception anywhere in a tick (reading the rig, the model, the controller,
+commanding the rig, recording), a failed recording (a full disk: the recorder's writer
+ended), SIGINT, SIGTERM or SIGHUP (their handlers, installed while the loop runs, only
+request the stop, which the next tick takes) and, for a loop in a process of its own,
+the death of the process that started it (:func:`bind_to_parent`). The stop record
+(``stop.json``) says which (``ending``, ``reason``, ``signal``). When the rig cannot be
+commanded at all (a dead link), the loop tries a bounded number of ticks, then ends and
+leaves the rig to its own watchdog. A signal that stopped the loop is delivered again,
+to the handler there was before, once the recording is closed.
+
 Optional live hooks (:class:`~mrsuspension.hil.live.LoopHooks`, used by the browser
 monitor; None keeps the loop as it is): a **tap** (decimated rows and status into a bounded queue, dropped when full),
 an external **stop** event (the safety path: current 0 in the tick it is seen, actuator
@@ -73,7 +84,7 @@ from mrsuspension.hil.realtime import (
     yield_loop_cpu,
 )
 from mrsuspension.hil.recorder import META_FILE, Recorder, Recording, load_recording
-from mrsuspension.hil.rig import Rig, SimulatedRig
+from mrsuspension.hil.rig import Rig, RigSample, SimulatedRig
 from mrsuspension.hil.safety import SafetyLimits, SafetySupervisor, StartUp
 
 __all__ = [
@@ -86,6 +97,7 @@ __all__ = [
     "LiveChange",
     "LoopHooks",
     "TickStats",
+    "bind_to_parent",
     "check_recording_memory",
     "load_result",
     "run_hil",
@@ -94,6 +106,26 @@ __all__ = [
 #: the stop reason recorded when the operator presses STOP (the safety path, not a trip
 #: of a limit)
 STOP_REASON = "STOP pressed"
+
+#: signals that stop a running loop the safe way (their handlers only request the stop)
+LOOP_SIGNALS = (signal.SIGINT, signal.SIGTERM, signal.SIGHUP)
+#: the stop reason of each of them
+SIGNAL_REASONS: dict[int, str] = {
+    signal.SIGINT: "interrupted (SIGINT, Ctrl-C)",
+    signal.SIGTERM: "terminated (SIGTERM)",
+    signal.SIGHUP: "terminal hung up (SIGHUP)",
+}
+
+#: how a run ended (``HilResult.ending``, ``stop.json``'s ``ending``)
+ENDINGS = (
+    "completed",  # ran its duration and returned to mid-stroke
+    "stopped",  # the operator's STOP
+    "tripped",  # a safety limit, an interlock, the rig watchdog (a dead link), a diverged model
+    "failed",  # an exception in a tick, or the rig could not be commanded
+    "recording failed",  # the recorder's writer ended (a full disk)
+    "interrupted",  # SIGINT, SIGTERM or SIGHUP (``signal``)
+    "orphaned",  # the process that started the loop ended (bind_to_parent)
+)
 
 #: loop states (the ``state`` channel)
 STATE_STARTUP, STATE_RUN, STATE_RETURN, STATE_TRIPPED = 0, 1, 2, 3
@@ -164,6 +196,100 @@ _SPIN_FRACTION = 0.25
 _START_DELAY = 2e-3
 #: the recorder's ring holds this long a stretch of rows (how far its writer may lag) [s]
 _RING_SECONDS = 10.0
+#: how often the loop checks its recorder's writer and its parent process [s]
+_WATCH_PERIOD = 0.02
+#: how long the loop keeps trying to command a rig that refuses every command [s]
+_COMMAND_GIVE_UP = 0.1
+
+
+class _Abort:
+    """A request to stop the loop the safe way, read by the loop every tick.
+
+    Set by the loop's signal handlers (which never raise) and by its parent watch; the
+    first request wins.
+    """
+
+    __slots__ = ("ending", "parent", "reason", "signum")
+
+    def __init__(self, parent: int | None = None) -> None:
+        self.reason = ""
+        self.ending = ""
+        self.signum: int | None = None
+        self.parent = parent
+
+    def request(self, reason: str, ending: str, signum: int | None = None) -> None:
+        if not self.reason:
+            self.reason, self.ending, self.signum = reason, ending, signum
+
+    def orphaned(self) -> bool:
+        """True (and the request made) when the bound parent process is gone."""
+        if self.parent is None or os.getppid() == self.parent:
+            return False
+        self.request(_orphan_reason(self.parent), "orphaned")
+        return True
+
+    def on_signal(self, signum: int, _frame: Any) -> None:
+        if signum == DEATH_SIGNAL:  # prctl(PR_SET_PDEATHSIG): the starting thread ended
+            self.request(_orphan_reason(self.parent or 0), "orphaned")
+        elif not self.orphaned():
+            self.request(SIGNAL_REASONS.get(signum, f"signal {signum}"), "interrupted", signum)
+
+
+def _orphan_reason(parent: int) -> str:
+    return f"the command that started the loop ended (parent process {parent} gone)"
+
+
+#: the signal the kernel sends a bound loop process when its parent ends (Linux)
+DEATH_SIGNAL = signal.SIGUSR1
+#: the parent process a loop process is bound to (:func:`bind_to_parent`)
+_BOUND_PARENT: list[int] = []
+#: ``PR_SET_PDEATHSIG`` of Linux ``prctl``
+_PR_SET_PDEATHSIG = 1
+
+
+def bind_to_parent(parent: int, death_signal: bool = True) -> None:
+    """Bind this process's loops to ``parent``: when it ends, the loop stops the safe way.
+
+    For a loop in a process of its own (``run_hil(process=True)``, the monitor's loop):
+    every run of this process checks ``os.getppid()`` every few milliseconds and trips
+    (ending ``"orphaned"``) once ``parent`` is gone, e.g. after a ``kill -9`` of the
+    command; with ``death_signal`` (Linux) the kernel also sends :data:`DEATH_SIGNAL`
+    (SIGUSR1) at once (``prctl(PR_SET_PDEATHSIG)``), which stops a loop that is still
+    starting too. Only for a process started from ``parent``'s main thread (the kernel
+    sends it when the starting thread ends).
+    """
+    _BOUND_PARENT[:] = [int(parent)]
+    if death_signal and sys.platform.startswith("linux"):
+        import ctypes
+
+        with contextlib.suppress(OSError, AttributeError):
+            libc = ctypes.CDLL(None, use_errno=True)
+            libc.prctl(_PR_SET_PDEATHSIG, int(DEATH_SIGNAL), 0, 0, 0)
+
+
+@contextlib.contextmanager
+def _stop_requests(abort: _Abort) -> Iterator[None]:
+    """SIGINT, SIGTERM and SIGHUP request the safe stop (``abort``) instead of raising.
+
+    Main thread only (elsewhere nothing changes). A signal ignored when the block starts
+    (SIGINT in a background job, SIGHUP under ``nohup``) stays ignored. The previous
+    handlers come back at the end.
+    """
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    previous: dict[int, Any] = {}
+    bound = (DEATH_SIGNAL,) if abort.parent is not None else ()
+    try:
+        for s in (*LOOP_SIGNALS, *bound):
+            old = signal.getsignal(s)
+            if old == signal.SIG_IGN and s != signal.SIGTERM:
+                continue
+            previous[s] = signal.signal(s, abort.on_signal)
+        yield
+    finally:
+        for s, old in previous.items():
+            signal.signal(s, old if old is not None else signal.SIG_DFL)
 
 
 @dataclass(frozen=True)
@@ -297,7 +423,14 @@ class HilResult:
     tripped : bool
         True when the safety supervisor stopped the run.
     out : Path or None
-        The recording directory (None when recorded to a temporary one).
+        The recording directory (None when recorded to a temporary one and removed).
+    meta : dict
+        The recording's metadata.
+    ending : str
+        How the run ended, one of :data:`ENDINGS` (``"completed"``, ``"tripped"``,
+        ``"interrupted"``...).
+    signal : int or None
+        The signal that stopped the run (SIGINT, SIGTERM, SIGHUP), if any.
     """
 
     recording: Recording
@@ -306,6 +439,8 @@ class HilResult:
     tripped: bool
     out: Path | None = None
     meta: dict[str, Any] = field(default_factory=dict)
+    ending: str = "completed"
+    signal: int | None = None
 
     def running(self) -> np.ndarray:
         """Mask of the rows recorded while the model ran (start-up and running)."""
@@ -321,6 +456,8 @@ class HilResult:
         return {
             "reason": self.reason,
             "tripped": self.tripped,
+            "ending": self.ending,
+            "signal": self.signal,
             "rows": len(self.recording),
             "out": str(self.out) if self.out else None,
             "stats": self.stats.describe(),
@@ -419,6 +556,7 @@ def run_hil(
     on_stop: Callable[[HilResult], None] | None = None,
     hooks: LoopHooks | None = None,
     settings: RunSettings | None = None,
+    recover: str | Path | None = None,
 ) -> HilResult:
     """Run a scenario in the loop with a rig.
 
@@ -475,11 +613,23 @@ def run_hil(
         rate stays ``rate`` (a property of the rig and its driver, not of the model);
         ``output_rate`` does not apply (every tick is recorded). Giving it with a
         ``duration`` or ``model_dt`` other than the defaults is an error.
+    recover : path, optional
+        With ``process=True``: where the loop process keeps its recording if this process
+        dies during the run (``NAME.recovered`` beside ``recover``, see
+        :func:`~mrsuspension._output.keep_recovered`); default: left in ``out``.
 
     Returns
     -------
     HilResult
         The recording, the tick statistics and why the run stopped.
+
+    Notes
+    -----
+    SIGINT, SIGTERM or SIGHUP during the run stop it the safe way (in the main thread:
+    current 0, back to mid-stroke, the recording closed with the reason); then the
+    signal is delivered again to the handler there was before (Ctrl-C raises
+    ``KeyboardInterrupt`` as usual), after ``on_stop``. A temporary recording (no
+    ``out``) is then kept, since no result is returned.
     """
     if settings is not None:
         if (duration, model_dt) != (10.0, DEFAULT_DT):
@@ -494,7 +644,7 @@ def run_hil(
         duration = float(check_range("duration", duration, 0.0, 1e5, unit="s", low_inclusive=False))
         check_recording_memory(duration, rate)  # before the child starts
         return _run_in_process(
-            target, rig, duration, rate, Path(out), model_dt=model_dt, limits=limits,
+            target, rig, duration, rate, Path(out), recover, model_dt=model_dt, limits=limits,
             startup=startup, driver=driver, realtime=realtime, isolate=isolate,
             cap_current=cap_current, hooks=hooks,
         )  # fmt: skip
@@ -564,61 +714,83 @@ def run_hil(
         "startup": dataclasses.asdict(startup),
         "driver": dataclasses.asdict(driver),
     }
-    with yield_loop_cpu():  # the recorder's writer process keeps off the loop's core
-        recorder = Recorder(
-            rec_dir,
-            _NAMES,
-            units=dict(CHANNELS),
-            buffer_rows=max(16384, round(_RING_SECONDS * rate)),
-            wait=not realtime,  # unpaced: wait for the writer rather than lose rows
-            meta=meta,
-        )
+    abort = _Abort(_BOUND_PARENT[0] if _BOUND_PARENT else None)
     compute = np.zeros(n_max)
     lateness = np.zeros(n_max)
-    try:
-        if hooks is not None:  # a first message before the clock starts (a queue's feeder)
-            hooks.send("started", {"rate": rate, "ticks": n_ticks})
-        # scheduling hook (hil/realtime.py)
-        with realtime_session(mode, compute, lateness, isolate=isolate) as rt:
-            if rt.spin and hasattr(rig, "spin"):
-                rig.spin = True  # a network rig polls for its replies too
-            reason, ticks = _loop(
-                stepper, rig, driver, supervisor, startup, recorder, road, road_v, n_ticks,
-                n_max, n_sub, period, realtime, compute, lateness, hooks, road_src, rt.spin,
-            )  # fmt: skip
-        stats = TickStats.from_arrays(
-            compute[:ticks], lateness[:ticks], period, realtime, scheduling=rt.label()
-        )
-    except BaseException as exc:  # the recording says so and its writer ends
-        with contextlib.suppress(MRSuspensionError):
-            recorder.close({"reason": f"the loop failed: {type(exc).__name__}: {exc}"})
-        rig.close()
-        raise
-    meta["scheduling"] = rt.describe()
-    stop = {
-        "reason": reason,
-        "tripped": supervisor.tripped,
-        "trip_time": supervisor.trip_time if supervisor.tripped else None,
-        "stats": stats.describe(),
-        "scheduling": rt.describe(),
-    }
-    recorder.close(stop)
-    rig.close()
+    # from here on SIGINT, SIGTERM and SIGHUP only request the safe stop
+    with _stop_requests(abort):
+        with yield_loop_cpu():  # the recorder's writer process keeps off the loop's core
+            recorder = Recorder(
+                rec_dir,
+                _NAMES,
+                units=dict(CHANNELS),
+                buffer_rows=max(16384, round(_RING_SECONDS * rate)),
+                wait=not realtime,  # unpaced: wait for the writer rather than lose rows
+                meta=meta,
+            )
+        try:
+            try:
+                if hooks is not None:  # a first message before the clock starts (a queue's feeder)
+                    hooks.send("started", {"rate": rate, "ticks": n_ticks})
+                # scheduling hook (hil/realtime.py)
+                with realtime_session(mode, compute, lateness, isolate=isolate) as rt:
+                    if rt.spin and hasattr(rig, "spin"):
+                        rig.spin = True  # a network rig polls for its replies too
+                    reason, ticks, ending = _loop(
+                        stepper, rig, driver, supervisor, startup, recorder, road, road_v,
+                        n_ticks, n_max, n_sub, period, realtime, compute, lateness, hooks,
+                        road_src, rt.spin, abort,
+                    )  # fmt: skip
+                stats = TickStats.from_arrays(
+                    compute[:ticks], lateness[:ticks], period, realtime, scheduling=rt.label()
+                )
+            except BaseException as exc:  # outside the ticks: the recording says so
+                with contextlib.suppress(MRSuspensionError, OSError):
+                    recorder.close(
+                        {
+                            "reason": f"the loop failed: {type(exc).__name__}: {exc}",
+                            "ending": "failed",
+                            "tripped": True,
+                        }
+                    )
+                raise
+            meta["scheduling"] = rt.describe()
+            stop = {
+                "reason": reason,
+                "ending": ending,
+                "signal": abort.signum,
+                "tripped": supervisor.tripped,
+                "trip_time": supervisor.trip_time if supervisor.tripped else None,
+                "stats": stats.describe(),
+                "scheduling": rt.describe(),
+            }
+            try:
+                recorder.close(stop)
+            except MRSuspensionError:
+                if ending != "recording failed":  # the loop saw it: said in the stop record
+                    raise
+        finally:
+            rig.close()
     if hooks is not None:
         hooks.send("status", _status(supervisor, "ended", reason, ticks, stats, hooks))
     recording = load_recording(rec_dir)
-    if tmp_dir is not None:
+    keep = tmp_dir is not None and abort.signum is not None  # the caller gets no result
+    if tmp_dir is not None and not keep:
         shutil.rmtree(tmp_dir, ignore_errors=True)
     result = HilResult(
         recording=recording,
         stats=stats,
         reason=reason,
         tripped=supervisor.tripped,
-        out=None if tmp_dir is not None else rec_dir,
+        out=None if tmp_dir is not None and not keep else rec_dir,
         meta=meta,
+        ending=ending,
+        signal=abort.signum,
     )
     if on_stop is not None:
         on_stop(result)
+    if abort.signum is not None:  # the rig is home and the recording closed: deliver it
+        signal.raise_signal(abort.signum)
     return result
 
 
@@ -641,13 +813,20 @@ def _loop(
     hooks: LoopHooks | None,
     road_src: _Road,
     spin_all: bool = False,
-) -> tuple[str, int]:
-    """The hot loop; returns (stop reason, ticks run)."""
+    abort: _Abort | None = None,
+) -> tuple[str, int, str]:
+    """The hot loop; returns (stop reason, ticks run, ending).
+
+    Anything a tick raises trips the supervisor (ending ``"failed"``), and the rig is
+    still commanded: current 0, back to mid-stroke. So do an abort request (a signal, the
+    parent's death) and a failed recording.
+    """
     perf = time.perf_counter
     step = stepper.step
     read = rig.read
     command = rig.command
     append = recorder.append
+    writer_failure = recorder.failure
     check_sample = supervisor.check_sample
     check_command = supervisor.check_command
     lim = supervisor.limits
@@ -658,9 +837,13 @@ def _loop(
     hold_current = startup.hold_current
     home_tol = max(2e-3, 0.02 * lim.stroke)
     spin = _spin_window(period, spin_all)
+    abort = abort if abort is not None else _Abort()
+    watch_every = max(1, round(_WATCH_PERIOD / period))
+    give_up = max(3, math.ceil(_COMMAND_GIVE_UP / period))
 
     state = STATE_STARTUP if startup_ticks > 0 else STATE_RUN
     reason = "completed"
+    ending = "completed"
     x_cmd = 0.0
     v_cmd = 0.0
     i_out = 0.0
@@ -672,6 +855,7 @@ def _loop(
     v_d = 0.0
     zr_now = road[0]
     zrd_now = road_v[0]
+    sample: Any = RigSample(0.0, 0.0, 0.0, math.nan)  # until the first reading
     # live hooks (None: none of this runs)
     hooked = hooks is not None
     hk = hooks if hooks is not None else LoopHooks()
@@ -682,6 +866,19 @@ def _loop(
     last_demand = 0.0
     demand = 0.0
     pending: list[tuple[float, ...]] = []
+    refused = 0  # ticks in a row whose command the rig refused
+    recording = True
+
+    def trip(why: str, how: str, t: float) -> None:
+        nonlocal state, reason, ending, i_out, last_demand
+        if state != STATE_TRIPPED:
+            supervisor.trip(why, t)
+            state = STATE_TRIPPED
+            reason, ending = supervisor.reason, how
+        i_out = 0.0  # current to 0 in the tick of the trip
+        with contextlib.suppress(Exception):
+            driver.off()
+        last_demand = 0.0
 
     k = 0
     with _quiet_interpreter() as t0:
@@ -689,82 +886,89 @@ def _loop(
             release = t0 + k * period
             start = _wait_until(release, spin) if realtime else perf()
             t = k * period
-            if hooked and state <= STATE_RUN and k % hk.poll_every == 0:
-                ramp = _apply_settings(hk, stepper, road_src, supervisor, t, period)
-                if ramp:
-                    ramp_left = ramp
-                    ramp_step_i = lim.current * period / hk.ramp_now
-                    k_road = -road_src.chunk  # the new road from this tick on
-            sample = read()
-            active = state <= STATE_RUN
-            if active and k >= n_ticks:
-                state = STATE_RETURN
-                active = False
-                i_out = driver.off()
-            if active:
-                try:
-                    if stop_set is not None and stop_set():
-                        supervisor.trip(STOP_REASON, t)
-                        tripped = True
-                    else:
-                        tripped = check_sample(
-                            t, sample.force, sample.displacement, sample.current, sample.timestamp
-                        )
-                    if not tripped and k - k_road >= road_src.chunk:
-                        k_road = k
-                        road, road_v = road_src.block(k)
-                    if not tripped:
-                        c = startup.damping_at(t) if state == STATE_STARTUP else 0.0
-                        j = 2 * n_sub * (k - k_road)
-                        for _ in range(n_sub):
-                            fd = sample.force + c * v_d
-                            out = step(
-                                road[j], road_v[j],
-                                road_mid=(road[j + 1], road_v[j + 1]),
-                                road_end=(road[j + 2], road_v[j + 2]),
-                                damper_force=fd,
+            done = False
+            try:
+                if k % watch_every == 0:
+                    abort.orphaned()
+                    if recording and (failure := writer_failure()) is not None:
+                        recording = False
+                        trip(f"recording failed: {failure}", "recording failed", t)
+                if abort.reason and state <= STATE_RUN:
+                    trip(abort.reason, abort.ending, t)
+                if hooked and state <= STATE_RUN and k % hk.poll_every == 0:
+                    ramp = _apply_settings(hk, stepper, road_src, supervisor, t, period)
+                    if ramp:
+                        ramp_left = ramp
+                        ramp_step_i = lim.current * period / hk.ramp_now
+                        k_road = -road_src.chunk  # the new road from this tick on
+                sample = read()
+                active = state <= STATE_RUN
+                if active and k >= n_ticks:
+                    state = STATE_RETURN
+                    active = False
+                    i_out = driver.off()
+                if active:
+                    try:
+                        if stop_set is not None and stop_set():
+                            supervisor.trip(STOP_REASON, t)
+                            tripped = True
+                        else:
+                            tripped = check_sample(
+                                t, sample.force, sample.displacement, sample.current,
+                                sample.timestamp,
                             )  # fmt: skip
-                            v_d = out["v_d"]
-                            j += 2
-                        zr_now = road[j]
-                        zrd_now = road_v[j]
-                        i_d = out["i_d"]
-                        if state == STATE_STARTUP and k + 1 >= startup_ticks:
-                            state = STATE_RUN
-                        demand = 0.0 if (state == STATE_STARTUP and hold_current) else i_d
-                        if ramp_left:  # after a controller change: slew-limited demand
-                            ramp_left -= 1
-                            if demand > last_demand + ramp_step_i:
-                                demand = last_demand + ramp_step_i
-                            elif demand < last_demand - ramp_step_i:
-                                demand = last_demand - ramp_step_i
-                        last_demand = demand
-                        tripped = check_command(t, out["x_d"], v_d, demand)
+                        if not tripped and k - k_road >= road_src.chunk:
+                            k_road = k
+                            road, road_v = road_src.block(k)
                         if not tripped:
-                            x_cmd = out["x_d"]
-                            v_cmd = v_d
-                            if state == STATE_STARTUP and hold_current:
-                                i_out = driver.off()
-                            elif direct:
-                                i_out = driver.direct(demand)
-                            else:
-                                i_out = driver.update(
-                                    demand, sample.current * driver.sense_resistance
-                                )
-                except SimulationDiverged as exc:
-                    supervisor.trip(f"vehicle model diverged: {exc}", t)
-                    tripped = True
-                except ValidationError as exc:  # a live excitation gave non-finite values
-                    supervisor.trip(str(exc), t)
-                    tripped = True
-                except KeyboardInterrupt:
-                    supervisor.trip("interrupted by the user", t)
-                    tripped = True
-                if tripped:
-                    state = STATE_TRIPPED
-                    reason = supervisor.reason
-                    i_out = driver.off()  # current to 0 in the tick of the trip
-                    last_demand = 0.0
+                            c = startup.damping_at(t) if state == STATE_STARTUP else 0.0
+                            j = 2 * n_sub * (k - k_road)
+                            for _ in range(n_sub):
+                                fd = sample.force + c * v_d
+                                out = step(
+                                    road[j], road_v[j],
+                                    road_mid=(road[j + 1], road_v[j + 1]),
+                                    road_end=(road[j + 2], road_v[j + 2]),
+                                    damper_force=fd,
+                                )  # fmt: skip
+                                v_d = out["v_d"]
+                                j += 2
+                            zr_now = road[j]
+                            zrd_now = road_v[j]
+                            i_d = out["i_d"]
+                            if state == STATE_STARTUP and k + 1 >= startup_ticks:
+                                state = STATE_RUN
+                            demand = 0.0 if (state == STATE_STARTUP and hold_current) else i_d
+                            if ramp_left:  # after a controller change: slew-limited demand
+                                ramp_left -= 1
+                                if demand > last_demand + ramp_step_i:
+                                    demand = last_demand + ramp_step_i
+                                elif demand < last_demand - ramp_step_i:
+                                    demand = last_demand - ramp_step_i
+                            last_demand = demand
+                            tripped = check_command(t, out["x_d"], v_d, demand)
+                            if not tripped:
+                                x_cmd = out["x_d"]
+                                v_cmd = v_d
+                                if state == STATE_STARTUP and hold_current:
+                                    i_out = driver.off()
+                                elif direct:
+                                    i_out = driver.direct(demand)
+                                else:
+                                    i_out = driver.update(
+                                        demand, sample.current * driver.sense_resistance
+                                    )
+                    except SimulationDiverged as exc:
+                        supervisor.trip(f"vehicle model diverged: {exc}", t)
+                        tripped = True
+                    except ValidationError as exc:  # a live excitation gave non-finite values
+                        supervisor.trip(str(exc), t)
+                        tripped = True
+                    if tripped:
+                        how = "stopped" if supervisor.reason == STOP_REASON else "tripped"
+                        trip(supervisor.reason, how, t)
+            except Exception as exc:  # anywhere in the tick: a trip, and the rig still goes home
+                trip(f"the loop failed at t = {t:.4f} s: {type(exc).__name__}: {exc}", "failed", t)
             if state >= STATE_RETURN:
                 # ramp back to mid-stroke at the return rate, coil off
                 i_out = 0.0
@@ -778,41 +982,51 @@ def _loop(
                     x_cmd = 0.0
                     v_cmd = 0.0
                     settle += 1
-                    if abs(sample.displacement) < home_tol or settle >= settle_ticks:
-                        k_end = k
-                        command(x_cmd, i_out, v_cmd)
-                        end = perf()
-                        row = _row(t, state, zr_now, zrd_now, out, sample, fd, i_d, i_out,
-                                   x_cmd, end - start, start - release if realtime else 0.0)  # fmt: skip
-                        append(row)
-                        compute[k] = end - start
-                        lateness[k] = start - release if realtime else 0.0
-                        if hooked:
-                            hk.row(row, pending)
-                            if pending:
-                                hk.send("data", pending)
-                        return reason, k_end + 1
-            command(x_cmd, i_out, v_cmd)
+                    done = abs(sample.displacement) < home_tol or settle >= settle_ticks
+            try:
+                command(x_cmd, i_out, v_cmd)
+                refused = 0
+            except Exception as exc:  # a dead link: keep trying, bounded
+                refused += 1
+                trip(f"the rig could not be commanded: {type(exc).__name__}: {exc}", "failed", t)
+                if refused >= give_up:
+                    reason += (
+                        f"; gave up commanding the rig after {refused} refused commands "
+                        "(its own watchdog takes over)"
+                    )
+                    done = True
             end = perf()
             late = start - release if realtime else 0.0
             row = _row(t, state, zr_now, zrd_now, out, sample, fd, i_d, i_out, x_cmd,
                        end - start, late)  # fmt: skip
-            append(row)
             compute[k] = end - start
             lateness[k] = late
             k += 1
-            if hooked:  # the tap: after the tick's work, never waiting
-                if k % hk.tap_every == 0:
-                    hk.row(row, pending)
-                if k % hk.tap_batch == 0 and pending:
-                    hk.send("data", pending)
-                    pending = []
-                if k % hk.status_every == 0 or (state == STATE_TRIPPED and not hk._trip_sent):
-                    hk.status(_live_status(hk, supervisor, state, k, compute, lateness, period,
-                                           i_out))  # fmt: skip
+            if recording:
+                try:
+                    append(row)
+                except Exception as exc:  # an unpaced run waits for a writer that ended
+                    recording = False
+                    trip(f"recording failed: {exc}", "recording failed", t)
+            try:
+                if hooked:  # the tap: after the tick's work, never waiting
+                    if done or k % hk.tap_every == 0:
+                        hk.row(row, pending)
+                    if (done or k % hk.tap_batch == 0) and pending:
+                        hk.send("data", pending)
+                        pending = []
+                    if not done and (
+                        k % hk.status_every == 0 or (state == STATE_TRIPPED and not hk._trip_sent)
+                    ):
+                        hk.status(_live_status(hk, supervisor, state, k, compute, lateness,
+                                               period, i_out))  # fmt: skip
+            except Exception as exc:  # the live tap failed: a trip too
+                trip(f"the loop failed at t = {t:.4f} s: {type(exc).__name__}: {exc}", "failed", t)
+            if done:
+                return reason, k, ending
         if state == STATE_TRIPPED:
-            return reason, k
-        return f"{reason}; actuator did not settle at mid-stroke", k
+            return reason, k, ending
+        return f"{reason}; actuator did not settle at mid-stroke", k, ending
 
 
 def _status(
@@ -861,21 +1075,87 @@ def _row(
 
 
 # -- own process ----------------------------------------------------------------------------
-#: seconds an interrupted ``hil run`` gives its loop process to trip, ramp the rig back to
-#: mid-stroke and write its stop record before it is terminated (the unpaced simulated
-#: rig takes ~0.1 s; a real rig's own watchdog takes over after that)
+#: seconds an interrupted ``hil run`` gives its loop process, beyond the longest return
+#: ramp (``stroke / return_rate`` plus the settling allowance, 3 s with the default
+#: limits), to write its stop record and end before it is terminated (the rig's own
+#: watchdog takes over after that)
 STOP_TIMEOUT = 1.5
 
 
+def _stop_wait(limits: SafetyLimits | None) -> float:
+    """How long a loop process may take to stop the safe way [s].
+
+    Examples
+    --------
+    >>> _stop_wait(None)
+    4.5
+    """
+    lim = limits or SafetyLimits()
+    return lim.stroke / lim.return_rate + _SETTLE + STOP_TIMEOUT
+
+
+def _raise_interrupted(signum: int, _frame: Any) -> None:
+    from mrsuspension._pool import Interrupted
+
+    raise Interrupted(signum)
+
+
 def _child(
-    target: Any, rig: Rig | None, duration: float, rate: float, out: str, kw: dict[str, Any]
+    target: Any,
+    rig: Rig | None,
+    duration: float,
+    rate: float,
+    out: str,
+    kw: dict[str, Any],
+    parent: int | None = None,
+    death_signal: bool = False,
+    recover: str | None = None,
 ) -> None:
+    """The loop process: :func:`run_hil` bound to its parent, quiet on signals.
+
+    Exit status: 0 when the run ended through the loop (its stop record says how), 128 +
+    the signal's number when a signal stopped it (after the safe stop), 2 when the run
+    could not start (one ``error:`` line). When the parent is gone at the end (killed),
+    the recording is kept where the next run cannot remove it (``recover``'s
+    ``NAME.recovered``) and one line on stderr says so.
+    """
+    if parent is not None:
+        bind_to_parent(parent, death_signal)
+    for s in (*LOOP_SIGNALS, DEATH_SIGNAL):  # SIGINT was ignored, the others held back
+        if s == signal.SIGINT or signal.getsignal(s) != signal.SIG_IGN:
+            signal.signal(s, _raise_interrupted)
+    signal.pthread_sigmask(signal.SIG_UNBLOCK, {*LOOP_SIGNALS, DEATH_SIGNAL})
+    code = 0
     try:
-        signal.signal(signal.SIGINT, signal.default_int_handler)  # ignored until here
-        signal.pthread_sigmask(signal.SIG_UNBLOCK, {signal.SIGINT, signal.SIGTERM})
         run_hil(target, rig, duration, rate, out, **kw)
-    except KeyboardInterrupt:  # before the loop started or during its stop: no traceback
-        sys.exit(130)
+    except KeyboardInterrupt as exc:  # after the safe stop, or before the loop started
+        code = 128 + int(getattr(exc, "signum", signal.SIGINT))
+    except MRSuspensionError as exc:  # the run could not start (e.g. no reply from the rig)
+        print(f"error: {' '.join(str(exc).split())}", file=sys.stderr, flush=True)
+        code = 2
+    finally:
+        if parent is not None and os.getppid() != parent:
+            with contextlib.suppress(Exception):
+                _orphaned_recording(Path(out), None if recover is None else Path(recover))
+    sys.exit(code)
+
+
+def _orphaned_recording(out: Path, recover: Path | None) -> None:
+    """Keep the recording of a loop whose parent died, visibly, and say so on stderr."""
+    if not (out / META_FILE).exists():
+        return
+    kept = out
+    if recover is not None and out.resolve() != recover.resolve():
+        from mrsuspension._output import keep_recovered
+
+        kept = keep_recovered(out, recover)
+    stop = load_recording(kept).stop
+    print(
+        f"hil run: {stop.get('reason', 'the loop did not finish')}; the rig was commanded to "
+        f"mid-stroke with the current at 0; recording kept in {str(kept)!r}",
+        file=sys.stderr,
+        flush=True,
+    )
 
 
 def start_process(
@@ -884,25 +1164,36 @@ def start_process(
     duration: float,
     rate: float,
     out: Path,
+    *,
+    recover: str | Path | None = None,
     **kw: Any,
 ) -> multiprocessing.process.BaseProcess:
-    """Start the loop in its own process (spawn) and return the process (not joined)."""
+    """Start the loop in its own process (spawn) and return the process (not joined).
+
+    The process is bound to this one (:func:`bind_to_parent`): if this process dies, the
+    loop stops the safe way and keeps its recording (moved to ``recover``'s
+    ``NAME.recovered`` when given).
+    """
     ctx = multiprocessing.get_context("spawn")
+    main = threading.current_thread() is threading.main_thread()
     proc = ctx.Process(
-        target=_child, args=(target, rig, duration, rate, str(out), kw), name="mrsus-hil-loop"
-    )
+        target=_child,
+        args=(target, rig, duration, rate, str(out), kw, os.getpid(), main,
+              None if recover is None else str(recover)),
+        name="mrsus-hil-loop",
+    )  # fmt: skip
     # the process starts with SIGINT ignored (kept through exec), so that a Ctrl-C while it
     # imports prints no traceback; _child handles it again before the loop starts. Here
-    # SIGINT and SIGTERM are blocked meanwhile, so one arriving during start() waits for
-    # the handler instead of cutting the child's start-up data short (the resource
-    # tracker, which unblocks both when it starts, is started first).
-    if threading.current_thread() is not threading.main_thread():
+    # SIGINT, SIGTERM and SIGHUP are blocked meanwhile, so one arriving during start()
+    # waits for the handler instead of cutting the child's start-up data short (the
+    # resource tracker, which unblocks them when it starts, is started first).
+    if not main:
         proc.start()
         return proc
     from multiprocessing import resource_tracker
 
     resource_tracker.ensure_running()
-    mask = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT, signal.SIGTERM})
+    mask = signal.pthread_sigmask(signal.SIG_BLOCK, {*LOOP_SIGNALS, DEATH_SIGNAL})
     previous = signal.signal(signal.SIGINT, signal.SIG_IGN)
     try:
         proc.start()
@@ -913,37 +1204,62 @@ def start_process(
 
 
 def _run_in_process(
-    target: Any, rig: Rig | None, duration: float, rate: float, out: Path, **kw: Any
+    target: Any,
+    rig: Rig | None,
+    duration: float,
+    rate: float,
+    out: Path,
+    recover: str | Path | None = None,
+    **kw: Any,
 ) -> HilResult:
-    proc = start_process(target, rig, duration, rate, out, **kw)
+    proc = start_process(target, rig, duration, rate, out, recover=recover, **kw)
     try:
         proc.join()
-    except BaseException:  # Ctrl-C or SIGTERM here: stop the loop the safe way, bounded
-        _stop_loop(proc, started=(out / META_FILE).exists())
-        raise
-    if proc.exitcode != 0:
-        recording = load_recording(out)
-        raise MRSuspensionError(
-            f"the HiL loop process ended with exit code {proc.exitcode} before finishing; "
-            f"the recording in {out} holds {len(recording)} rows"
+    except BaseException as exc:  # Ctrl-C, SIGTERM, SIGHUP here: stop the loop the safe way
+        signum = int(getattr(exc, "signum", signal.SIGINT))
+        if threading.current_thread() is threading.main_thread():
+            signal.signal(signal.SIGHUP, signal.SIG_IGN)  # the stop is bounded: let it end
+        _stop_loop(
+            proc, (out / META_FILE).exists(), wait=_stop_wait(kw.get("limits")), signum=signum
         )
-    return load_result(out)
+        raise
+    code = proc.exitcode
+    if code == 2 and not (out / META_FILE).exists():
+        raise MRSuspensionError("the HiL loop process could not start the run (see above)")
+    try:
+        return load_result(out)
+    except (MRSuspensionError, ValidationError):
+        if not (out / META_FILE).exists():
+            raise MRSuspensionError(
+                f"the HiL loop process ended with exit code {code} before its recording started"
+            ) from None
+    recording = load_recording(out)
+    raise MRSuspensionError(
+        f"the HiL loop process ended with exit code {code} before finishing; "
+        f"the recording in {out} holds {len(recording)} rows"
+    )
 
 
-def _stop_loop(proc: multiprocessing.process.BaseProcess, started: bool) -> None:
-    """Stop a loop process: SIGINT (it trips and ramps home), then SIGTERM, then SIGKILL.
+def _stop_loop(
+    proc: multiprocessing.process.BaseProcess,
+    started: bool,
+    wait: float | None = None,
+    signum: int = signal.SIGINT,
+) -> None:
+    """Stop a loop process: ``signum`` (it trips and ramps home), then SIGTERM, then SIGKILL.
 
     A terminal's Ctrl-C has already reached the loop (same process group); a SIGTERM sent
-    to this process only has not, so the loop is asked here, and given
-    :data:`STOP_TIMEOUT` once it has ``started`` (its recording exists: before that the
-    rig has only been commanded to rest, and the process is terminated at once). Takes at
-    most :data:`STOP_TIMEOUT` plus 1 s.
+    to this process only has not, so the loop is asked here, and given ``wait`` seconds
+    (default :func:`_stop_wait`: the longest return ramp plus :data:`STOP_TIMEOUT`) once
+    it has ``started`` (its recording exists: before that the rig has only been commanded
+    to rest, and the process is terminated at once). A loop that returns sooner ends
+    sooner.
     """
     if started:
         with contextlib.suppress(OSError):
             if proc.is_alive() and proc.pid is not None:
-                os.kill(proc.pid, signal.SIGINT)
-        proc.join(STOP_TIMEOUT)
+                os.kill(proc.pid, signum)  # the signal this process got, or SIGINT
+        proc.join(_stop_wait(None) if wait is None else wait)
     if proc.is_alive() and proc.pid is not None:
         # its recording writer drains and ends on SIGTERM too
         for pid in [proc.pid, *descendants(proc.pid)]:
@@ -983,8 +1299,14 @@ def load_result(out: str | Path) -> HilResult:
         raise MRSuspensionError(
             f"the HiL run in {out} did not finish; its recording holds {len(recording)} rows"
         )
+    if "stats" not in stop:
+        raise MRSuspensionError(
+            f"the HiL run in {out} failed: {stop.get('reason', 'no reason recorded')}; "
+            f"its recording holds {len(recording)} rows"
+        )
     stats = TickStats(**stop["stats"])
     meta = json.loads((out / "meta.json").read_text()) if (out / "meta.json").exists() else {}
+    signum = stop.get("signal")
     return HilResult(
         recording=recording,
         stats=stats,
@@ -992,4 +1314,6 @@ def load_result(out: str | Path) -> HilResult:
         tripped=bool(stop.get("tripped", False)),
         out=out,
         meta=meta,
+        ending=str(stop.get("ending", "tripped" if stop.get("tripped") else "completed")),
+        signal=None if signum is None else int(signum),
     )

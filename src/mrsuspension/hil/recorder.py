@@ -50,10 +50,32 @@ _CLOSE_TIMEOUT = 60.0
 _START_TIMEOUT = 30.0
 
 
-def _write_json(path: Path, data: Mapping[str, Any]) -> None:
+#: bytes reserved for ``stop.json`` when the run starts, so that the stop record can be
+#: written in place on a disk that filled up meanwhile
+_STOP_RESERVE = 16384
+
+
+def _write_json(path: Path, data: Mapping[str, Any], reserved: bool = False) -> None:
+    """Write ``data`` as JSON to ``path`` (atomically: a new file moved into place).
+
+    With ``reserved`` (a file written earlier with :data:`_STOP_RESERVE` bytes), a disk
+    too full for the new file gets the record written over the old one in place.
+    """
+    text = json.dumps(data, indent=2, default=str)
     tmp = path.with_suffix(".tmp")
-    tmp.write_text(json.dumps(data, indent=2, default=str))
-    os.replace(tmp, path)
+    try:
+        tmp.write_text(text)
+        os.replace(tmp, path)
+    except OSError:
+        with contextlib.suppress(OSError):
+            tmp.unlink()
+        raw = text.encode()
+        if not reserved or len(raw) > _STOP_RESERVE:
+            raise
+        with open(path, "r+b") as f:  # blocks already allocated: no new space needed
+            f.write(raw + b" " * (_STOP_RESERVE - len(raw)))
+            f.flush()
+            os.fsync(f.fileno())
 
 
 def _shared_buffer(size: int) -> tuple[int, mmap.mmap, IO[bytes] | None]:
@@ -140,6 +162,7 @@ class Recorder:
             raise ValidationError("a recording needs at least one channel")
         self.capacity = int(buffer_rows)
         self._wait = bool(wait)
+        self._error: str | None = None
         self._n = 0
         self.dropped_rows = 0
         self.written_rows = 0
@@ -152,7 +175,9 @@ class Recorder:
             **dict(meta or {}),
         }
         _write_json(self.out / META_FILE, meta_data)
-        _write_json(self.out / STOP_FILE, {"status": "running"})
+        # the stop record's space is taken now (JSON allows the trailing blanks)
+        running = json.dumps({"status": "running"}).encode()
+        (self.out / STOP_FILE).write_bytes(running + b" " * (_STOP_RESERVE - len(running)))
         (self.out / DATA_FILE).write_bytes(b"")
         size = 8 * (rw.HEADER + self.capacity * self.width)
         fd, self._buf, self._keep = _shared_buffer(size)
@@ -199,6 +224,17 @@ class Recorder:
         self._n = n + 1
         self._head[rw.PUBLISHED] = n + 1  # published after the row is in place
 
+    def failure(self) -> str | None:
+        """Why the writer stopped recording, or None while it records (a few us).
+
+        The writer ends on its own only when it failed (a full disk, a write error) or
+        was killed; the loop checks this every few milliseconds and trips.
+        """
+        if self._head[rw.STATE] != rw.FAILED and self._proc.poll() is None:
+            return None
+        self._proc.wait()
+        return f"the recorder's writer process ended: {self._writer_error()}"
+
     def _wait_for_writer(self, n: int) -> None:
         while n - int(self._head[rw.CONSUMED]) >= self.capacity:
             if self._proc.poll() is not None:
@@ -212,9 +248,12 @@ class Recorder:
         code = self._proc.poll()
         if code is None:
             return "it is still running"
-        err = self._proc.stderr.read().decode(errors="replace").strip() if self._proc.stderr else ""
-        tail = err.splitlines()[-1] if err else "no message"
-        return f"exit code {code} ({tail})"
+        if self._error is None:
+            err = ""
+            if self._proc.stderr is not None and not self._proc.stderr.closed:
+                err = self._proc.stderr.read().decode(errors="replace").strip()
+            self._error = err.splitlines()[-1] if err else "no message"
+        return f"exit code {code} ({self._error})"
 
     def close(self, stop: Mapping[str, Any]) -> None:
         """Let the writer write every row, stop it and record why the run stopped.
@@ -245,7 +284,8 @@ class Recorder:
                 f"{consumed} of {self._n} rows handled"
             )
         if self._proc.stderr is not None:
-            self._proc.stderr.close()
+            with contextlib.suppress(OSError):
+                self._proc.stderr.close()
         data = {
             "status": "stopped",
             "rows": self.written_rows,
@@ -254,7 +294,7 @@ class Recorder:
         }
         if error:
             data["recorder_error"] = error
-        _write_json(self.out / STOP_FILE, data)
+        _write_json(self.out / STOP_FILE, data, reserved=True)
         del self._head, self._data  # the views go before the mapping
         self._buf.close()
         if self._keep is not None:

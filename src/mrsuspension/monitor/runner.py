@@ -26,7 +26,9 @@ from __future__ import annotations
 
 import contextlib
 import multiprocessing
+import os
 import queue as queue_mod
+import signal
 from pathlib import Path
 from typing import Any
 
@@ -58,8 +60,14 @@ def loop_main(
     cpus: set[int] | None = None,
     isolate: bool = False,
     model_dt: float | None = None,
+    parent: int | None = None,
 ) -> None:
     """Body of the loop process: build the rig and run :func:`run_hil` with the hooks.
+
+    Bound to the server's process (``parent``, :func:`~mrsuspension.hil.loop.bind_to_parent`):
+    if the server dies, the loop stops the safe way. SIGINT, SIGTERM and SIGHUP (a
+    terminal's Ctrl-C or hang-up reaches this process too) stop the loop the safe way;
+    before or after the loop they end this process quietly, the end reported.
 
     Parameters
     ----------
@@ -91,10 +99,22 @@ def loop_main(
         None: its default).
     """
     from mrsuspension.engine.settings import DEFAULT_DT
-    from mrsuspension.hil.loop import LoopHooks, run_hil
+    from mrsuspension.hil.loop import (
+        LOOP_SIGNALS,
+        LoopHooks,
+        _raise_interrupted,
+        bind_to_parent,
+        load_result,
+        run_hil,
+    )
     from mrsuspension.hil.realtime import widen_affinity
     from mrsuspension.hil.rigs import make_rig
 
+    if parent is not None:
+        bind_to_parent(parent, death_signal=False)  # started from a server thread
+    for s in LOOP_SIGNALS:
+        if s == signal.SIGINT or signal.getsignal(s) != signal.SIG_IGN:
+            signal.signal(s, _raise_interrupted)
     widen_affinity(cpus)
 
     def end(info: dict[str, Any]) -> None:
@@ -119,6 +139,17 @@ def loop_main(
             sim, rig, duration=duration, rate=rate, out=out, hooks=hooks, realtime=realtime,
             isolate=isolate, model_dt=DEFAULT_DT if model_dt is None else model_dt,
         )  # fmt: skip
+    except KeyboardInterrupt as exc:  # a signal: after the loop's safe stop, or before it
+        try:
+            stopped = load_result(out)
+        except Exception:  # the loop had not started: the rig was only reset
+            why = f"interrupted (signal {getattr(exc, 'signum', signal.SIGINT)})"
+            end({"state": "error", "reason": why, "safe": True, "current": 0.0})
+            return
+        end({"state": "ended", "reason": stopped.reason, "tripped": stopped.tripped,
+             "ending": stopped.ending, "current": 0.0, "safe": True,
+             "summary": stopped.stats.summary()})  # fmt: skip
+        return
     except Exception as exc:  # reported to the page, never raised in the server
         end({"state": "error", "reason": f"{type(exc).__name__}: {exc}", "safe": True})
         return
@@ -128,6 +159,7 @@ def loop_main(
             "state": "ended",
             "reason": result.reason,
             "tripped": result.tripped,
+            "ending": result.ending,
             "ticks": stats.ticks,
             "misses": stats.misses,
             "in_deadline": stats.in_deadline,
@@ -194,7 +226,7 @@ class LoopHandle:
             args=(
                 sim, rig, float(rate), float(duration), str(self.out), float(ramp_time),
                 self.queue, self.stop_event, self.settings, self.ring, realtime, cpus,
-                isolate, model_dt,
+                isolate, model_dt, os.getpid(),
             ),
             name="mrsus-monitor-loop",
             daemon=True,
