@@ -403,7 +403,7 @@ def marked_command(folder: str | Path) -> str | None:
 
 
 def _names(folder: Path, rels: Sequence[str]) -> str:
-    shown = ", ".join(repr(str(folder / r)) for r in rels[:3])
+    shown = ", ".join(repr(str(folder / r) + "/" * r.endswith("/")) for r in rels[:3])
     return shown + (f" and {len(rels) - 3} more" if len(rels) > 3 else "")
 
 
