@@ -12,6 +12,7 @@ monitor's (tests/integration/test_monitor.py).
 from __future__ import annotations
 
 import contextlib
+import hashlib
 import json
 import os
 import shutil
@@ -134,7 +135,8 @@ def test_only_listed_files_are_replaced_and_the_marker_lists_them(tmp_path: Path
     assert marker["command"] == "sweep"
     assert sorted(marker["files"]) == ["plots/sweep.png", "sweep.csv"]
     assert marker["files"]["sweep.csv"]["size"] == len("frequency [Hz]\n1.0\n")
-    assert len(marker["files"]["sweep.csv"]["blake2b"]) == 32
+    digest = hashlib.sha256(b"frequency [Hz]\n1.0\n").hexdigest()
+    assert marker["files"]["sweep.csv"]["sha256"] == digest  # as sha256sum prints it
     assert marker["folders"] == ["plots"]
     (out / "plots" / "sweep.png").unlink()  # a user may delete mrsus's files
     with prepare_output(out, "sweep") as tmp:
