@@ -45,6 +45,7 @@ Digests cost one read of every file written: 30-60 ms per check for a full repor
 
 from __future__ import annotations
 
+import errno
 import hashlib
 import json
 import os
@@ -641,7 +642,7 @@ def _move(src: Path, dst: Path) -> None:
     try:
         os.replace(src, dst)
     except OSError as exc:
-        if exc.errno != 18:  # EXDEV
+        if exc.errno != errno.EXDEV:
             raise
         shutil.move(str(src), str(dst))
 

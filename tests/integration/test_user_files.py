@@ -314,7 +314,9 @@ def mount_point(tmp_path: Path) -> Iterator[Path]:
         subprocess.run(["umount", "-l", str(mnt)], check=False)
 
 
-def test_a_mount_point_is_written_in_place(tmp_path: Path, mount_point: Path) -> None:
+def test_a_mount_point_is_written_in_place(
+    tmp_path: Path, mount_point: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
     assert os.path.ismount(mount_point)
     for text in ("1\n", "2\n"):
         _sweep_output(mount_point)
@@ -325,6 +327,15 @@ def test_a_mount_point_is_written_in_place(tmp_path: Path, mount_point: Path) ->
         assert (mount_point / "sweep.csv").read_text() == text
         assert _leftovers(tmp_path) == []
         assert _leftovers(mount_point) == []
+    assert os.path.ismount(mount_point)
+    monkeypatch.setattr("mrsuspension._output._in_place", lambda _real: False)  # not seen
+    with prepare_output(mount_point, "sweep") as tmp:  # staged beside, on another disk
+        assert tmp is not None
+        assert tmp.parent == tmp_path
+        (tmp / "sweep.csv").write_text("3\n")
+    assert sorted(_tree(mount_point)) == [MARKER, "sweep.csv"]  # the rename failed: in place
+    assert (mount_point / "sweep.csv").read_text() == "3\n"
+    assert _leftovers(tmp_path) == []
     assert os.path.ismount(mount_point)
     (mount_point / "mine.txt").write_text("mine")
     with pytest.raises(ValidationError, match=r"mine\.txt'"), prepare_output(mount_point, "sweep"):
