@@ -16,6 +16,15 @@ every running and queued task finish first (about 40 s on a sweep), and
 during that cleanup are held back, so a second Ctrl-C cannot interrupt it half way.
 :func:`handle_signals` turns SIGINT and SIGTERM into :class:`Interrupted` once, for the
 ``mrsus`` command. It imports nothing from the package, so the engine may use it.
+
+Workers never outlive their parent and never hold its locks: each asks the kernel for
+SIGTERM when its parent dies (Linux ``prctl(PR_SET_PDEATHSIG)``; a kill -9 or a hang-up
+of the parent ends them at once), and closes the file descriptors registered with
+:func:`close_in_workers` (the ``--out`` lock of :mod:`mrsuspension._output`: an
+``flock`` lock lives as long as any process holds a descriptor of it, and a forked
+worker holds a copy of each). The kernel sends the signal when the *thread* that
+started the worker ends; a pool is used within one block of one thread, so that is its
+parent's end.
 """
 
 from __future__ import annotations
@@ -23,6 +32,7 @@ from __future__ import annotations
 import functools
 import os
 import signal
+import sys
 import threading
 import time
 from collections.abc import Callable, Iterator, Sequence
@@ -38,6 +48,7 @@ __all__ = [
     "InterruptState",
     "Interrupted",
     "Progress",
+    "close_in_workers",
     "descendants",
     "handle_signals",
     "pool_map",
@@ -57,6 +68,12 @@ Progress = Callable[[int, int], None]
 STOP_TIMEOUT = 0.5
 
 _SIGNALS = (signal.SIGINT, signal.SIGTERM)
+
+#: file descriptors a forked worker closes first (:func:`close_in_workers`)
+_PARENT_ONLY: set[int] = set()
+
+#: ``prctl`` option: the signal sent to this process when its parent dies (Linux)
+_PR_SET_PDEATHSIG = 1
 
 
 class Interrupted(KeyboardInterrupt):
@@ -169,10 +186,63 @@ def _signals_held(replay: bool = True) -> Iterator[None]:
             signal.raise_signal(caught[0])
 
 
-def _worker_init() -> None:
-    """Pool worker start: Ctrl-C is the parent's business; SIGTERM ends the worker."""
+@contextmanager
+def close_in_workers(fd: int) -> Iterator[None]:
+    """Have pool workers forked during the block close ``fd`` as they start.
+
+    For a lock held by the parent (the ``--out`` lock): a forked worker holds a copy of
+    every descriptor, and an ``flock`` lock lasts until the last copy is closed, so a
+    worker left running would keep it. Closing the copy leaves the parent's lock as it is.
+
+    Examples
+    --------
+    >>> import os
+    >>> r, w = os.pipe()
+    >>> with close_in_workers(r), process_pool(2, 2) as pool:
+    ...     pool.submit(_is_open, r).result()
+    False
+    >>> os.close(r), os.close(w)
+    (None, None)
+    """
+    _PARENT_ONLY.add(fd)
+    try:
+        yield
+    finally:
+        _PARENT_ONLY.discard(fd)
+
+
+def _is_open(fd: int) -> bool:
+    """Whether ``fd`` is an open descriptor of this process (for tests)."""
+    try:
+        os.fstat(fd)
+    except OSError:
+        return False
+    return True
+
+
+def _die_with_parent(parent: int) -> None:
+    """Ask for SIGTERM when the parent dies (Linux); exit now if it already has."""
+    if sys.platform.startswith("linux"):
+        import ctypes
+
+        with suppress(OSError, AttributeError):
+            libc = ctypes.CDLL(None, use_errno=True)
+            libc.prctl(_PR_SET_PDEATHSIG, int(signal.SIGTERM), 0, 0, 0)
+    if os.getppid() != parent:  # died before the request: nobody would send it
+        os._exit(1)
+
+
+def _worker_init(parent: int | None = None) -> None:
+    """Pool worker start: close the parent's locks, die with the parent; Ctrl-C is the
+    parent's business; SIGTERM ends the worker."""
+    for fd in list(_PARENT_ONLY):
+        with suppress(OSError):
+            os.close(fd)
+    _PARENT_ONLY.clear()
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    if parent is not None:
+        _die_with_parent(parent)
     signal.pthread_sigmask(signal.SIG_UNBLOCK, _SIGNALS)
 
 
@@ -276,7 +346,8 @@ def process_pool(workers: int | None, tasks: int) -> Iterator[Executor | None]:
 
     Yields None (run in this process) when only one worker would be used; a pool costs
     about 0.3 s to start, so a caller with several batches keeps one open. The workers
-    ignore SIGINT. When the block raises (Ctrl-C, SIGTERM under :func:`handle_signals`,
+    ignore SIGINT, die with this process and close its registered locks
+    (:func:`close_in_workers`). When the block raises (Ctrl-C, SIGTERM under :func:`handle_signals`,
     a task's error), the pool is stopped at once with :func:`stop_pool`; when it ends
     normally, the pool is shut down after its tasks.
 
@@ -293,7 +364,7 @@ def process_pool(workers: int | None, tasks: int) -> Iterator[Executor | None]:
     if n <= 1:
         yield None
         return
-    pool = _pool_class()(max_workers=n, initializer=_worker_init)
+    pool = _pool_class()(max_workers=n, initializer=_worker_init, initargs=(os.getpid(),))
     try:
         yield pool
     except BaseException:

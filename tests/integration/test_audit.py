@@ -341,15 +341,18 @@ def _(tmp: Path) -> None:
     assert merged["parts"]["ch3"]["quick"] is True
 
 
-@case("silent garbage", "a report of an older version (no marker) is a report")
+@case("silent garbage", "a folder without a marker is no report (nothing guessed)")
 def _(tmp: Path) -> None:
     from mrsuspension._output import marked_command
 
-    (tmp / "index.html").write_text("<html></html>")
-    (tmp / "manifest.json").write_text('{"chapters": {"2": {}}}')
-    assert marked_command(tmp) == "reproduce"  # make report replaces it; --chapters merges
-    (tmp / "manifest.json").write_text('{"something": "else"}')
-    assert marked_command(tmp) is None  # anything else stays refused without --force
+    site = tmp / "site"  # a static site or an e-book: index.html and chapters in manifest
+    site.mkdir()
+    (site / "index.html").write_text("<html></html>")
+    (site / "manifest.json").write_text('{"chapters": {"2": {}}}')
+    assert marked_command(site) is None  # issue 26: no guessing from file names
+    for args in ([], ["--chapters", "2"], ["--force"]):
+        _one_error(["reproduce", "--quick", "--out", str(site), *args], "not written by mrsus")
+    assert sorted(p.name for p in site.iterdir()) == ["index.html", "manifest.json"]
 
 
 @case("silent garbage", "a parameter of 1e308")

@@ -109,7 +109,11 @@ def stubbed(monkeypatch: pytest.MonkeyPatch) -> None:
     [
         ("file", "is a file, not a folder"),
         ("under-file", "cannot be created: '{tmp}/blocker' is a file, not a folder"),
-        ("foreign", "is not empty and was not written by mrsus; give another folder or --force"),
+        (
+            "foreign",
+            "holds '{tmp}/mine/notes.txt', not written by mrsus or changed since; mrsus never "
+            "deletes files it did not write, even with --force: move them out",
+        ),
     ],
 )
 def test_a_bad_out_is_one_line_before_any_computing(
@@ -237,7 +241,11 @@ def test_an_interrupted_file_output_leaves_nothing(tmp_path: Path) -> None:
         assert tmp is not None
         tmp.write_text("a\n")
         tmp.with_suffix(".json").write_text("{}")  # a sidecar moves along
-    assert sorted(p.name for p in out.parent.iterdir()) == ["study.csv", "study.json"]
+    assert sorted(p.name for p in out.parent.iterdir()) == [
+        ".study.csv.mrsus-output.json",  # what mrsus wrote there, so that a rerun replaces it
+        "study.csv",
+        "study.json",
+    ]
 
 
 def test_force_never_replaces_the_current_or_home_folder(
@@ -249,7 +257,7 @@ def test_force_never_replaces_the_current_or_home_folder(
     monkeypatch.chdir(work)
     for path in (Path("."), tmp_path):
         with (
-            pytest.raises(ValidationError, match="refusing to replace it even with --force"),
+            pytest.raises(ValidationError, match="even with --force"),
             prepare_output(path, "sweep", force=True),
         ):
             pass

@@ -39,7 +39,8 @@ def study(
 
     Results are cached by the study and the package code (``mrsus cache info``); a
     result read from the cache is announced on stderr (``from cache: FILE``). ``--out``
-    is checked before any computing and written only when the study has finished.
+    is checked before any computing and written only when the study has finished; it
+    replaces an earlier ``--out`` (and its ``.json`` sidecar) only if mrsus wrote it.
     """
     from mrsuspension._output import prepare_output_file
     from mrsuspension.cli.compiling import notify_if_compiling
@@ -52,7 +53,12 @@ def study(
         st = Study.load(path)
         if scheduler is not None:
             scheduler = check_scheduler(scheduler)
-        with prepare_output_file(out, suffixes=(".nc", ".csv")) as target, _cache_warnings():
+        with (
+            prepare_output_file(
+                out, suffixes=(".nc", ".csv"), sidecars={".csv": (".json",)}, command="study"
+            ) as target,
+            _cache_warnings(),
+        ):
             notify_if_compiling()
             result = run_study(
                 st,

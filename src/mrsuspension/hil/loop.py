@@ -1126,7 +1126,12 @@ def _child(
             signal.signal(s, _raise_interrupted)
     signal.pthread_sigmask(signal.SIG_UNBLOCK, {*LOOP_SIGNALS, DEATH_SIGNAL})
     code = 0
+    held = contextlib.ExitStack()
     try:
+        if recover is not None:  # a staging folder: no next run may remove it meanwhile
+            from mrsuspension._output import staging_in_use
+
+            held.enter_context(staging_in_use(out))
         run_hil(target, rig, duration, rate, out, **kw)
     except KeyboardInterrupt as exc:  # after the safe stop, or before the loop started
         code = 128 + int(getattr(exc, "signum", signal.SIGINT))
@@ -1137,6 +1142,7 @@ def _child(
         if parent is not None and os.getppid() != parent:
             with contextlib.suppress(Exception):
                 _orphaned_recording(Path(out), None if recover is None else Path(recover))
+        held.close()
     sys.exit(code)
 
 
