@@ -47,6 +47,7 @@ mrsuspension.errors.ValidationError: [grid] unknown field 'vehicle.sprung_mas'. 
 from __future__ import annotations
 
 import copy
+import dataclasses
 import hashlib
 import itertools
 import json
@@ -359,11 +360,16 @@ def scenario_measures(scenario: Scenario) -> tuple[str, ...]:
     return body + tuple(f"{m}.{c}" for c in corners for m in per_corner)
 
 
-def _file_digest(path: Path) -> str | None:
-    try:
-        return hashlib.sha256(path.read_bytes()).hexdigest() if path.is_file() else None
-    except OSError:
-        return None
+def _relative_inputs(files: Mapping[str, str], base: Path) -> tuple[tuple[str, str], ...]:
+    """``(path, digest)`` of the files read, sorted; paths inside ``base`` made relative
+    (a study moved with its files keeps its cache key)."""
+    root = base.resolve()
+    out = []
+    for name, digest in files.items():
+        path = Path(name)
+        rel = path.relative_to(root).as_posix() if path.is_relative_to(root) else path.as_posix()
+        out.append((rel, digest))
+    return tuple(sorted(out))
 
 
 def _check_duration(scenario: Scenario) -> None:
@@ -411,6 +417,10 @@ class Study:
         The road acceleration peak dividing ``SAR_s`` and ``SAR_u`` of pulse runs
         (``[study] road_peak``; see :meth:`SimulationResult.measures
         <mrsuspension.engine.result.SimulationResult.measures>`).
+    inputs : tuple of (str, str)
+        Every file read to build the study, as ``(path, sha256 of its content)``, sorted;
+        paths relative to ``base_dir`` when inside it. Part of :meth:`canonical`, hence of
+        the cache key: a changed file misses the cache whatever table names it.
     """
 
     name: str
@@ -422,6 +432,7 @@ class Study:
     description: str = ""
     base_dir: Path = field(default_factory=Path.cwd)
     road_peak: RoadPeak = DEFAULT_ROAD_PEAK
+    inputs: tuple[tuple[str, str], ...] = ()
 
     # -- loading ------------------------------------------------------------------------
     @classmethod
@@ -436,15 +447,28 @@ class Study:
     def from_dict(cls, data: Mapping[str, Any], base_dir: str | Path | None = None) -> Study:
         """Validate plain tables (as read from TOML) and build every grid point.
 
+        Every file read while building (an included ``[study] scenario``, parameter
+        files of any ``[damper]`` or ``[damper.<corner>]`` table, road profiles, OpenCRG
+        files, ...) is recorded with its content digest in :attr:`inputs`.
+
         Raises
         ------
         ValidationError
             Unknown tables, fields or measures (with a did-you-mean), empty grids or
-            cases, and any grid point whose scenario fails its own checks (the message
-            names the point).
+            cases, too many runs (:data:`MAX_RUNS`), and any grid point whose scenario
+            fails its own checks (the message names the point).
         """
-        check_tables("a study", data, _TOP_LEVEL)
+        from mrsuspension._inputs import recording
+
         base_path = Path.cwd() if base_dir is None else Path(base_dir)
+        with recording() as files:
+            study = cls._build(data, base_path)
+        return dataclasses.replace(study, inputs=_relative_inputs(files, base_path))
+
+    @classmethod
+    def _build(cls, data: Mapping[str, Any], base_path: Path) -> Study:
+        """:meth:`from_dict` without the record of the files read."""
+        check_tables("a study", data, _TOP_LEVEL)
         meta = check_keys("[study]", data.get("study", {}), _STUDY_KEYS)
         base: dict[str, dict[str, Any]] = {}
         if "scenario" in meta:
@@ -582,24 +606,16 @@ class Study:
     def canonical(self) -> dict[str, Any]:
         """Plain data that fixes the results: every expanded scenario, axes and measures.
 
-        Parameter and road files referred to by path are included by content digest.
+        Every file read to build it (:attr:`inputs`: parameter files of any table, road
+        profiles, OpenCRG files, an included scenario) is included by content digest, as
+        read when the study was built: the results are those of that content.
         """
-        points = []
-        for s in self.scenarios:
-            d = s.to_dict()
-            files = {}
-            for section, key in (("damper", "parameters"), ("excitation", "profile")):
-                text = d.get(section, {}).get(key)
-                if isinstance(text, str):
-                    digest = _file_digest(s.base_dir / text)
-                    if digest:
-                        files[f"{section}.{key}"] = digest
-            points.append({"scenario": d, "files": files})
         out: dict[str, Any] = {
             "dims": list(self.dims),
             "coords": {k: [_label(v) for v in vs] for k, vs in self.coords.items()},
             "measures": list(self.measures),
-            "points": points,
+            "points": [{"scenario": s.to_dict()} for s in self.scenarios],
+            "inputs": [list(item) for item in self.inputs],
         }
         if self.has_pulses:  # the SAR denominators: results cached before it was a choice differ
             out["road_peak"] = self.road_peak
