@@ -277,8 +277,13 @@ def check_host(name: str, host: str) -> str:
     return host
 
 
-def check_count(name: str, value: object, minimum: int = 1) -> int:
-    """An integer count (workers, points, starts) of at least ``minimum``.
+def check_count(
+    name: str, value: object, minimum: int = 1, maximum: int | None = None, *, why: str = ""
+) -> int:
+    """An integer count (workers, points, starts) of at least ``minimum``, at most ``maximum``.
+
+    ``why`` tells, after the limit, what a count beyond it would cost (e.g.
+    ``" (one simulation each)"``).
 
     Examples
     --------
@@ -286,9 +291,18 @@ def check_count(name: str, value: object, minimum: int = 1) -> int:
     Traceback (most recent call last):
     ...
     mrsuspension.errors.ValidationError: --workers must be an integer >= 1; got 0
+    >>> check_count("--max-evaluations", 10**20, 1, 100_000, why=" (one simulation each)")
+    Traceback (most recent call last):
+    ...
+    mrsuspension.errors.ValidationError: --max-evaluations must be an integer in [1, 100000] (one simulation each); got 100000000000000000000
     """
     if isinstance(value, bool) or not isinstance(value, int) or value < minimum:
-        raise ValidationError(f"{name} must be an integer >= {minimum}; got {value!r}")
+        valid = f">= {minimum}" if maximum is None else f"in [{minimum}, {maximum}]{why}"
+        raise ValidationError(f"{name} must be an integer {valid}; got {value!r}")
+    if maximum is not None and value > maximum:
+        raise ValidationError(
+            f"{name} must be an integer in [{minimum}, {maximum}]{why}; got {value!r}"
+        )
     return value
 
 

@@ -30,6 +30,12 @@ def study(
     workers: Annotated[
         int | None, typer.Option(help="local processes (default: all cores)")
     ] = None,
+    scheduler_timeout: Annotated[
+        float,
+        typer.Option(
+            help="seconds [s] the scheduler gets to accept the connection, and again to answer"
+        ),
+    ] = 10.0,
     no_cache: Annotated[
         bool, typer.Option("--no-cache", help="ignore and do not write the cache")
     ] = False,
@@ -49,9 +55,9 @@ def study(
     with user_errors():
         if workers is not None:
             check_count("--workers", workers)
-        st = Study.load(path)
+        st = Study.load(path, progress=not as_json)  # a big grid: progress while checked
         if scheduler is not None:
-            scheduler = check_scheduler(scheduler)
+            scheduler = check_scheduler(scheduler, scheduler_timeout)
         with prepare_output_file(out, suffixes=(".nc", ".csv")) as target, _cache_warnings():
             notify_if_compiling()
             result = run_study(
@@ -60,6 +66,7 @@ def study(
                 workers=workers,
                 progress=not as_json,
                 cache_dir=False if no_cache else None,
+                scheduler_timeout=scheduler_timeout,
             )
             if target is not None:
                 result.save(target)
