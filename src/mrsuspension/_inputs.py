@@ -152,26 +152,11 @@ def check_depth(what: str, data: Any, limit: int = MAX_DEPTH) -> Any:
     return data
 
 
-def _nesting_exceeded(text: str, limit: int) -> bool:
-    """True when the brackets/braces of ``text`` (strings included: a bound) go past ``limit``.
-
-    A cheap pre-check: deeply nested documents are refused before the parser recurses.
-    Brackets inside strings may over-count, so it only rejects when the depth is far past
-    the limit (a parser error or :func:`check_depth` tells the rest).
-    """
-    depth = peak = 0
-    for ch in text:
-        if ch in "[{":
-            depth += 1
-            if depth > peak:
-                peak = depth
-        elif ch in "]}":
-            depth = max(0, depth - 1)
-    return peak > 8 * limit
-
-
 def parse_toml(text: str, what: str, limit: int = MAX_DEPTH) -> dict[str, Any]:
     """Parse TOML text; syntax errors and deep nesting are one :class:`ValidationError`.
+
+    Nesting deep enough to exhaust the parser's recursion is caught as such; anything
+    it parses is walked by :func:`check_depth`.
 
     Examples
     --------
@@ -183,8 +168,6 @@ def parse_toml(text: str, what: str, limit: int = MAX_DEPTH) -> dict[str, Any]:
     deep = ValidationError(
         f"{what} nests tables or lists more than {limit} levels deep; at most {limit} are allowed"
     )
-    if _nesting_exceeded(text, limit):
-        raise deep
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
@@ -214,8 +197,6 @@ def parse_json(text: str | bytes, what: str, limit: int = MAX_DEPTH) -> Any:
             text = text.decode("utf-8")
         except UnicodeDecodeError as exc:
             raise ValidationError(f"{what} is not UTF-8 text: {exc.reason}") from None
-    if _nesting_exceeded(text, limit):
-        raise deep
     try:
         data = json.loads(text)
     except json.JSONDecodeError as exc:

@@ -11,7 +11,7 @@ from typing import Annotated
 import typer
 
 from mrsuspension.cli.errors import user_errors
-from mrsuspension.errors import check_count
+from mrsuspension.errors import check_count, check_range
 
 __all__ = ["study"]
 
@@ -55,6 +55,8 @@ def study(
     with user_errors():
         if workers is not None:
             check_count("--workers", workers)
+        check_range("--scheduler-timeout", scheduler_timeout, 0.0, 3600.0, unit="s",
+                    low_inclusive=False)  # fmt: skip
         st = Study.load(path, progress=not as_json)  # a big grid: progress while checked
         if scheduler is not None:
             scheduler = check_scheduler(scheduler, scheduler_timeout)
