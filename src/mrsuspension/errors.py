@@ -294,15 +294,16 @@ def check_count(
     >>> check_count("--max-evaluations", 10**20, 1, 100_000, why=" (one simulation each)")
     Traceback (most recent call last):
     ...
-    mrsuspension.errors.ValidationError: --max-evaluations must be an integer in [1, 100000] (one simulation each); got 100000000000000000000
+    mrsuspension.errors.ValidationError: --max-evaluations must be an integer >= 1 and <= 100000 (one simulation each); got 100000000000000000000
     """
-    if isinstance(value, bool) or not isinstance(value, int) or value < minimum:
-        valid = f">= {minimum}" if maximum is None else f"in [{minimum}, {maximum}]{why}"
+    valid = f">= {minimum}" if maximum is None else f">= {minimum} and <= {maximum}{why}"
+    if (
+        isinstance(value, bool)
+        or not isinstance(value, int)
+        or value < minimum
+        or (maximum is not None and value > maximum)
+    ):
         raise ValidationError(f"{name} must be an integer {valid}; got {value!r}")
-    if maximum is not None and value > maximum:
-        raise ValidationError(
-            f"{name} must be an integer in [{minimum}, {maximum}]{why}; got {value!r}"
-        )
     return value
 
 

@@ -167,6 +167,15 @@ def test_big_study_shows_progress_with_an_estimate(monkeypatch: pytest.MonkeyPat
     assert first == "study big: checking 400 grid points: 100/400 (25 %), 10 s, about 30 s left"
 
 
+@pytest.mark.audit("bounded work")
+def test_identification_budgets_are_bounded(tmp_path: Path) -> None:
+    from mrsuspension.identify import synthetic_campaign
+
+    manifest = synthetic_campaign(tmp_path, "linear", [(1.0, 0.01, 0.0)])
+    _refused(["identify", manifest, "--multistart", 10**9], "--multistart", "<= 1000")
+    _refused(["identify", manifest, "--max-nfev", 10**12], "--max-nfev", "<= 100000")
+
+
 # -- runs or fits whose memory cannot fit ------------------------------------------------------
 @pytest.mark.audit("bounded work")
 def test_records_that_cannot_fit_are_refused(

@@ -33,7 +33,7 @@ from mrsuspension.engine.settings import RunSettings
 from mrsuspension.engine.simulate import MeasuresOf, run_many, run_quietly
 from mrsuspension.errors import ValidationError
 from mrsuspension.measures.shock import DEFAULT_ROAD_PEAK, RoadPeak
-from mrsuspension.studies.study import SCHEDULER_TIMEOUT, Study
+from mrsuspension.studies.study import PROGRESS_POINTS, SCHEDULER_TIMEOUT, Study
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -438,12 +438,15 @@ def run_study(
                 cache_file=cache_file,
             )
         _check_cache_folder(folder)
-    jobs = [
-        Job(sim, settings)
-        for sim, settings in zip(study.simulations(), study.run_settings(), strict=True)
-    ]
-    start = time.perf_counter()
-    with _bar(progress, f"study {study.name} ({len(jobs)} runs)") as tick:
+    total = len(study)
+    with _bar(progress, f"study {study.name} ({total} runs)") as tick:
+        if progress is True and tick is not None and total > PROGRESS_POINTS:
+            tick(0, total, "preparing the runs")  # a big study: about 0.2 ms a run
+        jobs = [
+            Job(sim, settings)
+            for sim, settings in zip(study.simulations(), study.run_settings(), strict=True)
+        ]
+        start = time.perf_counter()
         if (isinstance(executor, str) and executor == "local") or executor is None:
             rows = _run_local_any(jobs, workers, tick, study.road_peak)
         else:
