@@ -2,8 +2,9 @@
 
 :func:`progress_bar` yields a ``progress(done, total, note=None)`` callback. On a terminal
 it draws a rich bar on stderr; when stderr is not a terminal (a CI log, a file, a pipe)
-it writes one plain line at most every few seconds, and a last line at the end, so a log
-shows progress without carriage-return noise.
+it writes one plain line at most every few seconds (with the time left, estimated from
+the pace so far), and a last line at the end, so a log shows progress without
+carriage-return noise.
 """
 
 from __future__ import annotations
@@ -84,7 +85,11 @@ def progress_bar(
     def line(done: int, total: int, note: str | None) -> None:
         share = f" ({100 * done / total:.0f} %)" if total else ""
         extra = f", {note}" if note else ""
-        out.write(f"{label}: {done}/{total}{share}, {time.monotonic() - start:.0f} s{extra}\n")
+        elapsed = time.monotonic() - start
+        left = ""
+        if 0 < done < total and elapsed >= 1.0:  # an estimate once there is something to go by
+            left = f", about {elapsed * (total - done) / done:.0f} s left"
+        out.write(f"{label}: {done}/{total}{share}, {elapsed:.0f} s{left}{extra}\n")
         out.flush()
         written[0] = (done, total, note)
 

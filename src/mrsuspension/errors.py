@@ -7,7 +7,6 @@ so that a user can fix the input without reading the source.
 from __future__ import annotations
 
 import difflib
-import tomllib
 from collections.abc import Callable, Iterable, Mapping, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -215,7 +214,9 @@ def check_range(
 def read_toml(path: str | Path, what: str) -> dict[str, Any]:
     """The contents of a TOML file; any problem reading it is a :class:`ValidationError`.
 
-    ``what`` names the file in the messages ("scenario", "study", ...).
+    ``what`` names the file in the messages ("scenario", "study", ...). Read through
+    :func:`mrsuspension._inputs.load_toml`: recorded for the study cache, and refused when
+    nested more than :data:`~mrsuspension._inputs.MAX_DEPTH` levels deep.
 
     Examples
     --------
@@ -224,13 +225,9 @@ def read_toml(path: str | Path, what: str) -> dict[str, Any]:
     ...
     mrsuspension.errors.ValidationError: scenario file not found: 'no/such.toml'
     """
-    path = check_input_file(f"{what} file", path)
-    try:
-        return tomllib.loads(path.read_text(encoding="utf-8"))
-    except tomllib.TOMLDecodeError as exc:
-        raise ValidationError(f"{what} file {str(path)!r} is not valid TOML: {exc}") from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise ValidationError(f"cannot read {what} file {str(path)!r}: {exc}") from None
+    from mrsuspension._inputs import load_toml
+
+    return load_toml(path, f"{what} file")
 
 
 def check_port(name: str, port: object, *, any_free: bool = False) -> int:
@@ -280,8 +277,13 @@ def check_host(name: str, host: str) -> str:
     return host
 
 
-def check_count(name: str, value: object, minimum: int = 1) -> int:
-    """An integer count (workers, points, starts) of at least ``minimum``.
+def check_count(
+    name: str, value: object, minimum: int = 1, maximum: int | None = None, *, why: str = ""
+) -> int:
+    """An integer count (workers, points, starts) of at least ``minimum``, at most ``maximum``.
+
+    ``why`` tells, after the limit, what a count beyond it would cost (e.g.
+    ``" (one simulation each)"``).
 
     Examples
     --------
@@ -289,9 +291,19 @@ def check_count(name: str, value: object, minimum: int = 1) -> int:
     Traceback (most recent call last):
     ...
     mrsuspension.errors.ValidationError: --workers must be an integer >= 1; got 0
+    >>> check_count("--max-evaluations", 10**20, 1, 100_000, why=" (one simulation each)")
+    Traceback (most recent call last):
+    ...
+    mrsuspension.errors.ValidationError: --max-evaluations must be an integer >= 1 and <= 100000 (one simulation each); got 100000000000000000000
     """
-    if isinstance(value, bool) or not isinstance(value, int) or value < minimum:
-        raise ValidationError(f"{name} must be an integer >= {minimum}; got {value!r}")
+    valid = f">= {minimum}" if maximum is None else f">= {minimum} and <= {maximum}{why}"
+    if (
+        isinstance(value, bool)
+        or not isinstance(value, int)
+        or value < minimum
+        or (maximum is not None and value > maximum)
+    ):
+        raise ValidationError(f"{name} must be an integer {valid}; got {value!r}")
     return value
 
 

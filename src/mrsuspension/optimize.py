@@ -141,6 +141,9 @@ _TUNABLE_SECTIONS = ("vehicle", "damper", "controller", "simulation")
 #: default reference controller: the passive damper at 0 A (its softest setting)
 DEFAULT_REFERENCE: dict[str, dict[str, Any]] = {"controller": {"law": "passive", "current": 0.0}}
 DEFAULT_MAX_EVALUATIONS = 200
+#: largest evaluation budget (and population): every candidate is a simulation per road
+MAX_EVALUATIONS = 100_000
+_BUDGET_WHY = " (every candidate runs one simulation per road)"
 #: candidates per generation and parameter (scipy suggests 5-10 per dimension)
 POPULATION_PER_PARAMETER = 6
 #: scipy's smallest differential-evolution population
@@ -158,9 +161,13 @@ def _number(where: str, value: object) -> float:
     return float(value)  # type: ignore[arg-type]
 
 
-def _int_option(where: str, value: object, low: int) -> int:
+def _int_option(where: str, value: object, low: int, high: int | None = None) -> int:
     if not isinstance(value, int) or isinstance(value, bool) or value < low:
         raise ValidationError(f"{where} must be an integer >= {low}; got {value!r}")
+    if high is not None and value > high:
+        raise ValidationError(
+            f"{where} must be an integer in [{low}, {high}]{_BUDGET_WHY}; got {value!r}"
+        )
     return value
 
 
@@ -594,10 +601,16 @@ class OptimizationProblem:
         seed = _int_option("[problem] seed", meta.get("seed", 0), 0)
         default_pop = max(MIN_POPULATION, POPULATION_PER_PARAMETER * len(parameters))
         population = _int_option(
-            "[problem] population", meta.get("population", default_pop), MIN_POPULATION
+            "[problem] population",
+            meta.get("population", default_pop),
+            MIN_POPULATION,
+            MAX_EVALUATIONS,
         )
         max_evaluations = _int_option(
-            "[problem] max_evaluations", meta.get("max_evaluations", DEFAULT_MAX_EVALUATIONS), 1
+            "[problem] max_evaluations",
+            meta.get("max_evaluations", DEFAULT_MAX_EVALUATIONS),
+            1,
+            MAX_EVALUATIONS,
         )
         tolerance = _number("[problem] tolerance", meta.get("tolerance", 0.0))
         if tolerance < 0.0:
@@ -653,6 +666,11 @@ class OptimizationProblem:
             raise ValidationError(
                 f"max_evaluations = {max_evaluations!r} is below one population "
                 f"({self.population} candidates): give at least {self.population}"
+            )
+        if max_evaluations > MAX_EVALUATIONS:
+            raise ValidationError(
+                f"max_evaluations = {max_evaluations!r} is more than the {MAX_EVALUATIONS} "
+                f"allowed{_BUDGET_WHY}"
             )
         return max_evaluations // self.population - 1
 

@@ -185,6 +185,11 @@ def main() -> None:
     except MRSuspensionError as exc:  # pragma: no cover - commands catch their own
         print(f"error: {exc}", file=sys.stderr)
         sys.exit(2)
+    except PermissionError as exc:  # outside a command's user_errors: the same one line
+        from mrsuspension.cli.errors import permission_message
+
+        print(f"error: {permission_message(exc)}", file=sys.stderr)
+        sys.exit(2)
 
 
 # kept importable here for callers of the former module (tests/unit/report)

@@ -25,6 +25,7 @@ __all__ = [
     "interrupts",
     "keep_on_interrupt",
     "option_named",
+    "permission_message",
     "user_errors",
 ]
 
@@ -137,6 +138,24 @@ def user_errors(aliases: Mapping[str, str] | None = None) -> Iterator[None]:
         message = option_named(" ".join(str(exc).split()), aliases)
         typer.echo(f"error: {message}", err=True)
         raise typer.Exit(2) from None
+    except PermissionError as exc:  # a file or folder the user may not read or write
+        typer.echo(f"error: {permission_message(exc)}", err=True)
+        raise typer.Exit(2) from None
+
+
+def permission_message(exc: PermissionError) -> str:
+    """One line for a :class:`PermissionError`: the path and what to do.
+
+    Examples
+    --------
+    >>> permission_message(PermissionError(13, "Permission denied", "/root/s.toml"))
+    "permission denied: '/root/s.toml' (Permission denied): give this user access to it, or use another path"
+    """
+    where = repr(str(exc.filename)) if exc.filename is not None else "a file or folder"
+    if exc.filename2 is not None:
+        where += f" or {str(exc.filename2)!r}"
+    why = exc.strerror or "Permission denied"
+    return f"permission denied: {where} ({why}): give this user access to it, or use another path"
 
 
 #: what interrupted commands kept, for the ``interrupted:`` line (:func:`keep_on_interrupt`)

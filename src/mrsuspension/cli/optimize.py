@@ -53,7 +53,15 @@ def optimize_command(
         if workers is not None:
             check_count("--workers", workers)
         if max_evaluations is not None:
-            check_count("--max-evaluations", max_evaluations)
+            from mrsuspension.optimize import MAX_EVALUATIONS
+
+            check_count(
+                "--max-evaluations",
+                max_evaluations,
+                1,
+                MAX_EVALUATIONS,
+                why=" (every candidate runs one simulation per road)",
+            )
         if out is not None:
             check_output_folder("--out", out, "optimize", force=force)
         prob = OptimizationProblem.load(problem)

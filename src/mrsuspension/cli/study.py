@@ -11,7 +11,7 @@ from typing import Annotated
 import typer
 
 from mrsuspension.cli.errors import user_errors
-from mrsuspension.errors import check_count
+from mrsuspension.errors import check_count, check_range
 
 __all__ = ["study"]
 
@@ -30,6 +30,12 @@ def study(
     workers: Annotated[
         int | None, typer.Option(help="local processes (default: all cores)")
     ] = None,
+    scheduler_timeout: Annotated[
+        float,
+        typer.Option(
+            help="seconds [s] the scheduler gets to accept the connection, and again to answer"
+        ),
+    ] = 10.0,
     no_cache: Annotated[
         bool, typer.Option("--no-cache", help="ignore and do not write the cache")
     ] = False,
@@ -50,9 +56,11 @@ def study(
     with user_errors():
         if workers is not None:
             check_count("--workers", workers)
-        st = Study.load(path)
+        check_range("--scheduler-timeout", scheduler_timeout, 0.0, 3600.0, unit="s",
+                    low_inclusive=False)  # fmt: skip
+        st = Study.load(path, progress=not as_json)  # a big grid: progress while checked
         if scheduler is not None:
-            scheduler = check_scheduler(scheduler)
+            scheduler = check_scheduler(scheduler, scheduler_timeout)
         with (
             prepare_output_file(
                 out, suffixes=(".nc", ".csv"), sidecars={".csv": (".json",)}, command="study"
@@ -66,6 +74,7 @@ def study(
                 workers=workers,
                 progress=not as_json,
                 cache_dir=False if no_cache else None,
+                scheduler_timeout=scheduler_timeout,
             )
             if target is not None:
                 result.save(target)

@@ -409,6 +409,8 @@ class SimulationResult(Mapping[str, np.ndarray]):
             )
         if not path.is_file():
             raise ValidationError(f"no result file at {str(path)!r}")
+        from mrsuspension._inputs import parse_json
+
         if suffix == ".parquet":
             data, units, meta = _read_parquet(path)
         else:
@@ -419,7 +421,9 @@ class SimulationResult(Mapping[str, np.ndarray]):
                 data.update({str(k): ds[k].to_numpy().astype(np.float64) for k in ds.data_vars})
                 units = {k: str(ds[k].attrs.get("units", "")) for k in data}
                 meta = {
-                    "scenario": json.loads(str(ds.attrs.get("scenario", "{}"))),
+                    "scenario": parse_json(
+                        str(ds.attrs.get("scenario", "{}")), f"result file {str(path)!r}"
+                    ),
                     "dt": float(ds.attrs.get("dt", 0.0)),
                 }
         time = data.pop("time")
@@ -636,7 +640,9 @@ def _read_parquet(
             f"{str(path)!r} was not written by SimulationResult.save: its Parquet metadata "
             f"has no {PARQUET_METADATA_KEY!r} entry"
         )
-    meta: dict[str, Any] = json.loads(raw)
+    from mrsuspension._inputs import parse_json
+
+    meta: dict[str, Any] = parse_json(raw, f"result file {str(path)!r}")
     present = set(table.column_names)
     data = {
         name: table.column(label).to_numpy().astype(np.float64)

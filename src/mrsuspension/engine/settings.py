@@ -214,11 +214,15 @@ def check_memory(
     *,
     name: str = "duration",
     hint: str = "shorten the duration, raise dt or lower output_rate",
+    subject: str | None = None,
 ) -> None:
     """Refuse a run whose arrays (``values`` floats of 8 bytes) exceed :func:`memory_limit`.
 
     Checked before anything is allocated, so that a long ``duration`` fails at once with
-    the estimate instead of running out of memory.
+    the estimate instead of running out of memory. The one home of "estimated memory
+    vs what this machine allows": runs, batches of runs, recordings and fits all ask it.
+    ``subject`` names what needs the memory when it is not one run of ``duration``
+    (e.g. ``"the records of 5000 runs"``).
 
     Raises
     ------
@@ -237,8 +241,9 @@ def check_memory(
     need = 8.0 * float(values)
     limit = memory_limit()
     if need > limit:
+        who = subject if subject is not None else f"{name} = {duration:g} s"
         raise ValidationError(
-            f"{name} = {duration:g} s needs about {need / 2**30:.3g} GiB of memory (samples x "
+            f"{who} needs about {need / 2**30:.3g} GiB of memory (samples x "
             f"signals x 8 bytes), more than the {limit / 2**30:.3g} GiB allowed (half this "
             f"machine's RAM): {hint}"
         )

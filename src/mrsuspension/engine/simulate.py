@@ -802,6 +802,8 @@ def _tasks(
     """
     for sim in sims:  # before any work: a record that would alias the excitation
         plan.check_for(sim.excitation)
+    if reduce is None and len(sims) > 1:  # every record is kept: together they must fit
+        _check_records_memory(sims, plan)
     if lanes:
         batches = LN.plan_batches(sims, plan.dt, plan.duration, parts)
     else:
@@ -816,6 +818,20 @@ def _tasks(
     if parts > 1 and any(len(b) > 1 for b in batches):
         _warm_lanes(sims[next(b for b in batches if len(b) > 1)[0]], plan.dt)
     return tasks, batches
+
+
+def _check_records_memory(sims: Sequence[Simulation], plan: RunSettings) -> None:
+    """Refuse, before any run, a batch whose records together exceed the memory limit."""
+    rows = 0
+    for sim in sims:
+        p = sim.plan(plan.duration, plan.dt, plan.output_rate, check_stability=False)
+        rows += p.steps // p.decimate + 1
+    check_memory(
+        plan.duration or 0.0,
+        float(rows) * EK.N_REC,
+        subject=f"keeping the records of {len(sims)} runs",
+        hint="run fewer (e.g. fewer sweep frequencies), shorten the duration or lower output_rate",
+    )
 
 
 def _in_order(n: int, batches: list[list[int]], values: list[list[Any]]) -> list[Any]:

@@ -1314,6 +1314,18 @@ def run_vehicles(
             raise ValidationError(f"run_vehicles takes VehicleSimulation objects; got {sim!r}")
     if not sims:
         return []
+    if reduce is None and len(sims) > 1:  # every record is kept: together they must fit
+        values = 0.0
+        for sim in sims:
+            length = plan.duration if plan.duration is not None else sim.excitation.duration
+            channels = VX.REC_BODY + VX.REC_CORNER * len(sim.corners)
+            values += (float(length or 0.0) * plan.output_rate + 1.0) * channels
+        check_memory(
+            plan.duration or 0.0,
+            values,
+            subject=f"keeping the records of {len(sims)} runs",
+            hint="run fewer, shorten the duration or lower output_rate",
+        )
     return pool_map(
         _run_vehicle,
         [(sim, plan, reduce) for sim in sims],

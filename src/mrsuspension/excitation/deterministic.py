@@ -15,7 +15,7 @@ import numpy as np
 import numpy.typing as npt
 from numba import njit
 
-from mrsuspension.errors import ValidationError, check_range
+from mrsuspension.errors import ValidationError, check_count, check_range
 from mrsuspension.excitation.base import (
     Configurable,
     Excitation,
@@ -32,6 +32,7 @@ __all__ = [
     "DEFAULT_SWEEP_POINTS",
     "HIL_FREQUENCIES",
     "HIL_TRANSITION_FREQUENCY",
+    "MAX_FREQUENCIES",
     "MIN_CYCLES",
     "MIN_MEASURE_TIME",
     "OMEGA0_REFERENCE",
@@ -120,6 +121,9 @@ def _pulse_grid(
 
 
 _MAX_FREQUENCY = 1000.0  # Hz; far above anything a quarter car responds to
+#: most frequencies a sweep may hold: each is a steady-state run of several seconds
+MAX_FREQUENCIES = 10_000
+_WHY = " (a sweep runs one steady-state simulation per frequency)"
 _MAX_AMPLITUDE = 1.0  # m
 
 
@@ -306,8 +310,7 @@ def log_frequencies(n: int, f_min: float = 0.5, f_max: float = 15.0) -> FloatArr
     >>> log_frequencies(3, 1.0, 100.0)
     array([  1.,  10., 100.])
     """
-    if isinstance(n, bool) or not isinstance(n, int | np.integer) or n < 1:
-        raise ValidationError(f"n must be an integer >= 1; got {n!r}")
+    check_count("n", int(n) if isinstance(n, np.integer) else n, 1, MAX_FREQUENCIES, why=_WHY)
     lo = positive("f_min", f_min, "Hz", high=_MAX_FREQUENCY)
     hi = positive("f_max", f_max, "Hz", high=_MAX_FREQUENCY)
     if n > 1 and hi <= lo:
@@ -364,6 +367,11 @@ class SteppedSweep(Configurable):
         if isinstance(freqs, str) or not isinstance(freqs, Sequence | np.ndarray):
             raise ValidationError(
                 f"frequencies must be a sequence of numbers [Hz]; got {self.frequencies!r}"
+            )
+        if len(freqs) > MAX_FREQUENCIES:
+            raise ValidationError(
+                f"frequencies: {len(freqs)} frequencies are more than the {MAX_FREQUENCIES} a "
+                f"sweep may hold{_WHY}"
             )
         values = tuple(number(f"frequencies[{k}]", f) for k, f in enumerate(freqs))
         if not values:

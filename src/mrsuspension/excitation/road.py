@@ -331,13 +331,13 @@ class RoadProfile(Excitation):
         >>> road.elevation
         array([ 0.   ,  0.002,  0.001, -0.001])
         """
+        from mrsuspension._inputs import read_text
+
         path = Path(path)
-        if not path.is_file():
+        if not path.is_file() and not path.is_dir():
             raise ValidationError(f"road profile file not found: {str(path)!r}")
-        try:
-            text = path.read_text(encoding="utf-8-sig")
-        except (OSError, UnicodeDecodeError) as exc:
-            raise ValidationError(f"cannot read road profile file {str(path)!r}: {exc}") from None
+        # recorded: a study's cache key holds the file's content
+        text = read_text(path, "road profile file", encoding="utf-8-sig")
         where = f"road profile {path.name!r}"
         rows = [
             (k, line)

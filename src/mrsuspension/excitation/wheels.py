@@ -1130,7 +1130,10 @@ def _two_track_spectrum(road: object) -> tuple[RoadSpectrum, int, str]:
 
 def _read_crg(path: str | Path) -> Any:
     """The road of an OpenCRG file, or a one-line :class:`ValidationError` naming it."""
+    from mrsuspension._inputs import read_bytes
+
     file = check_input_file("CRG file", path)
+    read_bytes(file, "CRG file")  # readable, and recorded: a study's cache key holds it
     import pyopencrg  # here: importing the package stays cheap
 
     try:

@@ -32,7 +32,7 @@ import numpy as np
 import numpy.typing as npt
 
 from mrsuspension import parameters as _parameters
-from mrsuspension.errors import MRSuspensionError, ValidationError, unknown_name
+from mrsuspension.errors import MRSuspensionError, ValidationError, check_count, unknown_name
 from mrsuspension.identify.fit import BoundsSpec, FitResult, FixedSpec, fit_loops
 from mrsuspension.identify.manifest import Manifest, TestEntry, read_manifest
 from mrsuspension.identify.models import FIT_MODELS, fit_model
@@ -425,9 +425,9 @@ def _check_settings(
     for key in [*fixed_names, *(bounds or {})]:
         if key not in names:
             raise unknown_name(f"parameter of model {model!r}", key, names)
-    for what, value in (("multistart", multistart), ("max_nfev", max_nfev)):
-        if value is not None and not (isinstance(value, int) and value >= 1):
-            raise ValidationError(f"{what} must be an integer >= 1; got {value!r}")
+    for what, value, most in (("multistart", multistart, 1000), ("max_nfev", max_nfev, 100_000)):
+        if value is not None:  # bounded: each start or evaluation fits every test once
+            check_count(what, value, 1, most, why=" (each refits every test)")
 
 
 def _fit_notes(res: FitResult) -> list[str]:

@@ -41,7 +41,6 @@ import csv
 import io
 import math
 import re
-import tomllib
 from collections.abc import Mapping
 from dataclasses import dataclass, replace
 from pathlib import Path
@@ -261,7 +260,9 @@ _DIRECTIVE = re.compile(r"^\s*#\s*(columns|units|current_pattern)\s*[=:]\s*(.+?)
 def _read_csv(
     path: Path,
 ) -> tuple[list[tuple[str, dict[str, Any]]], dict[str, str], list[str], dict[str, float]]:
-    text = path.read_text(errors="replace")
+    from mrsuspension._inputs import read_bytes
+
+    text = read_bytes(path, "manifest").decode("utf-8", errors="replace")
     directives: dict[str, str] = {}
     kept: list[tuple[int, str]] = []
     for number, line in enumerate(text.splitlines(), start=1):
@@ -311,10 +312,9 @@ def _read_csv(
 def _read_toml(
     path: Path,
 ) -> tuple[list[tuple[str, dict[str, Any]]], dict[str, str], list[str], list[dict[str, float]]]:
-    try:
-        data = tomllib.loads(path.read_text())
-    except tomllib.TOMLDecodeError as exc:
-        raise ValidationError(f"manifest {path.name} is not valid TOML: {exc}") from None
+    from mrsuspension._inputs import parse_toml, read_text
+
+    data = parse_toml(read_text(path, "manifest"), f"manifest {path.name}")
     allowed = {"columns", "units", "current_pattern", "test", "tests", "description", "name"}
     for key in data:
         if key not in allowed:

@@ -770,6 +770,19 @@ def _plots(result: TimeDomainResult, out: Path) -> list[Path]:
 
 # ----------------------------------------------------------------------------------
 # the fit
+def _check_fit_memory(samples: int, free: int, dt: float) -> None:
+    """Refuse, before the first evaluation, a fit whose finite-difference Jacobian
+    (training samples x free parameters) and work arrays exceed the memory limit."""
+    from mrsuspension.engine.settings import check_memory
+
+    check_memory(
+        samples * dt,
+        float(samples) * (free + 8),
+        subject=f"a time-domain fit of {samples} training samples with {free} free parameters",
+        hint="fit a shorter stretch of the record or resample it to a lower rate",
+    )
+
+
 def fit_time_domain(
     record: TimeRecord,
     model: str | TimeDomainModel = "spencer",
@@ -834,8 +847,11 @@ def fit_time_domain(
     )
     if not (isinstance(starts, int) and 1 <= starts <= 20):
         raise ValidationError(f"starts must be an integer in 1-20; got {starts!r}")
-    if max_nfev is not None and not (isinstance(max_nfev, int) and max_nfev >= 1):
-        raise ValidationError(f"max_nfev must be a positive integer; got {max_nfev!r}")
+    if max_nfev is not None and not (isinstance(max_nfev, int) and 1 <= max_nfev <= 100_000):
+        raise ValidationError(
+            f"max_nfev must be an integer in [1, 100000] (one model integration each); "
+            f"got {max_nfev!r}"
+        )
     tdm = time_domain_model(model, start, free=free, gain=record.gain)
     say = progress or (lambda _msg: None)
     t_begin = _time.perf_counter()
@@ -854,6 +870,7 @@ def fit_time_domain(
     say("start point")
     start_fit = tdm.start_values(record, current)
     names = list(tdm.free)
+    _check_fit_memory(split, len(names), record.dt)
     bounds = tdm.bounds(start_fit, record)
     lo = np.array([bounds[k][0] for k in names])
     hi = np.array([bounds[k][1] for k in names])

@@ -361,24 +361,19 @@ def load(path: str | Path) -> ParameterSet:
     >>> load(f)
     ParameterSet(name='my-damper', model='linear', 1 parameters)
     """
+    from mrsuspension._inputs import parse_json, parse_toml, read_text
+
     path = Path(path)
     if not _is_file(str(path)):
         raise ValidationError(f"parameter file {str(path)!r} does not exist")
-    text = path.read_text()
     suffix = path.suffix.lower()
-    try:
-        if suffix == ".toml":
-            data = tomllib.loads(text)
-        elif suffix == ".json":
-            data = json.loads(text)
-        else:
-            raise ValidationError(
-                f"parameter file {str(path)!r}: unsupported extension {suffix!r}; use .toml or .json"
-            )
-    except tomllib.TOMLDecodeError as exc:
-        raise ValidationError(f"parameter file {str(path)!r} is not valid TOML: {exc}") from None
-    except json.JSONDecodeError as exc:
-        raise ValidationError(f"parameter file {str(path)!r} is not valid JSON: {exc}") from None
+    if suffix not in (".toml", ".json"):
+        raise ValidationError(
+            f"parameter file {str(path)!r}: unsupported extension {suffix!r}; use .toml or .json"
+        )
+    text = read_text(path, "parameter file")  # recorded: a study's cache key holds it
+    what = f"parameter file {str(path)!r}"
+    data = parse_toml(text, what) if suffix == ".toml" else parse_json(text, what)
     return _from_mapping(data, str(path))
 
 

@@ -33,7 +33,7 @@ from mrsuspension.engine.settings import RunSettings
 from mrsuspension.engine.simulate import MeasuresOf, run_many, run_quietly
 from mrsuspension.errors import ValidationError
 from mrsuspension.measures.shock import DEFAULT_ROAD_PEAK, RoadPeak
-from mrsuspension.studies.study import Study
+from mrsuspension.studies.study import PROGRESS_POINTS, SCHEDULER_TIMEOUT, Study
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -246,6 +246,7 @@ def _run_dask(
     executor: Any,
     progress: Progress | None,
     road_peak: RoadPeak = DEFAULT_ROAD_PEAK,
+    scheduler_timeout: float = SCHEDULER_TIMEOUT,
 ) -> list[dict[str, Any]]:
     """The same reducer on a Dask cluster (an address or a ``distributed.Client``)."""
     try:
@@ -256,7 +257,11 @@ def _run_dask(
             "pip install 'mrsuspension[distributed]'"
         ) from None
     own = not isinstance(executor, Client)
-    client = Client(executor) if own else executor
+    if own:  # a bounded connect and handshake: Dask's own can wait minutes on a mute server
+        from mrsuspension.studies.study import check_scheduler
+
+        executor = check_scheduler(str(executor), scheduler_timeout)
+    client = Client(executor, timeout=scheduler_timeout) if own else executor
     futures: list[Any] = []
     try:
         futures = client.map(
@@ -365,6 +370,7 @@ def run_study(
     workers: int | None = None,
     progress: bool | Progress = True,
     cache_dir: str | Path | bool | None = None,
+    scheduler_timeout: float = SCHEDULER_TIMEOUT,
 ) -> StudyResult:
     """Run every grid point of a study; measures as labelled arrays.
 
@@ -386,6 +392,9 @@ def run_study(
         None: the :func:`default_cache_dir`; False: no cache. The folder is checked
         before any computing; an unreadable cache file is recomputed and replaced, with
         a :class:`StudyCacheWarning` naming it.
+    scheduler_timeout : float
+        Seconds [s] a scheduler address is given to accept the connection, and again to
+        answer it (:func:`~mrsuspension.studies.study.check_scheduler`; 10 s by default).
 
     Returns
     -------
@@ -429,16 +438,19 @@ def run_study(
                 cache_file=cache_file,
             )
         _check_cache_folder(folder)
-    jobs = [
-        Job(sim, settings)
-        for sim, settings in zip(study.simulations(), study.run_settings(), strict=True)
-    ]
-    start = time.perf_counter()
-    with _bar(progress, f"study {study.name} ({len(jobs)} runs)") as tick:
+    total = len(study)
+    with _bar(progress, f"study {study.name} ({total} runs)") as tick:
+        if progress is True and tick is not None and total > PROGRESS_POINTS:
+            tick(0, total, "preparing the runs")  # a big study: about 0.2 ms a run
+        jobs = [
+            Job(sim, settings)
+            for sim, settings in zip(study.simulations(), study.run_settings(), strict=True)
+        ]
+        start = time.perf_counter()
         if (isinstance(executor, str) and executor == "local") or executor is None:
             rows = _run_local_any(jobs, workers, tick, study.road_peak)
         else:
-            rows = _run_dask(jobs, executor, tick, study.road_peak)
+            rows = _run_dask(jobs, executor, tick, study.road_peak, scheduler_timeout)
     elapsed = time.perf_counter() - start
     ds = _dataset(study, rows, elapsed)
     if cache_file is not None:

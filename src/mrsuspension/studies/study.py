@@ -47,17 +47,20 @@ mrsuspension.errors.ValidationError: [grid] unknown field 'vehicle.sprung_mas'. 
 from __future__ import annotations
 
 import copy
+import dataclasses
 import hashlib
 import itertools
 import json
+import math
 import re
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
+from mrsuspension._progress import progress_bar
 from mrsuspension.engine.result import MEASURES_BY_KIND
 from mrsuspension.engine.settings import RunSettings
 from mrsuspension.errors import (
@@ -68,10 +71,12 @@ from mrsuspension.errors import (
     read_toml,
 )
 from mrsuspension.excitation import EXCITATIONS, FULL_CAR_CORNERS, HALF_CAR_CORNERS, log_frequencies
+from mrsuspension.excitation.deterministic import DEFAULT_SWEEP_POINTS, MAX_FREQUENCIES
 from mrsuspension.measures.shock import DEFAULT_ROAD_PEAK, RoadPeak, check_road_peak
 from mrsuspension.scenario import BODY_MEASURES, SCENARIO_KEYS, Scenario
 
 __all__ = [
+    "MAX_RUNS",
     "MEASURES",
     "Axis",
     "Study",
@@ -80,21 +85,32 @@ __all__ = [
     "merge_scenario_tables",
 ]
 
-#: seconds ``check_scheduler`` waits for a Dask scheduler to accept a connection
-SCHEDULER_TIMEOUT = 5.0
+#: most runs a study may have (grid points x sweep frequencies): refused beyond, on load
+MAX_RUNS = 100_000
+#: grid points beyond which ``progress=True`` shows their building (about 1 ms each)
+PROGRESS_POINTS = 500
+#: about how long one grid point takes to build and check [s] (for the refusal's estimate)
+_BUILD_SECONDS = 1.3e-3
+#: seconds ``check_scheduler`` waits for a Dask scheduler to accept a connection, then
+#: again for its handshake (``mrsus study --scheduler-timeout``)
+SCHEDULER_TIMEOUT = 10.0
 _ADDRESS = re.compile(r"^(?:tcp://)?(\[[^\]]+\]|[^:/\s]+):([0-9]+)/?$")
 
 
 def check_scheduler(address: str, timeout: float = SCHEDULER_TIMEOUT) -> str:
-    """A Dask scheduler address (``tcp://host:port`` or ``host:port``) that accepts connections.
+    """A Dask scheduler address (``tcp://host:port`` or ``host:port``) that answers.
 
-    Parsed, and connected to with a ``timeout`` [s] (5 s by default, instead of Dask's
-    own 30 s), before a study is sent to it. Returns the ``tcp://host:port`` form.
+    Parsed, connected to with a ``timeout`` [s] (10 s by default, instead of Dask's own
+    30 s and retries), and then given ``timeout`` again for the scheduler's handshake (a
+    Dask scheduler greets a new connection at once), before a study is sent to it: a
+    server that accepts the connection and never answers is refused in bounded time.
+    Returns the ``tcp://host:port`` form.
 
     Raises
     ------
     ValidationError
-        A malformed address, a port out of 1-65535, or a scheduler that does not answer.
+        A malformed address, a port out of 1-65535, a timeout out of (0, 3600] s, or a
+        scheduler that does not answer.
 
     Examples
     --------
@@ -105,8 +121,11 @@ def check_scheduler(address: str, timeout: float = SCHEDULER_TIMEOUT) -> str:
     """
     import socket
 
-    from mrsuspension.errors import check_port
+    from mrsuspension.errors import check_port, check_range
 
+    timeout = float(
+        check_range("--scheduler-timeout", timeout, 0.0, 3600.0, unit="s", low_inclusive=False)
+    )
     match = _ADDRESS.match(address.strip())
     if match is None:
         raise ValidationError(
@@ -116,8 +135,21 @@ def check_scheduler(address: str, timeout: float = SCHEDULER_TIMEOUT) -> str:
     host, port = match.group(1), int(match.group(2))
     check_port(f"--scheduler {address!r}: the port", port)
     try:
-        with socket.create_connection((host.strip("[]"), port), timeout=timeout):
-            pass
+        with socket.create_connection((host.strip("[]"), port), timeout=timeout) as conn:
+            conn.settimeout(timeout)
+            try:
+                greeting = conn.recv(1)
+            except TimeoutError:
+                raise ValidationError(
+                    f"--scheduler {address!r}: {host}:{port} accepted the connection but sent "
+                    f"no Dask handshake within {timeout:g} s (--scheduler-timeout): not a "
+                    "Dask scheduler, or a hung one"
+                ) from None
+            if not greeting:
+                raise ValidationError(
+                    f"--scheduler {address!r}: {host}:{port} closed the connection without a "
+                    "Dask handshake: not a Dask scheduler"
+                )
     except OSError as exc:
         why = "no answer" if isinstance(exc, TimeoutError) else exc.strerror or str(exc)
         raise ValidationError(
@@ -173,14 +205,21 @@ def expand_frequencies(value: Any, where: str = "frequencies") -> Any:
         lo, hi = float(lo_text), float(hi_text)
     except ValueError:
         raise ValidationError(f"{where}: bounds of {value!r} must be numbers") from None
-    if int(n) < 1:
+    count = int(n) if len(n) <= 12 else MAX_FREQUENCIES + 1  # int() of 5000 digits raises
+    if count < 1:
         raise ValidationError(f"{where}: {value!r} needs at least one point")
+    if count > MAX_FREQUENCIES:
+        shown = n if len(n) <= 24 else f"{n[:12]}...({len(n)} digits)"
+        raise ValidationError(
+            f"{where}: N = {shown} points are more than the {MAX_FREQUENCIES} a frequency list "
+            "may hold (one steady-state run per frequency)"
+        )
     if kind == "log":
-        values = log_frequencies(int(n), lo, hi)
+        values = log_frequencies(count, lo, hi)
     else:
         if not 0.0 < lo <= hi:
             raise ValidationError(f"{where}: {value!r} needs 0 < f_min <= f_max")
-        values = np.linspace(lo, hi, int(n))
+        values = np.linspace(lo, hi, count)
     return [round(float(v), 12) for v in values]
 
 
@@ -359,11 +398,38 @@ def scenario_measures(scenario: Scenario) -> tuple[str, ...]:
     return body + tuple(f"{m}.{c}" for c in corners for m in per_corner)
 
 
-def _file_digest(path: Path) -> str | None:
-    try:
-        return hashlib.sha256(path.read_bytes()).hexdigest() if path.is_file() else None
-    except OSError:
-        return None
+def _check_run_count(axes: list[Axis], excitation: Mapping[str, Any]) -> int:
+    """The number of grid points; refuses a study of more than :data:`MAX_RUNS` runs
+    before any is built (with the time that building them alone would take)."""
+    points = math.prod(len(a.labels) for a in axes)
+    freqs = excitation.get("frequencies") if excitation.get("kind") == "swept" else None
+    if excitation.get("kind") == "swept" and freqs is None:
+        freqs = [0.0] * DEFAULT_SWEEP_POINTS  # the sweep's default frequencies
+    per_point = len(freqs) if isinstance(freqs, list) else 1
+    runs = points * per_point
+    if runs > MAX_RUNS:
+        sizes = " x ".join(str(len(a.labels)) for a in axes) or "1"
+        sweep = f" x {per_point} frequencies" if per_point > 1 else ""
+        minutes = points * _BUILD_SECONDS / 60.0
+        raise ValidationError(
+            f"a study of {runs} runs (grid {sizes}{sweep}) is more than the {MAX_RUNS} runs "
+            f"a study may have: checking its grid points alone would take about "
+            f"{minutes:.3g} min before the first run; split it into several studies or "
+            "use coarser grids"
+        )
+    return points
+
+
+def _relative_inputs(files: Mapping[str, str], base: Path) -> tuple[tuple[str, str], ...]:
+    """``(path, digest)`` of the files read, sorted; paths inside ``base`` made relative
+    (a study moved with its files keeps its cache key)."""
+    root = base.resolve()
+    out = []
+    for name, digest in files.items():
+        path = Path(name)
+        rel = path.relative_to(root).as_posix() if path.is_relative_to(root) else path.as_posix()
+        out.append((rel, digest))
+    return tuple(sorted(out))
 
 
 def _check_duration(scenario: Scenario) -> None:
@@ -411,6 +477,10 @@ class Study:
         The road acceleration peak dividing ``SAR_s`` and ``SAR_u`` of pulse runs
         (``[study] road_peak``; see :meth:`SimulationResult.measures
         <mrsuspension.engine.result.SimulationResult.measures>`).
+    inputs : tuple of (str, str)
+        Every file read to build the study, as ``(path, sha256 of its content)``, sorted;
+        paths relative to ``base_dir`` when inside it. Part of :meth:`canonical`, hence of
+        the cache key: a changed file misses the cache whatever table names it.
     """
 
     name: str
@@ -422,29 +492,59 @@ class Study:
     description: str = ""
     base_dir: Path = field(default_factory=Path.cwd)
     road_peak: RoadPeak = DEFAULT_ROAD_PEAK
+    inputs: tuple[tuple[str, str], ...] = ()
 
     # -- loading ------------------------------------------------------------------------
     @classmethod
-    def load(cls, path: str | Path) -> Study:
-        """Read and validate a study TOML file (relative paths from its folder)."""
+    def load(cls, path: str | Path, *, progress: bool | Callable[..., None] = False) -> Study:
+        """Read and validate a study TOML file (relative paths from its folder).
+
+        ``progress`` as in :meth:`from_dict`.
+        """
         path = Path(path)
         data = read_toml(path, "study")
         data.setdefault("study", {}).setdefault("name", path.stem)
-        return cls.from_dict(data, base_dir=path.resolve().parent)
+        return cls.from_dict(data, base_dir=path.resolve().parent, progress=progress)
 
     @classmethod
-    def from_dict(cls, data: Mapping[str, Any], base_dir: str | Path | None = None) -> Study:
+    def from_dict(
+        cls,
+        data: Mapping[str, Any],
+        base_dir: str | Path | None = None,
+        *,
+        progress: bool | Callable[..., None] = False,
+    ) -> Study:
         """Validate plain tables (as read from TOML) and build every grid point.
+
+        A study of more than :data:`MAX_RUNS` runs is refused before any grid point is
+        built. ``progress``: True shows the building of more than
+        :data:`PROGRESS_POINTS` grid points (:func:`~mrsuspension._progress.progress_bar`
+        on stderr, with the time left); a callable gets ``(done, total)``.
+
+        Every file read while building (an included ``[study] scenario``, parameter
+        files of any ``[damper]`` or ``[damper.<corner>]`` table, road profiles, OpenCRG
+        files, ...) is recorded with its content digest in :attr:`inputs`.
 
         Raises
         ------
         ValidationError
             Unknown tables, fields or measures (with a did-you-mean), empty grids or
-            cases, and any grid point whose scenario fails its own checks (the message
-            names the point).
+            cases, too many runs (:data:`MAX_RUNS`), and any grid point whose scenario
+            fails its own checks (the message names the point).
         """
-        check_tables("a study", data, _TOP_LEVEL)
+        from mrsuspension._inputs import recording
+
         base_path = Path.cwd() if base_dir is None else Path(base_dir)
+        with recording() as files:
+            study = cls._build(data, base_path, progress)
+        return dataclasses.replace(study, inputs=_relative_inputs(files, base_path))
+
+    @classmethod
+    def _build(
+        cls, data: Mapping[str, Any], base_path: Path, progress: bool | Callable[..., None]
+    ) -> Study:
+        """:meth:`from_dict` without the record of the files read."""
+        check_tables("a study", data, _TOP_LEVEL)
         meta = check_keys("[study]", data.get("study", {}), _STUDY_KEYS)
         base: dict[str, dict[str, Any]] = {}
         if "scenario" in meta:
@@ -472,22 +572,34 @@ class Study:
             if names.count(a.name) > 1:
                 raise ValidationError(f"dimension {a.name!r} is given twice")
 
+        points = _check_run_count(axes, exc)
+        name = str(meta.get("name", "study"))
         # every grid point, validated before anything runs
         scenarios = []
-        for combo in itertools.product(*(range(len(a.labels)) for a in axes)):
-            patch: dict[str, Any] = {}
-            for a, k in zip(axes, combo, strict=True):
-                patch.update(a.patches[k])
-            try:
-                scenarios.append(Scenario.from_dict(_merge(base, patch), base_dir=base_path))
-            except ValidationError as err:
-                point = ", ".join(
-                    f"{a.name}={_label(a.labels[k])}" for a, k in zip(axes, combo, strict=True)
-                )
-                at = f" at grid point {point}" if point else ""
-                raise ValidationError(f"study{at}: {err}") from None
+        shown = progress if callable(progress) else progress and points > PROGRESS_POINTS
+        with progress_bar(shown, f"study {name}: checking {points} grid points") as tick:
+            for combo in itertools.product(*(range(len(a.labels)) for a in axes)):
+                patch: dict[str, Any] = {}
+                for a, k in zip(axes, combo, strict=True):
+                    patch.update(a.patches[k])
+                try:
+                    scenarios.append(Scenario.from_dict(_merge(base, patch), base_dir=base_path))
+                except ValidationError as err:
+                    point = ", ".join(
+                        f"{a.name}={_label(a.labels[k])}" for a, k in zip(axes, combo, strict=True)
+                    )
+                    at = f" at grid point {point}" if point else ""
+                    raise ValidationError(f"study{at}: {err}") from None
+                if tick is not None:
+                    tick(len(scenarios), points)
         for s in scenarios:
             _check_duration(s)
+        runs = sum(len(s.excitations) for s in scenarios)
+        if runs > MAX_RUNS:  # a case that changes the sweep: counted once built
+            raise ValidationError(
+                f"a study of {runs} runs is more than the {MAX_RUNS} runs a study may have; "
+                "split it into several studies or use coarser grids"
+            )
         kinds = {s.data["excitation"]["kind"] for s in scenarios}
         sweeps = {s.excitation.frequencies for s in scenarios if s.is_sweep}  # type: ignore[union-attr]
         if sweeps and len(kinds) > 1:
@@ -526,7 +638,6 @@ class Study:
             road_peak = check_road_peak(meta.get("road_peak", DEFAULT_ROAD_PEAK))
         except ValidationError as err:
             raise ValidationError(f"[study] {err}") from None
-        name = str(meta.get("name", "study"))
         return cls(
             name=name,
             base=base,
@@ -582,24 +693,16 @@ class Study:
     def canonical(self) -> dict[str, Any]:
         """Plain data that fixes the results: every expanded scenario, axes and measures.
 
-        Parameter and road files referred to by path are included by content digest.
+        Every file read to build it (:attr:`inputs`: parameter files of any table, road
+        profiles, OpenCRG files, an included scenario) is included by content digest, as
+        read when the study was built: the results are those of that content.
         """
-        points = []
-        for s in self.scenarios:
-            d = s.to_dict()
-            files = {}
-            for section, key in (("damper", "parameters"), ("excitation", "profile")):
-                text = d.get(section, {}).get(key)
-                if isinstance(text, str):
-                    digest = _file_digest(s.base_dir / text)
-                    if digest:
-                        files[f"{section}.{key}"] = digest
-            points.append({"scenario": d, "files": files})
         out: dict[str, Any] = {
             "dims": list(self.dims),
             "coords": {k: [_label(v) for v in vs] for k, vs in self.coords.items()},
             "measures": list(self.measures),
-            "points": points,
+            "points": [{"scenario": s.to_dict()} for s in self.scenarios],
+            "inputs": [list(item) for item in self.inputs],
         }
         if self.has_pulses:  # the SAR denominators: results cached before it was a choice differ
             out["road_peak"] = self.road_peak
