@@ -2,13 +2,14 @@
 
 Library code behind those commands: the bind check (loopback unless an access token),
 the rig check and :func:`serve`. The command functions live in :mod:`mrsuspension.cli`.
+The web security (Host, Origin, content type, body size, token) is
+:mod:`mrsuspension.monitor.security`.
 """
 
 from __future__ import annotations
 
 import errno
 import ipaddress
-import secrets
 import sys
 import webbrowser
 from pathlib import Path
@@ -59,7 +60,8 @@ def check_bind(host: str, token: str | None) -> None:
     if not is_loopback(host) and not token:
         raise ValidationError(
             f"binding the monitor to {host!r} (not loopback) needs an access token: "
-            f"--token {secrets.token_urlsafe(16)} (then open the page with ?token=...)"
+            "--token-file FILE or the environment variable MRSUS_MONITOR_TOKEN (at least "
+            "16 characters; e.g. python -c 'import secrets; print(secrets.token_urlsafe(24))')"
         )
 
 
@@ -140,6 +142,10 @@ def serve(
     stdout carries JSON).
     """
     check_bind(host, token)
+    if token:
+        from mrsuspension.monitor.security import check_token
+
+        check_token(token)
     check_port("--port", port)
     rig = check_rig(rig)
     if road_dir is not None:
@@ -153,7 +159,7 @@ def serve(
     # the app checks --realtime/--isolate: every option is judged before the port's use
     app = create_app(
         token=token, workdir=workdir, rig=rig, attach=attach, road_dir=road_dir,
-        realtime=realtime, isolate=isolate,
+        realtime=realtime, isolate=isolate, host=host,
     )  # fmt: skip
     check_free(host, port)
     shown = "localhost" if is_loopback(host) else host
@@ -163,7 +169,13 @@ def serve(
         file=sys.stderr if url_to_stderr else sys.stdout,
         flush=True,
     )
-    kwargs: dict[str, Any] = {"host": host, "port": port, "log_level": "warning"}
+    kwargs: dict[str, Any] = {
+        "host": host,
+        "port": port,
+        "log_level": "warning",
+        "ws_max_size": 64 * 1024,  # the page sends keep-alives only
+        "server_header": False,
+    }
     from mrsuspension.hil.realtime import yield_loop_cpu
 
     # the server (and a browser it opens) keep off the core the loop pins itself to;
