@@ -31,3 +31,9 @@ def browser() -> Iterator[Any]:
         b = pw.chromium.launch(executable_path=CHROMIUM, args=ARGS)
         yield b
         b.close()
+
+
+@pytest.fixture(scope="session")
+def rebind_name() -> str:
+    """A name the browser resolves to 127.0.0.1 (a DNS-rebinding page's)."""
+    return REBIND_NAME
