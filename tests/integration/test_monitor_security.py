@@ -119,11 +119,9 @@ def _parse(data: bytes) -> tuple[int, dict[str, str], bytes]:
     return code, headers, body
 
 
-@pytest.fixture(scope="module")
-def earlier(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    """A work directory with an earlier session's run-001 and a user's run-002.csv."""
-    work = tmp_path_factory.mktemp("monitor-work")
-    (work / "run-001").mkdir()
+def _earlier_session(work: Path) -> Path:
+    """A work directory holding an earlier session's run-001 and a user's run-002.csv."""
+    (work / "run-001").mkdir(parents=True)
     (work / "run-001" / "meta.json").write_text('{"earlier": "session"}\n')
     (work / "run-001" / "notes.txt").write_text("my notes on run 1\n")
     (work / "run-002.csv").write_text("time,x\n0,1\n")
@@ -131,10 +129,11 @@ def earlier(tmp_path_factory: pytest.TempPathFactory) -> Path:
 
 
 @pytest.fixture(scope="module")
-def served(earlier: Path) -> Iterator[Served]:
+def served(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Served]:
     from mrsuspension.monitor.app import create_app
 
-    s = Served(create_app(workdir=earlier, rig="ideal", realtime="off"))
+    work = tmp_path_factory.mktemp("monitor-work")
+    s = Served(create_app(workdir=work, rig="ideal", realtime="off"))
     yield s
     s.close()
 
@@ -351,28 +350,30 @@ def test_concurrent_starts_give_one_run_and_stop_stops_it(served: Served) -> Non
 
 
 @pytest.mark.audit("user files")
-def test_a_new_session_never_writes_over_an_earlier_sessions_runs(
-    served: Served, earlier: Path
-) -> None:
+def test_a_new_session_never_writes_over_an_earlier_sessions_runs(tmp_path: Path) -> None:
     """``monitor --workdir``: run-001 (an earlier session's) and run-002.csv stay as they are."""
+    from mrsuspension.monitor.app import create_app
+
+    earlier = _earlier_session(tmp_path / "work")
     snapshot = {p: p.read_bytes() for p in earlier.rglob("*") if p.is_file()}
-    old = {p.relative_to(earlier) for p in snapshot}
-    assert {Path("run-001/meta.json"), Path("run-001/notes.txt"), Path("run-002.csv")} <= old
-    served.wait_idle()
-    code, _, info = served.post("/api/start", {"duration": 0.3})
-    assert code == 200, info
-    run = info["run"]
-    assert run >= 3  # 1 and 2 are taken (a folder, a CSV)
-    served.wait_idle()
-    out = earlier / f"run-{run:03d}"
-    assert (out / "meta.json").exists()  # the new run's recording, in a new folder
-    code, _, raw = served.raw("GET", "/api/recording")
+    served = Served(create_app(workdir=earlier, rig="ideal", realtime="off"))  # a new session
+    try:
+        code, _, info = served.post("/api/start", {"duration": 0.3})
+        assert code == 200, info
+        assert info["run"] == 3  # 1 and 2 are taken (a folder, a CSV)
+        served.wait_idle()
+        code, _, raw = served.raw("GET", "/api/recording")
+    finally:
+        served.close()
     assert code == 200
     assert raw.startswith(b"time,")
-    assert (earlier / f"run-{run:03d}.csv").exists()
+    out = earlier / "run-003"
+    assert (out / "meta.json").exists()  # the new run's recording, in a new folder
+    assert (earlier / "run-003.csv").exists()  # and its CSV beside it
     for path, data in snapshot.items():  # nothing the earlier session or the user wrote
         assert path.read_bytes() == data, f"{path} was changed"
-    print(f"earlier files kept: {sorted(str(p) for p in old)}; the new run: {out.name}")
+    kept = sorted(str(p.relative_to(earlier)) for p in snapshot)
+    print(f"earlier files kept: {kept}; the new run: {out.name}")
 
 
 def test_reserving_a_run_skips_taken_names(tmp_path: Path) -> None:
