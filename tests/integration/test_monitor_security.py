@@ -305,11 +305,19 @@ def test_deep_nesting_and_huge_numbers_are_400_not_500(served: Served) -> None:
     _nothing_started(served)
 
 
-@pytest.mark.audit("monitor limits")
-def test_concurrent_starts_give_one_run_and_stop_stops_it(served: Served) -> None:
-    """Eight starts at once: one run, seven 409; STOP ends that loop; no loop is left."""
-    served.wait_idle()
-    before = served.state.run_id
+@pytest.fixture(scope="module")
+def session(tmp_path_factory: pytest.TempPathFactory) -> dict[str, Any]:
+    """A new session beside an earlier one's runs: eight starts at once, then STOP.
+
+    The work (one real loop process) is done once here; the two tests below check what
+    it shows: one run at a time, STOP stops it (monitor limits); the earlier session's
+    files are kept (user files).
+    """
+    from mrsuspension.monitor.app import create_app
+
+    earlier = _earlier_session(tmp_path_factory.mktemp("session") / "work")
+    snapshot = {p: p.read_bytes() for p in earlier.rglob("*") if p.is_file()}
+    served = Served(create_app(workdir=earlier, rig="ideal", realtime="off"))
     n = 8
     barrier = threading.Barrier(n)
     results: list[tuple[int, dict[str, Any]]] = []
@@ -321,58 +329,67 @@ def test_concurrent_starts_give_one_run_and_stop_stops_it(served: Served) -> Non
         with lock:
             results.append((code, info))
 
-    threads = [threading.Thread(target=start) for _ in range(n)]
-    for t in threads:
-        t.start()
-    for t in threads:
-        t.join(60)
+    try:
+        threads = [threading.Thread(target=start) for _ in range(n)]
+        for t in threads:
+            t.start()
+        for t in threads:
+            t.join(60)
+        h = served.state.handle
+        alive = h is not None and h.alive()
+        # a start while that run goes: 409 too (never a second loop)
+        again = served.post("/api/start", {"duration": 30})
+        stop = served.post("/api/stop", {})
+        served.wait_idle()
+        recording = served.raw("GET", "/api/recording")
+        loops = [p.name for p in multiprocessing.active_children() if p.name.startswith("mrsus")]
+        state = dict(served.state.status)
+    finally:
+        served.close()
+    return {
+        "n": n, "results": results, "alive": alive, "handle": h, "again": again,
+        "stop": stop, "state": state, "loops": loops, "recording": recording,
+        "earlier": earlier, "snapshot": snapshot,
+    }  # fmt: skip
+
+
+@pytest.mark.audit("monitor limits")
+def test_concurrent_starts_give_one_run_and_stop_stops_it(session: dict[str, Any]) -> None:
+    """Eight starts at once: one run, seven 409; STOP ends that loop; no loop is left."""
+    n, results = session["n"], session["results"]
     codes = sorted(code for code, _ in results)
     assert codes == [200] + [409] * (n - 1), results
     started = next(info for code, info in results if code == 200)
     refused = [info["error"] for code, info in results if code == 409]
     assert all("one run at a time" in e for e in refused), refused
-    assert started["run"] == served.state.run_id > before
-    # a start while that run goes: 409 too (one run at a time, never a second loop)
-    code, _, info = served.post("/api/start", {"duration": 30})
+    assert session["alive"]  # the one run was going when the next start came
+    code, _, info = session["again"]
     assert code == 409
     assert "press STOP" in info["error"]
-    h = served.state.handle
-    assert h is not None
-    assert h.alive()
-    code, _, info = served.post("/api/stop", {})
-    assert code == 200
-    served.wait_idle()
-    assert not h.alive()
-    assert served.state.status["reason"] == "STOP pressed"
-    loops = [p for p in multiprocessing.active_children() if p.name == "mrsus-monitor-loop"]
-    assert loops == [], loops
+    assert session["stop"][0] == 200
+    assert not session["handle"].alive()
+    assert session["state"]["reason"] == "STOP pressed"
+    assert session["loops"] == []  # no loop process left behind
     print(f"{n} concurrent starts: {codes}; run {started['run']} stopped: STOP pressed")
 
 
 @pytest.mark.audit("user files")
-def test_a_new_session_never_writes_over_an_earlier_sessions_runs(tmp_path: Path) -> None:
+def test_a_new_session_never_writes_over_an_earlier_sessions_runs(
+    session: dict[str, Any],
+) -> None:
     """``monitor --workdir``: run-001 (an earlier session's) and run-002.csv stay as they are."""
-    from mrsuspension.monitor.app import create_app
-
-    earlier = _earlier_session(tmp_path / "work")
-    snapshot = {p: p.read_bytes() for p in earlier.rglob("*") if p.is_file()}
-    served = Served(create_app(workdir=earlier, rig="ideal", realtime="off"))  # a new session
-    try:
-        code, _, info = served.post("/api/start", {"duration": 0.3})
-        assert code == 200, info
-        assert info["run"] == 3  # 1 and 2 are taken (a folder, a CSV)
-        served.wait_idle()
-        code, _, raw = served.raw("GET", "/api/recording")
-    finally:
-        served.close()
+    earlier: Path = session["earlier"]
+    started = next(info for code, info in session["results"] if code == 200)
+    assert started["run"] == 3  # 1 and 2 are taken (a folder, a CSV)
+    code, _, raw = session["recording"]
     assert code == 200
     assert raw.startswith(b"time,")
     out = earlier / "run-003"
     assert (out / "meta.json").exists()  # the new run's recording, in a new folder
     assert (earlier / "run-003.csv").exists()  # and its CSV beside it
-    for path, data in snapshot.items():  # nothing the earlier session or the user wrote
+    for path, data in session["snapshot"].items():  # nothing the earlier session wrote
         assert path.read_bytes() == data, f"{path} was changed"
-    kept = sorted(str(p.relative_to(earlier)) for p in snapshot)
+    kept = sorted(str(p.relative_to(earlier)) for p in session["snapshot"])
     print(f"earlier files kept: {kept}; the new run: {out.name}")
 
 
