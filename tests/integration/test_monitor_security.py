@@ -307,17 +307,25 @@ def test_deep_nesting_and_huge_numbers_are_400_not_500(served: Served) -> None:
 
 @pytest.fixture(scope="module")
 def session(tmp_path_factory: pytest.TempPathFactory) -> dict[str, Any]:
-    """A new session beside an earlier one's runs: eight starts at once, then STOP.
+    """A new session beside an earlier one's runs: eight starts at once, and STOP.
 
-    The work (one real loop process) is done once here; the two tests below check what
-    it shows: one run at a time, STOP stops it (monitor limits); the earlier session's
-    files are kept (user files).
+    STOP is pressed while the start that wins is still being handled (its validation
+    made 0.5 s slower here, to widen the window). The work (one real loop process) is
+    done once here; the two tests below check what it shows: one run at a time, STOP
+    stops it (monitor limits); the earlier session's files are kept (user files).
     """
     from mrsuspension.monitor.app import create_app
 
     earlier = _earlier_session(tmp_path_factory.mktemp("session") / "work")
     snapshot = {p: p.read_bytes() for p in earlier.rglob("*") if p.is_file()}
     served = Served(create_app(workdir=earlier, rig="ideal", realtime="off"))
+    validate = served.state.validate
+
+    def slow_validate(raw: dict[str, Any]) -> Any:
+        time.sleep(0.5)
+        return validate(raw)
+
+    served.state.validate = slow_validate  # type: ignore[method-assign]
     n = 8
     barrier = threading.Barrier(n)
     results: list[tuple[int, dict[str, Any]]] = []
@@ -333,13 +341,17 @@ def session(tmp_path_factory: pytest.TempPathFactory) -> dict[str, Any]:
         threads = [threading.Thread(target=start) for _ in range(n)]
         for t in threads:
             t.start()
+        deadline = time.monotonic() + 30
+        while not served.state.lock.locked():  # a start is being handled: press STOP
+            assert time.monotonic() < deadline, "no start was handled"
+            time.sleep(0.002)
+        stop = served.post("/api/stop", {})
         for t in threads:
             t.join(60)
         h = served.state.handle
         alive = h is not None and h.alive()
         # a start while that run goes: 409 too (never a second loop)
         again = served.post("/api/start", {"duration": 30})
-        stop = served.post("/api/stop", {})
         served.wait_idle()
         recording = served.raw("GET", "/api/recording")
         loops = [p.name for p in multiprocessing.active_children() if p.name.startswith("mrsus")]
@@ -366,9 +378,12 @@ def test_concurrent_starts_give_one_run_and_stop_stops_it(session: dict[str, Any
     code, _, info = session["again"]
     assert code == 409
     assert "press STOP" in info["error"]
+    # STOP, pressed while that start was being handled, reached the loop it launched
     assert session["stop"][0] == 200
+    assert session["stop"][2]["state"] == "stopping"
     assert not session["handle"].alive()
     assert session["state"]["reason"] == "STOP pressed"
+    assert session["state"]["ticks"] < 5000  # stopped at once, not after its 30 s
     assert session["loops"] == []  # no loop process left behind
     print(f"{n} concurrent starts: {codes}; run {started['run']} stopped: STOP pressed")
 
