@@ -450,6 +450,12 @@ def test_token_page_sets_a_cookie_that_its_script_styles_and_socket_carry(
     assert "HttpOnly" in cookie
     assert "SameSite=Strict" in cookie
     jar = {"Cookie": cookie.split(";", 1)[0]}
+    # a browser the server opens itself gets a one-time login code, never the token
+    tokened.app.state.logins.add("one-time-code-0123456789")
+    code, headers, _ = tokened.raw("GET", "/?login=one-time-code-0123456789")
+    assert code == 303
+    assert headers["set-cookie"].split(";", 1)[0] == jar["Cookie"]
+    assert tokened.raw("GET", "/?login=one-time-code-0123456789")[0] == 403  # used up
     for path in ("/", "/static/monitor.js", "/static/monitor.css", "/api/status"):
         assert tokened.raw("GET", path, jar)[0] == 200, path
     # a state change with the cookie still needs the monitor's own origin

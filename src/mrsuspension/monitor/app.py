@@ -613,7 +613,9 @@ def create_app(
     Returns
     -------
     Starlette
-        The ASGI app; ``app.state.monitor`` is its :class:`MonitorState`.
+        The ASGI app; ``app.state.monitor`` is its :class:`MonitorState`;
+        ``app.state.logins`` the set of one-time login codes (``/?login=CODE`` sets the
+        token's cookie once: for a browser the server opens itself).
     """
     if token:
         check_token(token)
@@ -735,5 +737,7 @@ def create_app(
         lifespan=lifespan,
     )
     app.state.monitor = state
-    app.add_middleware(MonitorGate, token=token, bind_host=host, max_body=max_body)
+    logins: set[str] = set()
+    app.state.logins = logins
+    app.add_middleware(MonitorGate, token=token, bind_host=host, max_body=max_body, logins=logins)
     return app

@@ -21,7 +21,9 @@ before it reaches a route:
 - **Access token** (when set): every request carries it in the cookie the page gets
   on its first load (``GET /?token=...`` sets an HttpOnly, SameSite=Strict cookie and
   redirects to the clean URL, so the page's script, styles, API calls and WebSocket
-  carry it) or as ``?token=...`` (scripts); compared in constant time. A token comes
+  carry it) or as ``?token=...`` (scripts); compared in constant time. A browser the
+  server opens itself gets a one-time ``?login=...`` instead (:meth:`MonitorGate`'s
+  ``logins``), so that the token never shows in that browser's command line. A token comes
   from a file (``--token-file``) or the environment (:data:`TOKEN_ENV`), has at least
   :data:`MIN_TOKEN_LENGTH` characters and is checked by :func:`check_token`.
 
@@ -346,6 +348,10 @@ class MonitorGate:
         a wildcard bind accepts any name).
     max_body : int
         Largest request body [bytes].
+    logins : set of str, optional
+        One-time login codes: ``GET /?login=CODE`` sets the token's cookie like
+        ``/?token=...`` and removes the code (for a browser the server opens itself,
+        whose command line any user can read). Shared with the caller, who adds codes.
     """
 
     def __init__(
@@ -354,10 +360,12 @@ class MonitorGate:
         token: str | None = None,
         bind_host: str = "127.0.0.1",
         max_body: int = MAX_BODY,
+        logins: set[str] | None = None,
     ) -> None:
         self.app = app
         self.token = token.encode() if token else None
         self.max_body = int(max_body)
+        self.logins = logins if logins is not None else set()
         self.names: frozenset[str] | None = LOOPBACK_NAMES
         if token:
             extra = _bind_names(bind_host)
@@ -420,6 +428,16 @@ class MonitorGate:
             in_query = hmac.compare_digest(given.encode(), self.token)
         return in_cookie, in_query
 
+    def _login(self, scope: Scope) -> bool:
+        """Whether the query holds a one-time login code (then used up)."""
+        query = parse_qs(scope.get("query_string", b"").decode("latin-1"))
+        given = (query.get("login") or [""])[0].encode()
+        for code in list(self.logins):
+            if given and hmac.compare_digest(given, code.encode()):
+                self.logins.discard(code)
+                return True
+        return False
+
     # -- ASGI ------------------------------------------------------------------------------
     async def __call__(self, scope: Scope, receive: Receive, send: Send) -> None:
         kind = scope["type"]
@@ -446,7 +464,8 @@ class MonitorGate:
             return
         if self.token is not None:
             in_cookie, in_query = self._token_given(scope, headers)
-            if in_query and path == "/" and method == "GET":  # first load: cookie, clean URL
+            first = path == "/" and method == "GET"
+            if first and (in_query or self._login(scope)):  # first load: cookie, clean URL
                 await _redirect_with_cookie(send, scope, self.token.decode())
                 return
             if not (in_cookie or in_query):

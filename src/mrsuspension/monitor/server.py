@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import errno
 import ipaddress
+import secrets
 import sys
 import webbrowser
 from pathlib import Path
@@ -175,6 +176,7 @@ def serve(
         "log_level": "warning",
         "ws_max_size": 64 * 1024,  # the page sends keep-alives only
         "server_header": False,
+        "proxy_headers": False,  # no X-Forwarded-* from anyone: the monitor is not proxied
     }
     from mrsuspension.hil.realtime import yield_loop_cpu
 
@@ -183,5 +185,12 @@ def serve(
     with yield_loop_cpu() as cpus:
         app.state.monitor.loop_cpus = cpus
         if open_browser:
-            webbrowser.open(url)
+            # a browser's command line is public (ps): it gets a one-time login code,
+            # never the token
+            opened = url
+            if token:
+                code = secrets.token_urlsafe(24)
+                app.state.logins.add(code)
+                opened = f"http://{shown}:{port}/?login={code}"
+            webbrowser.open(opened)
         uvicorn.run(app, **kwargs)
