@@ -408,6 +408,40 @@ def test_a_new_session_never_writes_over_an_earlier_sessions_runs(
     print(f"earlier files kept: {kept}; the new run: {out.name}")
 
 
+@pytest.mark.audit("monitor limits")
+def test_stop_reaches_a_running_loop_at_once_while_a_start_is_handled(tmp_path: Path) -> None:
+    """A start holding the lock (validating slow settings) never delays STOP of the run."""
+    from mrsuspension.monitor.app import MonitorState
+
+    class Loop:  # the server's view of a running loop process: alive until stopped
+        def __init__(self) -> None:
+            self.stopped = threading.Event()
+
+        def alive(self) -> bool:
+            return True
+
+        def stop(self) -> None:
+            self.stopped.set()
+
+    st = MonitorState(tmp_path, rig="ideal")
+    loop = Loop()
+    st.handle = loop  # type: ignore[assignment]
+    st.status["state"] = "running"
+    st.lock.acquire()  # a start is being handled
+    try:
+        stopper = threading.Thread(target=st.stop, daemon=True)
+        t0 = time.monotonic()
+        stopper.start()
+        assert loop.stopped.wait(5.0), "STOP waited for the start"
+        waited = time.monotonic() - t0
+        assert st.status["state"] == "stopping"
+    finally:
+        st.lock.release()
+    stopper.join(5.0)
+    assert not stopper.is_alive()
+    print(f"STOP reached the running loop in {1e3 * waited:.1f} ms while a start held the lock")
+
+
 def test_reserving_a_run_skips_taken_names(tmp_path: Path) -> None:
     from mrsuspension.monitor.app import MonitorState
 

@@ -395,18 +395,24 @@ class MonitorState:
     def stop(self) -> None:
         """STOP: ask the running loop to take its safety path.
 
-        A start being handled at that moment is waited for (its loop process being
-        spawned), so that STOP reaches the loop it starts: STOP always stops the run.
+        The running loop is told at once (never behind the lock); then a start being
+        handled at that moment is waited for (its loop process being spawned) and its
+        loop told too: STOP always stops the run.
         """
+        self._signal_stop()
         got = self.lock.acquire(timeout=_STOP_WAIT)
         try:
-            if self.handle is not None and self.handle.alive():
-                self.handle.stop()
-                if self.status.get("state") not in ("ended", "error"):
-                    self.status["state"] = "stopping"
+            self._signal_stop()
         finally:
             if got:
                 self.lock.release()
+
+    def _signal_stop(self) -> None:
+        h = self.handle
+        if h is not None and h.alive():
+            h.stop()
+            if self.status.get("state") not in ("ended", "error"):
+                self.status["state"] = "stopping"
 
     # -- acquisition -----------------------------------------------------------------------
     def record(self, action: str) -> dict[str, Any]:
