@@ -92,6 +92,8 @@ PATH_KIND: dict[tuple[str, str], str] = {
     ("damper matrix", "--out"): "out-folder",
     ("damper figures", "--out"): "out-folder",
     ("monitor", "--workdir"): "out-folder",
+    ("monitor", "--token-file"): "in-file",
+    ("hil run", "--token-file"): "in-file",
 }
 
 #: (command, option, value) -> why the value is valid (the case is not run)
@@ -117,11 +119,9 @@ VALID: dict[tuple[str, str, str], str] = {
     ("damper inverse", "--acceleration", "-1"): "an acceleration of either sign",
     ("damper inverse", "--acceleration", "0"): "the default",
     ("damper loops", "--currents", "0"): "one loop at no current",
-    # free text: any non-empty value is valid (empty and blank ones are refused)
-    ("monitor", "--token", "unknown"): "a token is any text",
-    ("monitor", "--token", "long"): "a token is any text",
-    ("hil run", "--token", "unknown"): "a token is any text",
-    ("hil run", "--token", "long"): "a token is any text",
+    # a token of 16 or more URL-safe characters is valid (shorter ones are refused)
+    ("monitor", "--token", "long"): "a token of 5000 characters",
+    ("hil run", "--token", "long"): "a token of 5000 characters",
     ("identify", "--name", "*"): "the fitted set's name is any text",
     ("identify", "--compare", "empty"): "no comparison models (the default)",
     ("identify", "--compare", "blank"): "no comparison models (the default)",

@@ -233,7 +233,8 @@ def test_api_acquisition_and_live_changes(tmp_path: Path) -> None:
 
     app = create_app(workdir=tmp_path, rig="ideal")
     state = app.state.monitor
-    with TestClient(app) as client:
+    base = "http://127.0.0.1:8765"  # a loopback Host; state changes from its own origin
+    with TestClient(app, base_url=base, headers={"Origin": base}) as client:
         # nothing running: a change is refused, no recording
         r = client.post("/api/apply", json={"sprung_mass": 600})
         assert r.status_code == 400

@@ -122,7 +122,17 @@ def hil_run_command(
         str, typer.Option(help="monitor address (with --monitor; loopback unless --token)")
     ] = "127.0.0.1",
     token: Annotated[
-        str | None, typer.Option(help="monitor access token (with --monitor; ?token=...)")
+        str | None,
+        typer.Option(
+            help="monitor access token (with --monitor; shows in ps: prefer --token-file)"
+        ),
+    ] = None,
+    token_file: Annotated[
+        Path | None,
+        typer.Option(
+            help="file holding the monitor access token (with --monitor; else the "
+            "environment variable MRSUS_MONITOR_TOKEN)"
+        ),
     ] = None,
 ) -> None:
     """Run SCENARIO hardware-in-the-loop for DURATION seconds at RATE Hz.
@@ -148,8 +158,10 @@ def hil_run_command(
         check_input_file("scenario file", scenario)
         check_port("--port", port)
         check_host("--host", host)
-        if token is not None and not token.strip():
-            raise ValidationError("--token must not be empty (omit it for a loopback monitor)")
+        if monitor or token is not None or token_file is not None:
+            from mrsuspension.cli.monitor import monitor_token
+
+            token = monitor_token(token, token_file)
         if out is not None and not monitor:
             check_output_folder("--out", out, "hil run", force=force)
         elif out is not None:

@@ -10,7 +10,23 @@ import typer
 from mrsuspension.cli.errors import user_errors
 from mrsuspension.hil.rigs import rig_syntax
 
-__all__ = ["monitor_command"]
+__all__ = ["monitor_command", "monitor_token"]
+
+
+def monitor_token(token: str | None, token_file: Path | None) -> str | None:
+    """The monitor's access token from ``--token-file``, ``--token`` or the environment.
+
+    Checked (:func:`~mrsuspension.monitor.security.resolve_token`); a warning goes to
+    stderr for a token given on the command line or a file other users can read.
+    """
+    from mrsuspension.monitor.security import resolve_token, token_file_warning
+
+    value, warning = resolve_token(token, token_file)
+    if token_file is not None:
+        warning = token_file_warning(token_file)
+    if warning:
+        typer.echo(warning, err=True)
+    return value
 
 
 def monitor_command(
@@ -18,9 +34,19 @@ def monitor_command(
         "127.0.0.1"
     ),
     port: Annotated[int, typer.Option(help="TCP port")] = 8765,
+    token_file: Annotated[
+        Path | None,
+        typer.Option(
+            help="file holding the access token (at least 16 characters; else the "
+            "environment variable MRSUS_MONITOR_TOKEN); needed off loopback"
+        ),
+    ] = None,
     token: Annotated[
         str | None,
-        typer.Option(help="access token required in the URL (?token=...); needed off loopback"),
+        typer.Option(
+            help="access token (visible to other users in ps: prefer --token-file or "
+            "MRSUS_MONITOR_TOKEN)"
+        ),
     ] = None,
     open_browser: Annotated[bool, typer.Option(help="open the page in a browser")] = False,
     rig: Annotated[str, typer.Option(help=f"rig in the loop: {rig_syntax()}")] = "simulated",
@@ -51,13 +77,12 @@ def monitor_command(
     Runs started from the page are HiL runs (`run_hil`) with the --rig rig in the loop,
     in their own process; settings changed on the page are applied between ticks.
     """
-    from mrsuspension.errors import ValidationError, check_host
+    from mrsuspension.errors import check_host
     from mrsuspension.monitor.server import serve
 
     with user_errors():
         check_host("--host", host)
-        if token is not None and not token.strip():
-            raise ValidationError("--token must not be empty (omit it for a loopback monitor)")
+        token = monitor_token(token, token_file)
         serve(
             host, port, token, rig=rig, road_dir=road_dir, open_browser=open_browser,
             workdir=workdir, realtime=realtime, isolate=isolate,

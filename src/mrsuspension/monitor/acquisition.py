@@ -28,6 +28,8 @@ __all__ = ["DISPLAY_RATES", "EDGES", "Acquisition", "acquisition_from_settings"]
 EDGES = ("rising", "falling", "either")
 #: display sampling rates offered by the page [Hz]
 DISPLAY_RATES = (20.0, 50.0, 100.0, 200.0)
+#: longest acquisition period [ticks] (100 s at 1 kHz)
+MAX_PERIOD = 100_000
 _NAMES = tuple(n for n, _ in CHANNELS)
 
 
@@ -72,9 +74,14 @@ class Acquisition:
     display_rate: float = 100.0
 
     def __post_init__(self) -> None:
-        if isinstance(self.period, bool) or not isinstance(self.period, int) or self.period < 1:
+        if (
+            isinstance(self.period, bool)
+            or not isinstance(self.period, int)
+            or not 1 <= self.period <= MAX_PERIOD
+        ):
             raise ValidationError(
-                f"acquisition period must be a whole number of ticks >= 1; got {self.period!r}"
+                f"acquisition period must be a whole number of ticks in [1, {MAX_PERIOD}]; "
+                f"got {self.period!r}"
             )
         if self.trigger is not None and self.trigger not in _NAMES:
             raise ValidationError(
@@ -180,9 +187,10 @@ def acquisition_from_settings(raw: Mapping[str, Any], current: Acquisition) -> A
     ``trigger_level``, ``trigger_edge``, ``pre_trigger`` [s], ``display_rate`` [Hz].
     """
     period = _num(raw, "acq_period", current.period, "acquisition period")
-    if period != int(period):
+    if period != int(period) or not 1 <= period <= MAX_PERIOD:
         raise ValidationError(
-            f"acquisition period must be a whole number of ticks >= 1; got {period:g}"
+            f"acquisition period must be a whole number of ticks in [1, {MAX_PERIOD}]; "
+            f"got {period:g}"
         )
     trig = raw.get("trigger", current.trigger)
     trigger = None if trig in (None, "", "none") else str(trig)

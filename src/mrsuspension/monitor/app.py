@@ -9,17 +9,23 @@ running loop, applied between ticks), ``POST /api/stop`` (STOP), ``POST /api/rec
 derived from the controller registry: :func:`~mrsuspension.monitor.settings.controller_forms`),
 ``GET /api/status``, ``GET /api/recording`` (CSV of the acquired rows of the HiL
 recording) and ``WS /ws`` (JSON frames at 25 Hz: new samples at the display rate, loop
-status, live measures). When the app has an access token every request must carry
-``?token=...``.
+status, live measures).
+
+Every request passes :class:`~mrsuspension.monitor.security.MonitorGate` first (Host,
+Origin, content type, body size, access token: :mod:`mrsuspension.monitor.security`).
+One run goes at a time: a start while a run goes (or while another start is being
+handled) is refused with 409; STOP always reaches the running loop. Each run records
+into the next free ``run-NNN`` folder of the work directory, so a new session never
+writes over an earlier one's runs.
 """
 
 from __future__ import annotations
 
 import asyncio
 import contextlib
-import hmac
 import math
 import tempfile
+import threading
 import time
 from collections import deque
 from collections.abc import AsyncIterator, Callable
@@ -34,7 +40,6 @@ from starlette.requests import Request
 from starlette.responses import FileResponse, HTMLResponse, JSONResponse, Response
 from starlette.routing import Mount, Route, WebSocketRoute
 from starlette.staticfiles import StaticFiles
-from starlette.types import ASGIApp, Receive, Scope, Send
 from starlette.websockets import WebSocket, WebSocketDisconnect
 
 from mrsuspension.engine.simulate import Simulation
@@ -45,6 +50,7 @@ from mrsuspension.hil.recorder import META_FILE, load_recording
 from mrsuspension.measures.steady import T_as, T_au, T_dr, T_ds, T_du, dlc
 from mrsuspension.monitor.acquisition import Acquisition, acquisition_from_settings
 from mrsuspension.monitor.runner import TAP_RATE, LoopHandle
+from mrsuspension.monitor.security import MAX_BODY, MonitorGate, check_token, loads_json
 from mrsuspension.monitor.settings import (
     MonitorSettings,
     controller_forms,
@@ -52,7 +58,14 @@ from mrsuspension.monitor.settings import (
     scenario_from_settings,
 )
 
-__all__ = ["DISPLAY_CHANNELS", "AttachedRun", "MonitorState", "create_app", "live_measures"]
+__all__ = [
+    "DISPLAY_CHANNELS",
+    "AttachedRun",
+    "MonitorState",
+    "RunBusyError",
+    "create_app",
+    "live_measures",
+]
 
 #: channels shown by the page (loop channels plus the derived z_r'' and model force F_dmod)
 DISPLAY_CHANNELS: tuple[str, ...] = (
@@ -71,6 +84,12 @@ _DERIVE_KEEP = 400
 _KEEP = 10.0
 #: frame period of the WebSocket stream [s] (25 Hz, on a fixed clock: >= 20 Hz under load)
 _FRAME = 0.04
+#: longest wait of STOP for a start being handled (the loop process being spawned) [s]
+_STOP_WAIT = 30.0
+
+
+class RunBusyError(ValidationError):
+    """A start refused because a run goes, or another start is being handled (HTTP 409)."""
 
 
 def live_measures(data: dict[str, np.ndarray], static_load: float) -> dict[str, float | None]:
@@ -222,6 +241,8 @@ class MonitorState:
         self._measures: dict[str, float | None] = {}
         self._measured_at = 0.0
         self._on_end: Callable[[dict[str, Any]], None] | None = None  # the attached run's
+        #: held while a run is launched, changed or stopped: one run at a time
+        self.lock = threading.Lock()
 
     # -- runs ------------------------------------------------------------------------------
     def validate(self, raw: dict[str, Any]) -> tuple[MonitorSettings, Simulation]:
@@ -230,18 +251,66 @@ class MonitorState:
         return settings, settings.simulation(self.base)
 
     def start(self, raw: dict[str, Any]) -> dict[str, Any]:
-        """Validate ``raw`` settings and start a run (stopping any running one)."""
-        settings, sim = self.validate(raw)
-        return self._launch(sim, settings.rate, settings.duration, settings.ramp_time, settings)
+        """Validate ``raw`` settings and start a run.
+
+        Raises
+        ------
+        RunBusyError
+            When a run goes (press STOP and let it end first) or another start is
+            being handled at the same moment: one run at a time.
+        ValidationError
+            For invalid settings.
+        """
+        if not self.lock.acquire(blocking=False):
+            raise RunBusyError("another start is being handled; one run at a time")
+        try:
+            settings, sim = self.validate(raw)
+            self._check_idle()
+            return self._launch(sim, settings.rate, settings.duration, settings.ramp_time, settings)
+        finally:
+            self.lock.release()
 
     def attach(self, run: AttachedRun) -> dict[str, Any]:
         """Start the attached run (its scenario's damper is kept for live changes)."""
-        self.base = run.simulation
-        info = self._launch(
-            run.simulation, run.rate, run.duration, 0.2, None, model_dt=run.model_dt
-        )
-        self._on_end = run.on_end
+        with self.lock:
+            self._check_idle()
+            self.base = run.simulation
+            info = self._launch(
+                run.simulation, run.rate, run.duration, 0.2, None, model_dt=run.model_dt
+            )
+            self._on_end = run.on_end
         return info
+
+    def _check_idle(self) -> None:
+        h = self.handle
+        # a loop that has reported its end is leaving: _launch waits for it
+        if h is not None and h.alive() and self.status.get("state") not in ("ended", "error"):
+            state = self.status.get("state", "running")
+            raise RunBusyError(
+                f"run {self.run_id} is still going ({state}); press STOP and wait until it "
+                "has ended (one run at a time)"
+            )
+
+    def _reserve_run(self) -> tuple[int, Path]:
+        """The next run number whose folder and CSV are free in the work directory.
+
+        The folder is created here (``mkdir`` without ``exist_ok``), so that no other
+        session or run can take it: an earlier session's ``run-NNN`` (or anything a user
+        put there under that name) is never written over.
+        """
+        self.workdir.mkdir(parents=True, exist_ok=True)
+        n = self.run_id
+        while True:
+            n += 1
+            out = self.workdir / f"run-{n:03d}"
+            csv = self.workdir / f"run-{n:03d}.csv"
+            if out.is_symlink() or csv.exists() or csv.is_symlink():
+                continue
+            try:
+                out.mkdir()
+            except FileExistsError:
+                continue
+            return n, out
 
     def report_end(self) -> None:
         """Give the attached run's result to its ``on_end`` once it has ended (once)."""
@@ -265,11 +334,10 @@ class MonitorState:
         settings: MonitorSettings | None,
         model_dt: float | None = None,
     ) -> dict[str, Any]:
-        self.stop()
-        if self.handle is not None:
+        if self.handle is not None:  # ended (checked by the caller, under the lock)
             self.handle.join(_RETURN_WAIT)
-            self.report_end()  # an attached run stopped by this start
-        self.run_id += 1
+            self.report_end()
+        self.run_id, out = self._reserve_run()
         self.settings = settings
         self.simulation = sim
         self.static_load = sim.vehicle.static_load
@@ -289,7 +357,6 @@ class MonitorState:
             pre_trigger=self.acquisition.pre_trigger,
             display_rate=self.acquisition.display_rate,
         )
-        out = self.workdir / f"run-{self.run_id:03d}"
         self.recording = None
         self.status = {
             "state": "starting", "reason": "", "run": self.run_id, "rig": self.rig,
@@ -304,6 +371,10 @@ class MonitorState:
     def apply(self, raw: dict[str, Any]) -> dict[str, Any]:
         """Validate ``raw`` settings and send them to the running loop (between ticks)."""
         settings, sim = self.validate(raw)  # invalid settings never reach the loop
+        with self.lock:
+            return self._apply(settings, sim)
+
+    def _apply(self, settings: MonitorSettings, sim: Simulation) -> dict[str, Any]:
         h = self.handle
         if (
             h is None
@@ -322,9 +393,24 @@ class MonitorState:
         return {"queued": True, "fields": self.status["fields"]}
 
     def stop(self) -> None:
-        """STOP: ask the running loop to take its safety path."""
-        if self.handle is not None and self.handle.alive():
-            self.handle.stop()
+        """STOP: ask the running loop to take its safety path.
+
+        The running loop is told at once (never behind the lock); then a start being
+        handled at that moment is waited for (its loop process being spawned) and its
+        loop told too: STOP always stops the run.
+        """
+        self._signal_stop()
+        got = self.lock.acquire(timeout=_STOP_WAIT)
+        try:
+            self._signal_stop()
+        finally:
+            if got:
+                self.lock.release()
+
+    def _signal_stop(self) -> None:
+        h = self.handle
+        if h is not None and h.alive():
+            h.stop()
             if self.status.get("state") not in ("ended", "error"):
                 self.status["state"] = "stopping"
 
@@ -486,29 +572,6 @@ class MonitorState:
         }
 
 
-class TokenGate:
-    """ASGI middleware refusing requests without the access token (``?token=``)."""
-
-    def __init__(self, app: ASGIApp, token: str) -> None:
-        self.app = app
-        self.token = token
-
-    async def __call__(self, scope: Scope, receive: Receive, send: Send) -> None:
-        if scope["type"] in ("http", "websocket"):
-            from urllib.parse import parse_qs
-
-            query = parse_qs(scope.get("query_string", b"").decode("latin-1"))
-            given = (query.get("token") or [""])[0]
-            if not hmac.compare_digest(given.encode(), self.token.encode()):
-                if scope["type"] == "websocket":
-                    await send({"type": "websocket.close", "code": 1008})
-                    return
-                response = Response("access token required", status_code=403)
-                await response(scope, receive, send)
-                return
-        await self.app(scope, receive, send)
-
-
 def _static_dir() -> Path:
     return Path(str(resources.files("mrsuspension.monitor") / "static"))
 
@@ -522,14 +585,18 @@ def create_app(
     road_dir: Path | None = None,
     realtime: str = "auto",
     isolate: bool = False,
+    host: str = "127.0.0.1",
+    max_body: int = MAX_BODY,
 ) -> Starlette:
     """Build the monitor application.
 
     Parameters
     ----------
     token : str, optional
-        Access token every request must carry as ``?token=...`` (required by
-        :func:`~mrsuspension.monitor.server.serve` off loopback).
+        Access token every request must carry, in the cookie the page gets on its first
+        load (``/?token=...``) or as ``?token=...`` (required by
+        :func:`~mrsuspension.monitor.server.serve` off loopback; at least 16 characters,
+        :func:`~mrsuspension.monitor.security.check_token`).
     workdir : path, optional
         Directory for the recordings (default: a temporary one).
     rig : str
@@ -543,12 +610,21 @@ def create_app(
     isolate : bool
         Move the machine's other movable tasks off the loop's core during each run
         (``run_hil(..., isolate=True)``; refused with ``realtime="off"``).
+    host : str
+        The address the server binds to: the Host names accepted are the loopback ones,
+        and with a token this one too (:class:`~mrsuspension.monitor.security.MonitorGate`).
+    max_body : int
+        Largest request body [bytes] (413 beyond).
 
     Returns
     -------
     Starlette
-        The ASGI app; ``app.state.monitor`` is its :class:`MonitorState`.
+        The ASGI app; ``app.state.monitor`` is its :class:`MonitorState`;
+        ``app.state.logins`` the set of one-time login codes (``/?login=CODE`` sets the
+        token's cookie once: for a browser the server opens itself).
     """
+    if token:
+        check_token(token)
     state = MonitorState(workdir, rig=rig, road_dir=road_dir, realtime=realtime, isolate=isolate)
     clients: set[WebSocket] = set()
 
@@ -556,10 +632,8 @@ def create_app(
         return HTMLResponse((_static_dir() / "index.html").read_text(encoding="utf-8"))
 
     async def _json(request: Request) -> dict[str, Any]:
-        try:
-            raw = await request.json()
-        except ValueError as exc:
-            raise ValidationError(f"bad request: {exc}") from None
+        # the gate has checked the content type and the size; the parser, the rest
+        raw = loads_json(await request.body())
         if not isinstance(raw, dict):
             raise ValidationError("the request body must be a JSON object")
         return raw
@@ -569,6 +643,8 @@ def create_app(
             try:
                 raw = await _json(request)
                 info = await asyncio.to_thread(fn, raw)
+            except RunBusyError as exc:
+                return JSONResponse({"error": str(exc)}, status_code=409)
             except ValidationError as exc:
                 return JSONResponse({"error": str(exc)}, status_code=400)
             return JSONResponse(info)
@@ -576,7 +652,7 @@ def create_app(
         return endpoint
 
     async def stop(request: Request) -> JSONResponse:
-        state.stop()
+        await asyncio.to_thread(state.stop)
         return JSONResponse({"state": state.status.get("state")})
 
     async def controllers(request: Request) -> JSONResponse:
@@ -667,6 +743,7 @@ def create_app(
         lifespan=lifespan,
     )
     app.state.monitor = state
-    if token:
-        app.add_middleware(TokenGate, token=token)
+    logins: set[str] = set()
+    app.state.logins = logins
+    app.add_middleware(MonitorGate, token=token, bind_host=host, max_body=max_body, logins=logins)
     return app

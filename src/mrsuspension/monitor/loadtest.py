@@ -64,6 +64,11 @@ def unmonitored_run(
     return {"ticks": s.ticks, "misses": s.misses, "in_deadline": s.in_deadline}
 
 
+def _json_headers(base: str) -> dict[str, str]:
+    """Headers of a state change sent to the monitor at ``base`` (its own origin, JSON)."""
+    return {"Content-Type": "application/json", "Origin": base.rstrip("/")}
+
+
 def monitored_run(
     base: str, duration: float, rate: float, timeout: float = 120.0
 ) -> dict[str, Any]:
@@ -89,9 +94,7 @@ def monitored_run(
     cpu0, wall0 = time.process_time(), time.perf_counter()
     reader.start()
     body = json.dumps({**_SETTINGS, "rate": rate, "duration": duration}).encode()
-    req = urllib.request.Request(
-        base + "api/start", data=body, headers={"Content-Type": "application/json"}
-    )
+    req = urllib.request.Request(base + "api/start", data=body, headers=_json_headers(base))
     with urllib.request.urlopen(req) as r:
         r.read()
     deadline = time.time() + timeout
@@ -128,9 +131,7 @@ def browser_run(
     browser does); the frame rate is counted by the page.
     """
     body = json.dumps({**_SETTINGS, "rate": rate, "duration": duration}).encode()
-    req = urllib.request.Request(
-        base + "api/start", data=body, headers={"Content-Type": "application/json"}
-    )
+    req = urllib.request.Request(base + "api/start", data=body, headers=_json_headers(base))
     cpu0, wall0 = time.process_time(), time.perf_counter()
     with urllib.request.urlopen(req) as r:
         r.read()

@@ -2,6 +2,8 @@
 
 Library code behind those commands: the bind check (loopback unless an access token),
 the rig check and :func:`serve`. The command functions live in :mod:`mrsuspension.cli`.
+The web security (Host, Origin, content type, body size, token) is
+:mod:`mrsuspension.monitor.security`.
 """
 
 from __future__ import annotations
@@ -59,7 +61,8 @@ def check_bind(host: str, token: str | None) -> None:
     if not is_loopback(host) and not token:
         raise ValidationError(
             f"binding the monitor to {host!r} (not loopback) needs an access token: "
-            f"--token {secrets.token_urlsafe(16)} (then open the page with ?token=...)"
+            "--token-file FILE or the environment variable MRSUS_MONITOR_TOKEN (at least "
+            "16 characters; e.g. python -c 'import secrets; print(secrets.token_urlsafe(24))')"
         )
 
 
@@ -140,6 +143,10 @@ def serve(
     stdout carries JSON).
     """
     check_bind(host, token)
+    if token:
+        from mrsuspension.monitor.security import check_token
+
+        check_token(token)
     check_port("--port", port)
     rig = check_rig(rig)
     if road_dir is not None:
@@ -153,7 +160,7 @@ def serve(
     # the app checks --realtime/--isolate: every option is judged before the port's use
     app = create_app(
         token=token, workdir=workdir, rig=rig, attach=attach, road_dir=road_dir,
-        realtime=realtime, isolate=isolate,
+        realtime=realtime, isolate=isolate, host=host,
     )  # fmt: skip
     check_free(host, port)
     shown = "localhost" if is_loopback(host) else host
@@ -163,7 +170,14 @@ def serve(
         file=sys.stderr if url_to_stderr else sys.stdout,
         flush=True,
     )
-    kwargs: dict[str, Any] = {"host": host, "port": port, "log_level": "warning"}
+    kwargs: dict[str, Any] = {
+        "host": host,
+        "port": port,
+        "log_level": "warning",
+        "ws_max_size": 64 * 1024,  # the page sends keep-alives only
+        "server_header": False,
+        "proxy_headers": False,  # no X-Forwarded-* from anyone: the monitor is not proxied
+    }
     from mrsuspension.hil.realtime import yield_loop_cpu
 
     # the server (and a browser it opens) keep off the core the loop pins itself to;
@@ -171,5 +185,12 @@ def serve(
     with yield_loop_cpu() as cpus:
         app.state.monitor.loop_cpus = cpus
         if open_browser:
-            webbrowser.open(url)
+            # a browser's command line is public (ps): it gets a one-time login code,
+            # never the token
+            opened = url
+            if token:
+                code = secrets.token_urlsafe(24)
+                app.state.logins.add(code)
+                opened = f"http://{shown}:{port}/?login={code}"
+            webbrowser.open(opened)
         uvicorn.run(app, **kwargs)

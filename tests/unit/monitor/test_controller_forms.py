@@ -75,7 +75,7 @@ def test_a_registered_law_appears_in_the_route(registered: None) -> None:
     starlette = pytest.importorskip("starlette.testclient")
     from mrsuspension.monitor.app import create_app
 
-    with starlette.TestClient(create_app()) as client:
+    with starlette.TestClient(create_app(), base_url="http://127.0.0.1:8765") as client:
         r = client.get("/api/controllers")
     assert r.status_code == 200
     laws = _forms_by_law(r.json())

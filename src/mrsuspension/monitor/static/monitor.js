@@ -231,7 +231,7 @@
       pre_trigger: $("pre_trigger").value, display_rate: $("display_rate").value,
     };
     const p = Number(body.acq_period);
-    if (!(Number.isInteger(p) && p >= 1)) { setError("refused: acquisition period must be a whole number of ticks >= 1; got '" + body.acq_period + "'"); return; }
+    if (!(Number.isInteger(p) && p >= 1 && p <= 100000)) { setError("refused: acquisition period must be a whole number of ticks in [1, 100000]; got '" + body.acq_period + "'"); return; }
     const pre = Number(body.pre_trigger);
     if (!(pre >= 0 && pre <= 60)) { setError("refused: pre-trigger must be in [0, 60] s; got '" + body.pre_trigger + "'"); return; }
     if (!isFinite(Number(body.trigger_level)) || String(body.trigger_level).trim() === "") { setError("refused: trigger level must be a number"); return; }
