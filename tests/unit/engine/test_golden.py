@@ -3,7 +3,7 @@
 ``tests/data/golden_engine.npz`` holds every output signal of a short harmonic run and
 a short rounded-pulse run for each registered controller law, made on ``main`` before
 the controllers moved into ``control/``. A change that alters any sample by any amount
-fails here; regenerate only for an intended change of the physics, with
+fails here (but for :data:`NUMPY_ONLY`); regenerate only for an intended change of the physics, with
 ``python tests/unit/engine/test_golden.py --write`` and a CHANGELOG entry.
 """
 
@@ -22,6 +22,11 @@ from mrsuspension.excitation import Harmonic, RoundedPulse
 GOLDEN = Path(__file__).resolve().parents[2] / "data" / "golden_engine.npz"
 
 LAWS = sorted(CONTROLLERS)
+#: signals computed by numpy alone, outside the engine's step (the road acceleration,
+#: from the excitation's closed form, reported beside the run and fed back into nothing):
+#: numpy's ``exp`` and ``sin`` take CPU-specific SIMD paths (AVX-512 or AVX2), which
+#: differ by an ulp, so these are held to 4 ulp; every signal of the step stays bit-exact
+NUMPY_ONLY = {"z_r_ddot"}
 CASES = {
     "harmonic": (lambda: Harmonic(2.0, 0.02), 1.5),
     "pulse": (lambda: RoundedPulse(0.05, 2.0, delay=0.2), 1.0),
@@ -55,7 +60,10 @@ def test_engine_results_are_bit_identical_to_the_golden_record(law: str, case: s
     assert expected, f"no golden record for {law}/{case}: a new law needs one (--write)"
     assert set(got) == expected
     for key in sorted(expected):
-        np.testing.assert_array_equal(got[key], golden[key], err_msg=key)
+        if key.rsplit("/", 1)[1] in NUMPY_ONLY:
+            np.testing.assert_array_max_ulp(got[key], golden[key], maxulp=4)
+        else:
+            np.testing.assert_array_equal(got[key], golden[key], err_msg=key)
 
 
 if __name__ == "__main__" and "--write" in sys.argv:
