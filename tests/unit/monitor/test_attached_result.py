@@ -35,7 +35,9 @@ def test_attached_run_reports_its_result_once(tmp_path: Path) -> None:
     assert len(got) == 1
     info = got[0]
     # the object `hil run --json` prints without --monitor
-    assert set(info) == {"reason", "tripped", "rows", "out", "stats", "rms_body_acceleration"}
+    assert set(info) == {
+        "reason", "ending", "signal", "tripped", "rows", "out", "stats", "rms_body_acceleration"
+    }  # fmt: skip
     assert info["reason"] == "completed"
     assert info["tripped"] is False
     assert info["stats"]["ticks"] == info["rows"] >= 300
