@@ -50,6 +50,7 @@ __all__ = [
     "Progress",
     "close_in_workers",
     "descendants",
+    "ensure_resource_tracker",
     "handle_signals",
     "pool_map",
     "process_pool",
@@ -67,7 +68,9 @@ Progress = Callable[[int, int], None]
 #: inside a numba kernel exits on SIGTERM in a few milliseconds)
 STOP_TIMEOUT = 0.5
 
-_SIGNALS = (signal.SIGINT, signal.SIGTERM)
+#: what stops a command: Ctrl-C, ``kill``, and a terminal's hang-up (a closed terminal, a
+#: dropped SSH session)
+_SIGNALS = (signal.SIGINT, signal.SIGTERM, signal.SIGHUP)
 
 #: file descriptors a forked worker closes first (:func:`close_in_workers`)
 _PARENT_ONLY: set[int] = set()
@@ -77,7 +80,7 @@ _PR_SET_PDEATHSIG = 1
 
 
 class Interrupted(KeyboardInterrupt):
-    """SIGINT (Ctrl-C) or SIGTERM received by the parent process.
+    """SIGINT (Ctrl-C), SIGTERM or SIGHUP received by the parent process.
 
     A ``KeyboardInterrupt``, so code that stops cleanly on Ctrl-C stops on SIGTERM too.
 
@@ -111,11 +114,13 @@ def _in_main_thread() -> bool:
 
 @contextmanager
 def handle_signals() -> Iterator[InterruptState]:
-    """Raise :class:`Interrupted` on the first SIGINT or SIGTERM; ignore the ones after it.
+    """Raise :class:`Interrupted` on the first SIGINT, SIGTERM or SIGHUP; ignore the ones
+    after it.
 
     The first signal stops the work (as ``KeyboardInterrupt`` does); a second Ctrl-C
     while the program cleans up is ignored instead of interrupting the cleanup. A SIGINT
-    that was ignored when the block started (a background job) stays ignored. The
+    or SIGHUP that was ignored when the block started (a background job, ``nohup``) stays
+    ignored. The
     previous handlers come back when the block ends. Outside the main thread it does
     nothing.
 
@@ -149,7 +154,7 @@ def handle_signals() -> Iterator[InterruptState]:
 
     previous = {s: signal.getsignal(s) for s in _SIGNALS}
     for s in _SIGNALS:
-        if not (s == signal.SIGINT and previous[s] == signal.SIG_IGN):
+        if not (s != signal.SIGTERM and previous[s] == signal.SIG_IGN):
             signal.signal(s, on_signal)
     try:
         yield state
@@ -184,6 +189,26 @@ def _signals_held(replay: bool = True) -> Iterator[None]:
             signal.signal(s, handler if handler is not None else signal.SIG_DFL)
         if replay and caught:
             signal.raise_signal(caught[0])
+
+
+def ensure_resource_tracker() -> None:
+    """Start :mod:`multiprocessing`'s resource tracker, immune to a terminal's hang-up.
+
+    The tracker (one process per program, started on first need) unlinks the named
+    semaphores of ``spawn`` queues and events. It ignores SIGINT and SIGTERM but not
+    SIGHUP, so a closed terminal (SIGHUP to the process group) killed it while the monitor
+    was still stopping its loop, which then printed tracebacks. Started here with SIGHUP
+    blocked in this thread, it inherits the block and outlives the hang-up. Call it before
+    the first ``spawn`` queue, event or process; any thread may (the mask is the
+    thread's).
+    """
+    from multiprocessing import resource_tracker
+
+    mask = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGHUP})
+    try:
+        resource_tracker.ensure_running()
+    finally:
+        signal.pthread_sigmask(signal.SIG_SETMASK, mask)
 
 
 @contextmanager

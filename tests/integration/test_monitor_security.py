@@ -420,7 +420,7 @@ def test_stop_reaches_a_running_loop_at_once_while_a_start_is_handled(tmp_path: 
         def alive(self) -> bool:
             return True
 
-        def stop(self) -> None:
+        def stop(self, code: int = 1) -> None:
             self.stopped.set()
 
     st = MonitorState(tmp_path, rig="ideal")

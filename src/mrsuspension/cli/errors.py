@@ -227,9 +227,24 @@ def interrupts() -> Iterator[None]:
             signum = getattr(exc, "signum", state.signum or signal.SIGINT)
             _exit_interrupted(signum, discarded[before:], _KEPT[kept:])
         except SystemExit as exc:  # typer turns KeyboardInterrupt into exit code 130
-            if state.signum is None or exc.code != 130:
+            signum = state.signum or _raised_signal(exc)
+            if signum is None or exc.code != 130:
                 raise
-            _exit_interrupted(state.signum, discarded[before:], _KEPT[kept:])
+            _exit_interrupted(signum, discarded[before:], _KEPT[kept:])
+
+
+def _raised_signal(exc: BaseException) -> int | None:
+    """The signal of an :class:`~mrsuspension._pool.Interrupted` a command raised itself
+    (e.g. after stopping a run the safe way), found in ``exc``'s chain of causes."""
+    seen: set[int] = set()
+    cause: BaseException | None = exc
+    while cause is not None and id(cause) not in seen:
+        seen.add(id(cause))
+        signum = getattr(cause, "signum", None)
+        if isinstance(cause, KeyboardInterrupt) and isinstance(signum, int):
+            return signum
+        cause = cause.__cause__ or cause.__context__
+    return None
 
 
 def _exit_interrupted(signum: int, left: Sequence[Path], kept: Sequence[str]) -> None:

@@ -11,14 +11,12 @@ serves a simulated rig over UDP.
 
 from __future__ import annotations
 
-import contextlib
 import json
 import math
 import shutil
 import signal
 import tempfile
 import threading
-from collections.abc import Iterator
 from pathlib import Path
 from typing import Annotated, Any
 
@@ -146,7 +144,6 @@ def hil_run_command(
     """
     from mrsuspension.engine.settings import DEFAULT_DT
     from mrsuspension.hil.loop import (
-        STOP_REASON,
         _simulation_of,
         check_recording_memory,
     )
@@ -192,36 +189,42 @@ def hil_run_command(
 
             def on_end(info: dict[str, Any]) -> None:
                 ended.update(info)
+                if info.get("out"):  # named in the `interrupted:` line of a Ctrl-C
+                    keep_on_interrupt(
+                        f"the run's recording in {str(info['out'])!r} (loop stopped: "
+                        f"{info.get('reason')}; rig commanded to mid-stroke, current 0)"
+                    )
                 if as_json:  # the object `hil run --json` prints (the recording: the run's folder)
                     if out is None and "out" in info:
                         info["out"] = None
                     typer.echo(json.dumps(to_jsonable(info), indent=2))
 
-            serve(
+            end = serve(
                 host, port, token, rig=rig, workdir=out, url_to_stderr=as_json, realtime=realtime,
                 isolate=isolate, attach=AttachedRun(
                     sim, rate=rate, duration=duration, model_dt=model_dt, on_end=on_end
                 ),
             )  # fmt: skip
-            # as `hil run`: a safety trip (or a failed loop) of the attached run exits 1;
-            # the operator's STOP (which takes the same safe path) does not
-            if ended.get("signal"):  # Ctrl-C, SIGTERM, SIGHUP: the loop stopped the safe way
-                from mrsuspension.cli.errors import _exit_interrupted
+            # as `hil run`: a signal that stopped the attached run (the loop's own, or the
+            # server's shutdown while it ran) exits 128 + the signal with one line naming
+            # the recording (on_end); a safety trip (or a failed loop) exits 1; the
+            # operator's STOP (which takes the same safe path) and a server closed after
+            # the run had ended do not
+            signum = ended.get("signal") or (end.signum if end.stopped_run else None)
+            if signum:
+                from mrsuspension._pool import Interrupted
 
-                what = (
-                    f"the run's recording (loop stopped: {ended.get('reason')}; rig commanded to "
-                )
-                _exit_interrupted(int(ended["signal"]), [], [what + "mid-stroke, current 0)"])
-            stopped = ended.get("reason") == STOP_REASON
+                raise Interrupted(int(signum))
+            stopped = ended.get("ending") == "stopped"  # the operator's STOP
             if (ended.get("tripped") and not stopped) or ended.get("state") == "error":
                 raise typer.Exit(1)
             return
         the_rig = make_rig(rig, sim.damper)
-        with _hangup_interrupts():
-            result, kept, interrupted = _run_recorded(
-                sim, the_rig, out, force=force, duration=duration, rate=rate, realtime=realtime,
-                isolate=isolate, model_dt=DEFAULT_DT if model_dt is None else model_dt,
-            )  # fmt: skip
+        # SIGHUP stops it as Ctrl-C does (the command's `interrupts`, _pool.handle_signals)
+        result, kept, interrupted = _run_recorded(
+            sim, the_rig, out, force=force, duration=duration, rate=rate, realtime=realtime,
+            isolate=isolate, model_dt=DEFAULT_DT if model_dt is None else model_dt,
+        )  # fmt: skip
     _report_ending(result, kept, out, interrupted, as_json)
 
 
@@ -239,30 +242,6 @@ EXIT_CODES = {
 
 class _NotCommitted(Exception):
     """Raised inside :func:`prepare_output` to leave ``--out`` as it was."""
-
-
-@contextlib.contextmanager
-def _hangup_interrupts() -> Iterator[None]:
-    """SIGHUP (a closed terminal, a dropped SSH session) stops ``hil run`` as Ctrl-C
-    does, exit status 129; unless it is ignored (``nohup``). Main thread only."""
-    from mrsuspension._pool import Interrupted
-
-    main = threading.current_thread() is threading.main_thread()
-    previous = signal.getsignal(signal.SIGHUP) if main else signal.SIG_IGN
-    fired: list[int] = []
-
-    def on_hangup(signum: int, _frame: Any) -> None:
-        if not fired:
-            fired.append(signum)
-            raise Interrupted(signum)
-
-    if previous != signal.SIG_IGN:
-        signal.signal(signal.SIGHUP, on_hangup)
-    try:
-        yield
-    finally:
-        if previous != signal.SIG_IGN:
-            signal.signal(signal.SIGHUP, previous if previous is not None else signal.SIG_DFL)
 
 
 def _run_recorded(

@@ -77,13 +77,23 @@ def monitor_command(
     Runs started from the page are HiL runs (`run_hil`) with the --rig rig in the loop,
     in their own process; settings changed on the page are applied between ticks.
     """
+    from mrsuspension.cli.errors import keep_on_interrupt
     from mrsuspension.errors import check_host
     from mrsuspension.monitor.server import serve
+
+    def kept(folder: Path) -> None:  # named in the `interrupted:` line of a Ctrl-C
+        keep_on_interrupt(
+            f"the runs recorded in {str(folder)!r} (a running loop stopped the safe way)"
+        )
 
     with user_errors():
         check_host("--host", host)
         token = monitor_token(token, token_file)
-        serve(
+        end = serve(
             host, port, token, rig=rig, road_dir=road_dir, open_browser=open_browser,
-            workdir=workdir, realtime=realtime, isolate=isolate,
+            workdir=workdir, realtime=realtime, isolate=isolate, on_serve=kept,
         )  # fmt: skip
+    if end.stopped_run and end.signum is not None:  # one `interrupted:` line, 128 + signal
+        from mrsuspension._pool import Interrupted
+
+        raise Interrupted(end.signum)

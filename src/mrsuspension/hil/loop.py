@@ -63,7 +63,7 @@ from typing import Any
 
 import numpy as np
 
-from mrsuspension._pool import descendants
+from mrsuspension._pool import descendants, ensure_resource_tracker
 from mrsuspension.engine.settings import RunSettings
 from mrsuspension.engine.simulate import DEFAULT_DT, Simulation, SimulationDiverged
 from mrsuspension.errors import MRSuspensionError, ValidationError, check_range
@@ -106,6 +106,10 @@ __all__ = [
 #: the stop reason recorded when the operator presses STOP (the safety path, not a trip
 #: of a limit)
 STOP_REASON = "STOP pressed"
+#: the reason of a stop asked through the hooks' stop flag, by its code
+#: (:meth:`~mrsuspension.hil.tap.StopFlag.code`; a flag without codes gives STOP_REASON)
+STOP_REASONS = {1: STOP_REASON, 2: "the monitor shut down"}
+_STOPPED = frozenset(STOP_REASONS.values())
 
 #: signals that stop a running loop the safe way (their handlers only request the stop)
 LOOP_SIGNALS = (signal.SIGINT, signal.SIGTERM, signal.SIGHUP)
@@ -860,6 +864,7 @@ def _loop(
     hooked = hooks is not None
     hk = hooks if hooks is not None else LoopHooks()
     stop_set = hk.stop.is_set if hk.stop is not None else None
+    stop_code = getattr(hk.stop, "code", lambda: 1)
     k_road = 0
     ramp_left = 0
     ramp_step_i = 0.0
@@ -910,7 +915,7 @@ def _loop(
                 if active:
                     try:
                         if stop_set is not None and stop_set():
-                            supervisor.trip(STOP_REASON, t)
+                            supervisor.trip(STOP_REASONS.get(stop_code(), STOP_REASON), t)
                             tripped = True
                         else:
                             tripped = check_sample(
@@ -965,7 +970,7 @@ def _loop(
                         supervisor.trip(str(exc), t)
                         tripped = True
                     if tripped:
-                        how = "stopped" if supervisor.reason == STOP_REASON else "tripped"
+                        how = "stopped" if supervisor.reason in _STOPPED else "tripped"
                         trip(supervisor.reason, how, t)
             except Exception as exc:  # anywhere in the tick: a trip, and the rig still goes home
                 trip(f"the loop failed at t = {t:.4f} s: {type(exc).__name__}: {exc}", "failed", t)
@@ -1193,12 +1198,10 @@ def start_process(
     # SIGINT, SIGTERM and SIGHUP are blocked meanwhile, so one arriving during start()
     # waits for the handler instead of cutting the child's start-up data short (the
     # resource tracker, which unblocks them when it starts, is started first).
+    ensure_resource_tracker()
     if not main:
         proc.start()
         return proc
-    from multiprocessing import resource_tracker
-
-    resource_tracker.ensure_running()
     mask = signal.pthread_sigmask(signal.SIG_BLOCK, {*LOOP_SIGNALS, DEATH_SIGNAL})
     previous = signal.signal(signal.SIGINT, signal.SIG_IGN)
     try:

@@ -143,9 +143,14 @@ class StopFlag:
         ctx = context or multiprocessing.get_context("spawn")
         self._value = ctx.RawValue("b", 0)
 
-    def set(self) -> None:
-        """Raise the flag."""
-        self._value.value = 1
+    def set(self, code: int = 1) -> None:
+        """Raise the flag; ``code`` says why (:data:`~mrsuspension.hil.loop.STOP_REASONS`:
+        1 the operator's STOP, 2 the monitor shutting down)."""
+        self._value.value = int(code)
+
+    def code(self) -> int:
+        """Why the flag was raised (0: it is not)."""
+        return int(self._value.value)
 
     def clear(self) -> None:
         """Lower the flag."""

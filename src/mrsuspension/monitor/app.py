@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import asyncio
 import contextlib
+import gc
 import math
 import tempfile
 import threading
@@ -223,6 +224,8 @@ class MonitorState:
         self.rig = rig
         self.road_dir = road_dir
         self.handle: LoopHandle | None = None
+        #: the server's shutdown stopped a running loop (the command says so)
+        self.stopped_by_shutdown = False
         self.settings: MonitorSettings | None = None
         self.base: Simulation | None = None
         self.simulation: Simulation | None = None
@@ -392,25 +395,26 @@ class MonitorState:
         self.status["fields"] = page_fields(sim)
         return {"queued": True, "fields": self.status["fields"]}
 
-    def stop(self) -> None:
+    def stop(self, shutdown: bool = False) -> None:
         """STOP: ask the running loop to take its safety path.
 
         The running loop is told at once (never behind the lock); then a start being
         handled at that moment is waited for (its loop process being spawned) and its
-        loop told too: STOP always stops the run.
+        loop told too: STOP always stops the run. ``shutdown``: the server is stopping
+        (the stop record says so rather than "STOP pressed").
         """
-        self._signal_stop()
+        self._signal_stop(shutdown)
         got = self.lock.acquire(timeout=_STOP_WAIT)
         try:
-            self._signal_stop()
+            self._signal_stop(shutdown)
         finally:
             if got:
                 self.lock.release()
 
-    def _signal_stop(self) -> None:
+    def _signal_stop(self, shutdown: bool = False) -> None:
         h = self.handle
         if h is not None and h.alive():
-            h.stop()
+            h.stop(2 if shutdown else 1)
             if self.status.get("state") not in ("ended", "error"):
                 self.status["state"] = "stopping"
 
@@ -718,10 +722,16 @@ def create_app(
             yield
         finally:
             task.cancel()
-            state.stop()
+            state.stopped_by_shutdown = state.handle is not None and state.handle.alive()
+            state.stop(shutdown=True)
             if state.handle is not None:
                 await asyncio.to_thread(state.handle.join, _RETURN_WAIT)
                 state.poll()  # the attached run's end, when the server stops first
+                # free the loop's queues now: their named semaphores are released when
+                # the objects are, which an interrupted command's os._exit would skip
+                # (the resource tracker then warns of "leaked semaphore objects")
+                state.handle = None
+                gc.collect()
 
     def record(raw: dict[str, Any]) -> dict[str, Any]:
         return state.record(str(raw.get("action", "")))

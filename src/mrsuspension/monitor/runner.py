@@ -212,6 +212,9 @@ class LoopHandle:
         isolate: bool = False,
         model_dt: float | None = None,
     ) -> None:
+        from mrsuspension._pool import ensure_resource_tracker
+
+        ensure_resource_tracker()  # before the queues: it outlives a terminal's hang-up
         ctx = multiprocessing.get_context("spawn")
         self.out = Path(out)
         self.rate = float(rate)
@@ -233,9 +236,10 @@ class LoopHandle:
         )  # fmt: skip
         self.process.start()
 
-    def stop(self) -> None:
-        """STOP: the loop zeroes the current in the next tick and returns to mid-stroke."""
-        self.stop_event.set()
+    def stop(self, code: int = 1) -> None:
+        """STOP: the loop zeroes the current in the next tick and returns to mid-stroke
+        (``code``: why, :data:`~mrsuspension.hil.loop.STOP_REASONS`)."""
+        self.stop_event.set(code)
 
     def apply(self, change: Any) -> bool:
         """Queue a validated change for the loop; False when the queue is full."""

@@ -11,8 +11,12 @@ from __future__ import annotations
 import errno
 import ipaddress
 import secrets
+import signal
 import sys
+import threading
 import webbrowser
+from collections.abc import Callable
+from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -26,7 +30,7 @@ from mrsuspension.errors import (
 if TYPE_CHECKING:
     from mrsuspension.monitor.app import AttachedRun
 
-__all__ = ["check_bind", "check_free", "check_rig", "is_loopback", "serve"]
+__all__ = ["ServeEnd", "check_bind", "check_free", "check_rig", "is_loopback", "serve"]
 
 
 def is_loopback(host: str) -> bool:
@@ -136,11 +140,18 @@ def serve(
     url_to_stderr: bool = False,
     realtime: str = "auto",
     isolate: bool = False,
-) -> None:
+    on_serve: Callable[[Path], None] | None = None,
+) -> ServeEnd:
     """Serve the monitor with uvicorn until Ctrl-C (checks the bind and the rig first).
 
     The monitor's address is printed on stdout (on stderr with ``url_to_stderr``, when
-    stdout carries JSON).
+    stdout carries JSON). ``on_serve`` is called with the folder the runs record into
+    once every check has passed, before the server starts.
+
+    Returns
+    -------
+    ServeEnd
+        The signal that shut the server down, and whether a run was stopped by it.
     """
     check_bind(host, token)
     if token:
@@ -182,6 +193,8 @@ def serve(
 
     # the server (and a browser it opens) keep off the core the loop pins itself to;
     # the loop processes it starts get every core back and pin themselves there
+    if on_serve is not None:
+        on_serve(app.state.monitor.workdir)
     with yield_loop_cpu() as cpus:
         app.state.monitor.loop_cpus = cpus
         if open_browser:
@@ -193,4 +206,63 @@ def serve(
                 app.state.logins.add(code)
                 opened = f"http://{shown}:{port}/?login={code}"
             webbrowser.open(opened)
-        uvicorn.run(app, **kwargs)
+        signum = _run_server(_server(uvicorn.Config(app, **kwargs)))
+    return ServeEnd(signum, app.state.monitor.stopped_by_shutdown)
+
+
+@dataclass(frozen=True)
+class ServeEnd:
+    """How :func:`serve` ended.
+
+    Attributes
+    ----------
+    signum : int or None
+        The signal that shut the server down (SIGINT, SIGTERM, SIGHUP); None when it
+        stopped on its own.
+    stopped_run : bool
+        A run was going when the server shut down; its loop was stopped the safe way
+        (rig to mid-stroke, current 0, recording kept).
+    """
+
+    signum: int | None
+    stopped_run: bool
+
+
+def _server(config: Any) -> Any:
+    """A uvicorn server that remembers which signals shut it down."""
+    import uvicorn
+
+    class Server(uvicorn.Server):
+        signals: list[int]
+
+        def handle_exit(self, sig: int, frame: Any) -> None:
+            self.signals.append(sig)
+            super().handle_exit(sig, frame)
+
+    server = Server(config)
+    server.signals = []
+    return server
+
+
+def _run_server(server: Any) -> int | None:
+    """Run a uvicorn server until a signal shuts it down; the first such signal, or None.
+
+    uvicorn handles SIGINT and SIGTERM: it stops serving, runs the app's shutdown (which
+    stops a running loop the safe way) and raises the signal again when done. Here that
+    second delivery is taken (the command decides what the signal means: a run stopped,
+    or only a server closed) and so is SIGHUP, which a closed terminal or a dropped SSH
+    session sends and which would otherwise kill the server without its shutdown (unless
+    it is ignored: ``nohup``).
+    """
+    main = threading.current_thread() is threading.main_thread()
+    previous = signal.getsignal(signal.SIGHUP) if main else signal.SIG_IGN
+    if previous != signal.SIG_IGN:
+        signal.signal(signal.SIGHUP, server.handle_exit)
+    try:
+        server.run()
+    except KeyboardInterrupt:  # the signal raised again once the server has stopped
+        pass
+    finally:
+        if previous != signal.SIG_IGN:
+            signal.signal(signal.SIGHUP, previous if previous is not None else signal.SIG_DFL)
+    return server.signals[0] if server.signals else None
