@@ -46,6 +46,7 @@ __all__ = [
     "parse_toml",
     "read_bytes",
     "read_text",
+    "read_toml",
     "record",
     "recording",
 ]
@@ -216,3 +217,20 @@ def load_json(path: str | Path, what: str) -> Any:
     """A JSON input file (:func:`read_text` + :func:`parse_json`); ``what`` names it."""
     text = read_text(path, what)
     return parse_json(text, f"{what} {str(path)!r}")
+
+
+def read_toml(path: str | Path, what: str) -> dict[str, Any]:
+    """The contents of a TOML file; any problem reading it is a :class:`ValidationError`.
+
+    ``what`` names the file in the messages ("scenario", "study", ...). Read through
+    :func:`load_toml`: recorded for the study cache, and refused when
+    nested more than :data:`MAX_DEPTH` levels deep.
+
+    Examples
+    --------
+    >>> read_toml("no/such.toml", "scenario")
+    Traceback (most recent call last):
+    ...
+    mrsuspension.errors.ValidationError: scenario file not found: 'no/such.toml'
+    """
+    return load_toml(path, f"{what} file")

@@ -25,7 +25,6 @@ __all__ = [
     "check_port",
     "check_tables",
     "did_you_mean",
-    "read_toml",
 ]
 
 
@@ -209,25 +208,6 @@ def check_range(
         where = f" at index {k}" if arr.ndim else ""
         raise ValidationError(f"{name} must be in {lb}{lo}, {hi}{rb}{u}; got {flat[k]:g}{u}{where}")
     return arr
-
-
-def read_toml(path: str | Path, what: str) -> dict[str, Any]:
-    """The contents of a TOML file; any problem reading it is a :class:`ValidationError`.
-
-    ``what`` names the file in the messages ("scenario", "study", ...). Read through
-    :func:`mrsuspension._inputs.load_toml`: recorded for the study cache, and refused when
-    nested more than :data:`~mrsuspension._inputs.MAX_DEPTH` levels deep.
-
-    Examples
-    --------
-    >>> read_toml("no/such.toml", "scenario")
-    Traceback (most recent call last):
-    ...
-    mrsuspension.errors.ValidationError: scenario file not found: 'no/such.toml'
-    """
-    from mrsuspension._inputs import load_toml
-
-    return load_toml(path, f"{what} file")
 
 
 def check_port(name: str, port: object, *, any_free: bool = False) -> int:

@@ -76,6 +76,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from mrsuspension._batch import job_of, process_pool, run_jobs
+from mrsuspension._inputs import read_toml
 from mrsuspension.engine.result import SimulationDiverged
 from mrsuspension.engine.settings import RunSettings
 from mrsuspension.engine.vehicle import VehicleSimulation
@@ -84,7 +85,6 @@ from mrsuspension.errors import (
     check_keys,
     check_tables,
     did_you_mean,
-    read_toml,
 )
 from mrsuspension.excitation import EXCITATION_OPTIONS, FULL_CAR_CORNERS, HALF_CAR_CORNERS
 from mrsuspension.scenario import (

@@ -48,6 +48,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from mrsuspension._inputs import read_toml
 from mrsuspension.control import CONTROLLERS, Controller, HiLo, make_controller
 from mrsuspension.dampers import DAMPERS, ESTIMATORS, DamperModel, damper_options, make_damper
 from mrsuspension.dampers.wang import VEHICLE_VH_VARIANT
@@ -55,7 +56,7 @@ from mrsuspension.engine.result import SimulationResult
 from mrsuspension.engine.settings import RunSettings
 from mrsuspension.engine.simulate import Simulation, run_many
 from mrsuspension.engine.vehicle import BODY_MEASURES
-from mrsuspension.errors import ValidationError, did_you_mean, read_toml
+from mrsuspension.errors import ValidationError, did_you_mean
 from mrsuspension.excitation import (
     EXCITATION_OPTIONS,
     EXCITATIONS,

@@ -32,6 +32,7 @@ LAYERS: dict[str, int] = {
     "_jsonsafe": 0,
     "_progress": 0,
     "_output": 0,
+    "_inputs": 0,
     "_cli_errors": 0,
     "errata": 0,
     "parameters": 1,

@@ -60,6 +60,7 @@ from typing import Any
 
 import numpy as np
 
+from mrsuspension._inputs import read_toml
 from mrsuspension._progress import progress_bar
 from mrsuspension.engine.result import MEASURES_BY_KIND
 from mrsuspension.engine.settings import RunSettings
@@ -68,7 +69,6 @@ from mrsuspension.errors import (
     check_keys,
     check_tables,
     did_you_mean,
-    read_toml,
 )
 from mrsuspension.excitation import EXCITATIONS, FULL_CAR_CORNERS, HALF_CAR_CORNERS, log_frequencies
 from mrsuspension.excitation.deterministic import DEFAULT_SWEEP_POINTS, MAX_FREQUENCIES
