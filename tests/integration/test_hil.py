@@ -58,6 +58,7 @@ def test_ideal_rig_reproduces_offline(rate: float) -> None:
     np.testing.assert_allclose(result.recording["x_d"][run][: x_off.size], x_off, atol=2e-4)
 
 
+@pytest.mark.realtime
 def test_deadlines_at_1khz_in_process() -> None:
     sim = _skyhook()
     result = run_hil(sim, SimulatedRig(sim.damper), duration=6.0, rate=1000.0)

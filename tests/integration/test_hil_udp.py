@@ -74,6 +74,7 @@ def _sim():  # type: ignore[no-untyped-def]
     return Scenario.load(SCENARIO).simulations()[0]
 
 
+@pytest.mark.realtime
 def test_udp_run_at_1khz() -> None:
     linux = Path("/proc/stat").exists()
     # both sides busy-wait on their own core: on this VM a sleeping vCPU wakes late

@@ -10,6 +10,7 @@ watchdog at 0.2 s so that a loaded machine does not trip it spuriously.
 from __future__ import annotations
 
 import threading
+import time
 from pathlib import Path
 
 import numpy as np
@@ -144,7 +145,10 @@ def test_rig_emulator_survives_a_bad_reset_and_drops_strangers() -> None:
         raw.sendto(cmd, ("127.0.0.1", port))
         assert "dropped a command from" in proc.stdout.readline()
         client.command(0.01, 0.1)
-        assert client.read().displacement == pytest.approx(0.01)
+        deadline = time.monotonic() + 5.0  # the reply may come after a tick's wait (load)
+        while client.read().displacement != pytest.approx(0.01):
+            assert time.monotonic() < deadline, "the client's command was not applied"
+            time.sleep(0.005)
         client.close()
         raw.close()
         proc.send_signal(signal.SIGINT)

@@ -23,6 +23,7 @@ SCENARIO = ROOT / "examples" / "scenarios" / "skyhook-hilo-acm-harmonic.toml"
 MRSUS = [sys.executable, "-m", "mrsuspension.cli"]
 
 
+@pytest.mark.realtime
 @pytest.mark.slow
 def test_deadlines_with_a_page_attached() -> None:
     """Issue 7: with a client consuming frames at >= 20 Hz the loop keeps its deadlines.
