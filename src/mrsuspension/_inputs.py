@@ -145,12 +145,16 @@ def check_depth(what: str, data: Any, limit: int = MAX_DEPTH) -> Any:
         else:
             continue
         if depth > limit:
-            raise ValidationError(
-                f"{what} nests tables or lists more than {limit} levels deep; at most "
-                f"{limit} are allowed"
-            )
+            raise _too_deep(what, limit)
         stack.extend((child, depth + 1) for child in children)
     return data
+
+
+def _too_deep(what: str, limit: int) -> ValidationError:
+    """The error of an input nested more than ``limit`` levels deep."""
+    return ValidationError(
+        f"{what} nests tables or lists more than {limit} levels deep; at most {limit} are allowed"
+    )
 
 
 def parse_toml(text: str, what: str, limit: int = MAX_DEPTH) -> dict[str, Any]:
@@ -166,9 +170,7 @@ def parse_toml(text: str, what: str, limit: int = MAX_DEPTH) -> dict[str, Any]:
     ...
     mrsuspension.errors.ValidationError: study file 's.toml' nests tables or lists more than 32 levels deep; at most 32 are allowed
     """
-    deep = ValidationError(
-        f"{what} nests tables or lists more than {limit} levels deep; at most {limit} are allowed"
-    )
+    deep = _too_deep(what, limit)
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
@@ -190,9 +192,7 @@ def parse_json(text: str | bytes, what: str, limit: int = MAX_DEPTH) -> Any:
     ...
     mrsuspension.errors.ValidationError: parameter file 'p.json' nests tables or lists more than 32 levels deep; at most 32 are allowed
     """
-    deep = ValidationError(
-        f"{what} nests tables or lists more than {limit} levels deep; at most {limit} are allowed"
-    )
+    deep = _too_deep(what, limit)
     if isinstance(text, bytes):
         try:
             text = text.decode("utf-8")
