@@ -47,9 +47,11 @@ __all__ = [
     "PRESET_ROADS",
     "PRESET_WAVINESS",
     "PresetRoad",
+    "RoadBandWarning",
     "RoadProfile",
     "RoadSpectrum",
     "SpatialPsd",
+    "band_spacing",
     "iso8608",
     "iso8608_psd",
     "preset_road",
@@ -73,6 +75,38 @@ ISO8608_CLASSES: dict[str, float] = {
 ISO8608_BAND = (0.011, 2.83)
 #: fewest profile points a spline road accepts
 MIN_POINTS = 4
+#: By default a synthesised road's band ends at most at this fraction of the Nyquist
+#: frequency ``1/(2 spacing)``: the cubic spline the wheel rides then keeps 98.6 % of the
+#: amplitude at the band's top (0.5 of Nyquist) and more below (issue 27).
+BAND_TOP_OF_NYQUIST = 0.5
+#: A given spacing that puts the band's top above this fraction of the Nyquist frequency
+#: is warned about (:class:`RoadBandWarning`): the spline keeps 96 % of the amplitude
+#: there, less above, and nothing past the Nyquist frequency.
+BAND_TOP_WARN = 0.6
+
+
+class RoadBandWarning(UserWarning):
+    """A synthesised road's point spacing cuts or filters the top of its declared band."""
+
+
+def band_spacing(band_top: float) -> float:
+    """Default point spacing [m] of a road synthesised up to ``band_top`` [cycle/m].
+
+    The largest value of the 1-2-5 series (0.01, 0.02, 0.05, 0.1, ...) that puts the top
+    of the band at most at :data:`BAND_TOP_OF_NYQUIST` of the Nyquist frequency
+    ``1/(2 spacing)``, so the road the wheel rides (a cubic spline through the points)
+    holds the whole band. ISO 8608's band (0.011-2.83 cycle/m) gives 0.05 m.
+
+    Examples
+    --------
+    >>> band_spacing(2.83), band_spacing(2.0), band_spacing(10.0)
+    (0.05, 0.1, 0.02)
+    """
+    top = positive("band_top", band_top, "cycle/m", high=1e3)
+    limit = BAND_TOP_OF_NYQUIST / (2.0 * top)
+    decade = 10.0 ** math.floor(math.log10(limit) + 1e-12)
+    step = max(m for m in (1.0, 2.0, 5.0) if m * decade <= limit * (1 + 1e-12))
+    return float(f"{step * decade:.12g}")
 
 
 @dataclass(frozen=True)
@@ -211,8 +245,9 @@ class RoadProfile(Excitation):
                "fixed seed by default; any seed gives the same PSD level)", low=0.0),
         Option("length", "number", "m", "ISO 8608 profile length [m], 500 by default",
                low=0.0, high=1e6, low_inclusive=False),
-        Option("spacing", "number", "m", "ISO 8608 point spacing [m], 0.3 by default",
-               low=0.0, low_inclusive=False),
+        Option("spacing", "number", "m",
+               "ISO 8608 point spacing [m]; by default from the band (0.05 m: ISO's top "
+               "2.83 cycle/m at half the Nyquist frequency)", low=0.0, low_inclusive=False),
         Option("speed", "number", "km/h", "vehicle speed [km/h], 50 by default",
                default=REFERENCE_SPEED_KMH, low=0.0, high=500.0, low_inclusive=False,
                keyword="speed_kmh"),
@@ -271,7 +306,7 @@ class RoadProfile(Excitation):
         Examples
         --------
         >>> RoadProfile.from_options({"iso_class": "C", "length": 100.0}).distance.size
-        334
+        2001
         """
         return _road_from_options(options, base_dir)
 
@@ -544,8 +579,9 @@ class RoadProfile(Excitation):
         """One-sided spatial PSD ``Gd(n)`` [m^3] of the profile (Welch, Hann, 50 % overlap).
 
         Profiles with uneven spacing are first resampled from the spline at the median
-        spacing. ``nperseg`` defaults to 512 points (153.6 m at 0.3 m spacing), or the
-        whole profile if shorter. The mean is removed from every segment.
+        spacing. ``nperseg`` defaults to the largest power of two of points spanning at
+        most 153.6 m (512 points at 0.3 m spacing, 2048 at 0.05 m), or the whole profile
+        if shorter. The mean is removed from every segment.
 
         Examples
         --------
@@ -563,7 +599,7 @@ class RoadProfile(Excitation):
             x = self.distance[0] + dx * np.arange(int(self.length / dx) + 1)
             h = np.asarray(self._spline(x), dtype=float)
         if nperseg is None:
-            seg = min(h.size, 512)
+            seg = min(h.size, max(MIN_POINTS, 2 ** math.floor(math.log2(153.6 / dx + 1e-9))))
         else:
             if isinstance(nperseg, bool) or not isinstance(nperseg, int | np.integer):
                 raise ValidationError(f"nperseg must be an integer; got {nperseg!r}")
@@ -825,7 +861,7 @@ class RoadSpectrum:
 def synthesise_road(
     spectrum: RoadSpectrum,
     length: float = 500.0,
-    spacing: float = 0.3,
+    spacing: float | None = None,
     seed: int = 0,
     speed_kmh: float = REFERENCE_SPEED_KMH,
     *,
@@ -836,7 +872,11 @@ def synthesise_road(
 
     ``h(x) = sum_k sqrt(2 Gd(n_k) dn) cos(2 pi n_k x + phi_k)`` over the spatial
     frequencies ``n_k = k dn``, ``dn = 1/(N spacing)``, inside the spectrum's band and
-    below the Nyquist frequency ``1/(2 spacing)``. The phases are uniform in
+    below the Nyquist frequency ``1/(2 spacing)``. The default spacing
+    (:func:`band_spacing`) holds the whole band; a spacing that cuts or filters its top
+    (band top above 0.6 of the Nyquist frequency) is warned about
+    (:class:`RoadBandWarning`), and the profile's ``spectrum`` and ``source`` say which
+    band it holds. The phases are uniform in
     ``[0, 2 pi)`` from ``numpy.random.default_rng(seed)``, so a seed gives the same road
     every time. The amplitudes do not depend on the seed: the profile's variance is
     ``sum_k Gd(n_k) dn`` and its periodogram is ``Gd(n_k)`` exactly for every seed (the
@@ -849,7 +889,7 @@ def synthesise_road(
     length : float, optional
         Profile length [m] (rounded down to a whole number of ``spacing``), 500 m.
     spacing : float, optional
-        Distance between points [m], 0.3 m.
+        Distance between points [m]; by default :func:`band_spacing` of the band's top.
     seed : int, optional
         Seed of the random phases (>= 0).
     speed_kmh : float, optional
@@ -868,8 +908,13 @@ def synthesise_road(
     Examples
     --------
     >>> road = synthesise_road(RoadSpectrum(1e-5, waviness=1.0), seed=3)
-    >>> road.spectrum.band  # ISO 8608's band, cut at the Nyquist frequency of 0.3 m
-    (0.011, 1.6666666666666667)
+    >>> road.spacing, road.spectrum.band  # ISO 8608's whole band
+    (0.05, (0.011, 2.83))
+    >>> import warnings
+    >>> with warnings.catch_warnings(record=True) as caught:
+    ...     coarse = synthesise_road(RoadSpectrum(1e-5, waviness=1.0), spacing=0.3)
+    >>> coarse.spectrum.band, caught[0].category.__name__  # cut at 0.3 m's Nyquist
+    ((0.011, 1.6666666666666667), 'RoadBandWarning')
     >>> a, b = road, synthesise_road(RoadSpectrum(1e-5, waviness=1.0), seed=4)
     >>> bool(np.isclose(a.rms_elevation, b.rms_elevation, rtol=1e-12))  # level: seed-free
     True
@@ -886,17 +931,28 @@ def synthesise_road(
 def _synthesise(
     spectrum: RoadSpectrum,
     length: float,
-    spacing: float,
+    spacing: float | None,
     seed: int,
     speed_kmh: float,
     fade_in: float,
     label: Callable[[RoadSpectrum, int], str],
+    *,
+    what: str = "a synthesised road",
 ) -> RoadProfile:
-    """:func:`synthesise_road`; ``label(held spectrum, seed)`` names the profile's source."""
+    """:func:`synthesise_road`; ``label(held spectrum, seed)`` names the profile's source.
+
+    ``spacing`` None: :func:`band_spacing`. A given spacing that puts the band's top above
+    :data:`BAND_TOP_WARN` of the Nyquist frequency warns (``what`` names the road), except
+    for the presets, whose 0.3 m spacing is their definition (they pass ``what=""``).
+    """
     if not isinstance(spectrum, RoadSpectrum):
         raise ValidationError(f"spectrum must be a RoadSpectrum; got {spectrum!r}")
     L = positive("length", length, "m", high=1e6)
+    if spacing is None:  # the whole band, and at least MIN_POINTS points
+        spacing = min(band_spacing(spectrum.band[1]), L / (MIN_POINTS - 1))
     dx = positive("spacing", spacing, "m", high=L / (MIN_POINTS - 1))
+    if what and spectrum.band[1] > BAND_TOP_WARN * 0.5 / dx:
+        _warn_band(what, spectrum.band, dx)
     if isinstance(seed, bool) or not isinstance(seed, int | np.integer) or seed < 0:
         raise ValidationError(f"seed must be an integer >= 0; got {seed!r}")
     n_lo, n_hi = spectrum.band
@@ -928,6 +984,33 @@ def _synthesise(
     )
 
 
+def _warn_band(what: str, band: tuple[float, float], dx: float) -> None:
+    """:class:`RoadBandWarning`: ``dx`` cuts or filters the top of ``band``."""
+    import warnings
+
+    lo, hi = band
+    nyquist = 0.5 / dx
+    if hi > nyquist:
+        effect = (
+            f"cuts the band {lo:g}-{hi:g} cycle/m at its Nyquist frequency {nyquist:.4g} "
+            f"cycle/m: the road holds {lo:g}-{nyquist:.4g} cycle/m only"
+        )
+    else:
+        effect = (
+            f"puts the top of the band {lo:g}-{hi:g} cycle/m at {hi / nyquist:.0%} of its "
+            f"Nyquist frequency {nyquist:.4g} cycle/m, where the spline the wheel rides "
+            "loses amplitude"
+        )
+    warnings.warn(
+        f"{what} at {dx:g} m spacing {effect} (an ISO class C road at 0.3 m spacing gives "
+        "a quarter car's rms tire force 7.5 % low at 50 km/h). Leave the spacing out "
+        f"({band_spacing(hi):g} m for this band) or give at most "
+        f"{BAND_TOP_WARN * 0.5 / hi:.3g} m, or narrow the band",
+        RoadBandWarning,
+        stacklevel=4,
+    )
+
+
 # -- ISO 8608 synthesis ----------------------------------------------------------------
 def iso8608_psd(road_class: str, spatial_frequency: npt.ArrayLike) -> FloatArray:
     """ISO 8608 displacement PSD ``Gd(n) = Gd(n0) (n/n0)^-2`` [m^3] of a class (A-H).
@@ -956,7 +1039,7 @@ def _road_class(road_class: object) -> str:
 def iso8608(
     road_class: str,
     length: float = 500.0,
-    spacing: float = 0.3,
+    spacing: float | None = None,
     seed: int = 0,
     speed_kmh: float = REFERENCE_SPEED_KMH,
     *,
@@ -968,7 +1051,11 @@ def iso8608(
     ``Gd(n) = Gd(n0) (n/n0)^-2`` with ``n0 = 0.1`` cycle/m and the class's geometric-mean
     ``Gd(n0)``, synthesised as a sum of cosines with random phases from ``seed`` (see
     :func:`synthesise_road`). The profile is periodic over its length; its PSD matches
-    ``Gd(n)`` in the band.
+    ``Gd(n)`` in the band. The default spacing, 0.05 m for ISO's band
+    (:func:`band_spacing`), holds the whole band: a quarter car's rms responses match
+    the closed form of a white-velocity road within 0.1 %. A coarser spacing that cuts
+    or filters the top of the band warns (:class:`RoadBandWarning`); the profile's
+    ``source`` states the band it holds.
 
     Parameters
     ----------
@@ -977,7 +1064,8 @@ def iso8608(
     length : float, optional
         Profile length [m] (rounded down to a whole number of ``spacing``), 500 m.
     spacing : float, optional
-        Distance between points [m], 0.3 m.
+        Distance between points [m]; by default :func:`band_spacing` of the band's top
+        (0.05 m for ISO's 2.83 cycle/m).
     seed : int, optional
         Seed of the random phases.
     speed_kmh : float, optional
@@ -990,8 +1078,10 @@ def iso8608(
     Examples
     --------
     >>> road = iso8608("C", seed=7)
-    >>> road.distance.size, round(road.length, 1)
-    (1667, 499.8)
+    >>> road.distance.size, road.spacing, road.length
+    (10001, 0.05, 500.0)
+    >>> road.source
+    'ISO 8608 class C, seed 7, band 0.011-2.83 cycle/m at 0.05 m spacing'
     >>> bool(np.array_equal(road.elevation, iso8608("C", seed=7).elevation))
     True
     >>> road.spectrum.level, road.spectrum.waviness
@@ -1002,9 +1092,13 @@ def iso8608(
 
     def label(held: RoadSpectrum, seed: int) -> str:
         lo, hi = held.band
-        return f"ISO 8608 class {key}, seed {seed}, band {lo:g}-{hi:g} cycle/m"
+        dx = band_spacing(spectrum.band[1]) if spacing is None else spacing
+        cut = f" (cut from {band[1]:g} by the spacing)" if hi < spectrum.band[1] else ""
+        return f"ISO 8608 class {key}, seed {seed}, band {lo:g}-{hi:.4g} cycle/m{cut} at {dx:g} m spacing"
 
-    return _synthesise(spectrum, length, spacing, seed, speed_kmh, fade_in, label)
+    return _synthesise(
+        spectrum, length, spacing, seed, speed_kmh, fade_in, label, what=f"ISO 8608 class {key}"
+    )
 
 
 # -- presets -------------------------------------------------------------------------------
@@ -1079,7 +1173,9 @@ class PresetRoad:
         def label(held: RoadSpectrum, seed: int) -> str:
             return f"preset {self.name!r} (stand-in for the dissertation's road), seed {seed}"
 
-        return _synthesise(self.spectrum, self.length, self.spacing, s, speed_kmh, fade_in, label)
+        return _synthesise(
+            self.spectrum, self.length, self.spacing, s, speed_kmh, fade_in, label, what=""
+        )
 
     @property
     def rms_elevation(self) -> float:
@@ -1237,7 +1333,7 @@ def _road_from_options(options: Mapping[str, Any], base_dir: str | Path | None) 
         road = iso8608(
             iso_class,
             length=options.get("length", 500.0),
-            spacing=options.get("spacing", 0.3),
+            spacing=options.get("spacing"),
             seed=options.get("seed", 0),
             speed_kmh=speed,
             fade_in=fade_in,

@@ -78,7 +78,7 @@ from mrsuspension.excitation.road import (
     ISO8608_CLASSES,
     PRESET_LENGTH,
     PRESET_ROADS,
-    PRESET_SPACING,
+    RoadBandWarning,
     RoadProfile,
     RoadSpectrum,
     synthesise_road,
@@ -569,7 +569,7 @@ class WheelRoads:
         speed_kmh: float = REFERENCE_SPEED_KMH,
         *,
         length: float = PRESET_LENGTH,
-        spacing: float = PRESET_SPACING,
+        spacing: float | None = None,
         seed: int | None = None,
         corners: str | tuple[str, ...] | None = None,
         fade_in: float = 0.0,
@@ -608,7 +608,9 @@ class WheelRoads:
         speed_kmh : float, optional
             Vehicle speed [km/h], 50 by default.
         length, spacing : float, optional
-            Profile length and point spacing [m], 500 and 0.3 by default.
+            Profile length and point spacing [m]: 500 m; the preset's 0.3 m, or for a
+            class or a spectrum the spacing that holds the whole band
+            (:func:`~mrsuspension.excitation.band_spacing`: 0.05 m for ISO 8608's).
         seed : int, optional
             Seed of the random phases, >= 0; 0 for a class or a spectrum, the preset's
             own seed for a preset.
@@ -636,20 +638,26 @@ class WheelRoads:
         wheelbase, track = _geometry(geometry, layout)
         speed = _speed(speed_kmh)
         spectrum, default_seed, label = _two_track_spectrum(road)
+        preset = isinstance(road, str) and road in PRESET_ROADS
+        if spacing is None and preset:
+            spacing = PRESET_ROADS[str(road)].spacing  # the preset's definition
         if seed is None:
             seed = default_seed
         if isinstance(seed, bool) or not isinstance(seed, int | np.integer) or seed < 0:
             raise ValidationError(f"seed must be an integer >= 0; got {seed!r}")
         seed = int(seed)
-        left = synthesise_road(
-            spectrum,
-            length,
-            spacing,
-            seed,
-            speed,
-            fade_in=fade_in,
-            source=f"{label}, left track, seed {seed}",
-        )
+        with warnings.catch_warnings():
+            if preset:  # 0.3 m is the preset's definition (it holds up to 1.67 cycle/m)
+                warnings.simplefilter("ignore", RoadBandWarning)
+            left = synthesise_road(
+                spectrum,
+                length,
+                spacing,
+                seed,
+                speed,
+                fade_in=fade_in,
+                source=f"{label}, left track, seed {seed}",
+            )
         details: dict[str, Any] = {
             "road": label,
             "seed": seed,

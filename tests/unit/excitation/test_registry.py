@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import warnings
+
 import numpy as np
 import pytest
 
@@ -12,6 +14,7 @@ from mrsuspension.excitation import (
     PRESET_ROADS,
     Excitation,
     Harmonic,
+    RoadBandWarning,
     RoadProfile,
     RoundedPulse,
     SteppedSweep,
@@ -97,9 +100,28 @@ def test_road_preset_seed():
 
 
 def test_road_iso_class():
-    road = make_excitation("road", iso_class="D", seed=3, length=200.0, spacing=0.25)
+    road = make_excitation("road", iso_class="D", seed=3, length=200.0)
+    assert road.distance.size == 4001  # 0.05 m: the whole band 0.011-2.83 cycle/m
+    assert road.source == "ISO 8608 class D, seed 3, band 0.011-2.83 cycle/m at 0.05 m spacing"
+
+
+def test_road_iso_class_spacing_that_cuts_the_band_is_warned_and_stated():
+    """Issue 27: 0.25 m spacing (Nyquist 2 cycle/m) cuts ISO's band; the user is told."""
+    with pytest.warns(RoadBandWarning) as caught:
+        road = make_excitation("road", iso_class="D", seed=3, length=200.0, spacing=0.25)
+    message = str(caught[0].message)
+    assert "cuts the band 0.011-2.83 cycle/m at its Nyquist frequency 2 cycle/m" in message
+    assert "give at most 0.106 m" in message
     assert road.distance.size == 801
-    assert "class D, seed 3" in road.source
+    assert road.spectrum is not None
+    assert road.spectrum.band == (0.011, 2.0)
+    assert "band 0.011-2 cycle/m (cut from 2.83 by the spacing) at 0.25 m spacing" in road.source
+    with pytest.warns(RoadBandWarning, match="at 94% of its Nyquist frequency"):
+        make_excitation("road", iso_class="D", length=200.0, spacing=0.166)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        make_excitation("road", iso_class="D", length=200.0, spacing=0.1)  # 57 %: quiet
+        make_excitation("road", profile="rough")  # the preset's 0.3 m is its definition
 
 
 def test_road_csv_relative_to_base_dir(tmp_path):

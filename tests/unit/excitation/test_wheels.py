@@ -117,9 +117,9 @@ class TestTwoTrack:
     def test_measured_coherence_matches_the_model(self, road):
         # 20 km: the scatter of the Welch estimate over 0.05-2 cycle/m is what limits the
         # agreement (max deviation 0.016-0.033 over seeds 0-9; at 5 km 0.028-0.063)
-        roads = WheelRoads.two_track(road, GEOMETRY, 72.0, length=20000.0, spacing=0.2, seed=0)
+        roads = WheelRoads.two_track(road, GEOMETRY, 72.0, length=20000.0, spacing=0.1, seed=0)
         left, right = roads.left.elevation, roads.right.elevation
-        n, msc = coherence(left, right, fs=1 / 0.2, nperseg=512)
+        n, msc = coherence(left, right, fs=1 / 0.1, nperseg=1024)
         band = (n >= 0.05) & (n <= 2.0)
         waviness = roads.left.spectrum.waviness
         model = isotropic_coherence(n[band], 1.5, waviness) ** 2  # magnitude-squared
