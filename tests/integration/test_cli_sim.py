@@ -293,3 +293,25 @@ def test_compile_notice_only_when_the_engine_cache_is_cold(
     code, _, err = _invoke("simulate", scenario)
     assert code == 0, err
     assert err.splitlines()[0] == COMPILE_NOTICE
+
+
+def test_simulate_warns_in_one_line_when_the_spacing_cuts_an_iso_band(tmp_path: Path) -> None:
+    """Issue 27: a user's coarse spacing is told, as a ``warning:`` line (``mrsus`` main)."""
+    import subprocess
+    import sys
+
+    path = _scenario(
+        tmp_path,
+        '[controller]\nlaw = "passive"\n[excitation]\nkind = "road"\niso_class = "C"\n'
+        "length = 60.0\nspacing = 0.3\n[simulation]\nduration = 0.5\n",
+    )
+    proc = subprocess.run(
+        [sys.executable, "-m", "mrsuspension", "simulate", path, "--json"],
+        capture_output=True, text=True, timeout=120, check=False,
+    )  # fmt: skip
+    assert proc.returncode == 0, proc.stderr
+    lines = proc.stderr.strip().splitlines()
+    assert len(lines) == 1, lines
+    assert lines[0].startswith("warning: ISO 8608 class C at 0.3 m spacing cuts the band")
+    assert "road.py" not in proc.stderr
+    assert json.loads(proc.stdout)["DLC"] > 0.0

@@ -177,8 +177,9 @@ def version() -> None:
 
 def main() -> None:
     """Entry point of the ``mrsus`` command (and ``python -m mrsuspension``)."""
-    from mrsuspension.cli.errors import interrupts
+    from mrsuspension.cli.errors import interrupts, plain_warnings
 
+    plain_warnings()
     try:
         with interrupts():  # Ctrl-C / SIGTERM: one line, exit 130 / 143, no orphans
             app(prog_name="mrsus")

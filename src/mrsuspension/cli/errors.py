@@ -143,6 +143,27 @@ def user_errors(aliases: Mapping[str, str] | None = None) -> Iterator[None]:
         raise typer.Exit(2) from None
 
 
+def plain_warnings() -> None:
+    """Show the package's own warnings as one ``warning: ...`` line on stderr.
+
+    A warning raised by mrsuspension code (a :class:`UserWarning` subclass defined in the
+    package, e.g. ``RoadBandWarning``) is for the user, not a developer: no file name,
+    line number or source line. Other warnings keep Python's format.
+    """
+    import warnings
+
+    default = warnings.showwarning
+
+    def show(message: Warning | str, category: type[Warning], filename: str, lineno: int,
+             file: Any = None, line: str | None = None) -> None:  # fmt: skip
+        if issubclass(category, UserWarning) and category.__module__.startswith("mrsuspension"):
+            print(f"warning: {message}", file=sys.stderr if file is None else file)
+        else:
+            default(message, category, filename, lineno, file, line)
+
+    warnings.showwarning = show
+
+
 def permission_message(exc: PermissionError) -> str:
     """One line for a :class:`PermissionError`: the path and what to do.
 
