@@ -20,7 +20,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 from mrsuspension._lazy import lazy_namespace
-from mrsuspension.engine.arrays import KernelArrays, RunPlan
+from mrsuspension.engine.arrays import KernelArrays
 from mrsuspension.engine.result import SIGNALS, SimulationDiverged, SimulationResult
 from mrsuspension.engine.settings import RunSettings
 from mrsuspension.engine.simulate import (

@@ -1,4 +1,4 @@
-"""What the compiled step takes: :class:`KernelArrays` (named) and :class:`RunPlan`.
+"""What the compiled step takes: :class:`KernelArrays` (named).
 
 The entry points of :mod:`mrsuspension.engine.kernel` take their arrays positionally
 (numba compiles over arrays and scalars, not Python objects). :class:`KernelArrays` gives
@@ -10,12 +10,12 @@ from __future__ import annotations
 
 import dataclasses
 from dataclasses import dataclass
-from typing import Any, NamedTuple
+from typing import Any
 
 import numpy as np
 import numpy.typing as npt
 
-__all__ = ["KernelArrays", "RunPlan"]
+__all__ = ["KernelArrays"]
 
 FloatArray = npt.NDArray[np.float64]
 
@@ -127,21 +127,3 @@ class KernelArrays:
         True
         """
         return dataclasses.replace(self, **changes)
-
-
-class RunPlan(NamedTuple):
-    """The checked step, step count and output decimation of a run.
-
-    Examples
-    --------
-    >>> plan = RunPlan(dt=1e-4, steps=20_000, decimate=10)
-    >>> plan.steps * plan.dt
-    2.0
-    """
-
-    #: fixed RK4 step [s]
-    dt: float
-    #: steps of the run
-    steps: int
-    #: steps per recorded sample
-    decimate: int

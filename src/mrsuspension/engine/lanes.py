@@ -59,8 +59,9 @@ from mrsuspension.dampers import kernels as DK
 from mrsuspension.dampers.kernels import NO_REFCOUNT
 from mrsuspension.engine import kernel as EK
 from mrsuspension.engine import reduced as RD
-from mrsuspension.engine.arrays import KernelArrays, RunPlan
+from mrsuspension.engine.arrays import KernelArrays
 from mrsuspension.engine.result import SimulationDiverged, SimulationResult
+from mrsuspension.engine.settings import RunPlan, RunSettings, run_settings
 from mrsuspension.errors import ValidationError
 from mrsuspension.vehicle import kernel as VK
 from mrsuspension.vehicle.kernel import V_CSKY, V_CT, V_DXU, V_G, V_KS, V_KT, V_MS, V_MU
@@ -100,9 +101,7 @@ class LaneRun(Protocol):
 
     def check_dt(self, dt: float) -> float: ...
 
-    def plan(
-        self, duration: float | None, dt: float, output_rate: float, check_stability: bool
-    ) -> RunPlan: ...
+    def record_values(self, plan: RunPlan) -> float: ...
 
     def road_samples(
         self, n: int, dt: float, *, start: int = 0
@@ -597,8 +596,9 @@ def run_lanes(
     simulations: Sequence[LaneRun],
     *,
     duration: float | None = None,
-    dt: float = 1e-4,
-    output_rate: float = 1000.0,
+    dt: float | None = None,
+    output_rate: float | None = None,
+    settings: RunSettings | None = None,
     check_stability: bool = True,
     measures: bool = False,
     road_peak: RoadPeak = "after-onset",
@@ -635,9 +635,10 @@ def run_lanes(
     sims = list(simulations)
     if not sims:
         return []
-    plans = [s.plan(duration, dt, output_rate, check_stability) for s in sims]
-    dt = plans[0][0]
-    decimate = plans[0][2]
+    run = run_settings(settings, duration=duration, dt=dt, output_rate=output_rate)
+    plans = [run.plan(s, check_stability=check_stability) for s in sims]
+    dt = plans[0].dt
+    decimate = plans[0].decimate
     keys = {lane_key(s, dt) for s in sims}
     if len(keys) != 1 or None in keys:
         raise ValidationError(

@@ -36,13 +36,12 @@ from mrsuspension.control import kernel as CK
 from mrsuspension.dampers import kernels as DK
 from mrsuspension.dampers.kernels import NO_REFCOUNT
 from mrsuspension.engine import kernel as EK
-from mrsuspension.engine.arrays import RunPlan
 from mrsuspension.engine.result import (
     measures_context,
     pulse_measures,
     road_measures,
 )
-from mrsuspension.engine.settings import RunSettings, run_settings
+from mrsuspension.engine.settings import RunPlan, RunSettings, run_settings
 from mrsuspension.errors import ValidationError
 from mrsuspension.vehicle import kernel as VK
 
@@ -260,7 +259,7 @@ def reduction_of(simulation: Described, plan: RunPlan) -> Reduction:
     >>> from mrsuspension.engine import Simulation
     >>> from mrsuspension.excitation import Harmonic
     >>> sim = Simulation(Harmonic(1.5, 0.025))
-    >>> r = reduction_of(sim, sim.plan(14.0))
+    >>> r = reduction_of(sim, RunSettings(duration=14.0).plan(sim))
     >>> r.kind, r.rows, r.window_start
     ('harmonic', 14001, 6668)
     """
@@ -268,11 +267,9 @@ def reduction_of(simulation: Described, plan: RunPlan) -> Reduction:
 
     scenario = simulation.describe()
     kind, exc, static_load = measures_context(scenario)
-    dt, n, decimate = plan
-    rows = n // decimate + 1
-    interval = decimate * dt
+    rows, interval = plan.rows, plan.interval
     if kind == "harmonic":
-        start = steady_window(np.arange(rows) * interval, float(exc["frequency"])).start
+        start = steady_window(plan.time(), float(exc["frequency"])).start
     elif kind in ("pulse", "road"):
         start = rows
     else:
@@ -396,7 +393,7 @@ def run_measures(
     how = check_road_peak(road_peak)
     run = run_settings(settings, duration=duration, dt=dt, output_rate=output_rate)
     run.check_for(simulation.excitation)
-    plan = simulation.plan(run.duration, run.dt, run.output_rate, check_stability)
+    plan = run.plan(simulation, check_stability=check_stability)
     red = reduction_of(simulation, plan)
     dt, n, decimate = plan
     zr, zrd = simulation.road_samples(n, dt)

@@ -1,16 +1,21 @@
-"""Run settings: the fixed step, the simulated time and the recorded rate of a run.
+"""Run settings and run plans: the one home of planning a run.
 
-:class:`RunSettings` travels wherever a run is planned (``Simulation.run``,
-``run_many``, scenarios, studies, the optimiser, batches and the HiL loop) instead of the
-positional ``(duration, dt, output_rate)`` triples of earlier versions. It depends on
-nothing but :mod:`mrsuspension.errors`, so any module may import it.
+:class:`RunSettings` (the fixed step, the simulated time and the recorded rate) travels
+wherever a run is asked for (``Simulation.run``, ``run_many``, scenarios, studies, the
+optimiser, batches and the HiL loop) instead of positional ``(duration, dt,
+output_rate)`` triples. :meth:`RunSettings.plan` turns it into the :class:`RunPlan` of
+one model (any :class:`Plannable`: the quarter car, the half and full cars): ``dt``
+checked once against the model's stability limit, the duration resolved, the
+decimation, the step count and the memory check, in one place. It depends on nothing
+but :mod:`mrsuspension.errors`, so any module may import it.
 """
 
 from __future__ import annotations
 
+import math
 import os
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, NamedTuple, Protocol
 
 import numpy as np
 
@@ -21,6 +26,9 @@ __all__ = [
     "DEFAULT_OUTPUT_RATE",
     "MAX_DT",
     "MAX_DURATION",
+    "RK4_LIMIT",
+    "Plannable",
+    "RunPlan",
     "RunSettings",
     "check_memory",
     "memory_limit",
@@ -35,8 +43,61 @@ DEFAULT_OUTPUT_RATE = 1000.0
 MAX_DT = 0.01
 #: Longest accepted simulated time [s] (about 28 h).
 MAX_DURATION = 1e5
+#: RK4's stability limit on the negative real axis is about 2.785: a step ``dt`` is stable
+#: for a model whose stiffest mode decays at ``rate`` [1/s] when ``dt rate <= RK4_LIMIT``
+#: (a margin kept).
+RK4_LIMIT = 2.5
 #: Relative slack of the ``output_rate <= 1/dt`` check (``1/dt`` rounds).
 _RATE_SLACK = 1e-9
+
+
+class RunPlan(NamedTuple):
+    """The checked step, step count and output decimation of one run (:meth:`RunSettings.plan`).
+
+    Examples
+    --------
+    >>> plan = RunPlan(dt=1e-4, steps=20_000, decimate=10)
+    >>> plan.steps * plan.dt, plan.rows, plan.interval
+    (2.0, 2001, 0.001)
+    >>> float(plan.time()[-1])
+    2.0
+    """
+
+    #: fixed RK4 step [s]
+    dt: float
+    #: steps of the run
+    steps: int
+    #: steps per recorded sample
+    decimate: int
+
+    @property
+    def rows(self) -> int:
+        """Recorded samples: the initial state and one every :attr:`decimate` steps."""
+        return self.steps // self.decimate + 1
+
+    @property
+    def interval(self) -> float:
+        """Time between recorded samples [s]."""
+        return self.decimate * self.dt
+
+    def time(self) -> np.ndarray:
+        """Times of the recorded samples [s]."""
+        return np.arange(self.rows) * self.interval
+
+
+class Plannable(Protocol):
+    """What :meth:`RunSettings.plan` asks of a model (quarter car, half or full car)."""
+
+    @property
+    def excitation(self) -> Any: ...
+
+    def check_dt(self, dt: float) -> float:
+        """``dt`` if stable for the model, else a :class:`ValidationError` naming the limit."""
+        ...
+
+    def record_values(self, plan: RunPlan) -> float:
+        """Floats a run of ``plan`` allocates (record and road), for the memory check."""
+        ...
 
 
 @dataclass(frozen=True, init=False)
@@ -135,10 +196,13 @@ class RunSettings:
         """
         if self.duration is not None:
             return self.duration
+        own = getattr(excitation, "duration", None)
+        if own is None:
+            raise ValidationError("duration is required: the excitation has no duration of its own")
         return float(
             check_range(
                 "duration",
-                float(excitation.duration),
+                float(own),
                 0.0,
                 MAX_DURATION,
                 unit="s",
@@ -177,6 +241,38 @@ class RunSettings:
                 f"{1.0 / self.dt:g} Hz, else lower dt)"
             )
         return self
+
+    def plan(self, model: Plannable, *, check_stability: bool = True) -> RunPlan:
+        """The :class:`RunPlan` of a run of ``model`` with these settings.
+
+        ``dt`` checked against the model's stability limit (``check_stability=False``
+        skips that check: the range check of construction stays), the duration resolved
+        (:meth:`duration_for` the model's excitation), the decimation
+        (:attr:`decimation`), whole output intervals covering the duration (the record
+        ends at or after it), and the memory the run's arrays need
+        (:func:`check_memory` of ``model.record_values``), all before anything runs.
+
+        Raises
+        ------
+        ValidationError
+            A ``dt`` too large for the model, no duration, or a run too large for memory.
+
+        Examples
+        --------
+        >>> from mrsuspension.engine import Simulation
+        >>> from mrsuspension.excitation import Harmonic
+        >>> RunSettings(duration=2.0).plan(Simulation(Harmonic(1.0, 0.01)))
+        RunPlan(dt=0.0001, steps=20000, decimate=10)
+        >>> RunSettings(dt=3e-4, duration=0.0125, output_rate=400.0).plan(Simulation(Harmonic(1.0, 0.01)))
+        RunPlan(dt=0.0003, steps=48, decimate=8)
+        """
+        dt = model.check_dt(self.dt) if check_stability else self.dt
+        duration = self.duration_for(model.excitation)
+        decimate = self.decimation
+        steps = max(1, math.ceil(duration / (dt * decimate) - 1e-9)) * decimate
+        plan = RunPlan(dt, steps, decimate)
+        check_memory(duration, model.record_values(plan))
+        return plan
 
     def to_dict(self) -> dict[str, float]:
         """The ``[simulation]`` table of a scenario (``duration`` only when set).

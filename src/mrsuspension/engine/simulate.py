@@ -20,14 +20,22 @@ from mrsuspension.dampers import kernels as DK
 from mrsuspension.dampers.wang import VEHICLE_VH_VARIANT
 from mrsuspension.engine import kernel as EK
 from mrsuspension.engine import lanes as LN
-from mrsuspension.engine.arrays import KernelArrays, RunPlan
+from mrsuspension.engine.arrays import KernelArrays
 from mrsuspension.engine.result import (
     SimulationDiverged,
     SimulationResult,
     VelocityClampWarning,
     warn_if_clamped,
 )
-from mrsuspension.engine.settings import DEFAULT_DT, RunSettings, check_memory, run_settings
+from mrsuspension.engine.settings import (
+    DEFAULT_DT,
+    MAX_DT,
+    RK4_LIMIT,
+    RunPlan,
+    RunSettings,
+    check_memory,
+    run_settings,
+)
 from mrsuspension.errors import ValidationError, check_range
 from mrsuspension.vehicle import QuarterCar
 
@@ -47,9 +55,6 @@ __all__ = [
 
 if TYPE_CHECKING:
     from mrsuspension.measures import RoadPeak
-
-#: RK4's stability limit on the negative real axis is about 2.785; keep a margin.
-_RK4_LIMIT = 2.5
 
 
 class RoadInput(Protocol):
@@ -181,11 +186,11 @@ class Simulation:
 
     def max_stable_dt(self) -> float:
         """Largest fixed step [s] that keeps RK4 stable (with a margin)."""
-        return _RK4_LIMIT / self.stiffness_rate()
+        return RK4_LIMIT / self.stiffness_rate()
 
     def check_dt(self, dt: float) -> float:
         """Validate ``dt`` (positive, at most 10 ms, and stable for this model)."""
-        dt = float(check_range("dt", dt, 0.0, 0.01, unit="s", low_inclusive=False))
+        dt = float(check_range("dt", dt, 0.0, MAX_DT, unit="s", low_inclusive=False))
         limit = self.max_stable_dt()
         if dt > limit:
             raise ValidationError(
@@ -242,7 +247,7 @@ class Simulation:
         if check_stability:
             dt = self.check_dt(dt)
         else:
-            dt = float(check_range("dt", dt, 0.0, 0.01, unit="s", low_inclusive=False))
+            dt = float(check_range("dt", dt, 0.0, MAX_DT, unit="s", low_inclusive=False))
         kern = self.damper.kernel(dt)
         est = self.controller_estimator
         shared = self.estimator is None and kern.kind == DK.WANG
@@ -309,59 +314,31 @@ class Simulation:
         """
         settings = run_settings(settings, duration=duration, dt=dt, output_rate=output_rate)
         settings.check_for(self.excitation)
-        duration, dt, output_rate = settings.duration, settings.dt, settings.output_rate
-        dt, n, decimate = self.plan(duration, dt, output_rate, check_stability)
+        plan = settings.plan(self, check_stability=check_stability)
+        dt, n, decimate = plan
         zr, zrd = self.road_samples(n, dt)
         a = self.kernel_arrays(dt, check_stability=False)  # dt is checked by plan()
         y = np.array([zr[0], 0.0, zr[0], 0.0, zr[0], 0.0])
-        rows = n // decimate + 1
-        rec = np.zeros((rows, EK.N_REC))
+        rec = np.zeros((plan.rows, EK.N_REC))
         status, k, idx, value = EK.run(
             y, n, dt, zr, zrd, *a.args(), decimate, rec, EK.LIMITS, np.zeros(EK.SCRATCH_SIZE)
         )
         if status != EK.D_OK:
             raise self.divergence(status, k * dt, idx, value, dt)
-        time = np.arange(rows) * (decimate * dt)
-        result = self.result_from_record(time, rec, dt)
+        result = self.result_from_record(plan.time(), rec, dt)
         warn_if_clamped(result)
         return result
 
-    def plan(
-        self,
-        duration: float | None = None,
-        dt: float = DEFAULT_DT,
-        output_rate: float = 1000.0,
-        check_stability: bool = True,
-    ) -> RunPlan:
-        """Checked step, step count and decimation of a run (arguments of :meth:`run`).
-
-        Raises
-        ------
-        ValidationError
-            For a bad ``duration``, ``dt`` or ``output_rate`` (as :meth:`run`).
+    def record_values(self, plan: RunPlan) -> float:
+        """Floats a run of ``plan`` allocates: the record and the road at every half step.
 
         Examples
         --------
         >>> from mrsuspension.excitation import Harmonic
-        >>> Simulation(Harmonic(1.0, 0.01)).plan(2.0)
-        RunPlan(dt=0.0001, steps=20000, decimate=10)
+        >>> Simulation(Harmonic(1.0, 0.01)).record_values(RunPlan(1e-4, 100, 10))
+        578.0
         """
-        if check_stability:
-            dt = self.check_dt(dt)
-        else:
-            dt = float(check_range("dt", dt, 0.0, 0.01, unit="s", low_inclusive=False))
-        if duration is None:
-            duration = float(self.excitation.duration)
-        duration = float(check_range("duration", duration, 0.0, 1e5, unit="s", low_inclusive=False))
-        rate = float(
-            check_range("output_rate", output_rate, 0.0, None, unit="Hz", low_inclusive=False)
-        )
-        decimate = max(1, round(1.0 / (rate * dt)))
-        # whole output intervals covering the duration (the record ends at or after it)
-        n = max(1, math.ceil(duration / (dt * decimate) - 1e-9)) * decimate
-        # the record (N_REC signals per sample) and the road at every half step
-        check_memory(duration, (n // decimate + 1) * EK.N_REC + 2 * (2 * n + 1))
-        return RunPlan(dt, n, decimate)
+        return float(plan.rows * EK.N_REC + 2 * (2 * plan.steps + 1))
 
     def road_samples(self, n: int, dt: float, *, start: int = 0) -> tuple[np.ndarray, np.ndarray]:
         """The road ``(z_r, z_r')`` at every half step of ``n`` steps from step ``start``
@@ -685,9 +662,7 @@ def _lane_batch(args: tuple[list[Simulation], RunSettings, Reducer | None]) -> l
     wanted = _in_kernel(reduce)
     results = LN.run_lanes(
         sims,
-        duration=settings.duration,
-        dt=settings.dt,
-        output_rate=settings.output_rate,
+        settings=settings,
         measures=wanted is not None,
         road_peak=wanted.road_peak if wanted is not None else "after-onset",
     )
@@ -822,10 +797,7 @@ def _tasks(
 
 def _check_records_memory(sims: Sequence[Simulation], plan: RunSettings) -> None:
     """Refuse, before any run, a batch whose records together exceed the memory limit."""
-    rows = 0
-    for sim in sims:
-        p = sim.plan(plan.duration, plan.dt, plan.output_rate, check_stability=False)
-        rows += p.steps // p.decimate + 1
+    rows = sum(plan.plan(sim, check_stability=False).rows for sim in sims)
     check_memory(
         plan.duration or 0.0,
         float(rows) * EK.N_REC,

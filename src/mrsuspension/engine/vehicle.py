@@ -44,7 +44,15 @@ from mrsuspension.dampers.wang import VEHICLE_VH_VARIANT
 from mrsuspension.engine import kernel as EK
 from mrsuspension.engine import vehicle_kernel as VX
 from mrsuspension.engine.result import SIGNALS, SimulationDiverged, SimulationResult
-from mrsuspension.engine.settings import DEFAULT_DT, RunSettings, check_memory, run_settings
+from mrsuspension.engine.settings import (
+    DEFAULT_DT,
+    MAX_DT,
+    RK4_LIMIT,
+    RunPlan,
+    RunSettings,
+    check_memory,
+    run_settings,
+)
 from mrsuspension.engine.simulate import Simulation
 from mrsuspension.errors import ValidationError, check_range, unknown_name
 from mrsuspension.vehicle.body import CORNERS_FULL, CORNERS_HALF, FullCar, HalfCar, VehicleBody
@@ -730,7 +738,7 @@ class VehicleSimulation:
             omega = math.sqrt(
                 (car.suspension_stiffness + 2.0 * bar[i] + car.tire_stiffness) / car.unsprung_mass
             )
-            out = min(out, 2.5 / max(rate, omega))
+            out = min(out, RK4_LIMIT / max(rate, omega))
         return out
 
     def check_dt(self, dt: float) -> float:
@@ -744,7 +752,7 @@ class VehicleSimulation:
         >>> sim.check_dt(1e-4)
         0.0001
         """
-        dt = float(check_range("dt", dt, 0.0, 0.01, unit="s", low_inclusive=False))
+        dt = float(check_range("dt", dt, 0.0, MAX_DT, unit="s", low_inclusive=False))
         limit = self.max_stable_dt()
         if dt > limit:
             raise ValidationError(
@@ -1034,24 +1042,11 @@ class VehicleSimulation:
         >>> sim.run(settings=RunSettings(dt=2e-4, duration=0.5, output_rate=100.0)).time.size
         51
         """
-        plan = run_settings(settings, duration=duration, dt=dt, output_rate=output_rate)
-        plan.check_for(getattr(self.excitation, "excitation", self.excitation))
-        dt = self.check_dt(plan.dt)
-        if plan.duration is not None:
-            duration = plan.duration
-        else:
-            d = self.excitation.duration
-            if d is None:
-                raise ValidationError(
-                    "duration is required: the wheel input has no duration of its own"
-                )
-            duration = float(check_range("duration", d, 0.0, 1e5, unit="s", low_inclusive=False))
-        rate = plan.output_rate
-        decimate = max(1, round(1.0 / (rate * dt)))
-        n = max(1, math.ceil(duration / (dt * decimate) - 1e-9)) * decimate
+        run = run_settings(settings, duration=duration, dt=dt, output_rate=output_rate)
+        run.check_for(getattr(self.excitation, "excitation", self.excitation))
+        plan = run.plan(self)
+        dt, n, decimate = plan
         nc = len(self.corners)
-        rows = n // decimate + 1
-        check_memory(duration, rows * (VX.REC_BODY + VX.REC_CORNER * nc) + 2 * nc * (2 * n + 1))
         grid = getattr(self.excitation, "sample_grid", None)
         if grid is not None:  # the wheel input's fast grid
             zr, zrd = grid(2 * n + 1, 0.5 * dt)
@@ -1068,7 +1063,7 @@ class VehicleSimulation:
             raise ValidationError("the wheel input returned a NaN or infinite road value")
         a = self.arrays(dt, n_steps=n)
         y = self.initial_state(zr[:, 0])
-        rec = np.zeros((rows, VX.REC_BODY + VX.REC_CORNER * nc))
+        rec = np.zeros((plan.rows, VX.REC_BODY + VX.REC_CORNER * nc))
         scratch = np.zeros((3, y.size))
         work = np.zeros((nc + 1, 8))
         status, k, idx, value = VX.run(
@@ -1076,8 +1071,21 @@ class VehicleSimulation:
         )
         if status != VX.D_OK:
             raise self._divergence(status, k * dt, idx, value, dt)
-        time = np.arange(rows) * (decimate * dt)
-        return self.result_from_record(time, rec, dt)
+        return self.result_from_record(plan.time(), rec, dt)
+
+    def record_values(self, plan: RunPlan) -> float:
+        """Floats a run of ``plan`` allocates: the record and every wheel's road.
+
+        Examples
+        --------
+        >>> from mrsuspension.excitation import Harmonic
+        >>> from mrsuspension.vehicle import HalfCar
+        >>> sim = VehicleSimulation(HalfCar(), SameRoadAtEveryWheel(Harmonic(2.0, 0.01), ("front", "rear")))
+        >>> sim.record_values(RunPlan(1e-4, 100, 10))
+        1277.0
+        """
+        nc = len(self.corners)
+        return float(plan.rows * (VX.REC_BODY + VX.REC_CORNER * nc) + 2 * nc * (2 * plan.steps + 1))
 
     def _divergence(
         self, status: int, t: float, idx: int, value: float, dt: float
@@ -1315,11 +1323,11 @@ def run_vehicles(
     if not sims:
         return []
     if reduce is None and len(sims) > 1:  # every record is kept: together they must fit
-        values = 0.0
-        for sim in sims:
-            length = plan.duration if plan.duration is not None else sim.excitation.duration
-            channels = VX.REC_BODY + VX.REC_CORNER * len(sim.corners)
-            values += (float(length or 0.0) * plan.output_rate + 1.0) * channels
+        values = sum(
+            plan.plan(sim, check_stability=False).rows
+            * (VX.REC_BODY + VX.REC_CORNER * len(sim.corners))
+            for sim in sims
+        )
         check_memory(
             plan.duration or 0.0,
             values,

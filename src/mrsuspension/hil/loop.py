@@ -64,7 +64,7 @@ from typing import Any
 import numpy as np
 
 from mrsuspension._pool import descendants, ensure_resource_tracker
-from mrsuspension.engine.settings import RunSettings
+from mrsuspension.engine.settings import MAX_DURATION, RunSettings
 from mrsuspension.engine.simulate import DEFAULT_DT, Simulation, SimulationDiverged
 from mrsuspension.errors import MRSuspensionError, ValidationError, check_range
 from mrsuspension.hil.driver import PICurrentDriver
@@ -645,7 +645,9 @@ def run_hil(
         if out is None:
             raise ValidationError("run_hil(process=True) needs an output directory (out=...)")
         rate = float(check_range("rate", rate, 1.0, 100000.0, unit="Hz"))
-        duration = float(check_range("duration", duration, 0.0, 1e5, unit="s", low_inclusive=False))
+        duration = float(
+            check_range("duration", duration, 0.0, MAX_DURATION, unit="s", low_inclusive=False)
+        )
         check_recording_memory(duration, rate)  # before the child starts
         return _run_in_process(
             target, rig, duration, rate, Path(out), recover, model_dt=model_dt, limits=limits,
@@ -659,7 +661,9 @@ def run_hil(
     limits = limits or SafetyLimits()
     startup = startup if startup is not None else StartUp()
     rate = float(check_range("rate", rate, 1.0, 100000.0, unit="Hz"))
-    duration = float(check_range("duration", duration, 0.0, 1e5, unit="s", low_inclusive=False))
+    duration = float(
+        check_range("duration", duration, 0.0, MAX_DURATION, unit="s", low_inclusive=False)
+    )
     check_recording_memory(duration, rate)
     if cap_current and sim.max_current > limits.current:
         sim = dataclasses.replace(sim, max_current=limits.current)

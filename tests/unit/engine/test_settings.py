@@ -145,3 +145,52 @@ def test_study_honours_simulation_table() -> None:
     for k, settings in enumerate(study.run_settings()):
         alone = Simulation(RoundedPulse(0.02, 1.0)).run(settings=settings).measures()
         assert float(res["SDR_s"][k]) == alone["SDR_s"]
+
+
+# -- RunSettings.plan: the one home of planning (issue 28) ------------------------------------
+def test_plan_is_the_same_for_the_quarter_car_and_a_vehicle() -> None:
+    from mrsuspension.engine.settings import RunPlan
+    from mrsuspension.engine.vehicle import VehicleSimulation
+    from mrsuspension.excitation import WheelRoads
+    from mrsuspension.vehicle import HalfCar
+
+    settings = RunSettings(dt=2e-4, duration=0.0125, output_rate=300.0)
+    quarter = Simulation(Harmonic(1.0, 0.01))
+    half = VehicleSimulation(
+        HalfCar(), WheelRoads.from_excitation(Harmonic(1.0, 0.01), HalfCar(), speed_kmh=50.0)
+    )
+    # decimation round(1 / (300 * 2e-4)) = 17; ceil(0.0125 / (2e-4 * 17)) = 4 intervals
+    expected = RunPlan(dt=2e-4, steps=68, decimate=17)
+    assert settings.plan(quarter) == expected
+    assert settings.plan(half) == expected
+    assert expected.rows == 5
+    assert expected.time()[-1] == pytest.approx(68 * 2e-4)
+    # the record the run returns is the plan's
+    assert quarter.run(settings=settings).time.size == expected.rows
+    assert half.run(settings=settings).time.size == expected.rows
+
+
+def test_plan_checks_stability_duration_and_memory_before_running() -> None:
+    from mrsuspension.engine.vehicle import VehicleSimulation
+    from mrsuspension.excitation import WheelRoads
+    from mrsuspension.vehicle import FullCar
+
+    quarter = Simulation(Harmonic(1.0, 0.01))
+    raises_validation(lambda: RunSettings(dt=5e-3).plan(quarter), "dt = 0.005 s is too large")
+    assert RunSettings(dt=5e-3).plan(quarter, check_stability=False).dt == 5e-3
+    raises_validation(
+        lambda: RunSettings(dt=1e-5, duration=9e4).plan(quarter), "GiB of memory", "duration"
+    )
+    full = VehicleSimulation(FullCar(), WheelRoads.bump("left", 0.02, 0.5, FullCar()))
+    raises_validation(lambda: RunSettings(dt=1e-2).plan(full), "dt = 0.01 s is too large")
+
+    class Endless:
+        excitation = type("NoEnd", (), {"duration": None})()
+
+        def check_dt(self, dt: float) -> float:
+            return dt
+
+        def record_values(self, plan: object) -> float:
+            return 0.0
+
+    raises_validation(lambda: RunSettings().plan(Endless()), "duration is required")
