@@ -31,6 +31,7 @@ __all__ = [
     "RunPlan",
     "RunSettings",
     "check_memory",
+    "check_step",
     "memory_limit",
     "run_settings",
 ]
@@ -144,8 +145,7 @@ class RunSettings:
         duration: float | None = None,
         output_rate: float | None = None,
     ) -> None:
-        dt = _number("dt", dt)
-        dt = float(check_range("dt", dt, 0.0, MAX_DT, unit="s", low_inclusive=False))
+        dt = check_step(dt)
         if duration is not None:
             duration = _number("duration", duration)
             duration = float(
@@ -343,6 +343,24 @@ def check_memory(
             f"signals x 8 bytes), more than the {limit / 2**30:.3g} GiB allowed (half this "
             f"machine's RAM): {hint}"
         )
+
+
+def check_step(dt: object) -> float:
+    """``dt`` [s] as a float in (0, :data:`MAX_DT`]: the range every step is held to.
+
+    Whether a step is stable for a model is the model's own check (``check_dt``), which
+    starts from this one.
+
+    Examples
+    --------
+    >>> check_step(1e-4)
+    0.0001
+    >>> check_step(0.05)
+    Traceback (most recent call last):
+    ...
+    mrsuspension.errors.ValidationError: dt must be in (0, 0.01] s; got 0.05 s
+    """
+    return float(check_range("dt", _number("dt", dt), 0.0, MAX_DT, unit="s", low_inclusive=False))
 
 
 def _number(name: str, value: object) -> float:

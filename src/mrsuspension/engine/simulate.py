@@ -29,11 +29,11 @@ from mrsuspension.engine.result import (
 )
 from mrsuspension.engine.settings import (
     DEFAULT_DT,
-    MAX_DT,
     RK4_LIMIT,
     RunPlan,
     RunSettings,
     check_memory,
+    check_step,
     run_settings,
 )
 from mrsuspension.errors import ValidationError, check_range
@@ -190,7 +190,7 @@ class Simulation:
 
     def check_dt(self, dt: float) -> float:
         """Validate ``dt`` (positive, at most 10 ms, and stable for this model)."""
-        dt = float(check_range("dt", dt, 0.0, MAX_DT, unit="s", low_inclusive=False))
+        dt = check_step(dt)
         limit = self.max_stable_dt()
         if dt > limit:
             raise ValidationError(
@@ -244,10 +244,7 @@ class Simulation:
         >>> a.controller_params.size, a.memory.size
         (17, 16)
         """
-        if check_stability:
-            dt = self.check_dt(dt)
-        else:
-            dt = float(check_range("dt", dt, 0.0, MAX_DT, unit="s", low_inclusive=False))
+        dt = self.check_dt(dt) if check_stability else check_step(dt)
         kern = self.damper.kernel(dt)
         est = self.controller_estimator
         shared = self.estimator is None and kern.kind == DK.WANG

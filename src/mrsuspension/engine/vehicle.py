@@ -46,11 +46,11 @@ from mrsuspension.engine import vehicle_kernel as VX
 from mrsuspension.engine.result import SIGNALS, SimulationDiverged, SimulationResult
 from mrsuspension.engine.settings import (
     DEFAULT_DT,
-    MAX_DT,
     RK4_LIMIT,
     RunPlan,
     RunSettings,
     check_memory,
+    check_step,
     run_settings,
 )
 from mrsuspension.engine.simulate import Simulation
@@ -752,7 +752,7 @@ class VehicleSimulation:
         >>> sim.check_dt(1e-4)
         0.0001
         """
-        dt = float(check_range("dt", dt, 0.0, MAX_DT, unit="s", low_inclusive=False))
+        dt = check_step(dt)
         limit = self.max_stable_dt()
         if dt > limit:
             raise ValidationError(
