@@ -46,7 +46,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from typing import TYPE_CHECKING, Any, Protocol
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numba import njit
@@ -59,9 +59,7 @@ from mrsuspension.dampers import kernels as DK
 from mrsuspension.dampers.kernels import NO_REFCOUNT
 from mrsuspension.engine import kernel as EK
 from mrsuspension.engine import reduced as RD
-from mrsuspension.engine.arrays import KernelArrays
-from mrsuspension.engine.result import SimulationDiverged, SimulationResult
-from mrsuspension.engine.settings import RunPlan, RunSettings, run_settings
+from mrsuspension.engine.settings import RunSettings, run_settings
 from mrsuspension.errors import ValidationError
 from mrsuspension.vehicle import kernel as VK
 from mrsuspension.vehicle.kernel import V_CSKY, V_CT, V_DXU, V_G, V_KS, V_KT, V_MS, V_MU
@@ -87,35 +85,8 @@ __all__ = [
 ]
 
 
-class LaneRun(Protocol):
-    """What the lanes need of a run (:class:`~mrsuspension.engine.Simulation` has it).
-
-    An interface rather than an import, so that :mod:`~mrsuspension.engine.simulate` can
-    use the lanes without a cycle.
-    """
-
-    @property
-    def excitation(self) -> Any: ...
-
-    def describe(self) -> dict[str, Any]: ...
-
-    def check_dt(self, dt: float) -> float: ...
-
-    def record_values(self, plan: RunPlan) -> float: ...
-
-    def road_samples(
-        self, n: int, dt: float, *, start: int = 0
-    ) -> tuple[np.ndarray, np.ndarray]: ...
-
-    def kernel_arrays(self, dt: float, *, check_stability: bool = True) -> KernelArrays: ...
-
-    def result_from_record(
-        self, time: np.ndarray, record: np.ndarray, dt: float
-    ) -> SimulationResult: ...
-
-    def divergence(
-        self, status: int, t: float, idx: int, value: float, dt: float
-    ) -> SimulationDiverged: ...
+#: What the lanes need of a run: the quarter car's kernel contract (:class:`~.reduced.KernelRun`).
+LaneRun = RD.KernelRun
 
 
 #: runs stepped together (a compile-time constant: the vectoriser needs fixed offsets;

@@ -36,7 +36,10 @@ from mrsuspension.control import kernel as CK
 from mrsuspension.dampers import kernels as DK
 from mrsuspension.dampers.kernels import NO_REFCOUNT
 from mrsuspension.engine import kernel as EK
+from mrsuspension.engine.arrays import KernelArrays
 from mrsuspension.engine.result import (
+    SimulationDiverged,
+    SimulationResult,
     measures_context,
     pulse_measures,
     road_measures,
@@ -46,7 +49,6 @@ from mrsuspension.errors import ValidationError
 from mrsuspension.vehicle import kernel as VK
 
 if TYPE_CHECKING:
-    from mrsuspension.engine.simulate import Simulation
     from mrsuspension.measures import RoadPeak
 
 # run_reduced inlines the step and what it inlines
@@ -239,6 +241,38 @@ class Reduction:
         return np.arange(self.rows) * self.interval
 
 
+class KernelRun(Protocol):
+    """What the quarter car's kernels (one run, reduced, the lanes) need of a run.
+
+    :class:`~mrsuspension.engine.Simulation` has it. An interface rather than an import,
+    so that :mod:`~mrsuspension.engine.simulate` can use this module and the lanes
+    without a cycle.
+    """
+
+    @property
+    def excitation(self) -> Any: ...
+
+    def describe(self) -> dict[str, Any]: ...
+
+    def check_dt(self, dt: float) -> float: ...
+
+    def record_values(self, plan: RunPlan) -> float: ...
+
+    def road_samples(
+        self, n: int, dt: float, *, start: int = 0
+    ) -> tuple[np.ndarray, np.ndarray]: ...
+
+    def kernel_arrays(self, dt: float, *, check_stability: bool = True) -> KernelArrays: ...
+
+    def result_from_record(
+        self, time: np.ndarray, record: np.ndarray, dt: float
+    ) -> SimulationResult: ...
+
+    def divergence(
+        self, status: int, t: float, idx: int, value: float, dt: float
+    ) -> SimulationDiverged: ...
+
+
 class Described(Protocol):
     """What :func:`reduction_of` needs of a run: its plain-data description."""
 
@@ -357,7 +391,7 @@ def finish(
 
 
 def run_measures(
-    simulation: Simulation,
+    simulation: KernelRun,
     settings: RunSettings | None = None,
     *,
     duration: float | None = None,
