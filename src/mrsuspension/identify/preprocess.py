@@ -11,15 +11,20 @@ such a loop and says what it did:
 3. derives missing signals: velocity and acceleration by a smoothing Savitzky-Golay
    differentiator (cubic, window 1/20 of the excitation period, at least 5 samples;
    :func:`smooth_derivative`), displacement by integrating velocity (drift removed);
-4. cuts the record into whole cycles (the last ones), keeps the trailing run of
-   steady cycles (amplitude and force range within ``steady_tolerance`` of the steady
-   value) and resamples each cycle to ``points_per_cycle`` points starting at the
-   upward zero crossing of the displacement (phase 0), as in
+4. finds the plateau: cuts the record into whole cycles where they fit its steady
+   state best (16 cuts per period are tried) and keeps the longest run of consistent
+   cycles, wherever it is: between a ramp-in and a ramp-out, in a record that starts
+   or stops mid-ramp, after a first-cycle transient (:mod:`~mrsuspension.identify.
+   plateau`); a test with two cycles or more and no two consistent ones is refused.
+   Each kept cycle is resampled to ``points_per_cycle`` points starting at the upward
+   zero crossing of the displacement (phase 0), as in
    :func:`mrsuspension.characterisation.harmonic_loop`;
 5. averages the kept cycles (phase averaging), optionally removes the mean force
    (accumulator preload), and sets the peak velocity ``v_m`` used by the
-   dissertation's models: ``2 pi f a_m`` from the manifest, or the amplitude of the
-   fundamental of the measured velocity.
+   dissertation's models: ``2 pi f a_m`` from the manifest when the cycles fitted move
+   at it, else the amplitude of the fundamental of their measured velocity. The
+   velocity checks (a velocity column must be the stroke's derivative) and the stroke
+   amplitude are measured on the cycles fitted.
 
 Examples
 --------
@@ -44,6 +49,12 @@ import numpy.typing as npt
 
 from mrsuspension.dampers.peak_velocity import V_LIMIT
 from mrsuspension.errors import ValidationError
+from mrsuspension.identify.plateau import (
+    PlateauRun,
+    choose_plateau,
+    consistent_runs,
+    no_plateau_message,
+)
 from mrsuspension.identify.readers import RawTest, TestDataError
 
 __all__ = [
@@ -72,14 +83,23 @@ class PreprocessOptions:
         Subtract the mean force of the loop (a gas-spring/accumulator preload that the
         symmetric models cannot represent). Do not use it for asymmetric dampers.
     max_cycles : int, optional
-        Average at most this many of the last steady cycles (default: all of them).
+        Average at most this many of the last cycles of the plateau (default: all of
+        them).
     steady_tolerance : float
-        A cycle is steady when its stroke amplitude and force range are within this
-        fraction of the steady value (median of the later half of the cycles).
+        Cycles are consistent (:mod:`~mrsuspension.identify.plateau`) when their force
+        ranges (peak to peak) agree within this fraction: the largest exceeds the
+        smallest by at most ``steady_tolerance``. Loose: 2 % force noise scatters the
+        range by about 1 %.
+    stroke_tolerance : float
+        ... and their stroke amplitudes (least-squares sines over each cycle) within
+        this fraction. Tight: a rig holds the amplitude of a plateau to a fraction of
+        a percent, and the cycles of a ramp differ by the ramp's step.
     peak_velocity : {"auto", "nominal", "measured"}
         v_m for the dissertation's models: ``2 pi f a_m`` from the manifest
-        (``"nominal"``), the fundamental of the measured velocity (``"measured"``), or
-        nominal when the manifest gives frequency and amplitude, else measured.
+        (``"nominal"``), the fundamental of the measured velocity over the cycles fitted
+        (``"measured"``), or (``"auto"``) nominal when the manifest gives frequency and
+        amplitude and the cycles fitted move at that speed (``2 pi f`` times their
+        stroke amplitude within :data:`NOMINAL_AGREEMENT`), else measured.
     smoothing : float
         Savitzky-Golay window of the differentiator as a fraction of the period.
     """
@@ -88,6 +108,7 @@ class PreprocessOptions:
     remove_offset: bool = False
     max_cycles: int | None = None
     steady_tolerance: float = 0.05
+    stroke_tolerance: float = 0.01
     peak_velocity: str = "auto"
     smoothing: float = 0.05
 
@@ -103,6 +124,10 @@ class PreprocessOptions:
         if not 0.0 < self.steady_tolerance <= 1.0:
             raise ValidationError(
                 f"steady_tolerance must be in (0, 1]; got {self.steady_tolerance!r}"
+            )
+        if not 0.0 < self.stroke_tolerance <= 1.0:
+            raise ValidationError(
+                f"stroke_tolerance must be in (0, 1]; got {self.stroke_tolerance!r}"
             )
         if self.peak_velocity not in PEAK_VELOCITY_SOURCES:
             raise ValidationError(
@@ -130,7 +155,8 @@ class Loop:
 
     Arrays over one period starting at phase 0 (displacement rising through its mean):
     ``time`` [s], ``stroke`` [m], ``velocity`` [m/s], ``acceleration`` [m/s^2],
-    ``force`` [N], ``current`` [A]. ``notes`` say what pre-processing did. With
+    ``force`` [N], ``current`` [A]. ``notes`` say what pre-processing did; ``span`` is
+    the record time [s] where the first cycle used starts and the last one ends. With
     ``offset_removed`` the loop's mean force was subtracted, and the fit compares it with
     the model loop minus its own mean.
     """
@@ -153,6 +179,7 @@ class Loop:
     force_offset: float = 0.0
     offset_removed: bool = False
     notes: tuple[str, ...] = field(default=())
+    span: tuple[float, float] = (0.0, 0.0)
 
     @property
     def mean_current(self) -> float:
@@ -298,6 +325,20 @@ MAX_BAD_ROWS = 0.02
 #: derivative window then spans under half a period; 40 per cycle is common at 200 Hz).
 MIN_SAMPLES_PER_CYCLE = 12
 
+#: Largest relative difference between the velocity column's amplitude and 2 pi f times
+#: the stroke amplitude before a warning (a unit or column mix-up).
+VELOCITY_TOLERANCE = 0.05
+
+#: Largest difference [degrees] between the velocity column's phase lead on the stroke
+#: and a quarter period before a warning (a flipped sign, a column that is not the
+#: stroke's derivative).
+VELOCITY_PHASE_TOLERANCE = 20.0
+
+#: ``--peak-velocity auto``: the manifest's ``2 pi f a_m`` is the v_m of a test when the
+#: cycles fitted move at it within this fraction (``2 pi f`` times their stroke
+#: amplitude); otherwise their measured velocity amplitude is.
+NOMINAL_AGREEMENT = 0.02
+
 #: Peak force [N] outside which the declared force unit is implausible for a damper
 #: (a kN record declared in N peaks below 1 N; an N record declared in kN above 1 MN).
 PLAUSIBLE_FORCE = (1.0, 1e6)
@@ -438,47 +479,159 @@ def _cycle_times(fit: HarmonicFit, start: float, n_points: int) -> FloatArray:
     return offsets + m * period
 
 
+#: Ways of cutting a record into whole cycles tried per period: the cycles' windows start
+#: at the record's end minus ``j / ALIGNMENTS`` of a period, ``j = 0 .. ALIGNMENTS - 1``
+#: (``j = 0``: aligned to the end, as a record that is steady throughout is cut).
+ALIGNMENTS = 16
+
+
+def _window_metrics(
+    t: FloatArray, x: FloatArray, force: FloatArray, frequency: float, starts: FloatArray
+) -> tuple[FloatArray, FloatArray]:
+    """Stroke amplitude and force range of each one-period window ``[s, s + T)``.
+
+    The amplitude is a least-squares sine at ``frequency`` with offset and linear trend
+    over the window's raw samples (so a displacement offset or drift does not enter it),
+    computed for all windows at once from running sums; the force range is the peak to
+    peak of the window's force samples.
+    """
+    dt = float(t[1] - t[0])
+    period = 1.0 / frequency
+    tt = t - t[0]
+    u = tt / period  # time in periods: the trend column
+    w = 2.0 * math.pi * frequency
+    c, s = np.cos(w * tt), np.sin(w * tt)
+    y = x - float(np.mean(x))
+    cols = (
+        np.ones_like(u),
+        u,
+        u * u,
+        c,
+        s,
+        u * c,
+        u * s,
+        c * c,
+        s * s,
+        c * s,
+        y,
+        u * y,
+        c * y,
+        s * y,
+    )
+    sums = np.zeros((len(cols), t.size + 1))
+    for k, col in enumerate(cols):
+        np.cumsum(col, out=sums[k, 1:])
+    i0 = np.searchsorted(t, starts - 0.5 * dt)
+    i1 = np.searchsorted(t, starts + period - 0.5 * dt)
+    n1, su, suu, sc, ss, suc, sus, scc, sss, scs, sy, suy, scy, ssy = sums[:, i1] - sums[:, i0]
+    # centre the trend column on each window (better conditioned normal equations)
+    um = su / np.maximum(n1, 1.0)
+    suu = suu - 2 * um * su + n1 * um * um
+    suc, sus, suy = suc - um * sc, sus - um * ss, suy - um * sy
+    su = su - um * n1
+    gram = np.stack(
+        [
+            np.stack([n1, su, sc, ss], axis=-1),
+            np.stack([su, suu, suc, sus], axis=-1),
+            np.stack([sc, suc, scc, scs], axis=-1),
+            np.stack([ss, sus, scs, sss], axis=-1),
+        ],
+        axis=-2,
+    )
+    rhs = np.stack([sy, suy, scy, ssy], axis=-1)
+    coef = np.linalg.solve(gram, rhs[..., None])[..., 0]
+    amplitudes = np.hypot(coef[:, 2], coef[:, 3])
+    ranges = np.array([np.ptp(force[a:b]) for a, b in zip(i0, i1, strict=True)])
+    return amplitudes, ranges
+
+
 @dataclass(frozen=True)
 class _Cut:
-    cycles: dict[str, list[FloatArray]]
-    n_full: int
+    """The record cut into whole cycles (window starts), their figures, and the plateau."""
+
+    starts: FloatArray
     amplitudes: FloatArray
     ranges: FloatArray
-    ref_amplitude: float
-    ref_range: float
-    bad: npt.NDArray[np.intp]
-    first: int
+    run: PlateauRun
+
+    @property
+    def n_full(self) -> int:
+        return int(self.starts.size)
 
 
-def _steady_cycles(
+def _plateau_cut(
     t: FloatArray,
-    signals: dict[str, FloatArray],
-    fit: HarmonicFit,
-    n_pts: int,
-    tolerance: float,
+    x: FloatArray,
+    force: FloatArray,
+    frequency: float,
+    opts: PreprocessOptions,
 ) -> _Cut:
-    """Cut the record into whole cycles (aligned to its end), resample each, and find
-    the trailing run of steady ones."""
-    period = 1.0 / fit.frequency
+    """Cut the record into whole cycles where they fit its plateau best (module
+    :mod:`~mrsuspension.identify.plateau`): try :data:`ALIGNMENTS` cuts per period, find
+    the longest run of consistent cycles of each, and keep the best run of all."""
+    period = 1.0 / frequency
     dt = float(t[1] - t[0])
-    t_end = float(t[-1])
-    n_full = math.floor((t_end - float(t[0]) + 0.5 * dt) / period + 1e-9)
-    cycles: dict[str, list[FloatArray]] = {k: [] for k in ("x", "v", "a", "F", "i")}
-    for k in range(n_full):
-        tau = _cycle_times(fit, t_end - (n_full - k) * period, n_pts)
-        for key, series in signals.items():
-            cycles[key].append(np.interp(tau, t, series))
-    amps = np.array([np.ptp(c) / 2 for c in cycles["x"]])
-    ranges = np.array([np.ptp(c) for c in cycles["F"]])
-    later = slice(n_full // 2, None)
-    ref_amp = float(np.median(amps[later]))
-    ref_range = max(float(np.median(ranges[later])), 1e-300)
-    unsteady = (np.abs(amps / ref_amp - 1) > tolerance) | (
-        np.abs(ranges / ref_range - 1) > tolerance
-    )
-    bad = np.flatnonzero(unsteady)
-    first = min(int(bad[-1]) + 1, n_full - 1) if bad.size else 0
-    return _Cut(cycles, n_full, amps, ranges, ref_amp, ref_range, bad, first)
+    t0, t_end = float(t[0]), float(t[-1])
+    per_alignment: list[FloatArray] = []
+    for j in range(ALIGNMENTS):
+        end = t_end - j * period / ALIGNMENTS
+        n = math.floor((end - t0 + 0.5 * dt) / period + 1e-9)
+        per_alignment.append(end - period * np.arange(n, 0, -1, dtype=float))
+    starts_all = np.concatenate(per_alignment)
+    amps_all, ranges_all = _window_metrics(t, x, force, frequency, starts_all)
+    runs: list[PlateauRun] = []
+    figures: list[tuple[FloatArray, FloatArray]] = []
+    k = 0
+    for j, starts in enumerate(per_alignment):
+        a, r = amps_all[k : k + starts.size], ranges_all[k : k + starts.size]
+        k += starts.size
+        figures.append((a, r))
+        runs += consistent_runs(
+            a,
+            r,
+            stroke_tolerance=opts.stroke_tolerance,
+            range_tolerance=opts.steady_tolerance,
+            alignment=j,
+        )
+    if not runs:
+        raise TestDataError("no motion: the stroke amplitude is zero in every cycle")
+    best = choose_plateau(runs, stroke_tolerance=opts.stroke_tolerance)
+    if best.length < 2 <= per_alignment[0].size:
+        a, r = figures[0]
+        raise TestDataError(
+            no_plateau_message(
+                a,
+                r,
+                stroke_tolerance=opts.stroke_tolerance,
+                range_tolerance=opts.steady_tolerance,
+                frequency=frequency,
+            )
+        )
+    a, r = figures[best.alignment]
+    return _Cut(per_alignment[best.alignment], a, r, best)
+
+
+def _dropped_text(
+    side: str, idx: range, cut: _Cut, ref_amp: float, ref_range: float, tol: float
+) -> str:
+    """``"3 leading cycles dropped as not steady (ramp-in: stroke 2.1-8.9 mm)"``."""
+    n = len(idx)
+    what = f"{n} {side} cycle{'s' if n > 1 else ''} dropped as not steady"
+    amps = cut.amplitudes[idx.start : idx.stop]
+    ranges = cut.ranges[idx.start : idx.stop]
+    dev_a = amps / ref_amp - 1
+    dev_r = ranges / ref_range - 1
+    if np.all(np.abs(dev_a) <= tol):  # same stroke: a force transient
+        worst = int(np.argmax(np.abs(dev_r)))
+        return (
+            f"{what} (cycle {idx.start + worst + 1}: stroke {100 * dev_a[worst]:+.1f} %, force "
+            f"range {100 * dev_r[worst]:+.1f} % off the plateau's)"
+        )
+    ramp = {"leading": "ramp-in", "trailing": "ramp-out"}[side]
+    kind = ramp if np.all(amps < ref_amp) else "stroke amplitude off the plateau's"
+    lo, hi = 1e3 * float(amps.min()), 1e3 * float(amps.max())
+    strokes = f"{lo:.3g} mm" if n == 1 else f"{lo:.3g}-{hi:.3g} mm"
+    return f"{what} ({kind}: stroke {strokes})"
 
 
 def preprocess(
@@ -581,50 +734,67 @@ def preprocess(
     if spc < opts.points_per_cycle:
         notes.append(f"upsampled from {spc:.0f} samples per cycle (linear interpolation)")
 
-    # whole cycles, aligned to the end of the record (the steadiest part)
+    # whole cycles, cut where they fit the record's plateau best (identify.plateau)
     n_pts = opts.points_per_cycle
-    signals = {"x": x, "v": v, "a": a, "F": force}
-    if sig["current"] is not None:
-        signals["i"] = sig["current"]
-    cut = _steady_cycles(t, signals, fit, n_pts, opts.steady_tolerance)
-    if cut.first > 0:
-        # a transient (e.g. a ramp-in) biases the frequency: detect it again on the
-        # steady part only and cut again
-        t_steady = float(t[-1]) - (cut.n_full - cut.first) * period
-        sel = t >= t_steady - 0.5 * dt
+    cut = _plateau_cut(t, x, force, f, opts)
+    if cut.run.length < cut.n_full:
+        # ramps and transients bias the frequency: detect it again on the plateau only
+        # and cut again
+        span0 = float(cut.starts[cut.run.start])
+        sel = (t >= span0 - 0.5 * dt) & (t <= span0 + cut.run.length * period + 0.5 * dt)
         if np.count_nonzero(sel) >= 16:
             refit = detect_frequency(t[sel], motion[sel], hint=f)
             if refit.explained >= 0.5 and abs(refit.frequency / f - 1) < 0.05:
                 fit, f, period = refit, refit.frequency, 1.0 / refit.frequency
-                cut = _steady_cycles(t, signals, fit, n_pts, opts.steady_tolerance)
-    cyc, amps, ranges = cut.cycles, cut.amplitudes, cut.ranges
-    bad, first, n_full = cut.bad, cut.first, cut.n_full
-    ref_amp, ref_range = cut.ref_amplitude, cut.ref_range
+                cut = _plateau_cut(t, x, force, f, opts)
+    run, n_full = cut.run, cut.n_full
+    first = run.start
     if opts.max_cycles is not None:
-        first = max(first, n_full - opts.max_cycles)
-    kept = list(range(first, n_full))
+        first = max(first, run.stop - opts.max_cycles)
+    kept = list(range(first, run.stop))
+    signals = {"x": x, "v": v, "a": a, "F": force}
+    if sig["current"] is not None:
+        signals["i"] = sig["current"]
+    cyc: dict[str, list[FloatArray]] = {key: [] for key in ("x", "v", "a", "F", "i")}
+    for k in kept:
+        tau = _cycle_times(fit, float(cut.starts[k]), n_pts)
+        for key, series in signals.items():
+            cyc[key].append(np.interp(tau, t, series))
+    span = (float(cut.starts[kept[0]]), float(cut.starts[kept[-1]]) + period)
+    plateau_amps = cut.amplitudes[run.start : run.stop]
+    plateau_ranges = cut.ranges[run.start : run.stop]
+    ref_amp, ref_range = float(np.median(plateau_amps)), float(np.median(plateau_ranges))
     text = f"{n_full} whole cycle{'s' if n_full > 1 else ''} at {f:.4g} Hz"
-    if bad.size:
-        worst = int(bad[np.argmax(np.abs(ranges[bad] / ref_range - 1))])
-        text += (
-            f"; {cut.first} leading cycle{'s' if cut.first > 1 else ''} dropped as not steady (cycle "
-            f"{worst + 1}: stroke {100 * (amps[worst] / ref_amp - 1):+.1f} %, force range "
-            f"{100 * (ranges[worst] / ref_range - 1):+.1f} % off the steady value)"
-        )
-    if opts.max_cycles is not None and first > cut.first:
-        text += f"; the last {len(kept)} used (max_cycles)"
     if n_full == 1:
         text += "; only one cycle, steady state not verified"
-    loop_f = np.mean([cyc["F"][k] for k in kept], axis=0)
+    else:
+        text += (
+            f"; cycles {kept[0] + 1}-{kept[-1] + 1} of {n_full} used (plateau: stroke "
+            f"{1e3 * plateau_amps.min():.4g}-{1e3 * plateau_amps.max():.4g} mm, force range "
+            f"{plateau_ranges.min():.4g}-{plateau_ranges.max():.4g} N"
+        )
+        if opts.max_cycles is not None and first > run.start:
+            text += f"; the last {len(kept)} of its {run.length} cycles (max_cycles)"
+        text += ")"
+        tol = opts.stroke_tolerance
+        if run.start > 0:
+            text += "; " + _dropped_text(
+                "leading", range(0, run.start), cut, ref_amp, ref_range, tol
+            )
+        if run.stop < n_full:
+            text += "; " + _dropped_text(
+                "trailing", range(run.stop, n_full), cut, ref_amp, ref_range, tol
+            )
+    loop_f = np.mean(cyc["F"], axis=0)
     spread = 0.0
     if len(kept) > 1:
-        dev = np.array([cyc["F"][k] - loop_f for k in kept])
+        dev = np.array(cyc["F"]) - loop_f
         spread = float(np.sqrt(np.mean(dev**2)) / max(np.ptp(loop_f), 1e-300))
         text += f"; {len(kept)} averaged (cycle-to-cycle spread {100 * spread:.2g} % of the force range)"
     notes.append(text)
-    loop_x = np.mean([cyc["x"][k] for k in kept], axis=0)
-    loop_v = np.mean([cyc["v"][k] for k in kept], axis=0)
-    loop_a = np.mean([cyc["a"][k] for k in kept], axis=0)
+    loop_x = np.mean(cyc["x"], axis=0)
+    loop_v = np.mean(cyc["v"], axis=0)
+    loop_a = np.mean(cyc["a"], axis=0)
     offset = 0.0
     if opts.remove_offset:
         offset = float(np.mean(loop_f))
@@ -638,14 +808,14 @@ def preprocess(
     if current is not None:
         loop_i = np.full(n_pts, float(current))
         if cyc["i"]:
-            measured = float(np.mean([cyc["i"][k] for k in kept]))
+            measured = float(np.mean(cyc["i"]))
             if abs(measured - current) > max(0.005, 0.05 * abs(current)):
                 notes.append(
                     f"warning: the current column averages {measured:.4g} A; the manifest's "
                     f"{current:g} A is used"
                 )
     elif cyc["i"]:
-        per_point = np.mean([cyc["i"][k] for k in kept], axis=0)
+        per_point = np.mean(cyc["i"], axis=0)
         mean_i = float(per_point.mean())
         if np.ptp(per_point) > 0.1 * abs(mean_i) + 0.02:
             loop_i = per_point
@@ -670,26 +840,37 @@ def preprocess(
         notes.append("small negative currents (sensor offset) clipped to 0 A")
 
     # peak velocity v_m for the dissertation's models and the stroke amplitude: least-
-    # squares sines (with offset and drift) over the raw samples of the steady cycles at
+    # squares sines (with offset and drift) over the raw samples of the cycles fitted, at
     # the detected frequency. Measured on the samples themselves, not on the resampled,
     # phase-averaged loop, these figures do not depend on the interpolation, the cycle
-    # alignment or the sample rate.
-    t_steady = float(t[-1]) - len(kept) * period
-    sel = t >= t_steady - 0.5 * dt
+    # alignment or the sample rate; measured on the cycles fitted, not on the record, they
+    # describe the loop the model is compared with (not a ramp).
+    sel = (t >= span[0] - 0.5 * dt) & (t <= span[1] + 0.5 * dt)
     _, coef_v = _sine_fit(t[sel], v[sel], f)
     _, coef_x = _sine_fit(t[sel], x[sel], f)
     measured_vm = float(math.hypot(coef_v[2], coef_v[3]))
     loop_amplitude = float(math.hypot(coef_x[2], coef_x[3]))
-    how = f"least-squares sine over the {len(kept)} steady cycle{'s' if len(kept) > 1 else ''}"
+    how = f"least-squares sine over the {len(kept)} cycle{'s' if len(kept) > 1 else ''} fitted"
     v_what = "of the velocity column" if v_from_file else "of the derived velocity"
     if x_from_file and v_from_file and loop_amplitude > 0:
+        # the velocity column must be the derivative of the stroke: amplitude 2 pi f a,
+        # leading the stroke by a quarter period
         ratio = measured_vm / (2.0 * math.pi * f * loop_amplitude)
-        if abs(ratio - 1) > 0.05:
+        lead = math.degrees(math.atan2(coef_v[2], coef_v[3]) - math.atan2(coef_x[2], coef_x[3]))
+        lead = (lead + 180.0) % 360.0 - 180.0
+        if abs(ratio - 1) > VELOCITY_TOLERANCE:
             notes.append(
                 f"warning: the velocity column's amplitude {measured_vm:.4g} m/s is "
                 f"{100 * (ratio - 1):+.0f} % off 2 pi f times the stroke amplitude "
                 f"({2 * math.pi * f * loop_amplitude:.4g} m/s, {how}); check the velocity "
                 "unit and column"
+            )
+        elif abs(lead - 90.0) > VELOCITY_PHASE_TOLERANCE:
+            flipped = abs(lead + 90.0) <= VELOCITY_PHASE_TOLERANCE
+            notes.append(
+                f"warning: the velocity column leads the stroke by {lead:.0f} degrees, not "
+                f"90 ({how}): it is not the stroke's derivative; "
+                + ("is its sign flipped? (--columns -v)" if flipped else "check the column")
             )
     has_nominal = frequency is not None and amplitude is not None
     if opts.peak_velocity == "nominal" and not has_nominal:
@@ -699,13 +880,25 @@ def preprocess(
     if has_nominal and opts.peak_velocity != "measured":
         assert frequency is not None
         assert amplitude is not None
-        vm = 2.0 * math.pi * frequency * amplitude
-        notes.append(f"v_m = 2 pi f a_m = {vm:.4g} m/s (manifest)")
-        if abs(measured_vm / vm - 1) > 0.1:
+        nominal_vm = 2.0 * math.pi * frequency * amplitude
+        # the manifest's v_m describes the cycles fitted when their motion agrees with it
+        motion_vm = 2.0 * math.pi * f * loop_amplitude
+        agrees = abs(motion_vm / nominal_vm - 1) <= NOMINAL_AGREEMENT
+        if opts.peak_velocity == "nominal" or agrees:
+            vm = nominal_vm
+            notes.append(f"v_m = 2 pi f a_m = {vm:.4g} m/s (manifest)")
+            if abs(measured_vm / vm - 1) > 0.1:
+                notes.append(
+                    f"warning: the velocity amplitude {measured_vm:.4g} m/s ({how} {v_what}) "
+                    f"differs by {100 * (measured_vm / vm - 1):+.0f} % from 2 pi f a_m = "
+                    f"{vm:.4g} m/s"
+                )
+        else:
+            vm = measured_vm
             notes.append(
-                f"warning: the velocity amplitude {measured_vm:.4g} m/s ({how} {v_what}) "
-                f"differs by {100 * (measured_vm / vm - 1):+.0f} % from 2 pi f a_m = "
-                f"{vm:.4g} m/s"
+                f"v_m = {vm:.4g} m/s (amplitude {v_what}, {how}): the manifest's 2 pi f a_m "
+                f"= {nominal_vm:.4g} m/s is {100 * (nominal_vm / motion_vm - 1):+.1f} % off "
+                f"the fitted cycles' 2 pi f a = {motion_vm:.4g} m/s"
             )
     else:
         vm = measured_vm
@@ -738,4 +931,5 @@ def preprocess(
         force_offset=offset,
         offset_removed=opts.remove_offset,
         notes=tuple(raw.notes) + tuple(notes),
+        span=span,
     )
