@@ -130,6 +130,12 @@ def identify_command(
     peak_velocity: Annotated[
         str, typer.Option("--peak-velocity", help="v_m source: auto | nominal | measured")
     ] = "auto",
+    force_delay: Annotated[
+        float,
+        typer.Option(
+            "--force-delay", help="delay of the force channel behind the motion [s], compensated"
+        ),
+    ] = 0.0,
     fix: Annotated[
         str | None,
         typer.Option("--fix", help="parameters held fixed: NAME or NAME=VALUE, comma-separated"),
@@ -191,6 +197,7 @@ def identify_command(
         "--bands": bands is not None, "--points": points != 360,
         "--remove-offset": remove_offset, "--max-cycles": max_cycles is not None,
         "--peak-velocity": peak_velocity != "auto", "--fix": fix is not None,
+        "--force-delay": force_delay != 0.0,
         "--vh-variant": vh_variant is not None, "--hysteresis/--mean": hysteresis is not None,
     }  # fmt: skip
     time_domain_only = {
@@ -239,6 +246,7 @@ def identify_command(
             "columns": columns, "units": units, "current_pattern": current_pattern,
             "points_per_cycle": points, "remove_offset": remove_offset,
             "max_cycles": max_cycles, "peak_velocity": peak_velocity, "start": start,
+            "force_delay": force_delay,
             "fixed": _fixed(fix), "model_options": options or None, "bands": bands,
             "compare": compare or (), "multistart": multistart, "seed": seed,
             "max_nfev": max_nfev, "name": name, "current_gain": gain,

@@ -32,6 +32,7 @@ Examples
 
 from __future__ import annotations
 
+import math
 from collections import deque
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -54,9 +55,11 @@ __all__ = [
 #: actuator at rest (before or after a test) and never part of a plateau.
 REST_FRACTION = 0.02
 
-#: Stroke spreads closer than this fraction of the stroke tolerance are equally good
-#: (their difference is noise): then the earlier alignment / later run wins.
-SPREAD_RESOLUTION = 0.1
+#: Edge deviations (:attr:`PlateauRun.edge`) within this many times the best run's
+#: scatter, or within :data:`EDGE_FLOOR` times the stroke tolerance, are equally good
+#: (their difference is noise, or too small to matter).
+EDGE_RESOLUTION = 3.0
+EDGE_FLOOR = 0.05
 
 
 @dataclass(frozen=True)
@@ -65,7 +68,13 @@ class PlateauRun:
 
     ``amplitude`` is the median stroke amplitude of the run, ``stroke_spread`` and
     ``range_spread`` are ``max / min - 1`` of its stroke amplitudes and force ranges;
-    ``alignment`` numbers the way the record was cut into cycles (0: aligned to its end).
+    ``edge`` is how far the run's first and last stroke amplitudes are off its median
+    (summed, relative: a cut that overlaps a ramp shows there), ``scatter`` the robust
+    relative scatter of its stroke amplitudes (1.4826 times their median absolute
+    deviation: the noise). ``alignment`` numbers the way the record was cut into cycles
+    (0: aligned to its end), ``position`` is where the run starts in periods of the
+    record (default: ``start``), and ``whole`` says that the run holds every cycle of
+    its cut.
     """
 
     start: int
@@ -73,7 +82,15 @@ class PlateauRun:
     amplitude: float
     stroke_spread: float
     range_spread: float
+    edge: float = 0.0
+    scatter: float = 0.0
     alignment: int = 0
+    position: float = math.nan
+    whole: bool = False
+
+    def __post_init__(self) -> None:
+        if math.isnan(self.position):
+            object.__setattr__(self, "position", float(self.start))
 
     @property
     def length(self) -> int:
@@ -93,12 +110,18 @@ def consistent_runs(
     stroke_tolerance: float = 0.01,
     range_tolerance: float = 0.05,
     alignment: int = 0,
+    positions: npt.ArrayLike | None = None,
+    halves: npt.ArrayLike | None = None,
 ) -> list[PlateauRun]:
     """Every longest run of consistent cycles (module docstring), in record order.
 
     ``amplitudes`` and ``ranges`` are the stroke amplitude and force range of each whole
-    cycle. Runs of cycles at rest are not counted; an empty list means that every cycle
-    is at rest.
+    cycle, ``positions`` where each starts, in periods of the record (default: its
+    index). ``halves`` (shape ``(n, 2)``), the stroke amplitude of each half of each
+    cycle, makes the stroke criterion apply to them too: a cycle whose stroke changes
+    within it (the top of two symmetric ramps around a one-cycle plateau, cut across
+    its middle) is not steady even when its neighbour is its mirror image. Runs of
+    cycles at rest are not counted; an empty list means that every cycle is at rest.
 
     Examples
     --------
@@ -113,24 +136,33 @@ def consistent_runs(
         return []
     top = float(np.max(a))
     moving = (a > REST_FRACTION * top) & (r > 0) & np.isfinite(a) & np.isfinite(r)
+    a_hi, a_lo = a, a  # each cycle's largest and smallest stroke figure
+    if halves is not None:
+        h = np.asarray(halves, dtype=float)
+        if h.shape != (a.size, 2):
+            raise ValueError(f"halves must have shape ({a.size}, 2); got {h.shape}")
+        a_hi, a_lo = np.maximum(a, h.max(axis=1)), np.minimum(a, h.min(axis=1))
     hi_a: deque[int] = deque()  # indices of decreasing amplitudes (front: max)
     lo_a: deque[int] = deque()  # indices of increasing amplitudes (front: min)
     hi_r: deque[int] = deque()
     lo_r: deque[int] = deque()
-    queues = ((hi_a, a, True), (lo_a, a, False), (hi_r, r, True), (lo_r, r, False))
+    queues = ((hi_a, a_hi, True), (lo_a, a_lo, False), (hi_r, r, True), (lo_r, r, False))
     left, best = 0, 0
     found: list[tuple[int, int]] = []
     for k in range(a.size):
-        if not moving[k]:
+        if not moving[k] or a_hi[k] > a_lo[k] * (1 + stroke_tolerance):
+            # at rest, or its stroke changes within it: a run of its own at most
             left = k + 1
             for q, _, _ in queues:
                 q.clear()
+            if moving[k] and best <= 1:
+                best, found = 1, [*found, (k, k + 1)] if best == 1 else [(k, k + 1)]
             continue
         for q, vals, is_max in queues:
             while q and (vals[q[-1]] <= vals[k] if is_max else vals[q[-1]] >= vals[k]):
                 q.pop()
             q.append(k)
-        while a[hi_a[0]] > a[lo_a[0]] * (1 + stroke_tolerance) or r[hi_r[0]] > r[lo_r[0]] * (
+        while a_hi[hi_a[0]] > a_lo[lo_a[0]] * (1 + stroke_tolerance) or r[hi_r[0]] > r[lo_r[0]] * (
             1 + range_tolerance
         ):
             left += 1
@@ -142,26 +174,47 @@ def consistent_runs(
             best, found = length, [(left, k + 1)]
         elif length == best:
             found.append((left, k + 1))
-    return [
-        PlateauRun(
-            start=i,
-            stop=j,
-            amplitude=float(np.median(a[i:j])),
-            stroke_spread=_spread(a[i:j]),
-            range_spread=_spread(r[i:j]),
-            alignment=alignment,
-        )
-        for i, j in found
-    ]
+    pos = np.arange(a.size, dtype=float) if positions is None else np.asarray(positions, float)
+    return [_run(a, r, i, j, alignment, float(pos[i])) for i, j in found]
+
+
+def _run(
+    a: npt.NDArray[np.float64],
+    r: npt.NDArray[np.float64],
+    i: int,
+    j: int,
+    alignment: int,
+    position: float,
+) -> PlateauRun:
+    med = float(np.median(a[i:j]))
+    rel = a[i:j] / med - 1.0
+    return PlateauRun(
+        start=i,
+        stop=j,
+        amplitude=med,
+        stroke_spread=_spread(a[i:j]),
+        range_spread=_spread(r[i:j]),
+        edge=float(abs(rel[0]) + abs(rel[-1])),
+        scatter=float(1.4826 * np.median(np.abs(rel))),
+        alignment=alignment,
+        position=position,
+        whole=i == 0 and j == a.size,
+    )
 
 
 def choose_plateau(runs: Sequence[PlateauRun], *, stroke_tolerance: float = 0.01) -> PlateauRun:
-    """The plateau among candidate runs: longest, then largest stroke amplitude, then the
-    smallest stroke spread, then the lowest ``alignment``, then the latest.
+    """The plateau among candidate runs: the longest, then the largest stroke amplitude,
+    then the one whose edges deviate least.
 
-    Two amplitudes within ``stroke_tolerance`` are the same level, and two stroke spreads
-    within :data:`SPREAD_RESOLUTION` of it the same spread (noise tells them apart, not
-    the data).
+    Two amplitudes within ``stroke_tolerance`` are the same level. Runs of the same
+    plateau cut in different places differ at their edges: a first or last cycle that
+    overlaps a ramp has a smaller stroke. Edge deviations within
+    :data:`EDGE_RESOLUTION` times the scatter of the best run (or
+    :data:`EDGE_FLOOR` times ``stroke_tolerance``) are noise: among such
+    runs of the same plateau (starting within a period of each other) the one holding
+    every cycle of the end-aligned cut wins (a record steady throughout is cut as it
+    always was), else the middle one (a ramp's undetectable first or last fraction of
+    a cycle is left out on both sides alike).
 
     Examples
     --------
@@ -176,9 +229,20 @@ def choose_plateau(runs: Sequence[PlateauRun], *, stroke_tolerance: float = 0.01
     cands = [r for r in runs if r.length == longest]
     top = max(r.amplitude for r in cands)
     cands = [r for r in cands if r.amplitude >= top * (1 - stroke_tolerance)]
-    flattest = min(r.stroke_spread for r in cands)
-    cands = [r for r in cands if r.stroke_spread <= flattest + SPREAD_RESOLUTION * stroke_tolerance]
-    return min(cands, key=lambda r: (r.alignment, -r.start))
+    best = min(cands, key=lambda r: (r.edge, r.alignment, -r.start))
+    resolution = max(EDGE_RESOLUTION * best.scatter, EDGE_FLOOR * stroke_tolerance)
+    ties = sorted(
+        (
+            r
+            for r in cands
+            if r.edge <= best.edge + resolution and abs(r.position - best.position) < 1.0
+        ),
+        key=lambda r: r.position,
+    )
+    for r in ties:
+        if r.whole and r.alignment == 0:
+            return r
+    return ties[(len(ties) - 1) // 2]
 
 
 def find_plateau(

@@ -70,6 +70,10 @@ FloatArray = npt.NDArray[np.float64]
 
 PEAK_VELOCITY_SOURCES = ("auto", "nominal", "measured")
 
+#: Largest force-channel delay [s] :class:`PreprocessOptions` compensates (a load cell's
+#: conditioning delays by milliseconds; a tenth of a second is a mistaken unit).
+MAX_FORCE_DELAY = 0.1
+
 
 @dataclass(frozen=True)
 class PreprocessOptions:
@@ -102,6 +106,11 @@ class PreprocessOptions:
         stroke amplitude within :data:`NOMINAL_AGREEMENT`), else measured.
     smoothing : float
         Savitzky-Golay window of the differentiator as a fraction of the period.
+    force_delay : float
+        Delay of the recorded force behind the motion [s] (a load cell and its
+        conditioning, e.g. an anti-aliasing filter's group delay: 1-3 ms is common),
+        compensated by reading the force that much later. No model can absorb a delay:
+        its phase lag grows with the frequency.
     """
 
     points_per_cycle: int = 360
@@ -111,6 +120,7 @@ class PreprocessOptions:
     stroke_tolerance: float = 0.01
     peak_velocity: str = "auto"
     smoothing: float = 0.05
+    force_delay: float = 0.0
 
     def __post_init__(self) -> None:
         if not (isinstance(self.points_per_cycle, int) and 16 <= self.points_per_cycle <= 100_000):
@@ -136,6 +146,12 @@ class PreprocessOptions:
             )
         if not 0.0 < self.smoothing <= 0.5:
             raise ValidationError(f"smoothing must be in (0, 0.5]; got {self.smoothing!r}")
+        if not (
+            isinstance(self.force_delay, int | float) and 0.0 <= self.force_delay <= MAX_FORCE_DELAY
+        ):
+            raise ValidationError(
+                f"force_delay must be in [0, {MAX_FORCE_DELAY:g}] s; got {self.force_delay!r}"
+            )
 
 
 @dataclass(frozen=True)
@@ -487,62 +503,62 @@ ALIGNMENTS = 16
 
 def _window_metrics(
     t: FloatArray, x: FloatArray, force: FloatArray, frequency: float, starts: FloatArray
-) -> tuple[FloatArray, FloatArray]:
-    """Stroke amplitude and force range of each one-period window ``[s, s + T)``.
+) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """Stroke amplitude, force range and half-period stroke amplitudes of each
+    one-period window ``[s, s + T)``.
 
-    The amplitude is a least-squares sine at ``frequency`` with offset and linear trend
-    over the window's raw samples (so a displacement offset or drift does not enter it),
-    computed for all windows at once from running sums; the force range is the peak to
-    peak of the window's force samples.
+    The stroke amplitude is ``sqrt(2)`` times the RMS of the window's raw stroke samples
+    about their mean, after the record's offset and linear drift (those of a least-
+    squares sine at ``frequency`` over the whole record) are removed; all windows at
+    once, from running sums. An RMS, unlike a sine fitted to the window, weighs every
+    sample alike: a window overlapping a ramp shows a smaller stroke. The same figure
+    over each half of the window (about the whole window's mean; shape ``(n, 2)``)
+    shows a stroke that changes within the window. The force range is the peak to peak
+    of the window's force samples.
     """
     dt = float(t[1] - t[0])
     period = 1.0 / frequency
-    tt = t - t[0]
-    u = tt / period  # time in periods: the trend column
-    w = 2.0 * math.pi * frequency
-    c, s = np.cos(w * tt), np.sin(w * tt)
-    y = x - float(np.mean(x))
-    cols = (
-        np.ones_like(u),
-        u,
-        u * u,
-        c,
-        s,
-        u * c,
-        u * s,
-        c * c,
-        s * s,
-        c * s,
-        y,
-        u * y,
-        c * y,
-        s * y,
+    _, coef = _sine_fit(t, x, frequency)
+    mid, span = 0.5 * (t[0] + t[-1]), max(float(t[-1] - t[0]), 1e-12)
+    y = x - coef[0] - coef[1] * (t - mid) / span
+    # each sample stands for the cell [t - dt/2, t + dt/2); a window's sums weigh its
+    # two end cells by the fraction inside it, so that every window spans exactly one
+    # period (a whole number of samples would not: 40.5 samples per period cut into
+    # 40 or 41 would scatter the RMS by half a percent)
+    vals = np.vstack([y, y * y])
+    cum = np.zeros((2, t.size + 1))
+    np.cumsum(vals, axis=1, out=cum[:, 1:])
+    last = t.size - 1
+
+    def cell_sums(c0: FloatArray, c1: FloatArray) -> FloatArray:
+        """Sums of y and y^2 over cell coordinates [c0, c1) (shape (2, n))."""
+        a = np.clip(np.floor(c0).astype(np.intp), 0, last)
+        b = np.clip(np.floor(c1).astype(np.intp), 0, last)
+        full = cum[:, b] - cum[:, np.minimum(a + 1, b)]
+        head = vals[:, a] * np.where(a == b, c1 - c0, a + 1 - c0)
+        tail = np.where(a == b, 0.0, vals[:, b] * (c1 - b))
+        return np.asarray(full + head + tail, dtype=float)
+
+    c_start = (starts - t[0]) / dt + 0.5
+    c_mid = c_start + 0.5 * period / dt
+    c_end = c_start + period / dt
+    whole = cell_sums(c_start, c_end)
+    mean = whole[0] / (c_end - c_start)
+
+    def rms_amplitude(sums: FloatArray, width: FloatArray) -> FloatArray:
+        return np.sqrt(2.0 * np.maximum((sums[1] - 2 * mean * sums[0]) / width + mean**2, 0.0))
+
+    amplitudes = rms_amplitude(whole, c_end - c_start)
+    halves = np.column_stack(
+        [
+            rms_amplitude(cell_sums(c_start, c_mid), c_mid - c_start),
+            rms_amplitude(cell_sums(c_mid, c_end), c_end - c_mid),
+        ]
     )
-    sums = np.zeros((len(cols), t.size + 1))
-    for k, col in enumerate(cols):
-        np.cumsum(col, out=sums[k, 1:])
     i0 = np.searchsorted(t, starts - 0.5 * dt)
     i1 = np.searchsorted(t, starts + period - 0.5 * dt)
-    n1, su, suu, sc, ss, suc, sus, scc, sss, scs, sy, suy, scy, ssy = sums[:, i1] - sums[:, i0]
-    # centre the trend column on each window (better conditioned normal equations)
-    um = su / np.maximum(n1, 1.0)
-    suu = suu - 2 * um * su + n1 * um * um
-    suc, sus, suy = suc - um * sc, sus - um * ss, suy - um * sy
-    su = su - um * n1
-    gram = np.stack(
-        [
-            np.stack([n1, su, sc, ss], axis=-1),
-            np.stack([su, suu, suc, sus], axis=-1),
-            np.stack([sc, suc, scc, scs], axis=-1),
-            np.stack([ss, sus, scs, sss], axis=-1),
-        ],
-        axis=-2,
-    )
-    rhs = np.stack([sy, suy, scy, ssy], axis=-1)
-    coef = np.linalg.solve(gram, rhs[..., None])[..., 0]
-    amplitudes = np.hypot(coef[:, 2], coef[:, 3])
     ranges = np.array([np.ptp(force[a:b]) for a, b in zip(i0, i1, strict=True)])
-    return amplitudes, ranges
+    return amplitudes, ranges, halves
 
 
 @dataclass(frozen=True)
@@ -553,6 +569,7 @@ class _Cut:
     amplitudes: FloatArray
     ranges: FloatArray
     run: PlateauRun
+    in_record: int  # whole cycles in the record (those of the end-aligned cut)
 
     @property
     def n_full(self) -> int:
@@ -578,12 +595,13 @@ def _plateau_cut(
         n = math.floor((end - t0 + 0.5 * dt) / period + 1e-9)
         per_alignment.append(end - period * np.arange(n, 0, -1, dtype=float))
     starts_all = np.concatenate(per_alignment)
-    amps_all, ranges_all = _window_metrics(t, x, force, frequency, starts_all)
+    amps_all, ranges_all, halves_all = _window_metrics(t, x, force, frequency, starts_all)
     runs: list[PlateauRun] = []
     figures: list[tuple[FloatArray, FloatArray]] = []
     k = 0
     for j, starts in enumerate(per_alignment):
         a, r = amps_all[k : k + starts.size], ranges_all[k : k + starts.size]
+        halves = halves_all[k : k + starts.size]
         k += starts.size
         figures.append((a, r))
         runs += consistent_runs(
@@ -592,6 +610,8 @@ def _plateau_cut(
             stroke_tolerance=opts.stroke_tolerance,
             range_tolerance=opts.steady_tolerance,
             alignment=j,
+            positions=(starts - t0) / period,
+            halves=halves,
         )
     if not runs:
         raise TestDataError("no motion: the stroke amplitude is zero in every cycle")
@@ -608,7 +628,7 @@ def _plateau_cut(
             )
         )
     a, r = figures[best.alignment]
-    return _Cut(per_alignment[best.alignment], a, r, best)
+    return _Cut(per_alignment[best.alignment], a, r, best, per_alignment[0].size)
 
 
 def _dropped_text(
@@ -675,6 +695,25 @@ def preprocess(
     dt = float(t[1] - t[0])
     x, v, a, force = sig["displacement"], sig["velocity"], sig["acceleration"], sig["force"]
     assert force is not None
+    if opts.force_delay > 0:
+        # the force recorded at t belongs to the motion at t - delay: delay the motion
+        # (smooth signals, interpolated by cubic splines) rather than advance the force
+        # (a yield knee, which interpolation would round)
+        if opts.force_delay > 0.25 * float(t[-1] - t[0]):
+            raise TestDataError(
+                f"the force delay {1e3 * opts.force_delay:g} ms is more than a quarter of the "
+                f"record ({float(t[-1] - t[0]):.4g} s)"
+            )
+        from scipy.interpolate import CubicSpline
+
+        x, v, a = (
+            None if y is None else np.asarray(CubicSpline(t, y)(t - opts.force_delay), dtype=float)
+            for y in (x, v, a)
+        )
+        notes.append(
+            f"motion delayed by {1e3 * opts.force_delay:g} ms to meet the force (the load "
+            "cell's delay, force_delay)"
+        )
     x_from_file, v_from_file = x is not None, v is not None
     motion = x if x is not None else v
     assert motion is not None
@@ -764,14 +803,15 @@ def preprocess(
     plateau_amps = cut.amplitudes[run.start : run.stop]
     plateau_ranges = cut.ranges[run.start : run.stop]
     ref_amp, ref_range = float(np.median(plateau_amps)), float(np.median(plateau_ranges))
-    text = f"{n_full} whole cycle{'s' if n_full > 1 else ''} at {f:.4g} Hz"
+    text = f"{cut.in_record} whole cycle{'s' if cut.in_record > 1 else ''} at {f:.4g} Hz"
     if n_full == 1:
         text += "; only one cycle, steady state not verified"
     else:
+        of = f"of {n_full}" if n_full == cut.in_record else f"of the {n_full} cut to fit it"
         text += (
-            f"; cycles {kept[0] + 1}-{kept[-1] + 1} of {n_full} used (plateau: stroke "
-            f"{1e3 * plateau_amps.min():.4g}-{1e3 * plateau_amps.max():.4g} mm, force range "
-            f"{plateau_ranges.min():.4g}-{plateau_ranges.max():.4g} N"
+            f"; cycles {kept[0] + 1}-{kept[-1] + 1} {of} used (t = {span[0]:.6g}-{span[1]:.6g} "
+            f"s; plateau: stroke {1e3 * plateau_amps.min():.4g}-{1e3 * plateau_amps.max():.4g} "
+            f"mm, force range {plateau_ranges.min():.4g}-{plateau_ranges.max():.4g} N"
         )
         if opts.max_cycles is not None and first > run.start:
             text += f"; the last {len(kept)} of its {run.length} cycles (max_cycles)"
@@ -925,7 +965,7 @@ def preprocess(
         peak_velocity=vm,
         nominal_frequency=frequency,
         nominal_amplitude=amplitude,
-        cycles_found=n_full,
+        cycles_found=cut.in_record,
         cycles_used=len(kept),
         cycle_spread=spread,
         force_offset=offset,
