@@ -807,7 +807,7 @@ def preprocess(
     if n_full == 1:
         text += "; only one cycle, steady state not verified"
     else:
-        of = f"of {n_full}" if n_full == cut.in_record else f"of the {n_full} cut to fit it"
+        of = f"of {n_full}" if n_full == cut.in_record else f"of {n_full} (cut to fit the plateau)"
         text += (
             f"; cycles {kept[0] + 1}-{kept[-1] + 1} {of} used (t = {span[0]:.6g}-{span[1]:.6g} "
             f"s; plateau: stroke {1e3 * plateau_amps.min():.4g}-{1e3 * plateau_amps.max():.4g} "

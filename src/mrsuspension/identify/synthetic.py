@@ -5,7 +5,9 @@ on known parameters (the self-consistency test of the test suite), and in exampl
 Each test is a harmonic stroke ``x = a_m sin(2 pi f t + phase)`` at constant current,
 sampled at ``sample_rate`` over ``cycles`` periods plus a random fraction of one and a
 random start phase, as a rig record would be; Gaussian noise of ``noise`` times the
-test's peak force is added to the force.
+test's peak force is added to the force. A servo-hydraulic rig's ramps (in, out, records
+cut mid-ramp), a load cell's delay and drift are options; :func:`ramped_campaign` writes
+:func:`field_campaign`'s tests with all of them.
 
 Examples
 --------
