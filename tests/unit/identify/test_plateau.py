@@ -232,7 +232,7 @@ def test_force_delay_is_compensated_and_validated() -> None:
         PreprocessOptions(force_delay=0.5)
 
 
-def test_cli_force_delay_out_of_range_is_one_error_line(tmp_path: Path) -> None:
+def test_cli_plateau_options_are_checked_and_reach_the_settings(tmp_path: Path) -> None:
     from mrsuspension.cli.identify import app
     from mrsuspension.identify import synthetic_campaign
 
@@ -240,3 +240,10 @@ def test_cli_force_delay_out_of_range_is_one_error_line(tmp_path: Path) -> None:
     res = CliRunner().invoke(app, [str(manifest), "--model", "linear", "--force-delay", "2"])
     assert res.exit_code == 2
     assert res.stderr.strip() == "error: --force-delay must be in [0, 0.1] s; got 2.0"
+    res = CliRunner().invoke(app, [str(manifest), "--model", "linear", "--stroke-tolerance", "0"])
+    assert res.exit_code == 2
+    assert res.stderr.strip() == "error: --stroke-tolerance must be in (0, 1]; got 0.0"
+    res = CliRunner().invoke(app, [str(manifest), "--model", "linear", "--stroke-tolerance", "0.02",
+                                   "--json"])  # fmt: skip
+    assert res.exit_code == 0, res.stderr
+    assert '"stroke_tolerance": 0.02' in res.stdout
