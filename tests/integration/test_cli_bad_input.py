@@ -105,6 +105,7 @@ VALID: dict[tuple[str, str, str], str] = {
     ("rig-emulator", "--watchdog", "0"): "no watchdog (said in the help)",
     ("hil latency", "--work-us", "0"): "an empty tick (the default)",
     ("identify", "--seed", "0"): "a seed (the default)",
+    ("identify", "--force-delay", "0"): "no force delay (the default)",
     ("damper force", "--velocity", "-1"): "a velocity of either sign",
     ("damper force", "--velocity", "0"): "a velocity of either sign",
     ("damper force", "--stroke", "-1"): "a stroke of either sign [m] (not range-checked)",

@@ -125,11 +125,25 @@ def identify_command(
         bool, typer.Option("--remove-offset", help="subtract each loop's mean force")
     ] = False,
     max_cycles: Annotated[
-        int | None, typer.Option("--max-cycles", help="use at most the last N steady cycles")
+        int | None,
+        typer.Option("--max-cycles", help="use at most the last N cycles of the plateau"),
     ] = None,
     peak_velocity: Annotated[
         str, typer.Option("--peak-velocity", help="v_m source: auto | nominal | measured")
     ] = "auto",
+    force_delay: Annotated[
+        float,
+        typer.Option(
+            "--force-delay", help="delay of the force channel behind the motion [s], compensated"
+        ),
+    ] = 0.0,
+    stroke_tolerance: Annotated[
+        float,
+        typer.Option(
+            "--stroke-tolerance",
+            help="how far the stroke amplitudes of a plateau's cycles may differ (fraction)",
+        ),
+    ] = 0.01,
     fix: Annotated[
         str | None,
         typer.Option("--fix", help="parameters held fixed: NAME or NAME=VALUE, comma-separated"),
@@ -191,6 +205,7 @@ def identify_command(
         "--bands": bands is not None, "--points": points != 360,
         "--remove-offset": remove_offset, "--max-cycles": max_cycles is not None,
         "--peak-velocity": peak_velocity != "auto", "--fix": fix is not None,
+        "--force-delay": force_delay != 0.0, "--stroke-tolerance": stroke_tolerance != 0.01,
         "--vh-variant": vh_variant is not None, "--hysteresis/--mean": hysteresis is not None,
     }  # fmt: skip
     time_domain_only = {
@@ -239,6 +254,7 @@ def identify_command(
             "columns": columns, "units": units, "current_pattern": current_pattern,
             "points_per_cycle": points, "remove_offset": remove_offset,
             "max_cycles": max_cycles, "peak_velocity": peak_velocity, "start": start,
+            "force_delay": force_delay, "stroke_tolerance": stroke_tolerance,
             "fixed": _fixed(fix), "model_options": options or None, "bands": bands,
             "compare": compare or (), "multistart": multistart, "seed": seed,
             "max_nfev": max_nfev, "name": name, "current_gain": gain,

@@ -5,16 +5,18 @@ The pipeline of ``mrsus identify``, usable piece by piece:
 * :mod:`~mrsuspension.identify.readers` - test records from delimited text or ``.mat``
   files, column mapping and units (:func:`read_test`);
 * :mod:`~mrsuspension.identify.manifest` - the tests of a campaign (:func:`read_manifest`);
-* :mod:`~mrsuspension.identify.preprocess` - frequency detection, steady whole cycles,
-  resampling to 360 points per loop (:func:`preprocess`);
+* :mod:`~mrsuspension.identify.preprocess` - frequency detection, steady whole cycles
+  (the plateau of a ramped test: :mod:`~mrsuspension.identify.plateau`), resampling to
+  360 points per loop (:func:`preprocess`);
 * :mod:`~mrsuspension.identify.fit` - global multi-start least squares over all tests
   (:func:`fit_loops`);
 * :mod:`~mrsuspension.identify.campaign` - all of it, with per-test outcomes
   (:func:`identify`);
 * :mod:`~mrsuspension.identify.report` - parameter set, tables, plots, HTML;
 * :mod:`~mrsuspension.identify.results` - the result types (per test, per band, all);
-* :mod:`~mrsuspension.identify.synthetic` - synthetic campaigns from any model, and the
-  example campaign shipped with the package (:func:`example_campaign`);
+* :mod:`~mrsuspension.identify.synthetic` - synthetic campaigns from any model (with a
+  rig's ramps: :func:`ramped_campaign`), and the example campaign shipped with the
+  package (:func:`example_campaign`);
 * :mod:`~mrsuspension.identify.record` and :mod:`~mrsuspension.identify.timedomain` -
   records of any motion (random displacement, switched coil) and models with internal
   states integrated over them (:func:`read_record`, :func:`fit_time_domain`).
@@ -48,7 +50,12 @@ from mrsuspension.identify.preprocess import (
 )
 from mrsuspension.identify.readers import RawTest, TestDataError, read_test
 from mrsuspension.identify.record import TimeRecord, read_record
-from mrsuspension.identify.synthetic import example_campaign, field_campaign, synthetic_campaign
+from mrsuspension.identify.synthetic import (
+    example_campaign,
+    field_campaign,
+    ramped_campaign,
+    synthetic_campaign,
+)
 from mrsuspension.identify.timedomain import (
     TIME_DOMAIN_MODELS,
     TimeDomainResult,
@@ -80,6 +87,7 @@ __all__ = [
     "load_campaign",
     "loop_metrics",
     "preprocess",
+    "ramped_campaign",
     "read_manifest",
     "read_record",
     "read_test",

@@ -204,6 +204,8 @@ def identify(
     remove_offset: bool = False,
     max_cycles: int | None = None,
     peak_velocity: str = "auto",
+    force_delay: float = 0.0,
+    stroke_tolerance: float = 0.01,
     start: Any = None,
     bounds: BoundsSpec | None = None,
     fixed: FixedSpec | None = None,
@@ -231,7 +233,7 @@ def identify(
     columns, units, current_pattern : str, optional
         Column mapping, units and file-name current pattern for every test (override
         the manifest).
-    points_per_cycle, remove_offset, max_cycles, peak_velocity
+    points_per_cycle, remove_offset, max_cycles, peak_velocity, force_delay, stroke_tolerance
         Pre-processing (:class:`~mrsuspension.identify.preprocess.PreprocessOptions`).
     start, bounds, fixed, model_options, multistart, seed, max_nfev
         Fit settings (:func:`~mrsuspension.identify.fit.fit_loops`).
@@ -285,6 +287,8 @@ def identify(
         remove_offset=remove_offset,
         max_cycles=max_cycles,
         peak_velocity=peak_velocity,
+        force_delay=force_delay,
+        stroke_tolerance=stroke_tolerance,
     )
     say("reading the manifest")
     man = read_manifest(manifest, columns=columns, units=units, current_pattern=current_pattern)
@@ -386,6 +390,8 @@ def identify(
             "remove_offset": remove_offset,
             "max_cycles": max_cycles,
             "peak_velocity": peak_velocity,
+            "force_delay": force_delay,
+            "stroke_tolerance": stroke_tolerance,
             "start": None if start is None else str(getattr(start, "name", start)),
             "bands": band_list,
             "multistart": multistart,

@@ -11,15 +11,20 @@ such a loop and says what it did:
 3. derives missing signals: velocity and acceleration by a smoothing Savitzky-Golay
    differentiator (cubic, window 1/20 of the excitation period, at least 5 samples;
    :func:`smooth_derivative`), displacement by integrating velocity (drift removed);
-4. cuts the record into whole cycles (the last ones), keeps the trailing run of
-   steady cycles (amplitude and force range within ``steady_tolerance`` of the steady
-   value) and resamples each cycle to ``points_per_cycle`` points starting at the
-   upward zero crossing of the displacement (phase 0), as in
+4. finds the plateau: cuts the record into whole cycles where they fit its steady
+   state best (16 cuts per period are tried) and keeps the longest run of consistent
+   cycles, wherever it is: between a ramp-in and a ramp-out, in a record that starts
+   or stops mid-ramp, after a first-cycle transient (:mod:`~mrsuspension.identify.
+   plateau`); a test with two cycles or more and no two consistent ones is refused.
+   Each kept cycle is resampled to ``points_per_cycle`` points starting at the upward
+   zero crossing of the displacement (phase 0), as in
    :func:`mrsuspension.characterisation.harmonic_loop`;
 5. averages the kept cycles (phase averaging), optionally removes the mean force
    (accumulator preload), and sets the peak velocity ``v_m`` used by the
-   dissertation's models: ``2 pi f a_m`` from the manifest, or the amplitude of the
-   fundamental of the measured velocity.
+   dissertation's models: ``2 pi f a_m`` from the manifest when the cycles fitted move
+   at it, else the amplitude of the fundamental of their measured velocity. The
+   velocity checks (a velocity column must be the stroke's derivative) and the stroke
+   amplitude are measured on the cycles fitted.
 
 Examples
 --------
@@ -44,6 +49,12 @@ import numpy.typing as npt
 
 from mrsuspension.dampers.peak_velocity import V_LIMIT
 from mrsuspension.errors import ValidationError
+from mrsuspension.identify.plateau import (
+    PlateauRun,
+    choose_plateau,
+    consistent_runs,
+    no_plateau_message,
+)
 from mrsuspension.identify.readers import RawTest, TestDataError
 
 __all__ = [
@@ -59,6 +70,10 @@ FloatArray = npt.NDArray[np.float64]
 
 PEAK_VELOCITY_SOURCES = ("auto", "nominal", "measured")
 
+#: Largest force-channel delay [s] :class:`PreprocessOptions` compensates (a load cell's
+#: conditioning delays by milliseconds; a tenth of a second is a mistaken unit).
+MAX_FORCE_DELAY = 0.1
+
 
 @dataclass(frozen=True)
 class PreprocessOptions:
@@ -72,24 +87,40 @@ class PreprocessOptions:
         Subtract the mean force of the loop (a gas-spring/accumulator preload that the
         symmetric models cannot represent). Do not use it for asymmetric dampers.
     max_cycles : int, optional
-        Average at most this many of the last steady cycles (default: all of them).
+        Average at most this many of the last cycles of the plateau (default: all of
+        them).
     steady_tolerance : float
-        A cycle is steady when its stroke amplitude and force range are within this
-        fraction of the steady value (median of the later half of the cycles).
+        Cycles are consistent (:mod:`~mrsuspension.identify.plateau`) when their force
+        ranges (peak to peak) agree within this fraction: the largest exceeds the
+        smallest by at most ``steady_tolerance``. Loose: 2 % force noise scatters the
+        range by about 1 %.
+    stroke_tolerance : float
+        ... and their stroke amplitudes (least-squares sines over each cycle) within
+        this fraction. Tight: a rig holds the amplitude of a plateau to a fraction of
+        a percent, and the cycles of a ramp differ by the ramp's step.
     peak_velocity : {"auto", "nominal", "measured"}
         v_m for the dissertation's models: ``2 pi f a_m`` from the manifest
-        (``"nominal"``), the fundamental of the measured velocity (``"measured"``), or
-        nominal when the manifest gives frequency and amplitude, else measured.
+        (``"nominal"``), the fundamental of the measured velocity over the cycles fitted
+        (``"measured"``), or (``"auto"``) nominal when the manifest gives frequency and
+        amplitude and the cycles fitted move at that speed (``2 pi f`` times their
+        stroke amplitude within :data:`NOMINAL_AGREEMENT`), else measured.
     smoothing : float
         Savitzky-Golay window of the differentiator as a fraction of the period.
+    force_delay : float
+        Delay of the recorded force behind the motion [s] (a load cell and its
+        conditioning, e.g. an anti-aliasing filter's group delay: 1-3 ms is common),
+        compensated by reading the force that much later. No model can absorb a delay:
+        its phase lag grows with the frequency.
     """
 
     points_per_cycle: int = 360
     remove_offset: bool = False
     max_cycles: int | None = None
     steady_tolerance: float = 0.05
+    stroke_tolerance: float = 0.01
     peak_velocity: str = "auto"
     smoothing: float = 0.05
+    force_delay: float = 0.0
 
     def __post_init__(self) -> None:
         if not (isinstance(self.points_per_cycle, int) and 16 <= self.points_per_cycle <= 100_000):
@@ -104,6 +135,10 @@ class PreprocessOptions:
             raise ValidationError(
                 f"steady_tolerance must be in (0, 1]; got {self.steady_tolerance!r}"
             )
+        if not 0.0 < self.stroke_tolerance <= 1.0:
+            raise ValidationError(
+                f"stroke_tolerance must be in (0, 1]; got {self.stroke_tolerance!r}"
+            )
         if self.peak_velocity not in PEAK_VELOCITY_SOURCES:
             raise ValidationError(
                 f"peak_velocity must be one of {', '.join(PEAK_VELOCITY_SOURCES)}; "
@@ -111,6 +146,12 @@ class PreprocessOptions:
             )
         if not 0.0 < self.smoothing <= 0.5:
             raise ValidationError(f"smoothing must be in (0, 0.5]; got {self.smoothing!r}")
+        if not (
+            isinstance(self.force_delay, int | float) and 0.0 <= self.force_delay <= MAX_FORCE_DELAY
+        ):
+            raise ValidationError(
+                f"force_delay must be in [0, {MAX_FORCE_DELAY:g}] s; got {self.force_delay!r}"
+            )
 
 
 @dataclass(frozen=True)
@@ -130,7 +171,8 @@ class Loop:
 
     Arrays over one period starting at phase 0 (displacement rising through its mean):
     ``time`` [s], ``stroke`` [m], ``velocity`` [m/s], ``acceleration`` [m/s^2],
-    ``force`` [N], ``current`` [A]. ``notes`` say what pre-processing did. With
+    ``force`` [N], ``current`` [A]. ``notes`` say what pre-processing did; ``span`` is
+    the record time [s] where the first cycle used starts and the last one ends. With
     ``offset_removed`` the loop's mean force was subtracted, and the fit compares it with
     the model loop minus its own mean.
     """
@@ -153,6 +195,7 @@ class Loop:
     force_offset: float = 0.0
     offset_removed: bool = False
     notes: tuple[str, ...] = field(default=())
+    span: tuple[float, float] = (0.0, 0.0)
 
     @property
     def mean_current(self) -> float:
@@ -298,6 +341,20 @@ MAX_BAD_ROWS = 0.02
 #: derivative window then spans under half a period; 40 per cycle is common at 200 Hz).
 MIN_SAMPLES_PER_CYCLE = 12
 
+#: Largest relative difference between the velocity column's amplitude and 2 pi f times
+#: the stroke amplitude before a warning (a unit or column mix-up).
+VELOCITY_TOLERANCE = 0.05
+
+#: Largest difference [degrees] between the velocity column's phase lead on the stroke
+#: and a quarter period before a warning (a flipped sign, a column that is not the
+#: stroke's derivative).
+VELOCITY_PHASE_TOLERANCE = 20.0
+
+#: ``--peak-velocity auto``: the manifest's ``2 pi f a_m`` is the v_m of a test when the
+#: cycles fitted move at it within this fraction (``2 pi f`` times their stroke
+#: amplitude); otherwise their measured velocity amplitude is.
+NOMINAL_AGREEMENT = 0.02
+
 #: Peak force [N] outside which the declared force unit is implausible for a damper
 #: (a kN record declared in N peaks below 1 N; an N record declared in kN above 1 MN).
 PLAUSIBLE_FORCE = (1.0, 1e6)
@@ -438,47 +495,163 @@ def _cycle_times(fit: HarmonicFit, start: float, n_points: int) -> FloatArray:
     return offsets + m * period
 
 
+#: Ways of cutting a record into whole cycles tried per period: the cycles' windows start
+#: at the record's end minus ``j / ALIGNMENTS`` of a period, ``j = 0 .. ALIGNMENTS - 1``
+#: (``j = 0``: aligned to the end, as a record that is steady throughout is cut).
+ALIGNMENTS = 16
+
+
+def _window_metrics(
+    t: FloatArray, x: FloatArray, force: FloatArray, frequency: float, starts: FloatArray
+) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """Stroke amplitude, force range and half-period stroke amplitudes of each
+    one-period window ``[s, s + T)``.
+
+    The stroke amplitude is ``sqrt(2)`` times the RMS of the window's raw stroke samples
+    about their mean, after the record's offset and linear drift (those of a least-
+    squares sine at ``frequency`` over the whole record) are removed; all windows at
+    once, from running sums. An RMS, unlike a sine fitted to the window, weighs every
+    sample alike: a window overlapping a ramp shows a smaller stroke. The same figure
+    over each half of the window (about the whole window's mean; shape ``(n, 2)``)
+    shows a stroke that changes within the window. The force range is the peak to peak
+    of the window's force samples.
+    """
+    dt = float(t[1] - t[0])
+    period = 1.0 / frequency
+    _, coef = _sine_fit(t, x, frequency)
+    mid, span = 0.5 * (t[0] + t[-1]), max(float(t[-1] - t[0]), 1e-12)
+    y = x - coef[0] - coef[1] * (t - mid) / span
+    # each sample stands for the cell [t - dt/2, t + dt/2); a window's sums weigh its
+    # two end cells by the fraction inside it, so that every window spans exactly one
+    # period (a whole number of samples would not: 40.5 samples per period cut into
+    # 40 or 41 would scatter the RMS by half a percent)
+    vals = np.vstack([y, y * y])
+    cum = np.zeros((2, t.size + 1))
+    np.cumsum(vals, axis=1, out=cum[:, 1:])
+    last = t.size - 1
+
+    def cell_sums(c0: FloatArray, c1: FloatArray) -> FloatArray:
+        """Sums of y and y^2 over cell coordinates [c0, c1) (shape (2, n))."""
+        a = np.clip(np.floor(c0).astype(np.intp), 0, last)
+        b = np.clip(np.floor(c1).astype(np.intp), 0, last)
+        full = cum[:, b] - cum[:, np.minimum(a + 1, b)]
+        head = vals[:, a] * np.where(a == b, c1 - c0, a + 1 - c0)
+        tail = np.where(a == b, 0.0, vals[:, b] * (c1 - b))
+        return np.asarray(full + head + tail, dtype=float)
+
+    c_start = (starts - t[0]) / dt + 0.5
+    c_mid = c_start + 0.5 * period / dt
+    c_end = c_start + period / dt
+    whole = cell_sums(c_start, c_end)
+    mean = whole[0] / (c_end - c_start)
+
+    def rms_amplitude(sums: FloatArray, width: FloatArray) -> FloatArray:
+        return np.sqrt(2.0 * np.maximum((sums[1] - 2 * mean * sums[0]) / width + mean**2, 0.0))
+
+    amplitudes = rms_amplitude(whole, c_end - c_start)
+    halves = np.column_stack(
+        [
+            rms_amplitude(cell_sums(c_start, c_mid), c_mid - c_start),
+            rms_amplitude(cell_sums(c_mid, c_end), c_end - c_mid),
+        ]
+    )
+    i0 = np.searchsorted(t, starts - 0.5 * dt)
+    i1 = np.searchsorted(t, starts + period - 0.5 * dt)
+    ranges = np.array([np.ptp(force[a:b]) for a, b in zip(i0, i1, strict=True)])
+    return amplitudes, ranges, halves
+
+
 @dataclass(frozen=True)
 class _Cut:
-    cycles: dict[str, list[FloatArray]]
-    n_full: int
+    """The record cut into whole cycles (window starts), their figures, and the plateau."""
+
+    starts: FloatArray
     amplitudes: FloatArray
     ranges: FloatArray
-    ref_amplitude: float
-    ref_range: float
-    bad: npt.NDArray[np.intp]
-    first: int
+    run: PlateauRun
+    in_record: int  # whole cycles in the record (those of the end-aligned cut)
+
+    @property
+    def n_full(self) -> int:
+        return int(self.starts.size)
 
 
-def _steady_cycles(
+def _plateau_cut(
     t: FloatArray,
-    signals: dict[str, FloatArray],
-    fit: HarmonicFit,
-    n_pts: int,
-    tolerance: float,
+    x: FloatArray,
+    force: FloatArray,
+    frequency: float,
+    opts: PreprocessOptions,
 ) -> _Cut:
-    """Cut the record into whole cycles (aligned to its end), resample each, and find
-    the trailing run of steady ones."""
-    period = 1.0 / fit.frequency
+    """Cut the record into whole cycles where they fit its plateau best (module
+    :mod:`~mrsuspension.identify.plateau`): try :data:`ALIGNMENTS` cuts per period, find
+    the longest run of consistent cycles of each, and keep the best run of all."""
+    period = 1.0 / frequency
     dt = float(t[1] - t[0])
-    t_end = float(t[-1])
-    n_full = math.floor((t_end - float(t[0]) + 0.5 * dt) / period + 1e-9)
-    cycles: dict[str, list[FloatArray]] = {k: [] for k in ("x", "v", "a", "F", "i")}
-    for k in range(n_full):
-        tau = _cycle_times(fit, t_end - (n_full - k) * period, n_pts)
-        for key, series in signals.items():
-            cycles[key].append(np.interp(tau, t, series))
-    amps = np.array([np.ptp(c) / 2 for c in cycles["x"]])
-    ranges = np.array([np.ptp(c) for c in cycles["F"]])
-    later = slice(n_full // 2, None)
-    ref_amp = float(np.median(amps[later]))
-    ref_range = max(float(np.median(ranges[later])), 1e-300)
-    unsteady = (np.abs(amps / ref_amp - 1) > tolerance) | (
-        np.abs(ranges / ref_range - 1) > tolerance
-    )
-    bad = np.flatnonzero(unsteady)
-    first = min(int(bad[-1]) + 1, n_full - 1) if bad.size else 0
-    return _Cut(cycles, n_full, amps, ranges, ref_amp, ref_range, bad, first)
+    t0, t_end = float(t[0]), float(t[-1])
+    per_alignment: list[FloatArray] = []
+    for j in range(ALIGNMENTS):
+        end = t_end - j * period / ALIGNMENTS
+        n = math.floor((end - t0 + 0.5 * dt) / period + 1e-9)
+        per_alignment.append(end - period * np.arange(n, 0, -1, dtype=float))
+    starts_all = np.concatenate(per_alignment)
+    amps_all, ranges_all, halves_all = _window_metrics(t, x, force, frequency, starts_all)
+    runs: list[PlateauRun] = []
+    figures: list[tuple[FloatArray, FloatArray]] = []
+    k = 0
+    for j, starts in enumerate(per_alignment):
+        a, r = amps_all[k : k + starts.size], ranges_all[k : k + starts.size]
+        halves = halves_all[k : k + starts.size]
+        k += starts.size
+        figures.append((a, r))
+        runs += consistent_runs(
+            a,
+            r,
+            stroke_tolerance=opts.stroke_tolerance,
+            range_tolerance=opts.steady_tolerance,
+            alignment=j,
+            positions=(starts - t0) / period,
+            halves=halves,
+        )
+    if not runs:
+        raise TestDataError("no motion: the stroke amplitude is zero in every cycle")
+    best = choose_plateau(runs, stroke_tolerance=opts.stroke_tolerance)
+    if best.length < 2 <= per_alignment[0].size:
+        a, r = figures[0]
+        raise TestDataError(
+            no_plateau_message(
+                a,
+                r,
+                stroke_tolerance=opts.stroke_tolerance,
+                range_tolerance=opts.steady_tolerance,
+                frequency=frequency,
+            )
+        )
+    a, r = figures[best.alignment]
+    return _Cut(per_alignment[best.alignment], a, r, best, per_alignment[0].size)
+
+
+def _dropped_text(
+    side: str, idx: range, cut: _Cut, ref_amp: float, ref_range: float, tol: float
+) -> str:
+    """``"3 leading cycles dropped as not steady (ramp-in: stroke 2.1-8.9 mm)"``."""
+    n = len(idx)
+    what = f"{n} {side} cycle{'s' if n > 1 else ''} dropped as not steady"
+    amps = cut.amplitudes[idx.start : idx.stop]
+    ranges = cut.ranges[idx.start : idx.stop]
+    dev_a = amps / ref_amp - 1
+    dev_r = ranges / ref_range - 1
+    if np.all(np.abs(dev_a) <= tol):  # same stroke: a force transient
+        worst = int(np.argmax(np.abs(dev_r)))
+        return (
+            f"{what} (cycle {idx.start + worst + 1}: stroke {100 * dev_a[worst]:+.1f} %, force "
+            f"range {100 * dev_r[worst]:+.1f} % off the plateau's)"
+        )
+    ramp = {"leading": "ramp-in", "trailing": "ramp-out"}[side]
+    kind = ramp if np.all(amps < ref_amp) else "stroke amplitude off the plateau's"
+    lo, hi = 1e3 * float(amps.min()), 1e3 * float(amps.max())
+    strokes = f"{lo:.3g} mm" if n == 1 else f"{lo:.3g}-{hi:.3g} mm"
+    return f"{what} ({kind}: stroke {strokes})"
 
 
 def preprocess(
@@ -522,6 +695,25 @@ def preprocess(
     dt = float(t[1] - t[0])
     x, v, a, force = sig["displacement"], sig["velocity"], sig["acceleration"], sig["force"]
     assert force is not None
+    if opts.force_delay > 0:
+        # the force recorded at t belongs to the motion at t - delay: delay the motion
+        # (smooth signals, interpolated by cubic splines) rather than advance the force
+        # (a yield knee, which interpolation would round)
+        if opts.force_delay > 0.25 * float(t[-1] - t[0]):
+            raise TestDataError(
+                f"the force delay {1e3 * opts.force_delay:g} ms is more than a quarter of the "
+                f"record ({float(t[-1] - t[0]):.4g} s)"
+            )
+        from scipy.interpolate import CubicSpline
+
+        x, v, a = (
+            None if y is None else np.asarray(CubicSpline(t, y)(t - opts.force_delay), dtype=float)
+            for y in (x, v, a)
+        )
+        notes.append(
+            f"motion delayed by {1e3 * opts.force_delay:g} ms to meet the force (the load "
+            "cell's delay, force_delay)"
+        )
     x_from_file, v_from_file = x is not None, v is not None
     motion = x if x is not None else v
     assert motion is not None
@@ -581,50 +773,68 @@ def preprocess(
     if spc < opts.points_per_cycle:
         notes.append(f"upsampled from {spc:.0f} samples per cycle (linear interpolation)")
 
-    # whole cycles, aligned to the end of the record (the steadiest part)
+    # whole cycles, cut where they fit the record's plateau best (identify.plateau)
     n_pts = opts.points_per_cycle
-    signals = {"x": x, "v": v, "a": a, "F": force}
-    if sig["current"] is not None:
-        signals["i"] = sig["current"]
-    cut = _steady_cycles(t, signals, fit, n_pts, opts.steady_tolerance)
-    if cut.first > 0:
-        # a transient (e.g. a ramp-in) biases the frequency: detect it again on the
-        # steady part only and cut again
-        t_steady = float(t[-1]) - (cut.n_full - cut.first) * period
-        sel = t >= t_steady - 0.5 * dt
+    cut = _plateau_cut(t, x, force, f, opts)
+    if cut.run.length < cut.n_full:
+        # ramps and transients bias the frequency: detect it again on the plateau only
+        # and cut again
+        span0 = float(cut.starts[cut.run.start])
+        sel = (t >= span0 - 0.5 * dt) & (t <= span0 + cut.run.length * period + 0.5 * dt)
         if np.count_nonzero(sel) >= 16:
             refit = detect_frequency(t[sel], motion[sel], hint=f)
             if refit.explained >= 0.5 and abs(refit.frequency / f - 1) < 0.05:
                 fit, f, period = refit, refit.frequency, 1.0 / refit.frequency
-                cut = _steady_cycles(t, signals, fit, n_pts, opts.steady_tolerance)
-    cyc, amps, ranges = cut.cycles, cut.amplitudes, cut.ranges
-    bad, first, n_full = cut.bad, cut.first, cut.n_full
-    ref_amp, ref_range = cut.ref_amplitude, cut.ref_range
+                cut = _plateau_cut(t, x, force, f, opts)
+    run, n_full = cut.run, cut.n_full
+    first = run.start
     if opts.max_cycles is not None:
-        first = max(first, n_full - opts.max_cycles)
-    kept = list(range(first, n_full))
-    text = f"{n_full} whole cycle{'s' if n_full > 1 else ''} at {f:.4g} Hz"
-    if bad.size:
-        worst = int(bad[np.argmax(np.abs(ranges[bad] / ref_range - 1))])
-        text += (
-            f"; {cut.first} leading cycle{'s' if cut.first > 1 else ''} dropped as not steady (cycle "
-            f"{worst + 1}: stroke {100 * (amps[worst] / ref_amp - 1):+.1f} %, force range "
-            f"{100 * (ranges[worst] / ref_range - 1):+.1f} % off the steady value)"
-        )
-    if opts.max_cycles is not None and first > cut.first:
-        text += f"; the last {len(kept)} used (max_cycles)"
+        first = max(first, run.stop - opts.max_cycles)
+    kept = list(range(first, run.stop))
+    signals = {"x": x, "v": v, "a": a, "F": force}
+    if sig["current"] is not None:
+        signals["i"] = sig["current"]
+    cyc: dict[str, list[FloatArray]] = {key: [] for key in ("x", "v", "a", "F", "i")}
+    for k in kept:
+        tau = _cycle_times(fit, float(cut.starts[k]), n_pts)
+        for key, series in signals.items():
+            cyc[key].append(np.interp(tau, t, series))
+    span = (float(cut.starts[kept[0]]), float(cut.starts[kept[-1]]) + period)
+    plateau_amps = cut.amplitudes[run.start : run.stop]
+    plateau_ranges = cut.ranges[run.start : run.stop]
+    ref_amp, ref_range = float(np.median(plateau_amps)), float(np.median(plateau_ranges))
+    text = f"{cut.in_record} whole cycle{'s' if cut.in_record > 1 else ''} at {f:.4g} Hz"
     if n_full == 1:
         text += "; only one cycle, steady state not verified"
-    loop_f = np.mean([cyc["F"][k] for k in kept], axis=0)
+    else:
+        of = f"of {n_full}" if n_full == cut.in_record else f"of {n_full} (cut to fit the plateau)"
+        text += (
+            f"; cycles {kept[0] + 1}-{kept[-1] + 1} {of} used (t = {span[0]:.6g}-{span[1]:.6g} "
+            f"s; plateau: stroke {1e3 * plateau_amps.min():.4g}-{1e3 * plateau_amps.max():.4g} "
+            f"mm, force range {plateau_ranges.min():.4g}-{plateau_ranges.max():.4g} N"
+        )
+        if opts.max_cycles is not None and first > run.start:
+            text += f"; the last {len(kept)} of its {run.length} cycles (max_cycles)"
+        text += ")"
+        tol = opts.stroke_tolerance
+        if run.start > 0:
+            text += "; " + _dropped_text(
+                "leading", range(0, run.start), cut, ref_amp, ref_range, tol
+            )
+        if run.stop < n_full:
+            text += "; " + _dropped_text(
+                "trailing", range(run.stop, n_full), cut, ref_amp, ref_range, tol
+            )
+    loop_f = np.mean(cyc["F"], axis=0)
     spread = 0.0
     if len(kept) > 1:
-        dev = np.array([cyc["F"][k] - loop_f for k in kept])
+        dev = np.array(cyc["F"]) - loop_f
         spread = float(np.sqrt(np.mean(dev**2)) / max(np.ptp(loop_f), 1e-300))
         text += f"; {len(kept)} averaged (cycle-to-cycle spread {100 * spread:.2g} % of the force range)"
     notes.append(text)
-    loop_x = np.mean([cyc["x"][k] for k in kept], axis=0)
-    loop_v = np.mean([cyc["v"][k] for k in kept], axis=0)
-    loop_a = np.mean([cyc["a"][k] for k in kept], axis=0)
+    loop_x = np.mean(cyc["x"], axis=0)
+    loop_v = np.mean(cyc["v"], axis=0)
+    loop_a = np.mean(cyc["a"], axis=0)
     offset = 0.0
     if opts.remove_offset:
         offset = float(np.mean(loop_f))
@@ -638,14 +848,14 @@ def preprocess(
     if current is not None:
         loop_i = np.full(n_pts, float(current))
         if cyc["i"]:
-            measured = float(np.mean([cyc["i"][k] for k in kept]))
+            measured = float(np.mean(cyc["i"]))
             if abs(measured - current) > max(0.005, 0.05 * abs(current)):
                 notes.append(
                     f"warning: the current column averages {measured:.4g} A; the manifest's "
                     f"{current:g} A is used"
                 )
     elif cyc["i"]:
-        per_point = np.mean([cyc["i"][k] for k in kept], axis=0)
+        per_point = np.mean(cyc["i"], axis=0)
         mean_i = float(per_point.mean())
         if np.ptp(per_point) > 0.1 * abs(mean_i) + 0.02:
             loop_i = per_point
@@ -670,26 +880,37 @@ def preprocess(
         notes.append("small negative currents (sensor offset) clipped to 0 A")
 
     # peak velocity v_m for the dissertation's models and the stroke amplitude: least-
-    # squares sines (with offset and drift) over the raw samples of the steady cycles at
+    # squares sines (with offset and drift) over the raw samples of the cycles fitted, at
     # the detected frequency. Measured on the samples themselves, not on the resampled,
     # phase-averaged loop, these figures do not depend on the interpolation, the cycle
-    # alignment or the sample rate.
-    t_steady = float(t[-1]) - len(kept) * period
-    sel = t >= t_steady - 0.5 * dt
+    # alignment or the sample rate; measured on the cycles fitted, not on the record, they
+    # describe the loop the model is compared with (not a ramp).
+    sel = (t >= span[0] - 0.5 * dt) & (t <= span[1] + 0.5 * dt)
     _, coef_v = _sine_fit(t[sel], v[sel], f)
     _, coef_x = _sine_fit(t[sel], x[sel], f)
     measured_vm = float(math.hypot(coef_v[2], coef_v[3]))
     loop_amplitude = float(math.hypot(coef_x[2], coef_x[3]))
-    how = f"least-squares sine over the {len(kept)} steady cycle{'s' if len(kept) > 1 else ''}"
+    how = f"least-squares sine over the {len(kept)} cycle{'s' if len(kept) > 1 else ''} fitted"
     v_what = "of the velocity column" if v_from_file else "of the derived velocity"
     if x_from_file and v_from_file and loop_amplitude > 0:
+        # the velocity column must be the derivative of the stroke: amplitude 2 pi f a,
+        # leading the stroke by a quarter period
         ratio = measured_vm / (2.0 * math.pi * f * loop_amplitude)
-        if abs(ratio - 1) > 0.05:
+        lead = math.degrees(math.atan2(coef_v[2], coef_v[3]) - math.atan2(coef_x[2], coef_x[3]))
+        lead = (lead + 180.0) % 360.0 - 180.0
+        if abs(ratio - 1) > VELOCITY_TOLERANCE:
             notes.append(
                 f"warning: the velocity column's amplitude {measured_vm:.4g} m/s is "
                 f"{100 * (ratio - 1):+.0f} % off 2 pi f times the stroke amplitude "
                 f"({2 * math.pi * f * loop_amplitude:.4g} m/s, {how}); check the velocity "
                 "unit and column"
+            )
+        elif abs(lead - 90.0) > VELOCITY_PHASE_TOLERANCE:
+            flipped = abs(lead + 90.0) <= VELOCITY_PHASE_TOLERANCE
+            notes.append(
+                f"warning: the velocity column leads the stroke by {lead:.0f} degrees, not "
+                f"90 ({how}): it is not the stroke's derivative; "
+                + ("is its sign flipped? (--columns -v)" if flipped else "check the column")
             )
     has_nominal = frequency is not None and amplitude is not None
     if opts.peak_velocity == "nominal" and not has_nominal:
@@ -699,13 +920,25 @@ def preprocess(
     if has_nominal and opts.peak_velocity != "measured":
         assert frequency is not None
         assert amplitude is not None
-        vm = 2.0 * math.pi * frequency * amplitude
-        notes.append(f"v_m = 2 pi f a_m = {vm:.4g} m/s (manifest)")
-        if abs(measured_vm / vm - 1) > 0.1:
+        nominal_vm = 2.0 * math.pi * frequency * amplitude
+        # the manifest's v_m describes the cycles fitted when their motion agrees with it
+        motion_vm = 2.0 * math.pi * f * loop_amplitude
+        agrees = abs(motion_vm / nominal_vm - 1) <= NOMINAL_AGREEMENT
+        if opts.peak_velocity == "nominal" or agrees:
+            vm = nominal_vm
+            notes.append(f"v_m = 2 pi f a_m = {vm:.4g} m/s (manifest)")
+            if abs(measured_vm / vm - 1) > 0.1:
+                notes.append(
+                    f"warning: the velocity amplitude {measured_vm:.4g} m/s ({how} {v_what}) "
+                    f"differs by {100 * (measured_vm / vm - 1):+.0f} % from 2 pi f a_m = "
+                    f"{vm:.4g} m/s"
+                )
+        else:
+            vm = measured_vm
             notes.append(
-                f"warning: the velocity amplitude {measured_vm:.4g} m/s ({how} {v_what}) "
-                f"differs by {100 * (measured_vm / vm - 1):+.0f} % from 2 pi f a_m = "
-                f"{vm:.4g} m/s"
+                f"v_m = {vm:.4g} m/s (amplitude {v_what}, {how}): the manifest's 2 pi f a_m "
+                f"= {nominal_vm:.4g} m/s is {100 * (nominal_vm / motion_vm - 1):+.1f} % off "
+                f"the fitted cycles' 2 pi f a = {motion_vm:.4g} m/s"
             )
     else:
         vm = measured_vm
@@ -732,10 +965,11 @@ def preprocess(
         peak_velocity=vm,
         nominal_frequency=frequency,
         nominal_amplitude=amplitude,
-        cycles_found=n_full,
+        cycles_found=cut.in_record,
         cycles_used=len(kept),
         cycle_spread=spread,
         force_offset=offset,
         offset_removed=opts.remove_offset,
         notes=tuple(raw.notes) + tuple(notes),
+        span=span,
     )

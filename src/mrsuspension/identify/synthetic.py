@@ -5,7 +5,9 @@ on known parameters (the self-consistency test of the test suite), and in exampl
 Each test is a harmonic stroke ``x = a_m sin(2 pi f t + phase)`` at constant current,
 sampled at ``sample_rate`` over ``cycles`` periods plus a random fraction of one and a
 random start phase, as a rig record would be; Gaussian noise of ``noise`` times the
-test's peak force is added to the force.
+test's peak force is added to the force. A servo-hydraulic rig's ramps (in, out, records
+cut mid-ramp), a load cell's delay and drift are options; :func:`ramped_campaign` writes
+:func:`field_campaign`'s tests with all of them.
 
 Examples
 --------
@@ -18,8 +20,10 @@ Examples
 
 from __future__ import annotations
 
+import json
 import math
 from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
@@ -30,17 +34,99 @@ from mrsuspension.dampers import WangSymmetric, make_damper
 from mrsuspension.errors import ValidationError, check_range
 
 __all__ = [
+    "ENVELOPES",
     "FIELD_CURRENTS",
     "FIELD_PAIRS",
     "FIELD_PARAMETERS",
     "LAYOUTS",
+    "RAMP_SHAPES",
+    "RampEnvelope",
     "example_campaign",
     "field_campaign",
+    "ramped_campaign",
     "synthetic_campaign",
 ]
 
 #: File layouts written by :func:`synthetic_campaign` (``"mixed"`` cycles through them).
 LAYOUTS = ("csv", "tsv", "whitespace", "mat")
+
+#: Envelopes of a rig's amplitude ramps (:class:`RampEnvelope`).
+RAMP_SHAPES = ("linear", "cosine")
+
+#: The sidecar of a campaign with ramps, cuts, a force delay or drift: each test's
+#: envelope and plateau span (:func:`synthetic_campaign`).
+ENVELOPES = "envelopes.json"
+
+
+@dataclass(frozen=True)
+class RampEnvelope:
+    """The stroke-amplitude envelope of a ramped rig test, 0 to 1.
+
+    In periods ``u = cut_start + f t`` of the test: a ramp from 0 to 1 over
+    ``ramp_in`` periods, a plateau of ``plateau`` periods, a ramp back to 0 over
+    ``ramp_out`` periods, then rest (0); without a ramp-out, the plateau goes on. The
+    record starts ``cut_start`` periods into the ramp-in. Calling it on record times
+    ``t`` [s] gives the envelope and its first two time derivatives.
+
+    Examples
+    --------
+    >>> env = RampEnvelope(2.0, ramp_in=4, plateau=3, ramp_out=2, cut_start=1.5)
+    >>> env.plateau_span  # record time [s] of the plateau: 2.5 to 5.5 periods
+    (1.25, 2.75)
+    >>> [round(float(e), 3) for e in env(np.array([0.0, 1.0, 2.0, 3.0, 4.0]))[0]]
+    [0.375, 0.875, 1.0, 0.75, 0.0]
+    """
+
+    frequency: float
+    ramp_in: int = 0
+    plateau: int = 1
+    ramp_out: int = 0
+    cut_start: float = 0.0
+    shape: str = "linear"
+
+    @property
+    def steady(self) -> bool:
+        """No ramp: the envelope is 1 throughout."""
+        return self.ramp_in == 0 and self.ramp_out == 0
+
+    @property
+    def plateau_span(self) -> tuple[float, float]:
+        """Record time [s] where the plateau starts and ends (may run past the record)."""
+        start = (self.ramp_in - self.cut_start) / self.frequency
+        end = start + self.plateau / self.frequency if self.ramp_out else math.inf
+        return (start, end)
+
+    def _ramp(self, s: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Shape of a rising ramp on s in [0, 1] and its derivatives in s."""
+        if self.shape == "cosine":
+            return (
+                0.5 * (1.0 - np.cos(math.pi * s)),
+                0.5 * math.pi * np.sin(math.pi * s),
+                0.5 * math.pi**2 * np.cos(math.pi * s),
+            )
+        return s, np.ones_like(s), np.zeros_like(s)
+
+    def __call__(self, t: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        u = self.cut_start + self.frequency * np.asarray(t, dtype=float)
+        e, de, dde = np.ones_like(u), np.zeros_like(u), np.zeros_like(u)
+        if self.ramp_in:
+            up = u < self.ramp_in
+            s = np.clip(u[up] / self.ramp_in, 0.0, 1.0)
+            g, dg, ddg = self._ramp(s)
+            moving = s > 0  # before the ramp-in (u < 0): at rest
+            e[up] = g
+            de[up] = np.where(moving, dg * self.frequency / self.ramp_in, 0.0)
+            dde[up] = np.where(moving, ddg * (self.frequency / self.ramp_in) ** 2, 0.0)
+        if self.ramp_out:
+            top = self.ramp_in + self.plateau
+            down = u > top
+            s = np.clip(1.0 - (u[down] - top) / self.ramp_out, 0.0, 1.0)
+            g, dg, ddg = self._ramp(s)
+            moving = s > 0
+            e[down] = g
+            de[down] = np.where(moving, -dg * self.frequency / self.ramp_out, 0.0)
+            dde[down] = np.where(moving, ddg * (self.frequency / self.ramp_out) ** 2, 0.0)
+        return e, de, dde
 
 
 def _write(path: Path, layout: str, t: np.ndarray, x: np.ndarray, v: np.ndarray | None,
@@ -78,6 +164,29 @@ def _write(path: Path, layout: str, t: np.ndarray, x: np.ndarray, v: np.ndarray 
     return "t,x,v,F" if v is not None else "t,x,F"
 
 
+def _motion(
+    tq: np.ndarray, c: TestCondition, phase: float, env: RampEnvelope
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Stroke, velocity, acceleration and v_m of a test at times ``tq``."""
+    w = 2.0 * math.pi * c.frequency
+    if env.steady:  # (today's files, to the last bit)
+        return (
+            c.amplitude * np.sin(w * tq + phase),
+            c.amplitude * w * np.cos(w * tq + phase),
+            -c.amplitude * w * w * np.sin(w * tq + phase),
+            np.asarray(c.peak_velocity),
+        )
+    # the envelope e(t) and its derivatives enter the motion
+    e, de, dde = env(tq)
+    sn, cs = np.sin(w * tq + phase), np.cos(w * tq + phase)
+    return (
+        c.amplitude * e * sn,
+        c.amplitude * (de * sn + e * w * cs),
+        c.amplitude * (dde * sn + 2.0 * de * w * cs - e * w * w * sn),
+        c.peak_velocity * e,  # v_m of the instantaneous amplitude
+    )
+
+
 def _per_test(what: str, value: Any, n: int) -> list[Any]:
     if isinstance(value, int | float | np.integer | np.floating):
         return [value] * n
@@ -104,6 +213,13 @@ def synthetic_campaign(
     stroke_offset: float = 0.0,
     stroke_drift: float = 0.0,
     motion_noise: float = 0.0,
+    ramp_in: int | Sequence[int] = 0,
+    ramp_out: int | Sequence[int] = 0,
+    ramp_shape: str = "linear",
+    cut_start: float | Sequence[float] = 0.0,
+    cut_end: float | Sequence[float] = 0.0,
+    force_delay: float | Sequence[float] = 0.0,
+    force_drift: float = 0.0,
 ) -> Path:
     """Write a synthetic campaign (records and ``manifest.csv``) into ``folder``.
 
@@ -128,7 +244,7 @@ def synthetic_campaign(
         Constant force added to every record [N] (an accumulator preload).
     cycles : int or sequence of int
         Whole periods in each record (plus a random fraction of one); one value per
-        test, or one for all.
+        test, or one for all. With ramps, the periods of the plateau.
     sample_rate : float or sequence of float
         Samples per second [Hz]; one value per test, or one for all.
     layout : {"csv", "tsv", "whitespace", "mat", "mixed"}
@@ -148,6 +264,34 @@ def synthetic_campaign(
     motion_noise : float
         Standard deviation of the noise on the recorded stroke and velocity, as a
         fraction of their amplitudes.
+    ramp_in, ramp_out : int or sequence of int
+        Periods over which a servo-hydraulic rig ramps the stroke amplitude from zero up
+        to the plateau of ``cycles`` periods and back down to zero (0: none); one value
+        per test, or one for all. After a complete ramp-out the record goes on at rest
+        for the random fraction of a period.
+    ramp_shape : {"linear", "cosine"}
+        The envelope of the amplitude over a ramp: linear, or a raised cosine (smooth at
+        both ends; then the last cycles of a long ramp are within a percent of the
+        plateau).
+    cut_start, cut_end : float or sequence of float
+        Periods of the ramp-in missing at the start of the record, and of the ramp-out
+        at its end (a record started or stopped mid-ramp; a fraction cuts mid-cycle); at
+        most ``ramp_in`` and ``ramp_out``.
+    force_delay : float or sequence of float
+        Delay of the recorded force behind the motion [s] (a load cell and its
+        conditioning: a pure delay of 1-3 ms is typical); one value per test, or one
+        for all.
+    force_drift : float
+        Largest slow drift of the load cell [N/s]: each record's force gains a ramp of
+        random slope in ``[-force_drift, force_drift]``.
+
+    With a ramp, the damper sees the envelope: the dissertation's models get the
+    instantaneous amplitude's peak velocity ``v_m(t) = 2 pi f a_m e(t)`` (``e`` the
+    envelope, 0-1), so each ramp cycle's force is what the damper would give on a test
+    at that amplitude; models with internal states run causally through the ramp. With
+    any of the ramp, cut, delay or drift options, ``folder/envelopes.json`` records
+    each test's envelope: its plateau's time span in the record (``plateau_start``,
+    ``plateau_end`` [s]), the ramps, cuts, delay and drift slope.
 
     Returns
     -------
@@ -175,6 +319,28 @@ def synthetic_campaign(
     for n in cycle_list:
         if not (isinstance(n, int | np.integer) and n >= 1):
             raise ValidationError(f"cycles must be integers >= 1; got {n!r}")
+    n_tests = len(conds)
+    ramps_in = _per_test("ramp_in", ramp_in, n_tests)
+    ramps_out = _per_test("ramp_out", ramp_out, n_tests)
+    cuts_start = _per_test("cut_start", cut_start, n_tests)
+    cuts_end = _per_test("cut_end", cut_end, n_tests)
+    delays = _per_test("force_delay", force_delay, n_tests)
+    if ramp_shape not in RAMP_SHAPES:
+        raise ValidationError(
+            f"ramp_shape must be one of {', '.join(RAMP_SHAPES)}; got {ramp_shape!r}"
+        )
+    for k in range(n_tests):
+        for what, n in (("ramp_in", ramps_in[k]), ("ramp_out", ramps_out[k])):
+            if not (isinstance(n, int | np.integer) and n >= 0):
+                raise ValidationError(f"{what} must be integers >= 0 [periods]; got {n!r}")
+        check_range("cut_start", cuts_start[k], 0.0, float(ramps_in[k]), unit="periods")
+        check_range("cut_end", cuts_end[k], 0.0, float(ramps_out[k]), unit="periods")
+        check_range("force_delay", delays[k], 0.0, 1.0, unit="s")
+    check_range("force_drift", force_drift, 0.0, 1e6, unit="N/s")
+    enveloped = (
+        any(ramps_in) or any(ramps_out) or any(delays) or force_drift > 0
+        or any(cuts_start) or any(cuts_end)
+    )  # fmt: skip
     rate_list = _per_test("sample_rate", sample_rate, len(conds))
     for r in rate_list:
         check_range("sample_rate", r, 0.0, 1e7, unit="Hz", low_inclusive=False)
@@ -185,22 +351,30 @@ def synthetic_campaign(
     out = Path(folder)
     out.mkdir(parents=True, exist_ok=True)
     rows = ["file,current,frequency,amplitude,columns,units"]
+    envelopes: list[dict[str, Any]] = []
     for k, c in enumerate(conds, start=1):
         lay = LAYOUTS[(k - 1) % len(LAYOUTS)] if layout == "mixed" else layout
         w = 2.0 * math.pi * c.frequency
         rate = float(rate_list[k - 1])
-        duration = (int(cycle_list[k - 1]) + rng.uniform(0.1, 0.6)) / c.frequency
+        r_in, r_out = int(ramps_in[k - 1]), int(ramps_out[k - 1])
+        c_in, c_out = float(cuts_start[k - 1]), float(cuts_end[k - 1])
+        tail = rng.uniform(0.1, 0.6)
+        periods = r_in + int(cycle_list[k - 1]) + r_out - c_in - c_out
+        duration = (periods + (tail if c_out == 0 else 0.0)) / c.frequency
         t = np.arange(int(duration * rate) + 1) / rate
         phase = rng.uniform(0.0, 2.0 * math.pi)
-        x = c.amplitude * np.sin(w * t + phase)
-        v = c.amplitude * w * np.cos(w * t + phase)
-        a = -c.amplitude * w * w * np.sin(w * t + phase)
+        env = RampEnvelope(c.frequency, r_in, int(cycle_list[k - 1]), r_out, c_in, ramp_shape)
+        delay = float(delays[k - 1])
+
+        x, v, a, vm = _motion(t, c, phase, env)
+        # the load cell's delay: the force recorded at t is the damper's at t - delay
+        xf, vf, af, vmf = _motion(t - delay, c, phase, env) if delay > 0 else (x, v, a, vm)
         if isinstance(damper, WangSymmetric):
-            f = damper.force(x, v, a, c.current, peak_velocity=c.peak_velocity)
+            f = damper.force(xf, vf, af, c.current, peak_velocity=vmf if vmf.ndim else float(vmf))
         elif damper.stateful:
-            f = damper.response(t, x, v, a, c.current).force
+            f = damper.response(t, xf, vf, af, c.current).force
         else:
-            f = damper.force(x, v, a, c.current)
+            f = damper.force(xf, vf, af, c.current)
         f = f + force_offset
         if noise > 0:
             f = f + rng.normal(0.0, noise * float(np.max(np.abs(f))), f.size)
@@ -212,6 +386,9 @@ def synthetic_campaign(
         if motion_noise > 0:
             x_rec = x_rec + rng.normal(0.0, motion_noise * c.amplitude, t.size)
             v_rec = v_rec + rng.normal(0.0, motion_noise * c.amplitude * w, t.size)
+        slope = rng.uniform(-force_drift, force_drift) if force_drift > 0 else 0.0
+        if slope:
+            f = f + slope * t
         suffix = (
             ".mat"
             if lay == "mat"
@@ -222,8 +399,27 @@ def synthetic_campaign(
         units = '"s,mm,mm/s,N"' if spec else ""
         columns = f'"{spec}"' if spec else ""
         rows.append(f"{name},{c.current:g},{c.frequency:g},{c.amplitude:g},{columns},{units}")
+        plateau = env.plateau_span
+        envelopes.append(
+            {
+                "file": name,
+                "plateau_start": plateau[0],
+                "plateau_end": min(plateau[1], float(t[-1])),
+                "duration": float(t[-1]),
+                "ramp_in": r_in,
+                "plateau": int(cycle_list[k - 1]),
+                "ramp_out": r_out,
+                "cut_start": c_in,
+                "cut_end": c_out,
+                "ramp_shape": ramp_shape,
+                "force_delay": delay,
+                "force_drift": slope,
+            }
+        )
     manifest = out / "manifest.csv"
     manifest.write_text("\n".join(rows) + "\n")
+    if enveloped:
+        (out / ENVELOPES).write_text(json.dumps({"tests": envelopes}, indent=1) + "\n")
     return manifest
 
 
@@ -298,6 +494,95 @@ def field_campaign(
         stroke_offset=stroke_offset,
         stroke_drift=stroke_drift,
         motion_noise=motion_noise,
+    )
+
+
+def ramped_campaign(
+    folder: str | Path,
+    *,
+    noise: float = 0.02,
+    seed: int = 0,
+    layout: str = "whitespace",
+    ramps: tuple[int, int] = (2, 10),
+    plateaus: tuple[int, int] = (2, 20),
+    ramp_shape: str = "linear",
+    force_delay: float = 0.002,
+    force_drift: float = 0.05,
+    stroke_offset: float = 0.002,
+    stroke_drift: float = 2e-5,
+    motion_noise: float = 0.002,
+    sample_rate: float | Sequence[float] | None = None,
+) -> Path:
+    """Write :func:`field_campaign`'s 30 tests as a servo-hydraulic rig records them.
+
+    Each test (:data:`FIELD_PAIRS` x :data:`FIELD_CURRENTS`, the damper of
+    :data:`FIELD_PARAMETERS`) ramps its stroke amplitude in over ``ramps`` periods
+    (2-10, drawn per test), holds it on a plateau of ``plateaus`` periods (2-20), and
+    ramps it out over 2-10 periods; half the records start mid-ramp-in and, independently,
+    half stop mid-ramp-out, at a random phase. The load cell lags the motion by
+    ``force_delay`` [s] (one load cell for the campaign) and drifts by up to
+    ``force_drift`` [N/s]; 2 % force noise, stroke offsets and drift as in
+    :func:`field_campaign`, whose sample rates (:data:`FIELD_PAIRS`) it keeps unless
+    ``sample_rate`` says otherwise (one for all, or one per test).
+    ``folder/envelopes.json`` gives each test's plateau span (:class:`RampEnvelope`).
+    Draws come from ``seed``; see :func:`synthetic_campaign` for the options.
+
+    Examples
+    --------
+    >>> import json, tempfile
+    >>> from pathlib import Path
+    >>> from mrsuspension.identify.manifest import read_manifest
+    >>> folder = Path(tempfile.mkdtemp())
+    >>> len(read_manifest(ramped_campaign(folder, plateaus=(2, 3), ramps=(2, 3))).entries)
+    30
+    >>> test = json.loads((folder / "envelopes.json").read_text())["tests"][0]
+    >>> sorted(test)[:4], 2 <= test["plateau"] <= 3
+    (['cut_end', 'cut_start', 'duration', 'file'], True)
+    """
+    lo_r, hi_r = ramps
+    lo_p, hi_p = plateaus
+    if not (isinstance(lo_r, int) and isinstance(hi_r, int) and 1 <= lo_r <= hi_r):
+        raise ValidationError(
+            f"ramps must be two integers 1 <= low <= high [periods]; got {ramps!r}"
+        )
+    if not (isinstance(lo_p, int) and isinstance(hi_p, int) and 1 <= lo_p <= hi_p):
+        raise ValidationError(
+            f"plateaus must be two integers 1 <= low <= high [periods]; got {plateaus!r}"
+        )
+    conds = [(f, a, i) for f, a, _, _ in FIELD_PAIRS for i in FIELD_CURRENTS]
+    rates: float | Sequence[float] = (
+        [r for _, _, r, _ in FIELD_PAIRS for _ in FIELD_CURRENTS]
+        if sample_rate is None
+        else sample_rate
+    )
+    n = len(conds)
+    rng = np.random.default_rng([seed, 27])  # apart from the records' own draws
+    ramp_in = [int(r) for r in rng.integers(lo_r, hi_r + 1, n)]
+    ramp_out = [int(r) for r in rng.integers(lo_r, hi_r + 1, n)]
+    plateau = [int(p) for p in rng.integers(lo_p, hi_p + 1, n)]
+    cut_start = [float(rng.uniform(0, r)) if rng.random() < 0.5 else 0.0 for r in ramp_in]
+    cut_end = [float(rng.uniform(0, r)) if rng.random() < 0.5 else 0.0 for r in ramp_out]
+    return synthetic_campaign(
+        folder,
+        "wang-symmetric",
+        conds,
+        parameters=dict(FIELD_PARAMETERS),
+        model_options={"max_current": 1.0},
+        noise=noise,
+        cycles=plateau,
+        sample_rate=rates,
+        layout=layout,
+        seed=seed,
+        stroke_offset=stroke_offset,
+        stroke_drift=stroke_drift,
+        motion_noise=motion_noise,
+        ramp_in=ramp_in,
+        ramp_out=ramp_out,
+        ramp_shape=ramp_shape,
+        cut_start=cut_start,
+        cut_end=cut_end,
+        force_delay=force_delay,
+        force_drift=force_drift,
     )
 
 
