@@ -55,7 +55,7 @@ from mrsuspension.dampers.wang import VEHICLE_VH_VARIANT
 from mrsuspension.engine.result import SimulationResult
 from mrsuspension.engine.settings import RunSettings
 from mrsuspension.engine.simulate import Simulation, run_many
-from mrsuspension.engine.vehicle import BODY_MEASURES
+from mrsuspension.engine.vehicle_result import BODY_MEASURES
 from mrsuspension.errors import ValidationError, did_you_mean
 from mrsuspension.excitation import (
     EXCITATION_OPTIONS,
@@ -649,7 +649,7 @@ class Scenario:
     ) -> list[SimulationResult]:
         """Run every simulation of the scenario; results in order (one per frequency).
 
-        A half or full car gives :class:`~mrsuspension.engine.vehicle.VehicleResult`
+        A half or full car gives :class:`~mrsuspension.engine.vehicle_result.VehicleResult`
         objects (with :func:`run_measures` for its body and per-corner measures).
 
         Parameters
@@ -707,9 +707,9 @@ def run_measures(result: SimulationResult, **kwargs: Any) -> dict[str, Any]:
     """The measures of a scenario's run: ``result.measures(**kwargs)``.
 
     The quarter car's measures, or a half or full car's body RMS accelerations
-    (:data:`~mrsuspension.engine.vehicle.BODY_MEASURES`) and every corner's measures
+    (:data:`~mrsuspension.engine.vehicle_result.BODY_MEASURES`) and every corner's measures
     ``"<measure>.<corner>"`` (:meth:`VehicleResult.measures
-    <mrsuspension.engine.vehicle.VehicleResult.measures>`). A module-level function, so
+    <mrsuspension.engine.vehicle_result.VehicleResult.measures>`). A module-level function, so
     it can reduce results in worker processes.
 
     Examples

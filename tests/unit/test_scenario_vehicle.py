@@ -10,7 +10,7 @@ import pyopencrg
 import pytest
 
 from mrsuspension.dampers import LinearViscous, WangSymmetric
-from mrsuspension.engine.vehicle import VehicleResult
+from mrsuspension.engine.vehicle_result import VehicleResult
 from mrsuspension.errors import ValidationError
 from mrsuspension.excitation import Harmonic, WheelRoads
 from mrsuspension.scenario import Scenario

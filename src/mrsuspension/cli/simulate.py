@@ -514,7 +514,7 @@ def measure_unit(key: str) -> str | None:
     ('-', '-', 'rad/s^2')
     """
     from mrsuspension.engine.result import MEASURE_UNITS
-    from mrsuspension.engine.vehicle import BODY_MEASURES
+    from mrsuspension.engine.vehicle_result import BODY_MEASURES
 
     if key in BODY_MEASURES:
         return BODY_MEASURES[key][1]

@@ -22,7 +22,7 @@ from typing import TYPE_CHECKING
 from mrsuspension._lazy import lazy_namespace
 from mrsuspension.engine.arrays import KernelArrays
 from mrsuspension.engine.result import SIGNALS, SimulationDiverged, SimulationResult
-from mrsuspension.engine.settings import RunSettings
+from mrsuspension.engine.settings import RunPlan, RunSettings
 from mrsuspension.engine.simulate import (
     DEFAULT_DT,
     RoadInput,
@@ -35,11 +35,11 @@ from mrsuspension.engine.simulate import (
 if TYPE_CHECKING:
     from mrsuspension.engine.vehicle import (
         SameRoadAtEveryWheel,
-        VehicleResult,
         VehicleSimulation,
         WheelInput,
         run_vehicles,
     )
+    from mrsuspension.engine.vehicle_result import VehicleResult
 
 # the vehicle models compile their own step: load them on first use
 _VEHICLE = (
@@ -50,7 +50,12 @@ _VEHICLE = (
     "run_vehicles",
 )
 __getattr__, __dir__ = lazy_namespace(
-    __name__, dict.fromkeys(_VEHICLE, "mrsuspension.engine.vehicle"), globals()
+    __name__,
+    {
+        **dict.fromkeys(_VEHICLE, "mrsuspension.engine.vehicle"),
+        "VehicleResult": "mrsuspension.engine.vehicle_result",
+    },
+    globals(),
 )
 
 __all__ = [

@@ -44,7 +44,6 @@ __all__ = [
     "KernelArrays",
     "MeasuresOf",
     "RoadInput",
-    "RunPlan",
     "Simulation",
     "SimulationDiverged",
     "Stepper",

@@ -18,7 +18,7 @@ set for a 10 degree phase lead at 1 Hz (:mod:`mrsuspension.control.sensing`).
 
 * Fig V.1 / V.2: heave, pitch and roll acceleration PSDs on each road.
 * Table V.1: RMS accelerations, ISO 2631-1 seat values at the driver's seat
-  (:data:`~mrsuspension.engine.vehicle.DRIVER_SEAT`) and per-wheel DLC (also as CSV).
+  (:data:`~mrsuspension.engine.vehicle_result.DRIVER_SEAT`) and per-wheel DLC (also as CSV).
 * Table V.2: the estimators' cost, in percent against ideal feedback, beside the
   controller's gain over passive.
 
@@ -48,7 +48,8 @@ from mrsuspension.control.sensing import (
 from mrsuspension.dampers import WangSymmetric
 from mrsuspension.dampers.wang import VEHICLE_VH_VARIANT
 from mrsuspension.engine.simulate import Simulation
-from mrsuspension.engine.vehicle import DRIVER_SEAT, VehicleResult, VehicleSimulation
+from mrsuspension.engine.vehicle import VehicleSimulation
+from mrsuspension.engine.vehicle_result import DRIVER_SEAT, VehicleResult
 from mrsuspension.errors import ValidationError
 from mrsuspension.excitation.wheels import WheelRoads
 from mrsuspension.measures.iso2631 import weighted_rms

@@ -14,7 +14,8 @@ from mrsuspension.control.sensing import (
     StrokeSensor,
     band_pass_corner,
 )
-from mrsuspension.engine.vehicle import VEHICLE_MEASURE_UNITS, VehicleSimulation
+from mrsuspension.engine.vehicle import VehicleSimulation
+from mrsuspension.engine.vehicle_result import VEHICLE_MEASURE_UNITS
 from mrsuspension.errors import ValidationError
 from mrsuspension.excitation.wheels import WheelRoads
 from mrsuspension.vehicle import FullCar, HalfCar
