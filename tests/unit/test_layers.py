@@ -33,7 +33,6 @@ LAYERS: dict[str, int] = {
     "_progress": 0,
     "_output": 0,
     "_inputs": 0,
-    "_cli_errors": 0,
     "errata": 0,
     "parameters": 1,
     "measures": 1,

@@ -67,6 +67,14 @@ class DamperKernel:
     estimator_state: FloatArray
     max_current: float
 
+    def __post_init__(self) -> None:
+        if self.kind not in K.MODEL_CODES.values():
+            raise ValidationError(
+                f"unknown damper model code {self.kind!r}: the compiled kernels know "
+                f"{', '.join(f'{n} = {c}' for n, c in K.MODEL_CODES.items())} "
+                "(a new model needs its code and branches in dampers/kernels.py)"
+            )
+
 
 @dataclass(frozen=True)
 class DamperResponse:

@@ -53,6 +53,13 @@ LINEAR = 0
 BINGHAM = 1
 WANG = 2
 SPENCER = 3
+#: the model codes the kernels compute, by name (:class:`~.base.DamperKernel` refuses others)
+MODEL_CODES: dict[str, int] = {
+    "LINEAR": LINEAR,
+    "BINGHAM": BINGHAM,
+    "WANG": WANG,
+    "SPENCER": SPENCER,
+}
 
 STATE_SIZE = 10
 
@@ -797,7 +804,9 @@ def damper_force(kind: int, p: np.ndarray, s: np.ndarray, x: float, v: float, i:
         return p[0] * v
     if kind == BINGHAM:
         return bingham_force(p, v, i)
-    return spencer_force(p, x, v, s[0], s[1], s[2])
+    if kind == SPENCER:
+        return spencer_force(p, x, v, s[0], s[1], s[2])
+    return math.nan  # an unknown code: the engine stops on the non-finite force
 
 
 @njit(cache=True, **INLINED)
