@@ -50,6 +50,8 @@ from typing import TYPE_CHECKING, Any
 
 from mrsuspension._inputs import read_toml
 from mrsuspension.control import CONTROLLERS, Controller, HiLo, make_controller
+from mrsuspension.control.modal import CornerSkyhook, ModalSkyhook
+from mrsuspension.control.sensing import BandPassObserver, LeakyIntegrator, Sensing, StrokeSensor
 from mrsuspension.dampers import DAMPERS, ESTIMATORS, DamperModel, damper_options, make_damper
 from mrsuspension.dampers.wang import VEHICLE_VH_VARIANT
 from mrsuspension.engine.result import SimulationResult
@@ -221,6 +223,32 @@ _EXCITATION_KEYS: dict[str, str] = _all_excitation_keys()
 #: ``[simulation]``: the fields of :class:`~mrsuspension.engine.settings.RunSettings`
 _SIMULATION_KEYS = {f.name: "number" for f in dataclasses.fields(RunSettings)}
 
+#: Laws over the whole vehicle (half and full car): ``[controller] law`` -> the keys it
+#: takes (:mod:`mrsuspension.control.modal`); every corner's current comes from it.
+VEHICLE_LAWS: dict[str, tuple[str, ...]] = {
+    "modal-skyhook": ("heave", "pitch", "roll", "low_current", "high_current"),
+    "corner-skyhook": ("damping", "low_current", "high_current"),
+}
+for _law_name, _keys in VEHICLE_LAWS.items():
+    for _key in _keys:
+        _CONTROLLER_KEYS.setdefault(_key, "number")
+
+#: ``[sensing]`` (half and full car): what the controllers measure
+#: (:class:`~mrsuspension.control.sensing.Sensing`): the body-velocity estimator of every
+#: corner and the stroke sensor.
+_SENSING_KEYS: dict[str, str] = {
+    "velocity": "string",  # ideal | leaky-integrator | band-pass
+    "tau": "number",  # s, leaky integrator time constant
+    "corner": "number",  # Hz, band-pass corner frequency
+    "zeta": "number",  # band-pass damping ratio
+    "fs": "number",  # Hz, the estimator's sample rate
+    "stroke_fs": "number",  # Hz: a stroke sensor at this rate (absent: the true stroke)
+    "stroke_resolution": "number",  # m
+    "stroke_noise": "number",  # m, noise standard deviation
+    "stroke_seed": "integer",
+}
+_VELOCITY_ESTIMATORS = ("ideal", "leaky-integrator", "band-pass")
+
 #: Every section of a scenario file and the keys it accepts (with their value kind).
 SCENARIO_KEYS: dict[str, dict[str, str]] = {
     "vehicle": _VEHICLE_KEYS,
@@ -228,6 +256,7 @@ SCENARIO_KEYS: dict[str, dict[str, str]] = {
     "controller": _CONTROLLER_KEYS,
     "excitation": _EXCITATION_KEYS,
     "simulation": _SIMULATION_KEYS,
+    "sensing": _SENSING_KEYS,
 }
 
 _DEFAULT_MAX_CURRENT: float = next(
@@ -394,6 +423,11 @@ class Scenario:
     corner_controllers: Mapping[str, Controller] = field(default_factory=dict, repr=False)
     #: a half or full car on a single-track kind without its own speed: the speed [km/h]
     road_speed: float | None = None
+    #: a half or full car: what its controllers measure (``[sensing]``; None: ideal)
+    sensing: Sensing | None = None
+    #: a half or full car: a law over the whole vehicle (``[controller] law =
+    #: "modal-skyhook"`` or ``"corner-skyhook"``), else None
+    body_control: ModalSkyhook | CornerSkyhook | None = None
 
     # -- loading ------------------------------------------------------------------------
     @classmethod
@@ -443,6 +477,10 @@ class Scenario:
         damper_table, damper_corners = _split_corners("damper", tables["damper"], corners)
         controller_table, law_corners = _split_corners("controller", tables["controller"], corners)
         damper, max_current = _build_damper(damper_table, base)
+        sensing = _build_sensing(tables["sensing"], vehicle, tables["simulation"])
+        body_control = _build_body_control(controller_table, law_corners, vehicle)
+        if body_control is not None:  # the corners run passive at 0 A: the law sets them
+            controller_table = {"law": "passive"}
         controller = _build_controller(controller_table)
         corner_dampers: dict[str, DamperModel] = {}
         corner_controllers: dict[str, Controller] = {}
@@ -474,8 +512,15 @@ class Scenario:
             corner_dampers=corner_dampers,
             corner_controllers=corner_controllers,
             road_speed=road_speed,
+            sensing=sensing,
+            body_control=body_control,
         )
         # checks the damper/controller combination, then stability (same model every run)
+        if body_control is not None and body_control.high_current > max_current:
+            raise ValidationError(
+                f"[controller] high_current = {body_control.high_current:g} A is above the "
+                f"drive-current limit [damper] max_current = {max_current:g} A"
+            )
         if scenario.is_vehicle:
             vsims = scenario.vehicle_simulations()
             with _in_section("simulation"):
@@ -604,6 +649,8 @@ class Scenario:
                 dampers=dict(self.corner_dampers),
                 controllers=dict(self.corner_controllers),
                 max_current=self.max_current,
+                **({} if self.sensing is None else {"sensing": self.sensing}),
+                body_control=self.body_control,
             )
             for roads in self.wheel_roads(excitations)
         ]
@@ -698,6 +745,11 @@ class Scenario:
             "max_current": self.max_current,
         }
         out["controller"] = {"law": self.controller.law, **out["controller"]}
+        if self.body_control is not None:  # the vehicle's law, its gains resolved
+            out["controller"] = {"law": out["controller"]["law"],
+                                 **dataclasses.asdict(self.body_control)}  # fmt: skip
+        if self.sensing is not None and self.sensing.velocity is not None:
+            out["sensing"].setdefault("fs", self.sensing.velocity.fs)
         out["simulation"] = self.settings.to_dict()
         return out
 
@@ -850,6 +902,109 @@ def _build_controller(table: dict[str, Any], section: str = "controller") -> Con
         options[kw] = value
     with _in_section(section):
         return make_controller(law, **options)
+
+
+def _build_body_control(
+    table: dict[str, Any],
+    corner_tables: Mapping[str, Mapping[str, Any]],
+    vehicle: QuarterCar | VehicleBody,
+) -> ModalSkyhook | CornerSkyhook | None:
+    """``[controller] law = "modal-skyhook"`` or ``"corner-skyhook"``: the vehicle's law.
+
+    Modal skyhook's gains default to the corner equivalent of the spec's skyhook
+    reference (6750 N s/m at every corner: ``ModalSkyhook.corner_equivalent``); the
+    currents to 0 and 0.5 A.
+    """
+    law = table.get("law")
+    if law not in VEHICLE_LAWS:
+        return None
+    if isinstance(vehicle, QuarterCar):
+        raise ValidationError(
+            f"[controller] law {law!r} drives a whole vehicle: it needs [vehicle] model = "
+            "'half-car' or 'full-car' (the quarter car's skyhook laws: skyhook-hilo, "
+            "ideal-skyhook, ideal-onoff)"
+        )
+    given = [c for c, t in corner_tables.items() if t]
+    if given:
+        raise ValidationError(
+            f"[controller.{given[0]}]: law {law!r} sets every corner's current; per-corner "
+            "controller tables do not apply"
+        )
+    keys = VEHICLE_LAWS[str(law)]
+    options = {k: v for k, v in table.items() if k != "law"}
+    for key in options:
+        if key not in keys:
+            raise ValidationError(
+                f"{_where('controller', key)} does not apply to law {law!r}."
+                f"{did_you_mean(key, keys)} Its keys: {', '.join(sorted(keys))}."
+            )
+    with _in_section("controller"):
+        if law == "corner-skyhook":
+            return CornerSkyhook(**options)
+        currents = {k: options.pop(k) for k in ("low_current", "high_current") if k in options}
+        if not options:
+            x, y = vehicle.corner_positions()
+            return ModalSkyhook.corner_equivalent(
+                x, y if isinstance(vehicle, FullCar) else None, **currents
+            )
+        missing = [k for k in ("heave", "pitch") if k not in options]
+        if missing:
+            raise ValidationError(
+                f"law 'modal-skyhook' needs {' and '.join(missing)} with the other gains "
+                "(or no gain at all: the corner equivalent of 6750 N s/m)"
+            )
+        return ModalSkyhook(**options, **currents)
+
+
+def _build_sensing(
+    table: dict[str, Any], vehicle: QuarterCar | VehicleBody, simulation: Mapping[str, Any]
+) -> Sensing | None:
+    """``[sensing]``: the body-velocity estimator and the stroke sensor of every corner."""
+    if not table:
+        return None
+    if isinstance(vehicle, QuarterCar):
+        raise ValidationError(
+            "[sensing] applies to half and full cars ([vehicle] model = 'half-car' or "
+            "'full-car'); the quarter car's controllers measure ideally"
+        )
+    kind = _choice("sensing", "velocity", table.get("velocity", "ideal"), dict.fromkeys(
+        _VELOCITY_ESTIMATORS))  # fmt: skip
+    own = {"ideal": (), "leaky-integrator": ("tau",), "band-pass": ("corner", "zeta")}
+    for key in ("tau", "corner", "zeta"):
+        if key in table and key not in own[kind]:
+            raise ValidationError(
+                f"[sensing] {key} does not apply to velocity = {kind!r} "
+                f"(tau: leaky-integrator; corner, zeta: band-pass)"
+            )
+    if kind == "ideal" and "fs" in table:
+        raise ValidationError("[sensing] fs does not apply to velocity = 'ideal'")
+    dt = float(simulation.get("dt", RunSettings().dt))
+    fs = float(table.get("fs", min(1000.0, 1.0 / dt)))
+    with _in_section("sensing"):
+        velocity: LeakyIntegrator | BandPassObserver | None = None
+        if kind == "leaky-integrator":
+            if "tau" not in table:
+                raise ValidationError("velocity = 'leaky-integrator' needs tau [s]")
+            velocity = LeakyIntegrator(table["tau"], fs)
+        elif kind == "band-pass":
+            if "corner" not in table:
+                raise ValidationError("velocity = 'band-pass' needs corner [Hz]")
+            velocity = BandPassObserver(table["corner"], fs, **(
+                {"zeta": table["zeta"]} if "zeta" in table else {}))  # fmt: skip
+        stroke: StrokeSensor | None = None
+        extra = [k for k in ("stroke_resolution", "stroke_noise", "stroke_seed") if k in table]
+        if "stroke_fs" in table:
+            stroke = StrokeSensor(
+                table["stroke_fs"],
+                resolution=table.get("stroke_resolution", 0.0),
+                noise_std=table.get("stroke_noise", 0.0),
+                seed=table.get("stroke_seed", 0),
+            )
+        elif extra:
+            raise ValidationError(
+                f"{', '.join(extra)} need stroke_fs (the stroke sensor's sample rate [Hz])"
+            )
+        return Sensing(velocity, stroke)
 
 
 def _build_any_excitation(

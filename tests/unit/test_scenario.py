@@ -252,7 +252,9 @@ def test_run_harmonic_and_sweep() -> None:
 
 
 def test_public_sections() -> None:
-    assert set(SCENARIO_KEYS) == {"vehicle", "damper", "controller", "excitation", "simulation"}
+    assert set(SCENARIO_KEYS) == {
+        "vehicle", "damper", "controller", "excitation", "simulation", "sensing"
+    }  # fmt: skip
     for key in ("model", "parameters", "hysteresis", "force_gain", "max_current", "damping"):
         assert key in SCENARIO_KEYS["damper"]
     for key in ("law", "mode", "gain", "order", "current", "lambda", "eps", "phi", "beta"):

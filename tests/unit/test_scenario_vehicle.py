@@ -187,3 +187,96 @@ def test_run_returns_vehicle_results() -> None:
     (res,) = s.run(duration=0.5)
     assert isinstance(res, VehicleResult)
     assert float(np.abs(res["roll"]).max()) > 0.0
+
+
+# -- vehicle-level laws and sensing from the scenario (issue 28, part 6) -------------------------
+TWO_TRACK = {"kind": "two-track", "iso_class": "C", "length": 60.0, "speed": 50.0}
+
+
+def test_modal_skyhook_and_sensing_from_the_scenario_equal_the_engine_built_by_hand() -> None:
+    from mrsuspension.control.modal import ModalSkyhook
+    from mrsuspension.control.sensing import BandPassObserver, Sensing, StrokeSensor
+    from mrsuspension.engine.vehicle import VehicleSimulation
+
+    s = Scenario.from_dict({
+        "vehicle": {"model": "full-car"},
+        "controller": {"law": "modal-skyhook", "high_current": 0.4},
+        "sensing": {"velocity": "band-pass", "corner": 0.2, "stroke_fs": 500.0,
+                    "stroke_noise": 2e-5, "stroke_seed": 3},
+        "excitation": TWO_TRACK,
+        "simulation": {"duration": 1.0},
+    })  # fmt: skip
+    car = s.vehicle
+    x, y = car.corner_positions()
+    law = ModalSkyhook.corner_equivalent(x, y, high_current=0.4)
+    sensing = Sensing(BandPassObserver(0.2, 1000.0), StrokeSensor(500.0, noise_std=2e-5, seed=3))
+    assert s.body_control == law
+    assert s.sensing == sensing
+    (sim,) = s.vehicle_simulations()
+    by_hand = VehicleSimulation(car, s.wheel_roads()[0], sensing=sensing, body_control=law)
+    a, b = sim.run(1.0), by_hand.run(1.0)
+    np.testing.assert_array_equal(a["i_d.front_left"], b["i_d.front_left"])
+    assert a["i_d.front_left"].max() == pytest.approx(0.4)  # the law drives the currents
+    # and it round-trips with its gains resolved
+    d = s.to_dict()
+    assert d["controller"]["heave"] == law.heave
+    assert d["sensing"]["fs"] == 1000.0
+    again = Scenario.from_dict(d, s.base_dir)
+    assert again.body_control == law
+    assert again.sensing == sensing
+
+
+def test_corner_skyhook_and_leaky_integrator() -> None:
+    from mrsuspension.control.modal import CornerSkyhook
+    from mrsuspension.control.sensing import LeakyIntegrator
+
+    s = Scenario.from_dict({
+        "vehicle": {"model": "half-car"},
+        "controller": {"law": "corner-skyhook", "damping": 5000.0},
+        "sensing": {"velocity": "leaky-integrator", "tau": 0.9, "fs": 500.0},
+        "excitation": HARMONIC,
+        "simulation": {"dt": 2e-4},
+    })  # fmt: skip
+    assert s.body_control == CornerSkyhook(5000.0)
+    assert s.sensing is not None
+    assert s.sensing.velocity == LeakyIntegrator(0.9, 500.0)
+    assert s.sensing.stroke is None
+
+
+@pytest.mark.parametrize(
+    ("data", "fragments"),
+    [
+        ({"controller": {"law": "modal-skyhook"}, "excitation": HARMONIC},
+         ("law 'modal-skyhook' drives a whole vehicle", "half-car")),
+        ({"sensing": {"velocity": "band-pass", "corner": 0.1}, "excitation": HARMONIC},
+         ("[sensing] applies to half and full cars",)),
+        ({"vehicle": {"model": "full-car"}, "sensing": {"velocty": "band-pass"},
+          "excitation": TWO_TRACK}, ("unknown key [sensing] velocty", "Did you mean 'velocity'")),
+        ({"vehicle": {"model": "full-car"}, "sensing": {"velocity": "kalman"},
+          "excitation": TWO_TRACK}, ("[sensing] velocity: unknown velocity 'kalman'", "band-pass")),
+        ({"vehicle": {"model": "full-car"}, "sensing": {"velocity": "band-pass", "tau": 1.0},
+          "excitation": TWO_TRACK}, ("[sensing] tau does not apply to velocity = 'band-pass'",)),
+        ({"vehicle": {"model": "full-car"}, "sensing": {"velocity": "leaky-integrator"},
+          "excitation": TWO_TRACK}, ("needs tau",)),
+        ({"vehicle": {"model": "full-car"}, "sensing": {"stroke_noise": 1e-5},
+          "excitation": TWO_TRACK}, ("stroke_noise need stroke_fs",)),
+        ({"vehicle": {"model": "full-car"},
+          "controller": {"law": "modal-skyhook", "rear_left": {"law": "passive"}},
+          "excitation": TWO_TRACK}, ("[controller.rear_left]", "sets every corner's current")),
+        ({"vehicle": {"model": "full-car"}, "controller": {"law": "modal-skyhook", "gain": 2.0},
+          "excitation": TWO_TRACK}, ("[controller] gain does not apply to law 'modal-skyhook'",)),
+        ({"vehicle": {"model": "full-car"}, "controller": {"law": "modal-skyhook", "heave": 2e4},
+          "excitation": TWO_TRACK}, ("needs pitch",)),
+        ({"vehicle": {"model": "full-car"},
+          "controller": {"law": "corner-skyhook", "high_current": 0.8},
+          "excitation": TWO_TRACK}, ("[controller] high_current = 0.8 A", "max_current = 0.5 A")),
+        ({"vehicle": {"model": "full-car"}, "controller": {"law": "corner-skyhook", "damping": -1.0},
+          "excitation": TWO_TRACK}, ("[controller] damping must be in (0, inf) N s/m",)),
+    ],
+)  # fmt: skip
+def test_vehicle_law_and_sensing_errors_name_the_table(
+    data: dict[str, Any], fragments: tuple[str, ...]
+) -> None:
+    message = _error(data)
+    for fragment in fragments:
+        assert fragment in message, message
