@@ -1,8 +1,9 @@
 """Shared fixtures: an independent plain-``math`` reference of the damper equations.
 
-The reference below is written from MODEL_SPEC.md sections 2-3 only (never from the
-package's kernels), so tests can compare the package against it. The published parameter
-values are typed in again from the spec's Tables 2.2 and 2.3 for the same reason.
+The reference below is written from the model reference (docs/model.md), sections 2-3,
+only (never from the package's kernels), so tests can compare the package against it. The
+published parameter values are typed in again from the model reference's Tables 2.2 and
+2.3 for the same reason.
 """
 
 from __future__ import annotations
@@ -13,7 +14,7 @@ from dataclasses import dataclass
 
 import pytest
 
-# MODEL_SPEC section 2.1, Table 2.2 (0.5-5 Hz and 5-15 Hz columns)
+# model reference, section 2.1, Table 2.2 (0.5-5 Hz and 5-15 Hz columns)
 TABLE_2_2_LOW = {
     "a0": 992.985, "a1": 5.197, "a2": 7.258, "a3": 6.635, "a4": 7.504, "I0": 0.079,
     "I1": 0.267, "k0": 125.987, "k1": 11.2, "k2": 9.244, "k3": 9.186, "k4": -0.119,
@@ -24,7 +25,7 @@ TABLE_2_2_HIGH = {
     "I1": 0.165, "k0": 177.249, "k1": 9.486, "k2": 4.355, "k3": 17.781, "k4": -0.156,
     "F0": 70.921,
 }  # fmt: skip
-# MODEL_SPEC section 2.2, Table 2.3
+# model reference, section 2.2, Table 2.3
 TABLE_2_3 = {
     "a0": 995.499, "a1": 1.417, "a2": 5.225, "a3": 2.441, "a4": 2.383, "I0": 0.268,
     "I1": 1.131, "k0": 177.51, "k1c": 16.877, "k1e": 4.673, "k2": 10.61, "k3": 10.666,
@@ -120,5 +121,5 @@ def wang_reference():
 
 @pytest.fixture(scope="session")
 def spec_sets():
-    """Tables 2.2 and 2.3 as typed in from MODEL_SPEC.md, by registry name."""
+    """Tables 2.2 and 2.3 as typed in from the model reference, by registry name."""
     return {k: dict(v) for k, v in SPEC_SETS.items()}

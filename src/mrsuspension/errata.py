@@ -1,4 +1,4 @@
-"""The dissertation's errata (MODEL_SPEC section 12) and the choice the code makes for each.
+"""The dissertation's errata (model reference, section 12) and the choice the code makes for each.
 
 This list is the single source: the report prints it and ``docs/errata.md`` explains it
 (a test checks the two agree).
@@ -27,7 +27,7 @@ ERRATA: tuple[Erratum, ...] = (
         1,
         "eq. (3.1)",
         "unsprung equation carries the gravity term (m_s + m_u) g",
-        "m_u g, so the model is in equilibrium at rest (spec section 4)",
+        "m_u g, so the model is in equilibrium at rest (model reference, section 4)",
         "mrsuspension.vehicle.kernel.plant_rates",
     ),
     Erratum(

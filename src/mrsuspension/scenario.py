@@ -17,7 +17,7 @@ A half or full car takes per-corner sub-tables ``[damper.<corner>]`` and
 Every key is optional except ``[excitation] kind`` and the excitation's required options;
 defaults are those of the classes (:class:`~mrsuspension.vehicle.QuarterCar`,
 :func:`~mrsuspension.dampers.make_damper`, :func:`~mrsuspension.control.make_controller`,
-:class:`~mrsuspension.engine.simulate.Simulation`), i.e. the spec's. Unknown sections or
+:class:`~mrsuspension.engine.simulate.Simulation`), i.e. the model reference's. Unknown sections or
 keys, wrong types and out-of-range values raise :class:`~mrsuspension.errors.ValidationError`
 naming ``[section] key`` (with a did-you-mean for misspelt names).
 
@@ -114,7 +114,7 @@ _VEHICLE_KEYS: dict[str, str] = {
 _DAMPER_KEYS: dict[str, str] = {k: v for m in DAMPERS for k, v in damper_options(m).items()}
 
 
-#: controller-table key -> constructor keyword, by law (the spec's symbols)
+#: controller-table key -> constructor keyword, by law (the model reference's symbols)
 _SLIDING_ALIASES = {
     "lambda": "slope",
     "eps": "boundary_layer",

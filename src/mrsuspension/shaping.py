@@ -1,4 +1,4 @@
-"""Current shaping (MODEL_SPEC section 3): ADFG and CM multipliers, drive-current composition.
+"""Current shaping (model reference, section 3): ADFG and CM multipliers, drive-current composition.
 
 Each law is written once as a scalar function and compiled twice by numba: as a scalar
 kernel (``*_kernel``, called by the simulation engine inside its compiled step) and as a
@@ -184,7 +184,7 @@ def drive_current(
 ) -> np.ndarray:
     """Drive current ``clip(M_p M_c i_z, 0, i_max)`` of eqs. (3.9)/(3.16).
 
-    Defaults are the Chapter 4 policy defaults (spec section 6): SCM (``p = 1``),
+    Defaults are the Chapter 4 policy defaults (model reference, section 6): SCM (``p = 1``),
     ``xi = 4.5``, ``p_c = 0``, ``xi_c = 10``, ``i_max = 0.5 A``.
     """
     iz = check_finite("i_z", i_z)

@@ -338,7 +338,7 @@ def tradeoff(
         Scenario tables under every setting (vehicle, damper, ...); a setting's tables
         replace the base's section by section.
     dt : float
-        Fixed step [s] (default 1e-4, spec section 7).
+        Fixed step [s] (default 1e-4, model reference, section 7).
     workers : int, optional
         Processes (None: one per core; 1: this process).
     progress : callable, optional

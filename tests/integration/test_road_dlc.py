@@ -1,4 +1,4 @@
-"""DLC on the preset roads against the dissertation's (MODEL_SPEC section 8(c)).
+"""DLC on the preset roads against the dissertation's (model reference, section 8(c)).
 
 The presets stand in for the dissertation's measured Canadian roads; their PSD levels
 ``Gd(n0)`` were tuned so that the dynamic load coefficient (std/mean tire force) of the

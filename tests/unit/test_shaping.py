@@ -1,4 +1,4 @@
-"""Current shaping, MODEL_SPEC section 3: ADFG (2.1)/(2.3), CM (3.8), drive current (3.9)."""
+"""Current shaping (model reference, section 3): ADFG (2.1)/(2.3), CM (3.8), drive current (3.9)."""
 
 from __future__ import annotations
 
@@ -19,13 +19,13 @@ from mrsuspension.shaping import (
 
 
 def m_p(v: float, vm: float, p: float, xi: float) -> float:
-    """Eq. (2.3), written from the spec."""
+    """Eq. (2.3), written from the model reference (section 3)."""
     s = p if v > 0 else 1.0
     return (1 + p) / 2 + (2 / math.pi) * (s - (1 + p) / 2) * abs(math.atan(xi * v / vm))
 
 
 def m_c(z: float, p_c: float, xi_c: float) -> float:
-    """Eq. (3.8), written from the spec."""
+    """Eq. (3.8), written from the model reference (section 3)."""
     s = p_c if z >= 0 else 1.0
     return (1 + p_c) / 2 + (2 / math.pi) * (s - (1 + p_c) / 2) * abs(math.atan(xi_c * z))
 

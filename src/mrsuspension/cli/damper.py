@@ -186,7 +186,7 @@ def damper_inverse(
     force_gain: GainOpt = None,
     as_json: JsonOpt = False,
 ) -> None:
-    """Inverse model (spec section 2.3): current that makes the symmetric model produce F*.
+    """Current that makes the symmetric model produce F* (model reference, section 2.3).
 
     Only |F*| is used: the damper's force takes the sign of its passive hysteron, so a
     negative target gives the current of its magnitude (said on stderr). A target beyond
@@ -211,7 +211,7 @@ def damper_inverse(
     if np.any(f < 0):
         typer.echo(
             "note: only |F*| is used: the damper's force takes the sign of its passive "
-            "hysteron (spec section 2.3)",
+            "hysteron (model reference, section 2.3)",
             err=True,
         )
     if np.any(saturated):

@@ -262,7 +262,7 @@ def _echo_measures(measures: Mapping[str, Any]) -> None:
 
 
 def _clamp_note(fractions: Sequence[float | None]) -> None:
-    """Say on stderr when runs sat at the peak-velocity clamp (spec section 2.4)."""
+    """Say on stderr when runs sat at the peak-velocity clamp (model reference, section 2.4)."""
     from mrsuspension.engine.result import CLAMP_WARN_FRACTION
 
     shares = [f for f in fractions if f is not None]
@@ -331,7 +331,7 @@ def simulate_command(
         bool, typer.Option("--force", help="replace an --out folder holding other output")
     ] = False,
 ) -> None:
-    """Run a scenario file and print its spec section 9 measures.
+    """Run a scenario file and print its measures (model reference, section 9).
 
     A harmonic, pulse or road scenario prints one set of measures (``--json``: one
     object); a swept scenario prints one row per frequency (``--json``: a list of

@@ -1,4 +1,4 @@
-"""Semi-active controllers (MODEL_SPEC section 6), one interface.
+"""Semi-active controllers (model reference, section 6), one interface.
 
 Every controller turns the sampled state into a drive current for the damper (or, for
 the ideal references, a force through an ideal dissipative damper) and reports its

@@ -1,7 +1,7 @@
 """The controller interface: :class:`Controller`, its declared options and their checks.
 
 A controller is a frozen dataclass whose fields are its options. Each field declares its
-unit, valid range and spec symbol once (:func:`option`); the constructors validate
+unit, valid range and model-reference symbol once (:func:`option`); the constructors validate
 against that declaration and :meth:`Controller.describe_options` reports it (the HiL
 monitor builds its form from it), so a new law needs no table elsewhere.
 """
@@ -43,7 +43,7 @@ class ControlOption:
     choices : tuple of str, optional
         Valid values of a text option.
     symbol : str
-        The spec's symbol (``k_c``, ``lambda``, ...).
+        The model reference's symbol (``k_c``, ``lambda``, ...).
     label : str
         Name in error messages (default: ``name``).
 

@@ -21,7 +21,7 @@ class InverseHiLo(Shaped):
 
     ``i_z`` = inverse(F*), ``z_c = F_h k_s x_d``. Chapter 5 defaults: p_c = 0, xi_c = 50,
     xi = 10 (and the damper's force gain k_d = 2.5). Needs the dissertation's symmetric
-    damper model (its inverse, spec section 2.3). ``inverse="mean"`` inverts the mean
+    damper model (its inverse: model reference, section 2.3). ``inverse="mean"`` inverts the mean
     model (``v_h = 0``) whatever the damper, as in Figs 5.2 and 5.5 (hysteretic damper,
     mean inverse); the default ``"hysteretic"`` inverts the damper's own model.
 

@@ -1,4 +1,4 @@
-"""The controllers' compiled laws (spec section 6): codes, parameter layout and ``control()``.
+"""Compiled control laws (model reference, section 6): codes, parameter layout, ``control()``.
 
 Every control law of :mod:`mrsuspension.control` is a code (``C_*``, the class's
 ``code``) and a parameter vector (``CP_SIZE`` values at the ``P_*`` slots, written by
@@ -154,7 +154,7 @@ def control(
     vm: float,
     memo: np.ndarray,
 ) -> tuple[float, float, float, float]:
-    """The control law ``ck`` at the sampled state (spec section 6).
+    """The control law ``ck`` at the sampled state (model reference, section 6).
 
     Parameters
     ----------

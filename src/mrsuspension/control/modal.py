@@ -1,6 +1,6 @@
 """Modal skyhook for the half and full car: heave, pitch and roll damping to the sky.
 
-Conventions (MODEL_SPEC section 1, ISO 8855): ``x`` forward, ``y`` left, ``z`` up from
+Conventions (model reference, section 1, ISO 8855): ``x`` forward, ``y`` left, ``z`` up from
 the body's centre of gravity; heave ``z`` and its velocity ``v_z`` [m/s] up; pitch
 ``theta`` [rad] and its rate ``q`` [rad/s] positive nose **down** (right-handed about
 ``+y``); roll ``phi`` [rad] and its rate ``p`` [rad/s] positive with the **left** side up
@@ -28,8 +28,8 @@ With ``c_z = n c_s``, ``c_theta = c_s sum x^2``, ``c_phi = c_s sum y^2`` this is
 skyhook ``F_i = -c_s v_i`` (:meth:`ModalSkyhook.corner_equivalent`).
 
 **Semi-active clipping.** A damper can only push the body up (``F_d > 0``) in
-compression (``v_d > 0``) and down in rebound (spec section 1), so the corner is switched
-to the high current when ``F_i v_d > 0``: the switching condition is ``z_c = -F_i v_d``,
+compression (``v_d > 0``) and down in rebound (model reference, section 1), so the corner is
+switched to the high current when ``F_i v_d > 0``: the switching condition is ``z_c = -F_i v_d``,
 high current when ``z_c < 0`` as in the hi-lo policies (:mod:`mrsuspension.control.hilo`:
 skyhook ``F* = -c_s z_s'`` gives ``z_c = c_s z_s' v_d``, the sign of policy I's
 ``z_s' v_d``) and the sliding-mode law's ``z_c = -F_h F_c``.
@@ -134,7 +134,7 @@ def switching_condition(force: float, vd: float) -> float:
     """``z_c = -F v_d``: negative when the damper can produce the desired force ``F`` [N].
 
     ``vd`` is the damper velocity [m/s] (compression positive); high current when
-    ``z_c < 0`` (spec section 6).
+    ``z_c < 0`` (model reference, section 6).
 
     Examples
     --------
@@ -286,7 +286,7 @@ class ModalSkyhook:
         """Gains equal to per-corner skyhook ``c_s`` [N s/m] on a symmetric car.
 
         ``c_z = n c_s``, ``c_theta = c_s sum x^2``, ``c_phi = c_s sum y^2``; the default
-        ``c_s`` is the spec's skyhook reference, 6750 N s/m (section 5).
+        ``c_s`` is the skyhook reference's 6750 N s/m (model reference, section 5).
 
         Examples
         --------
@@ -380,7 +380,7 @@ class CornerSkyhook:
     Parameters
     ----------
     damping : float
-        Skyhook damping ``c_s`` [N s/m] (> 0; default 6750 N s/m, spec section 5).
+        Skyhook damping ``c_s`` [N s/m] (> 0; default 6750 N s/m, model reference, section 5).
     low_current, high_current : float
         Currents [A] as :class:`ModalSkyhook` (0 and 0.5 A).
 

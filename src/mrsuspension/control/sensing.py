@@ -17,7 +17,7 @@ inline) with its exact discrete frequency response:
   the phase lead over ``1/(j w)`` is ``180 deg - atan2(2 zeta w_c w, w_c^2 - w^2)``.
 
 Both are discretised exactly for an acceleration held constant over each sample period
-``T = 1/fs`` (zero-order hold, as the engine holds its inputs; spec section 7):
+``T = 1/fs`` (zero-order hold, as the engine holds its inputs; model reference, section 7):
 ``x[k+1] = Phi x[k] + Gamma a[k]`` with ``Phi = exp(A T)``,
 ``Gamma = A^-1 (Phi - I) B``, and the estimate after sample ``k`` is the updated state
 (``v_hat[k] = C x[k+1]``), so the response is ``H(z) = z C (z I - Phi)^-1 Gamma``.

@@ -44,7 +44,7 @@ class Shaped(Controller):
 
     ``mode="SCM"`` sets ``p = 1`` (symmetric), ``mode="ACM"`` sets ``p = 0``
     (asymmetric); ``xi`` smooths the ADFG multiplier, ``p_c`` and ``xi_c`` shape the CM
-    multiplier (spec section 3).
+    multiplier (model reference, section 3).
     """
 
     p: float = option(1.0, low=0.0, high=1.0, symbol="p")

@@ -137,7 +137,7 @@ class DamperModel(ABC):
 
     A damper model maps stroke ``x_d`` [m], velocity ``v_d`` [m/s], acceleration
     ``a_d`` [m/s^2] and drive current ``i`` [A] to force ``F_d`` [N], with the damper's
-    sign convention (MODEL_SPEC section 1): positive quantities are compression, and a
+    sign convention (model reference, section 1): positive quantities are compression, and a
     positive force resists compression.
 
     * :meth:`force` evaluates the model pointwise over broadcast arrays (the exact map for

@@ -2,8 +2,9 @@
 
 This module is the single source of the damper physics: the vectorised array API of
 :mod:`mrsuspension.dampers` loops over these functions, and the simulation engine and the
-hardware-in-the-loop loop call them sample by sample. Short symbols follow
-``MODEL_SPEC.md`` sections 2-3; the mapping to domain names is given at each constant.
+hardware-in-the-loop loop call them sample by sample. Short symbols follow the model
+reference (``docs/model.md``), sections 2-3; the mapping to domain names is given at each
+constant.
 The kernels are compiled once each and inlined into their callers by LLVM
 (:data:`~mrsuspension._numba_cache.INLINED`); the few that the lane kernel's vectorised
 stages use (:func:`wang_combine`, :func:`lane_tanh` and what they call) are inlined by numba
@@ -97,7 +98,7 @@ WS_VM, WS_SGN, WS_I, WS_CI, WS_SHIFT, WS_FT, WS_HALF_ALPHA, WS_DECAY, WS_FB = ra
 PH_VM, PH_FT, PH_HALF_ALPHA, PH_DECAY = range(4)
 PH_SIZE = 4
 
-# Spencer et al. (1997) modified Bouc-Wen, MODEL_SPEC section 2.5.
+# Spencer et al. (1997) modified Bouc-Wen (model reference, section 2.5).
 S_C0A, S_C0B, S_K0, S_C1A, S_C1B, S_K1, S_X0 = 0, 1, 2, 3, 4, 5, 6
 S_ALA, S_ALB, S_GAM, S_BET, S_A, S_N, S_ETA, S_VPA = 7, 8, 9, 10, 11, 12, 13, 14
 S_SIZE = 15
@@ -106,7 +107,7 @@ S_SIZE = 15
 B_FCA, B_FCB, B_C0A, B_C0B, B_F0 = 0, 1, 2, 3, 4
 B_SIZE = 5
 
-# Peak-velocity estimators (spec section 2.4).
+# Peak-velocity estimators (model reference, section 2.4).
 EST_KNOWN = 0  # ep = [v_m]
 EST_INSTANT = 1  # ep = [v_min, v_max]; eq. (2.14), clamped
 EST_WINDOW = 2  # ep = [v_min, v_max, n_window]; peak |v_d| over the last n samples, clamped
@@ -564,7 +565,7 @@ def wang_force(p: np.ndarray, v: float, sgn_a: float, i: float, vm: float) -> fl
 def wang_inverse(
     p: np.ndarray, target: float, v: float, sgn_a: float, vm: float, i_max: float
 ) -> float:
-    """Inverse model, spec section 2.3: the current whose force magnitude is |target|.
+    """Inverse model (model reference, section 2.3): the current whose force magnitude is |target|.
 
     The passive hysteron uses the (2.13) form of v_h (current independent), as in the
     dissertation, so the inverse is exact for the (2.13) variant. (2.9) is inverted
@@ -784,7 +785,7 @@ def damper_sample(
     """Latch the internals held over the coming step from the sampled state.
 
     ``a`` is the acceleration available to a sampled controller: in closed loop, the
-    previous step's (spec section 2.4 / 7).
+    previous step's (model reference, sections 2.4 and 7).
     """
     if kind == WANG:
         wang_latch_motion(p, s, estimator_update(ek, ep, es, x, v, a), sign(a))

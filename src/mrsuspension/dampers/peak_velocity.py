@@ -1,4 +1,4 @@
-"""Peak-velocity estimators v_m (MODEL_SPEC section 2.4).
+"""Peak-velocity estimators v_m (model reference, section 2.4).
 
 The dissertation's model needs the peak piston velocity ``v_m`` of the current excitation.
 It is known in a harmonic characterisation test (``2 pi f a_m``) but has to be estimated
@@ -8,8 +8,8 @@ on line otherwise. Four estimators are provided, selectable by name:
     ``sqrt(2 mean(v_d^2))`` over the last ``window`` seconds (1 s), clamped to
     ``[v_min, v_max]``: the cycle average of (2.14) (for any periodic motion the cycle
     mean of ``v^2 - a x`` is ``2 mean(v^2)``), exact for a sinusoid, free of ``a_d`` and
-    insensitive to spikes, so it cannot run away in closed loop (spec section 2.4, revised
-    2026-11-24). The dissertation's model sets carry their identified velocity range;
+    insensitive to spikes, so it cannot run away in closed loop (model reference, section 2.4,
+    revised 2026-11-24). The dissertation's model sets carry their identified velocity range;
     ``v_max`` defaults to its upper end (0.75 m/s for Tables 2.2 and 2.3).
 ``"window"``
     the peak of ``|v_d|`` over the last ``window`` seconds, clamped (the old default).
@@ -60,11 +60,12 @@ __all__ = [
 #: Highest peak velocity accepted anywhere [m/s]: three times the fastest test of
 #: Table 2.1 (1.57 m/s); ``exp(a1 v_m)`` makes the model meaningless far beyond it.
 V_LIMIT = 5.0
-#: Default upper clamp [m/s]: the identified velocity range of Tables 2.2/2.3 (spec section
-#: 2.4; the dissertation reports peak steady relative velocities of about 0.75 m/s with the
-#: hysteretic model, section 5.2). A parameter set's ``velocity_range`` overrides it.
+#: Default upper clamp [m/s]: the identified velocity range of Tables 2.2/2.3 (model
+#: reference, section 2.4; the dissertation reports peak steady relative velocities of
+#: about 0.75 m/s with the hysteretic model, section 5.2). A parameter set's
+#: ``velocity_range`` overrides it.
 V_MAX_DEFAULT = 0.75
-#: Name of the default estimator (spec section 2.4, revised 2026-11-24).
+#: Name of the default estimator (model reference, section 2.4, revised 2026-11-24).
 DEFAULT_ESTIMATOR = "cycle-rms"
 
 
@@ -151,7 +152,7 @@ class CycleRms(_Windowed):
     Parameters
     ----------
     window : float
-        Length of the sliding window T_w [s] (spec section 2.4: 1.0 s).
+        Length of the sliding window T_w [s] (model reference, section 2.4: 1.0 s).
     v_min, v_max : float
         Clamp [m/s]; ``v_max`` is the identified velocity range (0.75 m/s for Table 2.2;
         the damper model passes its parameter set's ``velocity_range``).
@@ -181,12 +182,12 @@ class WindowPeak(_Windowed):
     """Peak of ``|v_d|`` over the last ``window`` seconds, clamped (the old default).
 
     Reads 1.2-2.4x above ``2 pi f a_m`` in closed loop and can run away up to the clamp
-    through ``F_t`` (spec section 2.4, erratum 7); kept for comparison.
+    through ``F_t`` (model reference, section 2.4, erratum 7); kept for comparison.
 
     Parameters
     ----------
     window : float
-        Length of the sliding window T_w [s] (spec section 2.4: 1.0 s).
+        Length of the sliding window T_w [s] (model reference, section 2.4: 1.0 s).
     v_min, v_max : float
         Clamp [m/s] (identified range of Table 2.2: up to 0.75 m/s).
     """
@@ -202,7 +203,7 @@ class WindowPeak(_Windowed):
 class InstantaneousPeak(PeakVelocityEstimator):
     """Eq. (2.14), ``sqrt(max(v_d^2 - a_d x_d, 0))``, clamped to ``[v_min, v_max]``.
 
-    Exact for a pure sinusoid; **unsafe in closed loop** (spec section 2.4, erratum 7).
+    Exact for a pure sinusoid; **unsafe in closed loop** (model reference, section 2.4, erratum 7).
     """
 
     v_min: float = 1e-3

@@ -72,7 +72,7 @@ class LinearViscous(DamperModel):
 class Bingham(DamperModel):
     """Bingham plastic model with current-dependent yield force and viscosity.
 
-    ``F = (fc_a + fc_b i) sgn(v) + (c0_a + c0_b i) v + f0`` (MODEL_SPEC section 2.5,
+    ``F = (fc_a + fc_b i) sgn(v) + (c0_a + c0_b i) v + f0`` (model reference, section 2.5,
     made current dependent by the common linear-in-current extension). The default set
     ``"bingham-wang-low"`` is a least-squares fit of this form to the dissertation's
     symmetric model (Table 2.2, 0.5-5 Hz), see its provenance.

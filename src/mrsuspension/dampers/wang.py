@@ -225,7 +225,7 @@ class WangSymmetric(DamperModel):
 
     def max_damping_rate(self, max_current: float | None = None) -> float:
         """Largest pre-yield slope ``k_d C_i F_t (alpha/2 + k_v)`` over the peak velocities
-        the estimator can report (spec section 7: about 3e5 N s/m at 0.5 A)."""
+        the estimator can report (model reference, section 7: about 3e5 N s/m at 0.5 A)."""
         i = self.max_current if max_current is None else max_current
         est = self.estimator
         if isinstance(est, KnownPeak):
@@ -298,7 +298,7 @@ class WangSymmetric(DamperModel):
         peak_velocity: npt.ArrayLike | None = None,
         max_current: float | None = None,
     ) -> FloatArray:
-        """Inverse model (spec section 2.3): drive current that produces ``|target_force|``.
+        """Drive current that produces ``|target_force|`` (model reference, section 2.3).
 
         The damper can only produce the sign of its passive hysteron ``F_h``, so only the
         magnitude of the target is used. Targets below the passive force give 0 A,
@@ -315,7 +315,8 @@ class WangSymmetric(DamperModel):
         """
         if self.values.get("k5", 0.0) != 0.0 or self.values.get("k6", 0.0) != 0.0:
             raise ValidationError(
-                "the inverse model (spec section 2.3) is defined for the symmetric model; "
+                "the inverse model (model reference, section 2.3) is defined for the symmetric "
+                "model; "
                 f"this {self.name!r} model has k5={self.values.get('k5')}, "
                 f"k6={self.values.get('k6')}"
             )
@@ -400,7 +401,7 @@ class WangAsymmetric(WangSymmetric):
     """Asymmetric hysteretic model, eqs. (2.19)-(2.21) (default set: Table 2.3).
 
     Accepts symmetric sets too (``k1c = k1e = k1``, ``k5 = k6 = 0``): the reduction of
-    section 2.2 of the spec.
+    section 2.2 of the model reference.
 
     Examples
     --------

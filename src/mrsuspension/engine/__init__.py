@@ -1,4 +1,4 @@
-"""The simulation engine (MODEL_SPEC section 7): fixed-step RK4 with zero-order-hold
+"""The simulation engine (model reference, section 7): fixed-step RK4 with zero-order-hold
 controller outputs, compiled with numba.
 
 * :class:`Simulation` - one run (``Simulation(excitation, ...).run()``);

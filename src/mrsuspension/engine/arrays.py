@@ -29,7 +29,7 @@ class KernelArrays:
     place by the kernels; the rest is read only.
 
     ==============================  ======  =================================================
-    field                           kernel  contents (spec symbols)
+    field                           kernel  contents (model-reference symbols)
     ==============================  ======  =================================================
     ``vehicle``                     ``vp``  ``m_s, m_u, k_s, k_t, c_t, c_sky, g, dx_u``
                                             (:mod:`mrsuspension.vehicle.kernel` ``V_*``)

@@ -18,13 +18,14 @@ divisions off the chain of dependent operations from one stage to the next. Meas
 per step (same process, min of 11): 0.58x (passive), 0.63x (hi-lo policy I) and
 0.68x (sliding mode) the time of the previous array-based step with libm's tanh.
 
-Spec sections 4-7. State ``y = [z_s, z_s', z_u, z_u', z_s0, z_s0']`` (the last two are
-the sliding-mode controller's single-DOF reference model, integrated with the plant).
+Model reference, sections 4-7. State ``y = [z_s, z_s', z_u, z_u', z_s0, z_s0']`` (the last
+two are the sliding-mode controller's single-DOF reference model, integrated with the
+plant).
 A step of length ``dt``:
 
 1. latch the damper internals (peak velocity, ``sgn(a_d)``) and the controller's peak
    velocity from the sampled state, using the **previous step's** acceleration ``a_d``
-   (a sampled controller has nothing newer; spec sections 2.4 and 7);
+   (a sampled controller has nothing newer; model reference, sections 2.4 and 7);
 2. run the controller once: drive current ``i_d``, held over the step (zero-order hold);
 3. classical RK4 over the step with the road at ``t``, ``t + dt/2`` and ``t + dt``;
 4. evaluate the rates at the new state (accelerations, forces for the record and the

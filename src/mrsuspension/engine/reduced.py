@@ -1,6 +1,6 @@
 """Measures reduced inside the kernels: runs that write no time history.
 
-A sweep, a study or the optimiser wants each run's measures (spec section 9), not its
+A sweep, a study or the optimiser wants each run's measures (model reference, section 9), not its
 record. Here the kernels accumulate, at each output sample and in O(1) memory per run,
 what the measures need: sums of squares over the steady-state window (its first sample
 chosen before the run by :func:`~mrsuspension.measures.steady_window`, the rule the

@@ -40,7 +40,7 @@ __all__ = [
 ]
 
 #: Share of a record with v_m at its upper clamp above which a run warns: beyond it the
-#: force model is pinned at the edge of its identified range (spec section 2.4).
+#: force model is pinned at the edge of its identified range (model reference, section 2.4).
 CLAMP_WARN_FRACTION = 0.05
 
 
@@ -49,8 +49,9 @@ class VelocityClampWarning(UserWarning):
 
 
 #: The numeric measures :meth:`SimulationResult.measures` returns for each measures kind
-#: (an excitation class's ``measures_kind``), spec section 9; ``vm_clamp_fraction`` is in
-#: every kind's. Studies and the optimiser take their measure lists from here.
+#: (an excitation class's ``measures_kind``; model reference, section 9);
+#: ``vm_clamp_fraction`` is in every kind's. Studies and the optimiser take their measure
+#: lists from here.
 MEASURES_BY_KIND: dict[str, tuple[str, ...]] = {
     "harmonic": (
         "T_as", "T_au", "T_dr", "T_ds", "T_du", "DLC", "gamma", "mean_current",
@@ -202,14 +203,15 @@ class SimulationResult(Mapping[str, np.ndarray]):
             f"SimulationResult({self.time.size} samples, {self.time[-1]:.3g} s, controller={law!r})"
         )
 
-    # -- peak-velocity clamp (spec section 2.4) -----------------------------------------
+    # -- peak-velocity clamp (model reference, section 2.4) --------------------------------
     @property
     def velocity_clamp_fraction(self) -> float:
         """Share of the record [-] with ``v_m`` at the estimator's upper clamp ``v_max``.
 
         0 when the estimator has no clamp (``known``) or ``v_m`` was not recorded. A large
         share means the damper model ran at the edge of its identified velocity range
-        (spec section 2.4); :meth:`Simulation.run` warns above :data:`CLAMP_WARN_FRACTION`.
+        (model reference, section 2.4); :meth:`Simulation.run` warns above
+        :data:`CLAMP_WARN_FRACTION`.
         """
         limit = self.scenario.get("peak_velocity_limit")
         vm = self.signals.get("v_m")
@@ -224,12 +226,12 @@ class SimulationResult(Mapping[str, np.ndarray]):
             return 0.0
         return self.velocity_clamp_fraction * float(self.time[-1] - self.time[0])
 
-    # -- measures (spec section 9) ------------------------------------------------------
+    # -- measures (model reference, section 9) ---------------------------------------------
     def measures(self, *, road_peak: RoadPeak = "after-onset") -> dict[str, Any]:
-        """The spec section 9 measures suited to the excitation, by their spec names.
+        """The measures suited to the excitation, by their names (model reference, section 9).
 
         * harmonic: ``T_as``, ``T_au``, ``T_dr``, ``T_ds``, ``T_du``, ``DLC``, ``gamma``,
-          ``mean_current``, ``mean_square_current`` (steady window of spec section 9);
+          ``mean_current``, ``mean_square_current`` (steady window, model reference, section 9);
         * pulse: ``SDR_s``, ``SAR_s``, ``SDR_u``, ``SAR_u``, ``RDR``, ``peak_tire_force``,
           and ``road_peak``, the definition of the road acceleration peak that divides
           ``SAR_s`` and ``SAR_u``;
@@ -619,8 +621,8 @@ def warn_if_clamped(result: SimulationResult) -> None:
         warnings.warn(
             f"the peak-velocity estimate v_m was at its upper clamp ({limit:g} m/s) for "
             f"{100 * share:.1f} % of the run ({result.velocity_clamp_time:.2f} s): the damper "
-            "model ran at the edge of its identified velocity range (spec section 2.4); its "
-            "forces there are an extrapolation",
+            "model ran at the edge of its identified velocity range (model reference, "
+            "section 2.4); its forces there are an extrapolation",
             VelocityClampWarning,
             stacklevel=3,
         )

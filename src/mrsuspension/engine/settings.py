@@ -36,9 +36,9 @@ __all__ = [
     "run_settings",
 ]
 
-#: Default fixed RK4 step [s] (MODEL_SPEC section 7).
+#: Default fixed RK4 step [s] (model reference, section 7).
 DEFAULT_DT = 1e-4
-#: Default recorded rate [Hz]; decimation is separate from ``dt`` (MODEL_SPEC section 7).
+#: Default recorded rate [Hz]; decimation is separate from ``dt`` (model reference, section 7).
 DEFAULT_OUTPUT_RATE = 1000.0
 #: Largest accepted step [s] (the stability check of a model is usually far tighter).
 MAX_DT = 0.01
@@ -108,12 +108,12 @@ class RunSettings:
     Parameters
     ----------
     dt : float
-        Fixed RK4 step [s], in (0, 0.01]; 1e-4 s by default (MODEL_SPEC section 7).
+        Fixed RK4 step [s], in (0, 0.01]; 1e-4 s by default (model reference, section 7).
         Whether it is stable for a given model is checked by the simulation
         (:meth:`~mrsuspension.engine.simulate.Simulation.check_dt`).
     duration : float or None
         Simulated time [s], in (0, 1e5]; None (default): the excitation's own duration
-        (the steady-state rule of spec section 9 for harmonic runs).
+        (for harmonic runs, the steady-state rule: model reference, section 9).
     output_rate : float or None
         Recorded samples per second [Hz], in (0, 1/dt]; None (default): 1 kHz, at most
         one sample per step. Always a number after construction.

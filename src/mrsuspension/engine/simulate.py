@@ -106,7 +106,8 @@ class Simulation:
         Drive-current limit i_max [A] (0.5 A in simulations, 0.3 A in HiL).
     estimator : PeakVelocityEstimator, optional
         The controller's peak-velocity estimator (for the ADFG multiplier and the inverse
-        model); default: the damper's own, else the 1 s ``cycle-rms`` (spec section 2.4).
+        model); default: the damper's own, else the 1 s ``cycle-rms`` (model reference,
+        section 2.4).
 
     Examples
     --------
@@ -135,8 +136,9 @@ class Simulation:
         )
         if self.controller.needs_inverse and not symmetric_wang:
             raise ValidationError(
-                f"controller {self.controller.law!r} uses the inverse model (spec section 2.3) "
-                f"and needs the 'wang-symmetric' damper model; got {self.damper.name!r}"
+                f"controller {self.controller.law!r} uses the inverse model (model reference, "
+                "section 2.3) and needs the 'wang-symmetric' damper model; "
+                f"got {self.damper.name!r}"
             )
 
     def _check_types(self) -> None:
@@ -281,7 +283,7 @@ class Simulation:
         duration : float, optional
             Simulated time [s].
         dt : float, optional
-            Fixed RK4 step [s] (default 1e-4, spec section 7); checked for stability.
+            Fixed RK4 step [s] (default 1e-4, model reference, section 7); checked for stability.
         output_rate : float, optional
             Samples per second kept in the result (default 1 kHz; at most 1/dt).
         settings : RunSettings, optional

@@ -762,7 +762,7 @@ class VehicleSimulation:
         duration : float, optional
             Simulated time [s].
         dt : float, optional
-            Fixed RK4 step [s] (default 1e-4, spec section 7); checked for stability.
+            Fixed RK4 step [s] (default 1e-4, model reference, section 7); checked for stability.
         output_rate : float, optional
             Samples per second kept in the result (default 1 kHz; at most 1/dt).
         settings : RunSettings, optional

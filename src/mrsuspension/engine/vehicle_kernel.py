@@ -156,7 +156,7 @@ def rates(
             fd = CK.ideal_force(f, cp[c], vs, xd, vd)
         partner = int(vp[o + C_PARTNER])
         fs = vp[o + C_KS] * xd + fd + vp[o + C_BAR] * (xd - work[partner, 0])
-        # tire: zero when lifted off (delta <= 0), never pulls (spec section 4)
+        # tire: zero when lifted off (delta <= 0), never pulls (model reference, section 4)
         delta = zr[c, j] - zu + vp[o + C_DXU]
         ft = vp[o + C_KT] * delta + vp[o + C_CT] * (zrd[c, j] - vu)
         ft = 0.0 if ft < 0.0 else ft

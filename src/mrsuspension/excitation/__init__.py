@@ -1,4 +1,4 @@
-"""Road excitations ``z_r(t)`` [m], positive up (MODEL_SPEC section 8).
+"""Road excitations ``z_r(t)`` [m], positive up (model reference, section 8).
 
 ==============  ===============================================================  ==========
 kind            class                                                            equation

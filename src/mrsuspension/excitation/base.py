@@ -1,4 +1,4 @@
-"""The excitation interface: a road input ``z_r(t)`` [m], positive up (MODEL_SPEC section 1)."""
+"""The excitation interface: road input ``z_r(t)`` [m], positive up (model reference, section 1)."""
 
 from __future__ import annotations
 
@@ -151,7 +151,7 @@ class Excitation(Configurable, ABC):
     :meth:`velocity` ``dz_r/dt`` [m/s] and :meth:`acceleration` ``d2z_r/dt2`` [m/s^2]
     (analytic, or from a C2 cubic spline for sampled roads). :attr:`duration` is a
     sensible simulation length [s] and :meth:`measure_window` the part of the record
-    the spec section 9 measures are computed over.
+    the measures are computed over (model reference, section 9).
 
     Subclasses are frozen dataclasses that validate their parameters on construction,
     and declare their registry name, options and measures (:class:`Configurable`).
@@ -181,7 +181,7 @@ class Excitation(Configurable, ABC):
     def measure_window(self) -> tuple[float, float]:
         """Time limits ``(t_start, t_end)`` [s] of the part of the record to measure.
 
-        The whole record by default (shock and random-road measures, spec section 9).
+        The whole record by default (shock and random-road measures, model reference, section 9).
         """
         return (0.0, self.duration)
 

@@ -1,6 +1,6 @@
 """Deterministic road inputs: harmonic (3.36), two-stage stepped sweep (3.37), rounded pulse (3.38).
 
-All displacements are road inputs ``z_r`` [m], positive up (MODEL_SPEC sections 1 and 8).
+All displacements are road inputs ``z_r`` [m], positive up (model reference, sections 1 and 8).
 """
 
 from __future__ import annotations
@@ -47,15 +47,15 @@ __all__ = [
     "two_stage_amplitude",
 ]
 
-# -- spec section 9: steady state of a harmonic run ---------------------------------
-#: settle for at least this long [s] before measuring (spec section 9)
+# -- model reference, section 9: steady state of a harmonic run ---------------------------------
+#: settle for at least this long [s] before measuring (model reference, section 9)
 SETTLE_TIME = 5.0
 #: ... and at least this many cycles; measure over at least this many cycles too
 MIN_CYCLES = 10
-#: measure over at least this long [s] (spec section 9)
+#: measure over at least this long [s] (model reference, section 9)
 MIN_MEASURE_TIME = 2.0
 
-# -- spec section 8 -----------------------------------------------------------------
+# -- model reference, section 8 -----------------------------------------------------------------
 #: transition frequency f_T [Hz] of the two-stage sweep, section 3.5.1 (~ sqrt(2) f_n)
 TRANSITION_FREQUENCY = 2.1
 #: f_T [Hz] used on the hardware-in-the-loop rig (Chapter 7)
@@ -140,8 +140,8 @@ class Harmonic(Excitation):
 
     Notes
     -----
-    :attr:`duration` leaves the settling time of spec section 9 (at least 5 s and 10
-    cycles) followed by the measuring window of :meth:`measure_window` (a whole number
+    :attr:`duration` leaves the settling time (model reference, section 9: at least 5 s
+    and 10 cycles) followed by the measuring window of :meth:`measure_window` (a whole number
     of cycles, at least 10 cycles and 2 s).
 
     Examples
@@ -231,7 +231,7 @@ class Harmonic(Excitation):
         return z, v
 
     def measure_window(self) -> tuple[float, float]:
-        """Steady-state window ``(t_start, t_end)`` [s] of spec section 9.
+        """Steady-state window ``(t_start, t_end)`` [s] (model reference, section 9).
 
         ``t_start = max(5 s, 10 cycles)``; the window is the smallest whole number of
         cycles lasting at least 10 cycles and 2 s.
@@ -243,7 +243,7 @@ class Harmonic(Excitation):
 
     @property
     def duration(self) -> float:
-        """Settling time plus the measuring window [s] (spec section 9)."""
+        """Settling time plus the measuring window [s] (model reference, section 9)."""
         return self.measure_window()[1]
 
     def describe(self) -> dict[str, Any]:

@@ -1,4 +1,4 @@
-"""Random roads: elevation profiles over distance driven at a constant speed (spec section 8).
+"""Random roads: elevation profiles driven at a constant speed (model reference, section 8).
 
 A :class:`RoadProfile` holds an elevation profile ``h(x)`` [m] over distance ``x`` [m]
 and turns it into a time signal ``z_r(t) = h(x_0 + V t)`` through a C2 cubic spline, so
@@ -60,7 +60,7 @@ __all__ = [
 
 #: ISO 8608 reference spatial frequency n0 [cycle/m]
 ISO8608_N0 = 0.1
-#: ISO 8608 classes: geometric mean of Gd(n0) [m^3] (spec section 8)
+#: ISO 8608 classes: geometric mean of Gd(n0) [m^3] (model reference, section 8)
 ISO8608_CLASSES: dict[str, float] = {
     "A": 16e-6,
     "B": 64e-6,
@@ -775,8 +775,8 @@ def _band(band: object) -> tuple[float, float]:
 class RoadSpectrum:
     """A power-law road displacement PSD ``Gd(n) = Gd(n0) (n/n0)^-w`` over a band.
 
-    ISO 8608's form (spec section 8): ISO classes have waviness ``w = 2``; the preset roads
-    have ``w = 1`` (section 8(c)). Outside ``band`` the density is zero.
+    ISO 8608's form (model reference, section 8): ISO classes have waviness ``w = 2``; the
+    preset roads have ``w = 1`` (section 8(c)). Outside ``band`` the density is zero.
 
     Parameters
     ----------
@@ -1104,7 +1104,8 @@ def iso8608(
 # -- presets -------------------------------------------------------------------------------
 #: Waviness of the preset roads: the dissertation's DLC at 100 km/h is about 1.03 times
 #: that at 50 km/h (0.142/0.138, 0.114/0.113), which an ``n^-1`` road gives (a temporal
-#: PSD ``G(f) = Gd(f/V)/V`` independent of V); ISO's ``n^-2`` would halve it (spec 8(c)).
+#: PSD ``G(f) = Gd(f/V)/V`` independent of V); ISO's ``n^-2`` would halve it (model reference,
+#: section 8(c)).
 PRESET_WAVINESS = 1.0
 #: The dissertation filtered its road data to 0-2 cycle/m (section 3.5.2); ISO 8608's
 #: lower band limit 0.011 cycle/m keeps the synthesis finite. At 0.3 m spacing the
@@ -1205,13 +1206,13 @@ class PresetRoad:
 
 
 #: The presets, by name. ``Gd(n0)`` of "rough" and "medium-rough" tuned against the
-#: dissertation's DLCs (spec section 8; docs/excitations-and-measures.md, "Presets"):
+#: dissertation's DLCs (model reference, section 8; docs/excitations-and-measures.md, "Presets"):
 #: rough 50 km/h, 30 s, cycle-rms estimator: passive 0.1 A 0.114 (0.111), passive 0 A
 #: 0.137 (0.139), skyhook ACM 0.136 (0.138), inverse hi-lo 0.115 (0.113), sliding mode
 #: 0.117 (0.112); medium-rough: skyhook 0.045 (0.045), inverse hi-lo 0.055 (0.056),
-#: sliding mode 0.056 (0.054). The spec's starting values were 3.9e-5 and 9.7e-6 m^3
+#: sliding mode 0.056 (0.054). The model reference's starting values were 3.9e-5 and 9.7e-6 m^3
 #: (DLCs 1.20-1.25x and 1.3-1.6x too high). "smooth" has no DLC to tune against: it keeps
-#: the spec's 2.8e-6 m^3, whose road peaks at 4.0 mm like the dissertation's.
+#: the model reference's 2.8e-6 m^3, whose road peaks at 4.0 mm like the dissertation's.
 PRESET_ROADS: dict[str, PresetRoad] = {
     p.name: p
     for p in (
@@ -1233,7 +1234,7 @@ def preset_road(
 
     **Stand-ins**: the dissertation's measured Canadian road profiles (section 3.5.2) are
     not available. Each preset is defined by its PSD, ``Gd(n) = Gd(n0) (n/0.1)^-1`` over
-    0.011-2 cycle/m (spec section 8(c)), and synthesised by :func:`synthesise_road` as a
+    0.011-2 cycle/m (model reference, section 8(c)), and synthesised by :func:`synthesise_road` as a
     500 m profile at 0.3 m spacing (content up to the 1.67 cycle/m Nyquist frequency).
     ``Gd(n0)`` is 2.8e-6, 4.2e-6 and 2.7e-5 m^3 (rough and medium-rough tuned against the
     dissertation's DLCs, see :data:`PRESET_ROADS`); rms elevation 1.19, 1.45 and 3.68 mm

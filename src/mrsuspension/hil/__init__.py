@@ -1,4 +1,4 @@
-"""Hardware-in-the-loop platform (dissertation Chapter 7, spec section 11).
+"""Hardware-in-the-loop platform (dissertation Chapter 7; model reference, section 11).
 
 The quarter car minus its damper runs in real time around a rig carrying the damper: the
 measured force closes the loop through the engine's compiled step. Pieces:

@@ -11,7 +11,7 @@ controller cases:
   (:func:`~mrsuspension.hil.validate.validate`; Figs 7.7, 7.8, 7.12-7.14);
 - ``frequency``: harmonic runs over a frequency list at the two-stage amplitude of the
   HiL rig (``a`` up to 2 Hz, ``a (2/f)^2`` above), ``T_as``, ``T_au``, ``T_dr`` and
-  ``DLC`` over the steady window of spec section 9 (Figs 7.9, 7.15, 7.16);
+  ``DLC`` over the steady window (model reference, section 9; Figs 7.9, 7.15, 7.16);
 - ``pulse``: a rounded pulse (mu = 3, w0 = 10.4 rad/s, 2 cm): time histories and the
   shock ratios (Figs 7.10, 7.17, 7.18);
 - ``road``: the preset rough road at 50 km/h with its elevations halved (as on the rig):

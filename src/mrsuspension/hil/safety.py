@@ -1,4 +1,4 @@
-"""Safety supervisor and start-up sequence of the HiL loop (section 7.2 / spec section 11).
+"""Safety supervisor and start-up sequence of the HiL loop (model reference, section 11).
 
 Limits are checked every tick on the commands and the measurements. On a trip the drive
 current goes to 0 in the same tick, the actuator is ramped back to mid-stroke, the run

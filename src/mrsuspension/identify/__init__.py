@@ -1,4 +1,4 @@
-"""Parameter identification from measured damper data (MODEL_SPEC section 10, eq. 2.22).
+"""Parameter identification from measured damper data (model reference, section 10, eq. 2.22).
 
 The pipeline of ``mrsus identify``, usable piece by piece:
 

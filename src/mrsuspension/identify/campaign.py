@@ -220,7 +220,7 @@ def identify(
     progress: Callable[[str], None] | None = None,
     current_gain: float | None = None,
 ) -> IdentificationResult:
-    """Identify a damper model from a campaign of harmonic tests (spec section 10).
+    """Identify a damper model from a campaign of harmonic tests (model reference, section 10).
 
     Parameters
     ----------

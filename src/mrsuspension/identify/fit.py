@@ -1,7 +1,7 @@
 """Global least-squares fit of a damper model to many loops, eq. (2.22).
 
 The dissertation minimised the summed squared force error over all points, currents and
-frequencies with MATLAB's ``fminunc``. Here (MODEL_SPEC section 10) every test is
+frequencies with MATLAB's ``fminunc``. Here (model reference, section 10) every test is
 normalised by its force range and its number of points, so the cost is the sum over
 tests of NRMSE^2 and a 1 kN test counts as much as a 100 N one; the problem is solved
 by :func:`scipy.optimize.least_squares` (trust-region reflective, with bounds) from

@@ -1,6 +1,6 @@
 """The manifest of a test campaign: which files, at which current (and excitation).
 
-Three forms are accepted (MODEL_SPEC section 10: "one file or folder per test"):
+Three forms are accepted (model reference, section 10: "one file or folder per test"):
 
 CSV
     A header with ``file`` and ``current`` and optionally ``frequency``, ``amplitude``,

@@ -55,7 +55,7 @@ class FitData:
 
     ``weight`` is ``1 / (force range of the test * sqrt(points of the test))``, so the
     sum of squared weighted residuals is the sum over tests of NRMSE^2 (the cost
-    (2.22) with every test normalised by its force range, spec section 10). ``centred``
+    (2.22) with every test normalised by its force range; model reference, section 10). ``centred``
     marks loops whose mean force was removed: their model force loses its mean too.
     """
 
@@ -280,7 +280,7 @@ class WangFit(FitModel):
         data: FitData,
         weight: FloatArray | None = None,
     ) -> FloatArray:
-        """Chain rule through eqs. (2.7)-(2.21) (symbols as in MODEL_SPEC section 2.1-2.2).
+        """Chain rule through eqs. (2.7)-(2.21) (symbols: model reference, sections 2.1-2.2).
 
         Only the requested columns are formed; ``weight`` (per point) multiplies the
         rows, folded into the common factors so it costs nothing extra.

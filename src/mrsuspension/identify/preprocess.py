@@ -1,8 +1,8 @@
 """Pre-processing of a harmonic damper test into one steady-state loop.
 
 The dissertation fitted its models to one steady-state cycle per test, 360 points per
-loop (section 2.7; MODEL_SPEC section 10). :func:`preprocess` turns a raw record into
-such a loop and says what it did:
+loop (dissertation section 2.7; model reference, section 10). :func:`preprocess` turns a
+raw record into such a loop and says what it did:
 
 1. checks the signals (NaN, infinite values, time increasing) and puts a jittery time
    base onto a uniform grid;
@@ -204,7 +204,7 @@ class Loop:
 
     @property
     def force_range(self) -> float:
-        """Peak-to-peak force [N], the normaliser of the residuals (spec section 10)."""
+        """Peak-to-peak force [N], the normaliser of the residuals (model reference, section 10)."""
         return float(np.ptp(self.force))
 
     def energy_per_cycle(self, force: npt.ArrayLike | None = None) -> float:

@@ -2,7 +2,7 @@
 
 A test record holds sampled signals of one damper test: ``time``, ``displacement``
 (stroke ``x_d``), ``velocity``, ``force``, and optionally ``current`` and
-``acceleration``. Everything is converted to SI (MODEL_SPEC section 1) on reading.
+``acceleration``. Everything is converted to SI (model reference, section 1) on reading.
 
 Which column is which
     Files with a header are matched by name, case-insensitively, against the aliases in

@@ -204,8 +204,8 @@ def _html(result: IdentificationResult, plots: dict[int, str], files: list[str])
         f"<title>identification: {e(result.model)}</title><style>{_STYLE}</style></head><body>",
         f"<h1>Identification of <code>{e(result.model)}</code></h1>",
         f"<p class='meta'>manifest {e(result.manifest)} &middot; {e(result.created)} &middot; "
-        "mrsuspension identify (MODEL_SPEC section 10, eq. 2.22: least squares over all tests, "
-        "each normalised by its force range)</p>",
+        "mrsuspension identify (model reference, section 10, eq. 2.22: least squares over all "
+        "tests, each normalised by its force range)</p>",
     ]
     mean, worst = result.mean_nrmse, result.max_nrmse
     parts.append(

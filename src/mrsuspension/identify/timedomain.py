@@ -21,7 +21,7 @@ another model with internal states by adding a subclass):
     ``i_f' = -eta (i_f - i)``.
 ``wang``
     The dissertation's symmetric model (2.15), with the lagged current and the
-    ``cycle-rms`` running peak-velocity estimate (MODEL_SPEC section 2.4).
+    ``cycle-rms`` running peak-velocity estimate (model reference, section 2.4).
 
 Examples
 --------
@@ -540,7 +540,7 @@ class WangLag(TimeDomainModel):
     """The dissertation's symmetric model (2.15) with the lagged current and ``cycle-rms``.
 
     The peak velocity ``v_m`` is the running ``sqrt(2 mean(v^2))`` over the last second
-    (MODEL_SPEC section 2.4), clamped to the start set's velocity range; ``sgn(a_d)`` comes
+    (model reference, section 2.4), clamped to the start set's velocity range; ``sgn(a_d)`` comes
     from the record's derived acceleration. All 13 parameters of Table 2.2 and ``eta`` are
     fitted; ``F0`` (and the current gain) are first scaled to the record's force level.
     """

@@ -1,4 +1,4 @@
-"""Performance measures (MODEL_SPEC section 9): pure functions on arrays.
+"""Performance measures (model reference, section 9): pure functions on arrays.
 
 Every function takes plain numpy arrays in SI units, with an explicit sampling rate
 (``fs``) or time array where it needs one; nothing here knows about the engine.

@@ -1,6 +1,6 @@
 """ISO 2631-1 frequency weightings Wk, Wd and We, weighted RMS and VDV.
 
-Beyond the dissertation (spec section 9). The Wk weighting (vertical, seat surface) is
+Beyond the dissertation (model reference, section 9). The Wk weighting (vertical, seat surface) is
 the product of four analog filters (ISO 2631-1:1997, Annex A), with ``s = j 2 pi f`` and
 ``w_i = 2 pi f_i``:
 
@@ -57,7 +57,7 @@ __all__ = [
     "wk_weighting",
 ]
 
-#: Wk filter constants, ISO 2631-1 Table A.2 (frequencies in Hz; spec section 9)
+#: Wk filter constants, ISO 2631-1 Table A.2 (frequencies in Hz; model reference, section 9)
 WK_CONSTANTS: dict[str, float] = {
     "f1": 0.4,
     "f2": 100.0,

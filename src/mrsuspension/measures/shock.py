@@ -1,8 +1,8 @@
-"""Shock measures of rounded-pulse runs, eqs. (3.41) and (3.44) (spec section 9).
+"""Shock measures of rounded-pulse runs, eqs. (3.41) and (3.44) (model reference, section 9).
 
 All peaks are maxima of absolute values over the whole record, except the road
 acceleration peak that divides ``SAR_s`` and ``SAR_u``: it has two readings, chosen by
-``road_peak`` (spec section 9, revised 2026-11-24).
+``road_peak`` (model reference, section 9, revised 2026-11-24).
 
 ``"after-onset"`` (the default)
     The largest ``|z_r''|`` after the onset lobe (:func:`road_acceleration_peak`). The
@@ -52,7 +52,7 @@ __all__ = [
 RoadPeak = Literal["onset", "after-onset"]
 #: Their names, the default first
 ROAD_PEAKS: tuple[RoadPeak, ...] = ("after-onset", "onset")
-#: The dissertation-matching definition (spec section 9, revised 2026-11-24)
+#: The dissertation-matching definition (model reference, section 9, revised 2026-11-24)
 DEFAULT_ROAD_PEAK: RoadPeak = "after-onset"
 #: ``max_{x > 0 after the onset lobe} |d2/dx2 (x^2 e^-x)| = (2 sqrt 3 - 2) e^(sqrt 3 - 3)``,
 #: reached at ``x = 3 - sqrt 3``: the after-onset road acceleration peak of the rounded

@@ -1,4 +1,4 @@
-"""Welch power spectral densities with the dissertation's settings (spec section 9).
+"""Welch power spectral densities with the dissertation's settings (model reference, section 9).
 
 Signals are resampled to 512 Hz (polyphase FIR with anti-aliasing), then analysed with
 one-sided Welch averaging: Hann window, 8192-sample segments (0.0625 Hz resolution),
@@ -20,9 +20,9 @@ from mrsuspension.measures._checks import FloatArray, rate, signal
 
 __all__ = ["PSD_FS", "PSD_NPERSEG", "PowerSpectrum", "ShortRecordWarning", "psd"]
 
-#: analysis sampling rate [Hz] of the random-road PSDs (spec section 9)
+#: analysis sampling rate [Hz] of the random-road PSDs (model reference, section 9)
 PSD_FS = 512.0
-#: Welch segment length: 8192 samples at 512 Hz = 0.0625 Hz resolution (spec section 9)
+#: Welch segment length: 8192 samples at 512 Hz = 0.0625 Hz resolution (model reference, section 9)
 PSD_NPERSEG = 8192
 
 

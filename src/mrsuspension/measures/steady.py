@@ -1,4 +1,4 @@
-"""Steady-state measures of harmonic runs and their building blocks (spec section 9).
+"""Steady-state measures of harmonic runs and their building blocks (model reference, section 9).
 
 Every function takes plain arrays (SI units) and an optional ``window``: ``None`` (the
 whole record), a ``slice`` (e.g. from :func:`steady_window`), time limits
@@ -43,7 +43,7 @@ __all__ = [
     "transmissibility",
 ]
 
-#: gravitational acceleration [m/s^2] (spec section 1)
+#: gravitational acceleration [m/s^2] (model reference, section 1)
 G = 9.81
 
 
@@ -174,7 +174,7 @@ def steady_window(
     min_cycles: int = 10,
     min_time: float = 2.0,
 ) -> slice:
-    """Index slice of the steady-state part of a harmonic record (spec section 9).
+    """Index slice of the steady-state part of a harmonic record (model reference, section 9).
 
     The record must first settle for at least ``settle`` seconds and ``min_cycles``
     cycles; the window is then the largest whole number of cycles that fits between the
@@ -189,7 +189,7 @@ def steady_window(
     frequency : float
         Excitation frequency [Hz].
     settle, min_cycles, min_time : optional
-        The spec section 9 rule: 5 s, 10 cycles, 2 s.
+        The rule of the model reference, section 9: 5 s, 10 cycles, 2 s.
 
     Examples
     --------
@@ -266,7 +266,7 @@ def dlc(
 def asymmetry_ratio(
     force: npt.ArrayLike, *, window: Window = None, time: npt.ArrayLike | None = None
 ) -> float:
-    """``gamma = max rebound force / max compression force`` (spec section 9).
+    """``gamma = max rebound force / max compression force`` (model reference, section 9).
 
     Rebound is negative damper force in our convention (``F_d > 0`` resists
     compression), so ``gamma = max(-F_d) / max(F_d)``.
@@ -350,7 +350,7 @@ def harmonic_measures(
     static_load: float,
     i_d: npt.ArrayLike | None = None,
 ) -> dict[str, Any]:
-    """The spec section 9 harmonic measures over :func:`steady_window`, by their spec names.
+    """The harmonic measures over :func:`steady_window`, by name (model reference, section 9).
 
     Returns ``T_as``, ``T_au``, ``T_dr``, ``T_ds``, ``T_du``, ``DLC`` (against
     ``static_load = (m_s + m_u) g``), ``gamma`` (``None`` when the damper never

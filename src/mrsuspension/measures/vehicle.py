@@ -5,7 +5,7 @@ rest of :mod:`mrsuspension.measures`; nothing here knows about the engine. Per-w
 per-corner functions take a mapping from corner name (e.g. ``"front_left"``) to signal
 and return a dict with the same keys.
 
-Body motion, for small angles (ISO 8855 axes, MODEL_SPEC section 1: ``x`` forward,
+Body motion, for small angles (ISO 8855 axes; model reference, section 1: ``x`` forward,
 ``y`` left, ``z`` up): heave acceleration ``a_z`` [m/s^2] up, pitch acceleration
 ``theta''`` [rad/s^2] positive nose down, roll acceleration ``phi''`` [rad/s^2] positive
 left side up (the conventions of :mod:`mrsuspension.control.modal`). A seat at ``(x, y)``
@@ -215,7 +215,7 @@ def wheel_dlc(
     """Dynamic load coefficient per wheel, ``std(F_T) / load`` (quarter car's :func:`dlc`).
 
     ``tire_forces`` [N] per corner; ``static_loads`` [N] per corner for harmonic runs, by
-    default each wheel's mean force (the random-road definition, spec section 9).
+    default each wheel's mean force (the random-road definition, model reference, section 9).
 
     Examples
     --------
@@ -237,7 +237,7 @@ def wheel_dlc(
 def lift_off_time(tire_force: npt.ArrayLike, fs: float) -> float:
     """Time [s] a wheel spends off the ground: samples with ``F_T <= 0`` over ``fs`` [Hz].
 
-    The engine's tire force is exactly 0 in lift-off (spec section 4).
+    The engine's tire force is exactly 0 in lift-off (model reference, section 4).
 
     Examples
     --------
@@ -303,8 +303,8 @@ def coil_energy(current: npt.ArrayLike, fs: float, resistance: float = COIL_RESI
 
     ``current`` [A] sampled at ``fs`` over the record (its duration is
     ``(n - 1) / fs``); ``resistance`` [ohm], by default :data:`COIL_RESISTANCE` (an
-    upper bound from the dissertation's 12 V / 0.5 A drive). The spec's coil power is
-    ``R i^2`` (section 9); the coil's inductance stores energy but draws none on average.
+    upper bound from the dissertation's 12 V / 0.5 A drive). The coil power is ``R i^2``
+    (model reference, section 9); the coil's inductance stores energy but draws none on average.
 
     Examples
     --------

@@ -243,7 +243,7 @@ def page_options(law: str) -> list[ControlOption]:
 
 
 def _form_field(opt: ControlOption) -> dict[str, Any]:
-    """One option as the page builds its field (label: the spec's symbol and the unit)."""
+    """One option as the page builds its field (label: model-reference symbol and unit)."""
     label = opt.symbol or opt.name
     if opt.unit:
         label += f" [{opt.unit}]"
@@ -293,7 +293,7 @@ def _default_law(laws: tuple[str, ...]) -> str:
 
 
 def _given(settings: Mapping[str, Any], opt: ControlOption) -> Any:
-    """The page's value of ``opt`` (by name, else by its spec symbol); None when blank."""
+    """The page's value of ``opt`` (by name, else by its model-reference symbol), or None."""
     for key in (opt.name, opt.symbol):
         raw = settings.get(key) if key else None
         if raw is not None and str(raw).strip() != "":
@@ -304,7 +304,7 @@ def _given(settings: Mapping[str, Any], opt: ControlOption) -> Any:
 def controller_table(law: str, settings: Mapping[str, Any]) -> dict[str, Any]:
     """The ``[controller]`` table of ``law`` from the page's fields, validated.
 
-    Each option of :func:`page_options` is read by name (or by its spec symbol, e.g.
+    Each option of :func:`page_options` is read by name (or by its model-reference symbol, e.g.
     ``lambda`` for ``slope``); a blank or missing one takes its default. Numbers are
     checked against the option's range, text against its choices.
 
@@ -345,7 +345,7 @@ def scenario_from_settings(
     ----------
     settings : mapping
         Form fields: ``controller`` (one of :func:`monitor_laws`), the law's options
-        (:func:`controller_table`: by name or spec symbol, blank for the default; an
+        (:func:`controller_table`: by name or model-reference symbol, blank for the default; an
         explicit ``p`` overrides ``mode``), ``excitation``
         (one of :data:`EXCITATIONS`), ``frequency``, ``amplitude``, ``height``,
         ``severity``, ``speed``, ``profile`` (a preset, or ``file`` with ``road_file``),

@@ -348,7 +348,7 @@ def fig_2_10() -> FigureRecord:
         title="Validity of inverse model, and variations in the hysteron and the damping force",
         caption=(
             "i_d = 0.25 + 0.2 sin(3 pi t) A, x_d = 2.5 sin(3 pi t) cm, mean model with v_h of "
-            f"(2.13). The inverse (spec section 2.3) recovers the current to max e_i = "
+            f"(2.13). The inverse (model reference, section 2.3) recovers the current to max e_i = "
             f"{err.max():.1e} A; F_d stays in phase with F_h."
         ),
         figure=fig,
@@ -466,7 +466,7 @@ def _build(context: Context) -> tuple[str, dict[str, Any]]:
         )
         + "<h3>Parameter sets</h3>"
         + "".join(ptables)
-        + "<h3>Errata applied (MODEL_SPEC section 12)</h3>"
+        + "<h3>Errata applied (model reference, section 12)</h3>"
         + errata
     )
     return body, manifest

@@ -200,7 +200,8 @@ def fig_3_10(quick: bool = False) -> FigureRecord:
         caption=(
             "Preset roads: stand-ins for the dissertation's measured roads (not available), "
             "each defined by its PSD G_d(n) = G_d(n0) (n/0.1)^-1 over 0.011-2 cycle/m "
-            "(dashed; spec section 8(c)), G_d(n0) tuned against the dissertation's DLCs, "
+            "(dashed; model reference, section 8(c)), G_d(n0) tuned against the dissertation's "
+            "DLCs, "
             "synthesised with random phases (500 m at 0.3 m: content up to 1.67 cycle/m). "
             "Temporal PSD G(f) = G_d(n)/V at f = nV: with the n^-1 slope, doubling the "
             "speed spreads the spectrum over twice the frequencies at the same level."

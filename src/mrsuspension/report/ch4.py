@@ -7,7 +7,8 @@ and :data:`TABLES` the shock-response Tables 4.1-4.5 with the dissertation's num
 the figures across a process pool. Frequency responses use the two-stage swept excitation
 (a = 2.5 cm, f_T = 2.1 Hz; Fig 4.7 a constant 1.5 cm, as its text says): ``quick`` uses
 10 frequencies and a 0.5 ms step (the measures agree with the 0.1 ms step to about 4
-digits); the full figures use 30 frequencies and the spec's 0.1 ms step.
+digits); the full figures use 30 frequencies and the default 0.1 ms step
+(model reference, section 7).
 
 The helpers :func:`sweep_study`, :func:`simulate` and :func:`pulse` remain for studies
 outside the families (Fig 4.3b, the findings tests).
@@ -82,7 +83,7 @@ PULSE_DURATION = 4.0
 
 
 def _step(quick: bool) -> float:
-    """0.5 ms in quick mode, the spec's 0.1 ms otherwise."""
+    """0.5 ms in quick mode, the default 0.1 ms (model reference, section 7) otherwise."""
     return 5e-4 if quick else 1e-4
 
 

@@ -19,7 +19,7 @@ The time-history figures run the engine directly (:func:`~mrsuspension.engine.ru
 the frequency responses run a :class:`~mrsuspension.studies.Study`. The inverse-model laws
 use the default (symmetric hysteretic) damper with its force gain k_d; a gain of 2.5 makes
 the pre-yield slope 2.5 times steeper, so the step is 0.25 ms in quick mode (RK4 limit about
-0.27 ms) and the spec's 0.1 ms otherwise.
+0.27 ms) and the default 0.1 ms (model reference, section 7) otherwise.
 """
 
 from __future__ import annotations

@@ -28,7 +28,7 @@ replaces the base controller table instead, so ``{"controller": {"law": "passive
 
 Step sizes: quick mode uses 0.5 ms, or 0.25 ms for the inverse-model laws and any damper
 force gain above 1 (a steeper pre-yield slope; RK4 limit about 0.27 ms at k_d = 2.5); the
-full report uses the spec's 0.1 ms throughout.
+full report uses the default 0.1 ms (model reference, section 7) throughout.
 
 Examples
 --------
@@ -648,7 +648,7 @@ CLAMP_KEY = "time at v_m clamp [%]"
 def clamp_note(payloads: Mapping[str, Mapping[str, Any]], data: dict[str, Any]) -> str:
     """Record each variant's time at the v_m clamp in ``data``; a caption note when large.
 
-    Spec section 2.4: beyond its identified velocity range the damper model is an
+    Model reference, section 2.4: beyond its identified velocity range the damper model is an
     extrapolation, and a figure that goes there says so.
     """
     from mrsuspension.engine.result import CLAMP_WARN_FRACTION
@@ -1068,7 +1068,7 @@ DEFAULT_TASK_COST = 0.3
 
 
 def _harmonic_seconds(frequency: float) -> float:
-    """A harmonic run's length [s]: settling plus its measuring window (spec section 9)."""
+    """A harmonic run's length [s]: settling plus measuring window (model reference, section 9)."""
     from mrsuspension.excitation.deterministic import MIN_CYCLES, MIN_MEASURE_TIME, SETTLE_TIME
 
     start = max(SETTLE_TIME, MIN_CYCLES / frequency)

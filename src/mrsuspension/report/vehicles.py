@@ -7,7 +7,8 @@ Issue 19, item 7. The quarter car of the full car's front-left corner and the fu
 * skyhook hi-lo ACM at every corner (:class:`~mrsuspension.control.HiLo` policy I,
   ``mode="ACM"``, on the body's velocity at the corner);
 * modal skyhook (:class:`~mrsuspension.control.modal.ModalSkyhook` with the gains of
-  per-corner skyhook, ``c_s`` = 6750 N s/m, spec section 5; hi-lo currents per corner);
+  per-corner skyhook, ``c_s`` = 6750 N s/m as in the model reference, section 5; hi-lo
+  currents per corner);
 
 on two roads: a two-track ISO 8608 class C road (isotropic left/right coherence) at
 50 km/h and a 5 cm, 0.5 m rounded bump under the left wheels only (it excites roll).

@@ -159,7 +159,7 @@ def check_scheduler(address: str, timeout: float = SCHEDULER_TIMEOUT) -> str:
     return f"tcp://{host}:{port}"
 
 
-#: Measures of ``SimulationResult.measures()`` by excitation kind (spec section 9): each
+#: Measures of ``SimulationResult.measures()`` by excitation kind (model reference, section 9): each
 #: kind's declared ``measures_kind`` looked up in
 #: :data:`~mrsuspension.engine.result.MEASURES_BY_KIND`.
 MEASURES: dict[str, tuple[str, ...]] = {
@@ -433,7 +433,7 @@ def _relative_inputs(files: Mapping[str, str], base: Path) -> tuple[tuple[str, s
 
 
 def _check_duration(scenario: Scenario) -> None:
-    """A harmonic run's measures need the steady-state rule's time (spec section 9)."""
+    """A harmonic run's measures need the steady-state rule's time (model reference, section 9)."""
     if scenario.duration is None:
         return
     for exc in scenario.excitations:

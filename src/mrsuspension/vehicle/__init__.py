@@ -1,4 +1,4 @@
-"""The quarter-vehicle model (MODEL_SPEC section 4) and the skyhook reference models (section 5).
+"""The quarter-vehicle model and the skyhook reference models (model reference, sections 4-5).
 
 Coordinates are positive **up**, measured from static equilibrium: sprung mass ``z_s``,
 unsprung mass ``z_u``, road ``z_r``. The damper stroke is ``x_d = z_u - z_s`` (compression
@@ -55,7 +55,7 @@ __getattr__, __dir__ = lazy_namespace(
     globals(),
 )
 
-#: Gravitational acceleration [m/s^2] (MODEL_SPEC section 1).
+#: Gravitational acceleration [m/s^2] (model reference, section 1).
 GRAVITY = 9.81
 
 _LIMITS = {
@@ -70,7 +70,7 @@ _LIMITS = {
 
 @dataclass(frozen=True)
 class QuarterCar:
-    """Two-degree-of-freedom quarter vehicle (nominal values: MODEL_SPEC section 4).
+    """Two-degree-of-freedom quarter vehicle (nominal values: model reference, section 4).
 
     Parameters
     ----------
@@ -202,7 +202,7 @@ def linear_frequency_response(
 
     With a linear damper ``F_d = c v_d`` and no tire lift-off the model is linear; the
     complex amplitudes follow from ``(-w^2 M + i w C + K) Z = F``. Returns the
-    dimensionless ratios of spec section 9 for a harmonic road:
+    dimensionless ratios (model reference, section 9) for a harmonic road:
     ``T_as = |z_s''| / |z_r''| = |Z_s|``, ``T_au = |Z_u|``, ``T_dr = |Z_u - Z_s|``, and
     ``DLC`` per metre of road amplitude: ``|F_T| / sqrt(2) / ((m_s + m_u) g)`` (multiply by
     the road amplitude).

@@ -1,6 +1,6 @@
 """Half- and full-vehicle ride models: a rigid body on a suspended wheel at every corner.
 
-The conventions of the quarter car (MODEL_SPEC section 4) hold at every corner:
+The conventions of the quarter car (model reference, section 4) hold at every corner:
 coordinates are positive **up** from static equilibrium, the stroke ``x_d = z_u - z_s``
 is positive in compression, a positive damper force pushes the body up, and a tire
 carries load only while it is compressed (``delta = z_r - z_u + dx_u > 0``; it never

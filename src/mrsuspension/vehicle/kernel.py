@@ -1,4 +1,4 @@
-"""The quarter car's compiled equations (spec sections 4 and 5): state and parameter layouts.
+"""The quarter car's compiled equations (model reference, sections 4-5): state, parameter layouts.
 
 The one place the vehicle's equations are written, for the engine's scalar step
 (``engine/kernel.py``), its lane kernel (``engine/lanes.py``)
@@ -74,7 +74,7 @@ def plant_rates(
     cs: float,
     inv_ms0: float,
 ) -> tuple[float, float, float, float]:
-    """``(z_s'', z_u'', z_s0'', F_T)`` given the damper force: the quarter car of spec 4.
+    """``(z_s'', z_u'', z_s0'', F_T)`` given the damper force (model reference, section 4).
 
     Branch-free (selects), so that a loop over independent cars compiles to vector
     instructions. ``weight = (m_s + m_u) g``; the tire force is zero when the tire has

@@ -78,7 +78,7 @@ class TestDamperContract:
 
     @pytest.mark.parametrize("fraction", [0.0, 0.5])
     def test_sign_convention(self, model, fraction):
-        # spec section 1: positive velocity is compression, a positive force resists it
+        # model reference, section 1: positive velocity is compression, a positive force resists it
         i = fraction * model.max_current
         assert float(model.force(0.0, 0.5, 0.0, i)) > 0.0
         assert float(model.force(0.0, -0.5, 0.0, i)) < 0.0
@@ -217,7 +217,7 @@ class TestDamperContract:
 
 
 # ----------------------------------------------------------------------------------
-# peer models: hand values from their published sets (MODEL_SPEC section 2.5)
+# peer models: hand values from their published sets (model reference, section 2.5)
 def test_linear_hand_value():
     assert float(make_damper("linear").force(0.0, 0.3)) == 2500.0 * 0.3
     assert float(LinearViscous(damping=1234.0).force(0.02, -0.5, 9.0, 0.4)) == -617.0

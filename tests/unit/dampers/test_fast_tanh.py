@@ -74,7 +74,7 @@ def test_monotone_across_the_switch() -> None:
 
 
 def test_the_damper_force_uses_it_at_round_off() -> None:
-    """The Wang force with the kernels' tanh equals the spec formula with math.tanh."""
+    """The Wang force with the kernels' tanh equals the model reference's formula with math.tanh."""
     from mrsuspension.dampers import WangSymmetric
 
     model = WangSymmetric()

@@ -1,4 +1,4 @@
-"""The inverse model (MODEL_SPEC section 2.3): recover the drive current from the force."""
+"""The inverse model (model reference, section 2.3): recover the drive current from the force."""
 
 from __future__ import annotations
 

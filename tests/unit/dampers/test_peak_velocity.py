@@ -1,4 +1,4 @@
-"""Peak-velocity estimators v_m, MODEL_SPEC section 2.4."""
+"""Peak-velocity estimators v_m (model reference, section 2.4)."""
 
 from __future__ import annotations
 
@@ -219,7 +219,7 @@ def test_peak_velocity_argument_is_checked():
 
 
 # ----------------------------------------------------------------------------------
-# closed loop: why the default estimator matters (spec section 2.4, erratum 7)
+# closed loop: why the default estimator matters (model reference, section 2.4, erratum 7)
 def wheel_on_damper(model: WangSymmetric, current: float, duration: float, dt: float = 1e-4):
     """A 90 kg wheel on the damper (to a fixed body) and a 285 kN/m tyre hit by a 3.5 cm step.
 
@@ -284,7 +284,7 @@ def test_unclamped_instantaneous_estimate_runs_away(wang_reference):
 
 
 # ----------------------------------------------------------------------------------
-# cycle-rms (the default, spec section 2.4 revised 2026-11-24)
+# cycle-rms (the default; model reference, section 2.4, revised 2026-11-24)
 def brute_force_cycle_rms(v, n: int, v_min: float, v_max: float) -> np.ndarray:
     """sqrt(2 mean(v^2)) over the last n samples (fewer at the start), clamped."""
     out = []

@@ -1,6 +1,7 @@
-"""The dissertation's damper model against hand-derived values of MODEL_SPEC sections 2.1-2.2.
+"""The dissertation's damper model against hand values (model reference, sections 2.1-2.2).
 
-Every expected value is computed here with plain ``math`` from the spec's equations and
+Every expected value is computed here with plain ``math`` from the model reference's
+equations and
 tables (``wang_reference`` in ``tests/conftest.py``), never from the package's output.
 """
 
@@ -35,7 +36,7 @@ def params_of(model: WangSymmetric):
 
 
 # ----------------------------------------------------------------------------------
-# the registered sets are the spec's tables
+# the registered sets are the model reference's tables
 @pytest.mark.parametrize("set_name", WANG_SETS)
 def test_registered_set_values_are_the_spec_tables(set_name, spec_sets):
     pset = parameters.get(set_name)
@@ -278,7 +279,7 @@ def test_asymmetric_rebound_force_exceeds_compression_force():
 
 
 # ----------------------------------------------------------------------------------
-# reductions, spec section 2.2
+# reductions (model reference, section 2.2)
 def _random_inputs(seed: int, n: int = 500):
     rng = np.random.default_rng(seed)
     x = rng.uniform(-0.05, 0.05, n)

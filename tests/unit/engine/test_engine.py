@@ -28,7 +28,7 @@ from mrsuspension.vehicle import GRAVITY, QuarterCar
 HARMONIC = Harmonic(1.5, 0.025)
 
 
-# -- vehicle and reference models (spec sections 4-5) ----------------------------------
+# -- vehicle and reference models (model reference, sections 4-5) ----------------------------------
 @pytest.mark.parametrize(("mass", "freq"), [(703.0, 1.3), (563.0, 1.5), (422.0, 1.7)])
 def test_body_frequencies_of_spec_section_4(mass: float, freq: float) -> None:
     assert QuarterCar(sprung_mass=mass).body_frequency() == pytest.approx(freq, abs=0.05)
@@ -123,7 +123,10 @@ def _gamma(mode: str) -> float:
 
 
 def test_policy_one_asymmetry_ratio_acm_and_scm() -> None:
-    """Spec 2.4: gamma ~ 2.6 in ACM (dissertation ~2.4), ~1 in SCM (1.5 Hz, 2.5 cm)."""
+    """gamma ~ 2.6 in ACM (dissertation ~2.4), ~1 in SCM at 1.5 Hz, 2.5 cm.
+
+    Model reference, section 2.4.
+    """
     assert 2.0 <= _gamma("ACM") <= 3.5
     assert _gamma("SCM") == pytest.approx(1.0, abs=0.05)
 
@@ -216,7 +219,10 @@ def test_dt_too_large_is_rejected_with_the_stable_limit() -> None:
 
 
 def test_runaway_estimator_is_reported_not_returned() -> None:
-    """Spec 2.4: (2.14) unclamped runs away on a bump; the run stops with a clear error."""
+    """(2.14) unclamped runs away on a bump; the run stops with a clear error.
+
+    Model reference, section 2.4.
+    """
     damper = WangSymmetric(estimator=InstantaneousPeak(v_max=5.0))
     sim = Simulation(RoundedPulse(0.035, 3.0), damper=damper, controller=Passive(0.5))
     # the step-size check sees the runaway slope before anything runs ...
@@ -310,7 +316,7 @@ def test_result_exports(tmp_path) -> None:  # type: ignore[no-untyped-def]
 def test_pulse_measures_state_their_road_peak() -> None:
     res = Simulation(RoundedPulse(0.035, 3.0), controller=HiLo(1, mode="ACM")).run(2.0)
     after, onset = res.measures(), res.measures(road_peak="onset")
-    assert after["road_peak"] == "after-onset"  # the default (spec section 9)
+    assert after["road_peak"] == "after-onset"  # the default (model reference, section 9)
     assert onset["road_peak"] == "onset"
     for k in ("SDR_s", "SDR_u", "RDR", "peak_tire_force"):
         assert after[k] == onset[k]

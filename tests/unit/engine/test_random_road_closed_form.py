@@ -320,7 +320,7 @@ def test_quarter_car_on_iso_class_c_at_default_settings_matches_the_closed_form(
 @pytest.mark.parametrize(
     "vehicle",
     [
-        # the dissertation's quarter car (spec section 4) without tire damping
+        # the dissertation's quarter car (model reference, section 4) without tire damping
         {"sprung_mass": 563.0, "unsprung_mass": 90.0, "suspension_stiffness": 57_000.0,
          "tire_stiffness": 285_000.0, "tire_damping": 0.0},
         # a light, stiff car

@@ -3,7 +3,7 @@
 Policy I near 2.3 Hz with the old default (the 1 s peak of |v_d|, v_max = 1 m/s, (2.12))
 jumped to T_as 6.8, DLC 1.35 and |F_d| 51 kN, the model's ceiling F_t(v_max) C_i(0.5 A).
 The defaults now (``cycle-rms``, v_max = the set's identified 0.75 m/s, (2.13) in vehicle
-runs, spec section 2.4) keep it within the HiL load cell's 8.8 kN.
+runs; model reference, section 2.4) keep it within the HiL load cell's 8.8 kN.
 """
 
 from __future__ import annotations

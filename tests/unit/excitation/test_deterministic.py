@@ -1,6 +1,6 @@
 """Harmonic (3.36), two-stage stepped sweep (3.37, erratum 2) and rounded pulse (3.38, erratum 9).
 
-Closed forms are written here from MODEL_SPEC section 8, not taken from the package.
+Closed forms are written here from the model reference, section 8, not taken from the package.
 """
 
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""ISO 2631-1 Wk weighting, weighted RMS and VDV against the spec's |Wk| and hand values."""
+"""ISO 2631-1 Wk weighting, weighted RMS and VDV against the reference |Wk| and hand values."""
 
 from __future__ import annotations
 
@@ -19,7 +19,7 @@ from mrsuspension.measures import (
     wk_weighting,
 )
 
-# MODEL_SPEC section 9 (ISO 2631-1 Table 3 values)
+# model reference, section 9 (ISO 2631-1 Table 3 values)
 SPEC_WK = {1.0: 0.482, 4.0: 0.967, 6.3: 1.054, 20.0: 0.636}
 
 

@@ -1,4 +1,4 @@
-"""Shock measures (3.41)/(3.44) on hand-made records; the road-peak definitions (spec section 9)."""
+"""Shock measures (3.41)/(3.44) and the road-peak options (model reference, section 9)."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""Steady-state measures (spec section 9) on hand-made arrays with known answers."""
+"""Steady-state measures (model reference, section 9) on hand-made arrays with known answers."""
 
 from __future__ import annotations
 
@@ -103,7 +103,7 @@ def test_steady_window_is_a_whole_number_of_cycles_at_the_end(f):
     assert cycles == pytest.approx(round(cycles), abs=DT * f)  # whole cycles to one sample
     assert round(cycles) >= 10
     assert samples * DT >= 2.0 - DT
-    assert t[w.start] >= max(5.0, 10 / f) - DT  # after the settling of spec section 9
+    assert t[w.start] >= max(5.0, 10 / f) - DT  # settled (model reference, section 9)
     # a whole number of cycles gives the exact rms of a sinusoid (up to the sub-sample rest)
     assert rms(x, window=w) == pytest.approx(1 / math.sqrt(2), rel=1e-3)
 

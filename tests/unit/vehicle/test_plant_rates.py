@@ -1,4 +1,4 @@
-"""The quarter car's compiled rates (spec section 4) against hand-derived values."""
+"""The quarter car's compiled rates (model reference, section 4) against hand-derived values."""
 
 from __future__ import annotations
 

@@ -357,7 +357,7 @@ def peak(sig: str) -> Metric:
     return Metric(f"peak |{sig}|", unit, get, scale)
 
 
-#: Damper-local phases: compression is v_r > 0 (spec section 1)
+#: Damper-local phases: compression is v_r > 0 (model reference, section 1)
 _PHASES = {"compression": operator.gt, "rebound": operator.lt}
 
 

@@ -2816,9 +2816,10 @@ SKIPPED: tuple[tuple[str, str, str], ...] = (
 
 
 _ROAD_SPEED = (
-    "road presets: with the n^-1 slope of MODEL_SPEC 8(c) the temporal road PSD is the same "
-    "at both speeds, yet the model's DLC rises 1.13-1.15x from 50 to 100 km/h (the "
-    "dissertation: 1.01-1.03); a flatter slope would bring it down (w = 0.8: 1.07)"
+    "road presets: with the n^-1 slope of the model reference, section 8(c), the temporal "
+    "road PSD is the same at both speeds, yet the model's DLC rises 1.13-1.15x from 50 to "
+    "100 km/h (the dissertation: 1.01-1.03); a flatter slope would bring it down (w = 0.8: "
+    "1.07)"
 )
 _SM_GAIN = (
     "sliding mode demands more force than the dissertation's: the switching gain K of (3.33) "
