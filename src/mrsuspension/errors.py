@@ -36,6 +36,41 @@ class ValidationError(MRSuspensionError, ValueError):
     """An input (argument, parameter, file content) is outside its valid range."""
 
 
+#: The optional extras and the modules each brings (``pip install "mrsuspension[extra]"``).
+EXTRAS: dict[str, tuple[str, ...]] = {
+    "web": ("starlette", "uvicorn", "websockets"),
+    "data": ("pyarrow",),
+    "distributed": ("distributed",),
+}
+
+
+def require_extra(extra: str, what: str, alternative: str = "") -> None:
+    """Raise a one-line :class:`ValidationError` when an optional extra is not installed.
+
+    The one home of "this needs an extra": names what needs it, the missing modules and
+    the ``pip install`` line (and ``alternative``, a way to do without it, if given).
+
+    Examples
+    --------
+    >>> require_extra("web", "the browser monitor")  # installed here: nothing happens
+    >>> EXTRAS["nothing"] = ("surely_not_a_module_xyz",)
+    >>> require_extra("nothing", "this feature", "use plain text")
+    Traceback (most recent call last):
+    ...
+    mrsuspension.errors.ValidationError: this feature needs surely_not_a_module_xyz, which is not installed: pip install "mrsuspension[nothing]" (or use plain text)
+    >>> del EXTRAS["nothing"]
+    """
+    import importlib.util
+
+    missing = [m for m in EXTRAS[extra] if importlib.util.find_spec(m) is None]
+    if missing:
+        raise ValidationError(
+            f"{what} needs {', '.join(missing)}, which {'is' if len(missing) == 1 else 'are'} "
+            f'not installed: pip install "mrsuspension[{extra}]"'
+            + (f" (or {alternative})" if alternative else "")
+        )
+
+
 def did_you_mean(name: str, choices: Iterable[str]) -> str:
     """Return a ``" Did you mean 'x'?"`` hint, or an empty string.
 

@@ -157,7 +157,35 @@ def test_simulate_parquet_without_pyarrow(monkeypatch: pytest.MonkeyPatch, tmp_p
     )
     assert code == 2
     assert err.strip().count("\n") == 0
-    assert "pip install 'mrsuspension[data]'" in err
+    assert 'pip install "mrsuspension[data]"' in err
+
+
+@pytest.mark.parametrize(
+    "args",
+    [["monitor", "--port", "0"], ["hil", "run", str(SCENARIOS / "passive-harmonic.toml"),
+                                  "--monitor", "--duration", "1"]],
+    ids=["monitor", "hil-run-monitor"],
+)  # fmt: skip
+def test_the_monitor_without_the_web_extra_is_one_line(
+    monkeypatch: pytest.MonkeyPatch, args: list[str]
+) -> None:
+    """Issue 31: no 40-line ModuleNotFoundError, one line naming the extra."""
+    import importlib.util
+
+    from mrsuspension.cli import app
+
+    real = importlib.util.find_spec
+    monkeypatch.setattr(
+        importlib.util,
+        "find_spec",
+        lambda name, *a: None if name in ("starlette", "uvicorn") else real(name, *a),
+    )
+    res = CliRunner().invoke(app, args)
+    assert res.exit_code == 2, res.output
+    lines = res.stderr.strip().splitlines()
+    assert len(lines) == 1, lines
+    assert "needs starlette, uvicorn, which are not installed" in lines[0]
+    assert 'pip install "mrsuspension[web]"' in lines[0]
 
 
 def test_sweep_json_and_out(tmp_path: Path) -> None:

@@ -36,6 +36,7 @@ from mrsuspension.errors import (
     check_input_file,
     check_port,
     check_range,
+    require_extra,
 )
 from mrsuspension.hil.rigs import rig_syntax
 
@@ -155,6 +156,8 @@ def hil_run_command(
         check_input_file("scenario file", scenario)
         check_port("--port", port)
         check_host("--host", host)
+        if monitor:
+            require_extra("web", "hil run --monitor", "run without --monitor")
         if monitor or token is not None or token_file is not None:
             from mrsuspension.cli.monitor import monitor_token
 

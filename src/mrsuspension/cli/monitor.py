@@ -78,7 +78,10 @@ def monitor_command(
     in their own process; settings changed on the page are applied between ticks.
     """
     from mrsuspension.cli.errors import keep_on_interrupt
-    from mrsuspension.errors import check_host
+    from mrsuspension.errors import check_host, require_extra
+
+    with user_errors():
+        require_extra("web", "the browser monitor")
     from mrsuspension.monitor.server import serve
 
     def kept(folder: Path) -> None:  # named in the `interrupted:` line of a Ctrl-C

@@ -594,13 +594,9 @@ def require_pyarrow() -> None:
     --------
     >>> require_pyarrow()  # pyarrow is installed here: nothing happens
     """
-    import importlib.util
+    from mrsuspension.errors import require_extra
 
-    if importlib.util.find_spec("pyarrow") is None:
-        raise ValidationError(
-            "Parquet output needs pyarrow, which is not installed: "
-            "pip install 'mrsuspension[data]' (or use .csv / .nc)"
-        )
+    require_extra("data", "Parquet output", "use .csv / .nc")
 
 
 def _measures_kind(kind: Any) -> Any:

@@ -249,13 +249,11 @@ def _run_dask(
     scheduler_timeout: float = SCHEDULER_TIMEOUT,
 ) -> list[dict[str, Any]]:
     """The same reducer on a Dask cluster (an address or a ``distributed.Client``)."""
-    try:
-        from dask.distributed import Client, as_completed
-    except ImportError:  # pragma: no cover - depends on the environment
-        raise ValidationError(
-            "running a study on a Dask scheduler needs dask.distributed: "
-            "pip install 'mrsuspension[distributed]'"
-        ) from None
+    from mrsuspension.errors import require_extra
+
+    require_extra("distributed", "running a study on a Dask scheduler")
+    from dask.distributed import Client, as_completed
+
     own = not isinstance(executor, Client)
     if own:  # a bounded connect and handshake: Dask's own can wait minutes on a mute server
         from mrsuspension.studies.study import check_scheduler
