@@ -45,6 +45,16 @@ rows), the cells green within 10 %, amber within 25 %, red beyond (DTR: within 0
 road acceleration peak after the pulse's onset (`road_peak = "after-onset"`,
 `docs/excitations-and-measures.md`); the caption says so.
 
+Each figure states beside its caption, as data, the settings the caption states
+(`FigureSpec.settings`: law, SCM/ACM, k_d, current, k_c, n, m_s, amplitude, frequency,
+road, speed; `mrsuspension.report.captions`). `tests/unit/report/test_captions.py` resolves
+every variant's scenario and fails when a stated setting differs from the run, when the
+caption writes a value (`k_d = ...`, `... kg`, SCM/ACM, ...) that is not stated, or when a
+setting the run does not take by default goes unstated; it also holds Figs 6.1-6.4 to
+section 6.2 (sliding mode SCM at k_d = 1; SCM and ACM at k_d = 2.5) and, where the
+dissertation's text is available, every figure to the modes, amplitudes, frequencies,
+speeds, currents and k_d of the dissertation's own captions.
+
 The dissertation's hysteretic damper with the *mean* inverse model (Figs 5.2, 5.5, 6.1)
 is `controller.inverse = "mean"`. Scenarios below are the full-report ones (step 0.1 ms);
 quick mode uses 0.5 ms, or 0.25 ms for the inverse-model laws and k_d > 1.

@@ -87,11 +87,16 @@ from mrsuspension.report.toolkit import (
 __all__ = [
     "AGREEMENT_BANDS",
     "HARMONIC_AMPS",
+    "HARMONIC_AMPS_STATED",
     "KINDS",
     "MASSES",
+    "MASSES_STATED",
     "PULSE_AMPS",
+    "PULSE_AMPS_STATED",
     "ROADS",
+    "ROADS_STATED",
     "SPEEDS",
+    "SPEEDS_STATED",
     "TABLE_MEASURES",
     "Agreement",
     "FigureSpec",
@@ -315,6 +320,11 @@ class FigureSpec:
         ``builder(quick) -> FigureRecord`` for ``kind="special"``.
     full_only : bool
         Built only in the full report.
+    settings : mapping
+        What the caption states, as data (:mod:`mrsuspension.report.captions`): a key of
+        :data:`~mrsuspension.report.captions.SETTINGS` -> a value for every variant, or a
+        mapping variant label -> value; checked against the runs and the caption by
+        ``tests/unit/report/test_captions.py``.
     """
 
     number: str
@@ -327,9 +337,24 @@ class FigureSpec:
     given: Mapping[str, float] = field(default_factory=dict)
     builder: Callable[[bool], Any] | None = None
     full_only: bool = False
+    settings: Mapping[str, Any] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
         where = f"figure {self.number}"
+        from mrsuspension.report.captions import SETTINGS
+
+        for key, value in self.settings.items():
+            if key not in SETTINGS:
+                raise ValidationError(
+                    f"{where}: unknown setting {key!r}; valid: {', '.join(SETTINGS)}"
+                )
+            if isinstance(value, Mapping):
+                bad = [label for label in value if label not in self.variants]
+                if bad:
+                    raise ValidationError(
+                        f"{where}: setting {key!r} names variant(s) {', '.join(map(repr, bad))}, "
+                        f"not among {', '.join(self.variants)}"
+                    )
         if self.kind not in KINDS:
             raise ValidationError(
                 f"{where}: kind {self.kind!r} is not valid; valid kinds: {', '.join(KINDS)}"
@@ -1475,6 +1500,19 @@ HARMONIC_AMPS = vary(
 PULSE_AMPS = vary(
     "excitation", "amplitude", (0.02, 0.035, 0.05), lambda a: f"a_m = {a * 100:g} cm", 0.035
 )
+#: What a caption varying these states (``FigureSpec.settings``, checked against the runs by
+#: :mod:`mrsuspension.report.captions`): one per variant family above
+MASSES_STATED: dict[str, Any] = {
+    "sprung_mass": {"m_s = 422 kg": 422.0, "m_s = 563 kg": 563.0, "m_s = 703 kg": 703.0}
+}
+SPEEDS_STATED: dict[str, Any] = {"speed": {"V = 50 km/h": 50.0, "V = 100 km/h": 100.0}}
+ROADS_STATED: dict[str, Any] = {"profile": {"medium-rough": "medium-rough", "rough": "rough"}}
+HARMONIC_AMPS_STATED: dict[str, Any] = {
+    "amplitude": {"a = 1.5 cm": 0.015, "a = 2.5 cm": 0.025, "a = 3.5 cm": 0.035}
+}
+PULSE_AMPS_STATED: dict[str, Any] = {
+    "amplitude": {"a_m = 2 cm": 0.02, "a_m = 3.5 cm": 0.035, "a_m = 5 cm": 0.05}
+}
 
 
 def spec_factory(base: Mapping[str, Any]) -> Callable[..., FigureSpec]:

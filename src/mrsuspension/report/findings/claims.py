@@ -2132,7 +2132,11 @@ _CLAIMS: tuple[Claim, ...] = (
         "6.4 / ACM at k_d = 1).",
         all_of(
             compare(
-                TRACKING, _sub(SM_34, "SCM k_d = 2.5"), _sub(SM_34, "SCM k_d = 1"), "<", CONSIDERABLY
+                TRACKING,
+                _sub(SM_34, "SCM k_d = 2.5"),
+                _sub(SM_34, "SCM k_d = 1"),
+                "<",
+                CONSIDERABLY,
             ),
             compare(
                 TRACKING,
@@ -2151,7 +2155,12 @@ _CLAIMS: tuple[Claim, ...] = (
         "Figs 6.4 / 6.3 (sliding mode, k_d = 2.5): mean drive current in ACM 0.35-0.65 times "
         "that in SCM.",
         ratio(
-            MEAN_CURRENT, _one(SM_34, "ACM k_d = 2.5"), _one(SM_34, "SCM k_d = 2.5"), 0.35, 0.65, 0.5
+            MEAN_CURRENT,
+            _one(SM_34, "ACM k_d = 2.5"),
+            _one(SM_34, "SCM k_d = 2.5"),
+            0.35,
+            0.65,
+            0.5,
         ),
     ),
     Claim(
