@@ -199,7 +199,7 @@ class Scorecard:
         for r in self.results:
             lines.append(
                 f"{r.claim.id:28s} {r.claim.sections:12s} {'yes' if r.holds else 'no ':3s} "
-                f"{r.status:26s} {r.numbers}"
+                f"{r.status:34s} {r.numbers}"
             )
             if r.explanation:
                 lines.append(f"{'':28s} -> {r.explanation}")

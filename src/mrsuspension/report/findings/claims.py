@@ -2970,8 +2970,8 @@ KNOWN: dict[str, str] = {
     "0.138, passive 0.1 A 0.111) and ours follow them (0.136 against 0.114), so the text's "
     "'lower with ACM' fails as the dissertation's own numbers do",
     "4.3.2-pulse-passive": "model: not held for any admissible decay window: the light passive "
-    "damper's rms x_s after the pulse is 1.07 times the 0.1 A damper's from the pulse's end "
-    "(0.80 s; 'considerably' needs 1/0.85 = 1.18) and 0.85 times it from 1 s (the 0.1 A "
+    "damper's rms x_s after the pulse is 1.06 times the 0.1 A damper's from the pulse's end "
+    "(0.80 s; 'considerably' needs 1/0.85 = 1.18) and 0.84 times it from 1 s (the 0.1 A "
     "damper's yield force leaves a slow creep); its peak |x_s| is only 3 % higher",
     "4.4.1-harmonic-insensitive": "reading: peak |a_s| varies by 12 % over m_s, just above "
     "'almost insensitive' (10 %); peak |x_s| by 9 %",
