@@ -46,7 +46,22 @@ def test_claim(claim: Claim, scorecard: Scorecard) -> None:
 def test_counts_add_up(scorecard: Scorecard) -> None:
     counts = scorecard.counts()
     assert counts["tested"] == len(CLAIMS)
-    assert counts["held"] + counts["not held"] + counts["dissertation inconsistent"] == len(CLAIMS)
+    statuses = (
+        "held",
+        "held under a stated reading",
+        "not held",
+        "not held for any admissible value",
+        "dissertation inconsistent",
+    )
+    assert sum(counts[s] for s in statuses) == len(CLAIMS)
+    # every claim whose check tries readings or values says which held, or that none did
+    for r in scorecard.results:
+        if r.status == "held under a stated reading":
+            assert r.holds, r.claim.id
+            assert "Held under the stated reading: " in r.explanation, r.claim.id
+        if r.status == "not held for any admissible value":
+            assert not r.holds
+            assert "not held for any admissible reading" in r.explanation
     assert counts["error"] == 0
     # the shared runs: far fewer than the claims' run references
     references = sum(len(c.check.runs) for c in CLAIMS)

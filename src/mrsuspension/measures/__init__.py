@@ -11,7 +11,7 @@ harmonic, steady state      :func:`steady_window`, :func:`rms`,
                             :func:`force_tracking_error`, :func:`harmonic_measures`
 shock (rounded pulse)       :func:`shock_ratios`, :func:`road_acceleration_peak`
                             (``road_peak``: after-onset or onset), :func:`dtr`,
-                            :func:`peak`
+                            :func:`dtr_ratio`, :func:`peak`
 random road                 :func:`psd` (Welch, 512 Hz, 8192, Hann, 50 %),
                             :func:`dlc` (mean load), :func:`rms`
 ISO 2631-1 (beyond seed)    :func:`wk_weighting`, :func:`wk_filter`,
@@ -63,6 +63,7 @@ from mrsuspension.measures.shock import (
     RoadPeak,
     check_road_peak,
     dtr,
+    dtr_ratio,
     peak,
     road_acceleration_peak,
     shock_ratios,
@@ -141,6 +142,7 @@ __all__ = [
     "current_statistics",
     "dlc",
     "dtr",
+    "dtr_ratio",
     "force_tracking_error",
     "frequency_weighting",
     "harmonic_measures",

@@ -42,6 +42,7 @@ __all__ = [
     "RoadPeak",
     "check_road_peak",
     "dtr",
+    "dtr_ratio",
     "peak",
     "road_acceleration_peak",
     "shock_from_peaks",
@@ -291,3 +292,50 @@ def dtr(
     mass = rate("nominal_total_mass", nominal_total_mass, "kg")
     gravity = rate("g", g, "m/s^2")
     return abs(values["peak_tire_force_nominal"] - values["peak_tire_force"]) / (mass * gravity)
+
+
+def dtr_ratio(
+    peak_tire_force_nominal: float,
+    peak_tire_force: float,
+    static_load_nominal: float,
+    static_load: float,
+) -> float:
+    """DTR read as the deviation in the *peak tire force ratio*: each run's peak tire force
+    over its own static load, ``|F_T0,peak / W_0 - F_T,peak / W|``.
+
+    (3.44) prints one denominator, the nominal car's static load ``(m_s0 + m_u) g``
+    (:func:`dtr`). Both readings agree between runs of one mass (speed, pulse height); over
+    the sprung mass they differ. With (3.44) as printed the DTR of a 422 or 703 kg car is
+    the static-load change alone (0.216: the peak *dynamic* tire force hardly changes with
+    the mass); this reading gives 0.13-0.22, as Tables 5.1 and 6.1 do (0.18/0.14,
+    0.16/0.13): the report's shock tables and the findings scorecard use it
+    (``docs/excitations-and-measures.md``).
+
+    Parameters
+    ----------
+    peak_tire_force_nominal, peak_tire_force : float
+        Peak tire force [N] (total, with the static load) of the nominal run and of the
+        run being assessed.
+    static_load_nominal, static_load : float
+        ``(m_s + m_u) g`` [N] of each run's car.
+
+    Examples
+    --------
+    >>> round(dtr_ratio(12000.0, 10500.0, 6405.93, 5022.8), 4)  # 1.8733 - 2.0905
+    0.2172
+    >>> round(dtr_ratio(9000.0, 8359.407, 6405.93, 6405.93), 6)  # one mass: as (3.44)
+    0.1
+    """
+    values = {}
+    for name, value, unit in (
+        ("peak_tire_force_nominal", peak_tire_force_nominal, "N"),
+        ("peak_tire_force", peak_tire_force, "N"),
+    ):
+        if isinstance(value, bool) or not isinstance(value, int | float | np.integer | np.floating):
+            raise ValidationError(f"{name} must be a number [{unit}]; got {value!r}")
+        if not np.isfinite(value):
+            raise ValidationError(f"{name} must be finite [{unit}]; got {value}")
+        values[name] = float(value)
+    w0 = rate("static_load_nominal", static_load_nominal, "N")
+    w = rate("static_load", static_load, "N")
+    return abs(values["peak_tire_force_nominal"] / w0 - values["peak_tire_force"] / w)

@@ -22,10 +22,15 @@ from mrsuspension.engine.result import SimulationResult
 from mrsuspension.engine.simulate import run_many
 from mrsuspension.report.families import (
     HARMONIC_AMPS,
+    HARMONIC_AMPS_STATED,
     MASSES,
+    MASSES_STATED,
     PULSE_AMPS,
+    PULSE_AMPS_STATED,
     ROADS,
+    ROADS_STATED,
     SPEEDS,
+    SPEEDS_STATED,
     FigureSpec,
     ShockTable,
     passive,
@@ -271,6 +276,20 @@ _R = (
     "(512 Hz, Welch/Hann)"
 )
 _C = "Skyhook hi-lo ACM (k_c = 3, n = 2, p = 0, xi = 4.5, p_c = 0, xi_c = 10)"
+#: What the caption fragments above state, as ``FigureSpec.settings`` (checked against the
+#: runs and the captions by mrsuspension.report.captions)
+_H_S: dict[str, Any] = {"amplitude": 0.025, "frequency": 1.5}
+_SW_S: dict[str, Any] = {"amplitude": 0.025}
+_P_S: dict[str, Any] = {"amplitude": 0.035, "speed": 50.0}
+_R_S: dict[str, Any] = {"profile": "rough", "speed": 50.0}
+_C_S: dict[str, Any] = {"law": "skyhook-hilo", "mode": "ACM", "gain": 3.0, "order": 2.0}
+_PASSIVE_ACM_S: dict[str, Any] = {
+    "law": {"passive 0 A": "passive", "passive 0.1 A": "passive", _ACM: "skyhook-hilo"},
+    "mode": {_ACM: "ACM"},
+    "current": {"passive 0 A": 0.0, "passive 0.1 A": 0.1},
+    "gain": {_ACM: 3.0},
+    "order": {_ACM: 2.0},
+}
 
 
 _spec = spec_factory(BASE)
@@ -282,11 +301,18 @@ FIGURES: tuple[FigureSpec, ...] = (
         f"Passive MR damper at i_d = 0.2 A, damper.hysteresis = false (mean model) and true; {_H}.",
         {"mean model": {"damper": {"hysteresis": False}}, "hysteretic model": {}},
         base={"controller": {"law": "passive", "current": 0.2}}, signals=_FV,
+        settings={
+            **_H_S,
+            "law": "passive",
+            "hysteresis": {"mean model": False, "hysteretic model": True},
+            "current": 0.2,
+        },
     ),
     _spec(
         "4.2", "time", "Influence of the drive current (0, 0.2 A), hysteretic damper",
         f"Passive hysteretic MR damper at i_d = 0 and 0.2 A; {_H}.",
         passive(0.0, 0.2), base={}, signals=_FV,
+        settings={**_H_S, "law": "passive", "current": {"passive 0 A": 0.0, "passive 0.2 A": 0.2}},
     ),
     _spec(
         "4.3", "time", "On-off ADFG control with the mean and the hysteretic damper model",
@@ -295,6 +321,12 @@ FIGURES: tuple[FigureSpec, ...] = (
         "model gives transient peaks in F_d, a_s and a_u at the current switchings.",
         {"mean model": {"damper": {"hysteresis": False}}, "hysteretic model": {}},
         base={"controller": {"law": "onoff-adfg", "current": 0.2}}, signals=_FOUR,
+        settings={
+            **_H_S,
+            "law": "onoff-adfg",
+            "hysteresis": {"mean model": False, "hysteretic model": True},
+            "current": 0.2,
+        },
     ),
     _spec(
         "4.4", "time", "The four hi-lo policies (SCM): time histories",
@@ -303,17 +335,37 @@ FIGURES: tuple[FigureSpec, ...] = (
         "0 and 0.5 A; the peak currents of our runs are in the figure data and the findings "
         "scorecard.",
         _POLICIES, signals=_FOUR,
+        settings={
+            **_H_S,
+            "law": {"policy I (k_c = 3)": "skyhook-hilo", "policy II (k_c = 10)": "policy-ii", "policy III (k_c = 10)": "policy-iii", "policy IV (k_c = 300)": "policy-iv"},
+            "mode": "SCM",
+            "gain": {"policy I (k_c = 3)": 3.0, "policy II (k_c = 10)": 10.0, "policy III (k_c = 10)": 10.0, "policy IV (k_c = 300)": 300.0},
+            "order": 2.0,
+        },
     ),
     _spec(
         "4.5", "freq", "Frequency responses with the four hi-lo policies (SCM)",
         f"Policies I-IV, k_c = 3, 10, 10, 300, SCM; symmetric hysteretic damper; {_SW}.",
         _POLICIES,
+        settings={
+            **_SW_S,
+            "law": {"policy I (k_c = 3)": "skyhook-hilo", "policy II (k_c = 10)": "policy-ii", "policy III (k_c = 10)": "policy-iii", "policy IV (k_c = 300)": "policy-iv"},
+            "mode": "SCM",
+            "gain": {"policy I (k_c = 3)": 3.0, "policy II (k_c = 10)": 10.0, "policy III (k_c = 10)": 10.0, "policy IV (k_c = 300)": 300.0},
+        },
     ),
     _spec(
         "4.6", "time", "Skyhook hi-lo (policy I) in SCM and ACM: time histories",
         f"skyhook-hilo k_c = 3, n = 2, SCM (p = 1) and ACM (p = 0); {_H}. The dissertation "
         "reports gamma about 2.4 in ACM and about 50 % less current than SCM; ours in the data.",
         _SCM_ACM, signals=_TRACK,
+        settings={
+            **_H_S,
+            "law": "skyhook-hilo",
+            "mode": {"SCM": "SCM", "ACM": "ACM"},
+            "gain": 3.0,
+            "order": 2.0,
+        },
     ),
     _spec(
         "4.7", "freq", "Frequency responses of skyhook hi-lo in SCM and ACM",
@@ -321,89 +373,131 @@ FIGURES: tuple[FigureSpec, ...] = (
         "excitation a = 1.5 cm over 0.5-15 Hz, as the dissertation (section 4.3.2: 'to "
         "emphasize the wheel hop response at higher frequencies').",
         _SCM_ACM, base={**BASE, "excitation": {"amplitude": 0.015, "transition_frequency": 15.0}},
+        settings={
+            "law": "skyhook-hilo",
+            "mode": {"SCM": "SCM", "ACM": "ACM"},
+            "gain": 3.0,
+            "order": 2.0,
+            "amplitude": 0.015,
+        },
     ),
     _spec(
         "4.8", "time", "Passive (0, 0.1 A) and skyhook hi-lo ACM: time histories",
         f"Passive damper (dashed) at 0 and 0.1 A and {_C}; {_H}.", _PASSIVE_ACM,
+        settings={**_PASSIVE_ACM_S, **_H_S},
     ),
     _spec(
         "4.9", "freq", "Frequency responses: passive (0, 0.1 A) and skyhook hi-lo ACM",
         f"Passive damper (dashed) at 0 and 0.1 A and {_C}; {_SW}.", _PASSIVE_ACM,
+        settings={**_PASSIVE_ACM_S, **_SW_S},
     ),
     _spec(
         "4.10", "pulse", "Rounded-pulse responses: passive (0, 0.1 A) and skyhook hi-lo ACM",
         f"Passive damper (dashed) at 0 and 0.1 A and {_C}; rounded pulse mu = 3, a_m = 5 cm, "
         "50 km/h (omega_0 = 10.4 rad/s), as the dissertation. Shock ratios in the data.",
         _PASSIVE_ACM, base={**BASE, "excitation": {"amplitude": 0.05}},
+        settings={**_PASSIVE_ACM_S, "amplitude": 0.05, "speed": 50.0},
     ),
     _spec(
         "4.11", "psd", "Random-road responses: passive (0, 0.1 A) and skyhook hi-lo ACM",
         f"Passive damper (dashed) at 0 and 0.1 A and {_C}; {_R}. The dissertation gives "
         "DLC = 0.111 (passive 0.1 A) and 0.138 (ACM).",
         _PASSIVE_ACM, given={"passive 0.1 A": 0.111, _ACM: 0.138},
+        settings={**_PASSIVE_ACM_S, **_R_S},
     ),
     _spec(
         "4.12", "time", "Sprung-mass variation: harmonic responses",
         f"m_s = 422, 563, 703 kg (nominal +-25 %); {_C}; {_H}.", MASSES,
+        settings={**_C_S, **MASSES_STATED, **_H_S},
     ),
     _spec(
         "4.13", "freq", "Sprung-mass variation: frequency responses",
         f"m_s = 422, 563, 703 kg; {_C}; {_SW}. The dissertation finds the lightest vehicle has "
         "the highest DLC at every frequency.",
         MASSES,
+        settings={**_C_S, **MASSES_STATED, **_SW_S},
     ),
     _spec(
         "4.14", "pulse", "Sprung-mass variation: rounded-pulse responses",
         f"m_s = 422, 563, 703 kg; {_C}; {_P}. Measures in Table 4.1.", MASSES,
+        settings={**_C_S, **MASSES_STATED, **_P_S},
     ),
     _spec(
         "4.15", "psd", "Sprung-mass variation: random-road responses",
         f"m_s = 422, 563, 703 kg; {_C}; {_R}. The dissertation's text gives DLC 0.114 and "
         "0.176 for the two extreme masses (and says it rises with the mass).",
         MASSES, given={"m_s = 422 kg": 0.114, "m_s = 703 kg": 0.176},
+        settings={**_C_S, **MASSES_STATED, **_R_S},
     ),
     _spec(
         "4.16", "pulse", "Vehicle-speed variation: rounded-pulse responses",
         f"V = 50 and 100 km/h (omega_0 = 10.4 and 20.8 rad/s, erratum 9); {_C}; rounded pulse "
         "mu = 3, a_m = 3.5 cm. Measures in Table 4.2.",
         SPEEDS,
+        settings={**_C_S, **SPEEDS_STATED, "amplitude": 0.035},
     ),
     _spec(
         "4.17", "psd", "Vehicle-speed variation: random-road PSDs",
         f"V = 50 and 100 km/h on the 'rough' preset; {_C}; {_R}. The dissertation gives DLC 0.138 "
         "(50 km/h) and 0.142 (100 km/h).",
         SPEEDS, given={"V = 50 km/h": 0.138, "V = 100 km/h": 0.142},
+        settings={**_C_S, **SPEEDS_STATED, "profile": "rough"},
     ),
     _spec(
         "4.18", "time", "Harmonic amplitude variation (1.5 Hz): time histories",
         f"a = 1.5, 2.5, 3.5 cm at 1.5 Hz; {_C}; steady state 6-7.4 s.", HARMONIC_AMPS,
+        settings={**_C_S, **HARMONIC_AMPS_STATED, "frequency": 1.5},
     ),
     _spec(
         "4.19", "freq", "Harmonic amplitude variation: frequency responses",
         f"Two-stage swept excitation with a = 1.5, 2.5, 3.5 cm (f_T = 2.1 Hz); {_C}.",
         HARMONIC_AMPS,
+        settings={**_C_S, **HARMONIC_AMPS_STATED},
     ),
     _spec(
         "4.20", "pulse", "Pulse-height variation: rounded-pulse responses",
         f"a_m = 2, 3.5, 5 cm (mu = 3, 50 km/h); {_C}. Measures in Table 4.3.", PULSE_AMPS,
+        settings={**_C_S, **PULSE_AMPS_STATED, "speed": 50.0},
     ),
     _spec(
         "4.21", "psd", "Road-roughness variation: random-road PSDs",
         "'medium-rough' and 'rough' presets (stand-ins for the Canadian roads) at 50 km/h; "
         f"{_C}. The dissertation gives DLC 0.045 (medium-rough) and 0.138 (rough).",
         ROADS, given={"medium-rough": 0.045, "rough": 0.138},
+        settings={**_C_S, **ROADS_STATED, "speed": 50.0},
     ),
     _spec(
         "4.22", "time", "Control-gain variation: harmonic responses",
         f"k_c = 0.5, 1.5, 3 (skyhook hi-lo ACM, n = 2); {_H}.", _GAINS, signals=_TRACK,
+        settings={
+            **_H_S,
+            "law": "skyhook-hilo",
+            "mode": "ACM",
+            "gain": {"k_c = 0.5": 0.5, "k_c = 1.5": 1.5, "k_c = 3": 3.0},
+            "order": 2.0,
+        },
     ),
     _spec(
         "4.23", "freq", "Control-gain variation: frequency responses",
         f"k_c = 0.5, 1.5, 3 (skyhook hi-lo ACM, n = 2); {_SW}.", _GAINS,
+        settings={
+            **_SW_S,
+            "law": "skyhook-hilo",
+            "mode": "ACM",
+            "gain": {"k_c = 0.5": 0.5, "k_c = 1.5": 1.5, "k_c = 3": 3.0},
+            "order": 2.0,
+        },
     ),
     _spec(
         "4.24", "pulse", "Control-gain variation: rounded-pulse responses",
         f"k_c = 0.5, 1.5, 3 (skyhook hi-lo ACM, n = 2); {_P}. Measures in Table 4.4.", _GAINS,
+        settings={
+            **_P_S,
+            "law": "skyhook-hilo",
+            "mode": "ACM",
+            "gain": {"k_c = 0.5": 0.5, "k_c = 1.5": 1.5, "k_c = 3": 3.0},
+            "order": 2.0,
+        },
     ),
     _spec(
         "4.25", "psd", "Control-gain variation: random-road PSDs",
@@ -411,25 +505,60 @@ FIGURES: tuple[FigureSpec, ...] = (
         "dissertation gives DLC 0.138 for both gains.",
         {k: v for k, v in _GAINS.items() if k != "k_c = 0.5"},
         given={"k_c = 1.5": 0.138, "k_c = 3": 0.138},
+        settings={
+            **_R_S,
+            "law": "skyhook-hilo",
+            "mode": "ACM",
+            "gain": {"k_c = 1.5": 1.5, "k_c = 3": 3.0},
+            "order": 2.0,
+        },
     ),
     _spec(
         "4.26", "time", "Controller order n = 1, 2, 3: harmonic responses",
         f"skyhook-hilo ACM k_c = 3, controller.order n = 1, 2, 3; {_H}. The dissertation finds "
         "n = 1 gives rapid, discontinuous current changes; 'max |di_d| per ms' measures them.",
         _ORDERS, signals=("i_d", "F_d", "a_s", "a_u", "x_r", "F_T"),
+        settings={
+            **_H_S,
+            "law": "skyhook-hilo",
+            "mode": "ACM",
+            "gain": 3.0,
+            "order": {"n = 1": 1.0, "n = 2": 2.0, "n = 3": 3.0},
+        },
     ),
     _spec(
         "4.27", "freq", "Controller order n = 1, 2, 3: frequency responses",
         f"skyhook-hilo ACM k_c = 3, n = 1, 2, 3; {_SW}.", _ORDERS,
+        settings={
+            **_SW_S,
+            "law": "skyhook-hilo",
+            "mode": "ACM",
+            "gain": 3.0,
+            "order": {"n = 1": 1.0, "n = 2": 2.0, "n = 3": 3.0},
+        },
     ),
     _spec(
         "4.28", "pulse", "Controller order n = 1, 2, 3: rounded-pulse responses",
         f"skyhook-hilo ACM k_c = 3, n = 1, 2, 3; {_P}. Measures in Table 4.5.", _ORDERS,
+        settings={
+            **_P_S,
+            "law": "skyhook-hilo",
+            "mode": "ACM",
+            "gain": 3.0,
+            "order": {"n = 1": 1.0, "n = 2": 2.0, "n = 3": 3.0},
+        },
     ),
     _spec(
         "4.29", "psd", "Controller order n = 1, 2: random-road PSDs",
         f"skyhook-hilo ACM k_c = 3, n = 1 and 2, as the dissertation; {_R}.",
         {k: v for k, v in _ORDERS.items() if k != "n = 3"},
+        settings={
+            **_R_S,
+            "law": "skyhook-hilo",
+            "mode": "ACM",
+            "gain": 3.0,
+            "order": {"n = 1": 1.0, "n = 2": 2.0},
+        },
     ),
     FigureSpec(
         number="4.3b", kind="special", title="Damper hysteresis and the hi-lo frequency response",

@@ -30,10 +30,15 @@ import numpy as np
 
 from mrsuspension.report.families import (
     HARMONIC_AMPS,
+    HARMONIC_AMPS_STATED,
     MASSES,
+    MASSES_STATED,
     PULSE_AMPS,
+    PULSE_AMPS_STATED,
     ROADS,
+    ROADS_STATED,
     SPEEDS,
+    SPEEDS_STATED,
     FigureSpec,
     ShockTable,
     passive,
@@ -228,6 +233,19 @@ _R = (
     "(512 Hz, Welch/Hann)"
 )
 _C = "Inverse-model hi-lo ACM (k_d = 2.5, p = 0, xi = 10, p_c = 0, xi_c = 50)"
+#: What the caption fragments above state, as ``FigureSpec.settings`` (checked against the
+#: runs and the captions by mrsuspension.report.captions)
+_H_S: dict[str, Any] = {"amplitude": 0.025, "frequency": 1.5}
+_SW_S: dict[str, Any] = {"amplitude": 0.025}
+_P_S: dict[str, Any] = {"amplitude": 0.035, "speed": 50.0}
+_R_S: dict[str, Any] = {"profile": "rough", "speed": 50.0}
+_C_S: dict[str, Any] = {"law": "inverse-hilo", "mode": "ACM", "force_gain": 2.5}
+_PASSIVE_ACM_S: dict[str, Any] = {
+    "law": {"passive 0 A": "passive", "passive 0.1 A": "passive", _ACM: "inverse-hilo"},
+    "mode": {_ACM: "ACM"},
+    "force_gain": {"passive 0 A": 1.0, "passive 0.1 A": 1.0, _ACM: 2.5},
+    "current": {"passive 0 A": 0.0, "passive 0.1 A": 0.1},
+}
 #: hysteretic damper, mean inverse model (Figs 5.2, 5.5; 6.1)
 _MIX = {"controller": {"inverse": "mean"}}
 
@@ -243,22 +261,43 @@ FIGURES: tuple[FigureSpec, ...] = (
         f"Mean damper model (damper.hysteresis = false) with the mean inverse, inverse-model "
         f"hi-lo SCM, k_d = 1; {_H}. F* = k_s x_d is the target force.",
         {"mean damper + mean inverse": _MEAN}, base=_SCM1, signals=TRACK,
+        settings={
+            **_H_S,
+            "law": "inverse-hilo",
+            "mode": "SCM",
+            "force_gain": 1.0,
+            "hysteresis": False,
+        },
     ),
     _spec(
         "5.2", "time", "Hysteretic damper and mean inverse model, inverse-model hi-lo SCM",
         f"Hysteretic damper with the mean inverse (controller.inverse = mean), inverse-model "
         f"hi-lo SCM, k_d = 1; {_H}. F* = k_s x_d is the target force.",
         {"hysteretic damper + mean inverse": _MIX}, base=_SCM1, signals=TRACK,
+        settings={
+            **_H_S,
+            "law": "inverse-hilo",
+            "mode": "SCM",
+            "force_gain": 1.0,
+            "inverse": "mean",
+        },
     ),
     _spec(
         "5.3", "time", "Hysteretic damper and hysteretic inverse, inverse-model hi-lo SCM",
         f"Hysteretic damper with the hysteretic inverse, inverse-model hi-lo SCM, k_d = 1; {_H}.",
         {"hysteretic damper + hysteretic inverse": _HYST}, base=_SCM1, signals=TRACK,
+        settings={**_H_S, "law": "inverse-hilo", "mode": "SCM", "force_gain": 1.0},
     ),
     _spec(
         "5.4", "time", "Inverse-model hi-lo in SCM and ACM",
         f"Inverse-model hi-lo (k_d = 1) in SCM (p = 1) and ACM (p = 0), hysteretic damper; {_H}.",
         {"SCM": {"controller": {"mode": "SCM"}}, "ACM": {}}, base=_ACM1, signals=TRACK,
+        settings={
+            **_H_S,
+            "law": "inverse-hilo",
+            "mode": {"SCM": "SCM", "ACM": "ACM"},
+            "force_gain": 1.0,
+        },
     ),
     _spec(
         "5.5", "time", "Inverse-model hi-lo ACM with mean and hysteretic models",
@@ -270,85 +309,125 @@ FIGURES: tuple[FigureSpec, ...] = (
             "hysteretic damper + mean inverse": _MIX,
         },
         base=_ACM1, signals=TRACK,
+        settings={
+            **_H_S,
+            "law": "inverse-hilo",
+            "mode": "ACM",
+            "force_gain": 1.0,
+            "hysteresis": {"mean damper + mean inverse": False, "hysteretic damper + hysteretic inverse": True, "hysteretic damper + mean inverse": True},
+            "inverse": {"mean damper + mean inverse": "hysteretic", "hysteretic damper + hysteretic inverse": "hysteretic", "hysteretic damper + mean inverse": "mean"},
+        },
     ),
     _spec(
         "5.6", "time", "Inverse-model hi-lo ACM with force gains k_d = 1, 2, 2.5",
         f"damper.force_gain k_d = 1, 2, 2.5, inverse-model hi-lo ACM; {_H}. Tracking errors in "
         "the data and in Fig 5.6b.",
         vary("damper", "force_gain", (1.0, 2.0, 2.5), "k_d = {:g}".format), base=_ACM1,
+        settings={
+            **_H_S,
+            "law": "inverse-hilo",
+            "mode": "ACM",
+            "force_gain": {"k_d = 1": 1.0, "k_d = 2": 2.0, "k_d = 2.5": 2.5},
+        },
     ),
     _spec(
         "5.7", "freq", "Inverse-model hi-lo ACM with force gains k_d = 1, 2, 2.5: frequency responses",
         f"damper.force_gain k_d = 1, 2, 2.5, inverse-model hi-lo ACM; {_SW}.",
         vary("damper", "force_gain", (1.0, 2.0, 2.5), "k_d = {:g}".format), base=_ACM1,
+        settings={
+            **_SW_S,
+            "law": "inverse-hilo",
+            "mode": "ACM",
+            "force_gain": {"k_d = 1": 1.0, "k_d = 2": 2.0, "k_d = 2.5": 2.5},
+        },
     ),
     _spec(
         "5.8", "time", "Passive (0, 0.1 A) and inverse-model hi-lo ACM: time histories",
         f"Passive damper (dashed, k_d = 1) at 0 and 0.1 A and {_C}; {_H}.", _PASSIVE_ACM,
+        settings={**_PASSIVE_ACM_S, **_H_S},
     ),
     _spec(
         "5.9", "freq", "Frequency responses: passive (0, 0.1 A) and inverse-model hi-lo ACM",
         f"Passive damper (dashed, k_d = 1) at 0 and 0.1 A and {_C}; {_SW}.", _PASSIVE_ACM,
+        settings={**_PASSIVE_ACM_S, **_SW_S},
     ),
     _spec(
         "5.10", "pulse", "Rounded-pulse responses: passive (0, 0.1 A) and inverse-model hi-lo ACM",
-        f"Passive damper (dashed) at 0 and 0.1 A and {_C}; rounded pulse mu = 3, a_m = 5 cm, "
+        f"Passive damper (dashed, k_d = 1) at 0 and 0.1 A and {_C}; rounded pulse mu = 3, a_m = 5 cm, "
         "50 km/h, as the dissertation.",
         _PASSIVE_ACM, base={**BASE, "excitation": {"amplitude": 0.05}},
+        settings={**_PASSIVE_ACM_S, "amplitude": 0.05, "speed": 50.0},
     ),
     _spec(
         "5.11", "psd", "Random-road PSDs: passive 0 A and inverse-model hi-lo ACM",
-        f"Passive damper at 0 A (dashed) and {_C}; {_R}. The dissertation gives DLC 0.139 "
+        f"Passive damper at 0 A (dashed, k_d = 1) and {_C}; {_R}. The dissertation gives DLC 0.139 "
         "(passive 0 A) and 0.113 (ACM).",
         {**passive(0.0), _ACM: {}}, given={"passive 0 A": 0.139, _ACM: 0.113},
+        settings={
+            **_R_S,
+            "law": {"passive 0 A": "passive", _ACM: "inverse-hilo"},
+            "mode": {_ACM: "ACM"},
+            "force_gain": {"passive 0 A": 1.0, _ACM: 2.5},
+            "current": {"passive 0 A": 0.0},
+        },
     ),
     _spec(
         "5.12", "time", "Sprung-mass variation: harmonic responses",
         f"m_s = 422, 563, 703 kg; {_C}; {_H}.", MASSES,
+        settings={**_C_S, **MASSES_STATED, **_H_S},
     ),
     _spec(
         "5.13", "freq", "Sprung-mass variation: frequency responses",
         f"m_s = 422, 563, 703 kg; {_C}; {_SW}.", MASSES,
+        settings={**_C_S, **MASSES_STATED, **_SW_S},
     ),
     _spec(
         "5.14", "pulse", "Sprung-mass variation: rounded-pulse responses",
         f"m_s = 422, 563, 703 kg; {_C}; {_P}. Measures in Table 5.1.", MASSES,
+        settings={**_C_S, **MASSES_STATED, **_P_S},
     ),
     _spec(
         "5.15", "psd", "Sprung-mass variation: random-road PSDs",
         f"m_s = 422, 563, 703 kg; {_C}; {_R}. The dissertation gives DLC 0.091 and 0.147 for "
         "the extreme masses.",
         MASSES, given={"m_s = 422 kg": 0.091, "m_s = 703 kg": 0.147},
+        settings={**_C_S, **MASSES_STATED, **_R_S},
     ),
     _spec(
         "5.16", "pulse", "Vehicle-speed variation: rounded-pulse responses",
         f"V = 50 and 100 km/h (omega_0 scaled with speed, erratum 9); {_C}; a_m = 3.5 cm. "
         "Measures in Table 5.2.",
         SPEEDS,
+        settings={**_C_S, **SPEEDS_STATED, "amplitude": 0.035},
     ),
     _spec(
         "5.17", "psd", "Vehicle-speed variation: random-road PSDs",
         f"V = 50 and 100 km/h on the 'rough' preset; {_C}. The dissertation gives DLC 0.113 "
         "(50 km/h) and 0.114 (100 km/h).",
         SPEEDS, given={"V = 50 km/h": 0.113, "V = 100 km/h": 0.114},
+        settings={**_C_S, **SPEEDS_STATED, "profile": "rough"},
     ),
     _spec(
         "5.18", "time", "Harmonic amplitude variation (1.5 Hz): time histories",
         f"a = 1.5, 2.5, 3.5 cm at 1.5 Hz; {_C}.", HARMONIC_AMPS,
+        settings={**_C_S, **HARMONIC_AMPS_STATED, "frequency": 1.5},
     ),
     _spec(
         "5.19", "freq", "Harmonic amplitude variation: frequency responses",
         f"Two-stage swept excitation with a = 1.5, 2.5, 3.5 cm; {_C}.", HARMONIC_AMPS,
+        settings={**_C_S, **HARMONIC_AMPS_STATED},
     ),
     _spec(
         "5.20", "pulse", "Pulse-height variation: rounded-pulse responses",
         f"a_m = 2, 3.5, 5 cm (mu = 3, 50 km/h); {_C}. Measures in Table 5.3.", PULSE_AMPS,
+        settings={**_C_S, **PULSE_AMPS_STATED, "speed": 50.0},
     ),
     _spec(
         "5.21", "psd", "Road-roughness variation: random-road PSDs",
         f"'medium-rough' and 'rough' presets at 50 km/h; {_C}. The dissertation gives DLC 0.056 "
         "(medium-rough) and 0.113 (rough).",
         ROADS, given={"medium-rough": 0.056, "rough": 0.113},
+        settings={**_C_S, **ROADS_STATED, "speed": 50.0},
     ),
     FigureSpec(
         number="5.6b", kind="special", title="Force-tracking error against k_d",

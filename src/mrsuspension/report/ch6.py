@@ -22,10 +22,15 @@ from mrsuspension.engine.result import SimulationResult
 from mrsuspension.engine.simulate import run_many
 from mrsuspension.report.families import (
     HARMONIC_AMPS,
+    HARMONIC_AMPS_STATED,
     MASSES,
+    MASSES_STATED,
     PULSE_AMPS,
+    PULSE_AMPS_STATED,
     ROADS,
+    ROADS_STATED,
     SPEEDS,
+    SPEEDS_STATED,
     FigureSpec,
     ShockTable,
     in_worker,
@@ -175,8 +180,11 @@ _ACM = "sliding mode ACM"
 _PASSIVE_ACM = {**passive(0.0, 0.1), _ACM: {}}
 _MEAN = {"damper": {"hysteresis": False}}
 _HYST: dict[str, Any] = {}
+#: Figs 6.1-6.2: SCM at k_d = 1 (section 6.2: "sliding mode SCM controller ... letting
+#: xi = 30 and p = 1"); Figs 6.3-6.4: SCM and ACM at k_d = 2.5 (section 6.2: "Subsequent
+#: response analyses are thus performed assuming the force gain of 2.5")
 _SCM1 = {"controller": {"law": "sliding-mode", "mode": "SCM"}}
-_ACM1 = {"controller": {"law": "sliding-mode", "mode": "ACM"}}
+_SCM25 = {"controller": {"law": "sliding-mode", "mode": "SCM"}, "damper": {"force_gain": 2.5}}
 _GAINS_MODES = {
     "ACM k_d = 2.5": {},
     "SCM k_d = 1": {"controller": {"mode": "SCM"}, "damper": {"force_gain": 1.0}},
@@ -193,6 +201,19 @@ _C = (
     "Sliding mode ACM (k_d = 2.5, lambda = 0.5, eps = 0.05, phi = 1.6, beta = 1.25, "
     "c_s = 6750, c_0 = 2500, p_c = 0, xi_c = 150, xi = 30)"
 )
+#: What the caption fragments above state, as ``FigureSpec.settings`` (checked against the
+#: runs and the captions by mrsuspension.report.captions)
+_H_S: dict[str, Any] = {"amplitude": 0.025, "frequency": 1.5}
+_SW_S: dict[str, Any] = {"amplitude": 0.025}
+_P_S: dict[str, Any] = {"amplitude": 0.035, "speed": 50.0}
+_R_S: dict[str, Any] = {"profile": "rough", "speed": 50.0}
+_C_S: dict[str, Any] = {"law": "sliding-mode", "mode": "ACM", "force_gain": 2.5}
+_PASSIVE_ACM_S: dict[str, Any] = {
+    "law": {"passive 0 A": "passive", "passive 0.1 A": "passive", _ACM: "sliding-mode"},
+    "mode": {_ACM: "ACM"},
+    "force_gain": {"passive 0 A": 1.0, "passive 0.1 A": 1.0, _ACM: 2.5},
+    "current": {"passive 0 A": 0.0, "passive 0.1 A": 0.1},
+}
 #: hysteretic damper, mean inverse model (Fig. 6.1)
 _MIX = {"controller": {"inverse": "mean"}}
 
@@ -204,67 +225,100 @@ FIGURES: tuple[FigureSpec, ...] = (
     _spec(
         "6.1", "time", "Sliding mode with the hysteretic damper and the mean inverse",
         f"Hysteretic damper with the mean inverse (controller.inverse = mean), sliding mode "
-        f"ACM, k_d = 1; {_H}; F* panel: the sliding-mode target F_c.",
-        {"hysteretic damper + mean inverse": _MIX}, base=_ACM1, signals=TRACK,
+        f"SCM (p = 1, xi = 30), k_d = 1, as section 6.2 states; {_H}; F* panel: the "
+        "sliding-mode target F_c.",
+        {"hysteretic damper + mean inverse": _MIX}, base=_SCM1, signals=TRACK,
+        settings={
+            **_H_S,
+            "law": "sliding-mode",
+            "mode": "SCM",
+            "force_gain": 1.0,
+            "inverse": "mean",
+        },
     ),
     _spec(
         "6.2", "time", "Sliding mode with the hysteretic damper and the hysteretic inverse",
-        f"Hysteretic damper and hysteretic inverse, sliding mode ACM, k_d = 1; {_H}; F* panel: "
-        "the sliding-mode target F_c.",
-        {"hysteretic damper + hysteretic inverse": _HYST}, base=_ACM1, signals=TRACK,
+        f"Hysteretic damper and hysteretic inverse, sliding mode SCM (p = 1, xi = 30), k_d = 1, "
+        f"as section 6.2 states; {_H}; F* panel: the sliding-mode target F_c.",
+        {"hysteretic damper + hysteretic inverse": _HYST}, base=_SCM1, signals=TRACK,
+        settings={**_H_S, "law": "sliding-mode", "mode": "SCM", "force_gain": 1.0},
     ),
     _spec(
-        "6.3", "time", "Sliding mode SCM, hysteretic damper",
-        f"Sliding mode SCM (p = 1), k_d = 1, hysteretic damper and inverse; {_H}.",
-        {"sliding mode SCM": {}}, base=_SCM1,
+        "6.3", "time", "Sliding mode SCM (k_d = 2.5), hysteretic damper",
+        f"Sliding mode SCM (p = 1), k_d = 2.5 (section 6.2: 'Subsequent response analyses are "
+        f"thus performed assuming the force gain of 2.5'), hysteretic damper and inverse; {_H}; "
+        "F* panel: the sliding-mode target F_c.",
+        {"sliding mode SCM": {}}, base=_SCM25, signals=TRACK,
+        settings={**_H_S, "law": "sliding-mode", "mode": "SCM", "force_gain": 2.5},
     ),
     _spec(
-        "6.4", "time", "Sliding mode ACM, hysteretic damper",
-        f"Sliding mode ACM (p = 0), k_d = 1, hysteretic damper and inverse; {_H}.",
-        {"sliding mode ACM": {}}, base=_ACM1,
+        "6.4", "time", "Sliding mode ACM (k_d = 2.5), hysteretic damper",
+        f"Sliding mode ACM (p = 0), k_d = 2.5 (section 6.2), hysteretic damper and inverse; {_H}; "
+        "F* panel: the sliding-mode target F_c.",
+        {"sliding mode ACM": {}}, base=BASE, signals=TRACK,
+        settings={**_C_S, **_H_S},
     ),
     _spec(
         "6.5", "time", "Sliding mode ACM (k_d = 2.5) and SCM (k_d = 1, 2.5): time histories",
         f"{_H}. Tracking errors in the data and in Fig 6.5b.", _GAINS_MODES, signals=TRACK,
+        settings={
+            **_H_S,
+            "law": "sliding-mode",
+            "mode": {"ACM k_d = 2.5": "ACM", "SCM k_d = 1": "SCM", "SCM k_d = 2.5": "SCM"},
+            "force_gain": {"ACM k_d = 2.5": 2.5, "SCM k_d = 1": 1.0, "SCM k_d = 2.5": 2.5},
+        },
     ),
     _spec(
         "6.6", "freq", "Sliding mode ACM (k_d = 2.5) and SCM (k_d = 1, 2.5): frequency responses",
         f"{_SW}.", _GAINS_MODES,
+        settings={
+            **_SW_S,
+            "law": "sliding-mode",
+            "mode": {"ACM k_d = 2.5": "ACM", "SCM k_d = 1": "SCM", "SCM k_d = 2.5": "SCM"},
+            "force_gain": {"ACM k_d = 2.5": 2.5, "SCM k_d = 1": 1.0, "SCM k_d = 2.5": 2.5},
+        },
     ),
     _spec(
         "6.7", "time", "Passive (0, 0.1 A) and sliding mode ACM: time histories",
         f"Passive damper (dashed, k_d = 1) at 0 and 0.1 A and {_C}; {_H}.", _PASSIVE_ACM,
+        settings={**_PASSIVE_ACM_S, **_H_S},
     ),
     _spec(
         "6.8", "freq", "Frequency responses: passive (0, 0.1 A) and sliding mode ACM",
         f"Passive damper (dashed, k_d = 1) at 0 and 0.1 A and {_C}; {_SW}.", _PASSIVE_ACM,
+        settings={**_PASSIVE_ACM_S, **_SW_S},
     ),
     _spec(
         "6.9", "pulse", "Rounded-pulse responses: passive (0, 0.1 A) and sliding mode ACM",
-        f"Passive damper (dashed) at 0 and 0.1 A and {_C}; rounded pulse mu = 3, a_m = 5 cm, "
+        f"Passive damper (dashed, k_d = 1) at 0 and 0.1 A and {_C}; rounded pulse mu = 3, a_m = 5 cm, "
         "50 km/h, as the dissertation.",
         _PASSIVE_ACM, base={**BASE, "excitation": {"amplitude": 0.05}},
+        settings={**_PASSIVE_ACM_S, "amplitude": 0.05, "speed": 50.0},
     ),
     _spec(
         "6.10", "psd", "Random-road PSDs: passive (0, 0.1 A) and sliding mode ACM",
-        f"Passive damper (dashed) at 0 and 0.1 A and {_C}; {_R}. The dissertation gives DLC "
+        f"Passive damper (dashed, k_d = 1) at 0 and 0.1 A and {_C}; {_R}. The dissertation gives DLC "
         "0.112 (sliding mode ACM) and 0.139 (fixed passive damping, section 6.3).",
         _PASSIVE_ACM, given={"passive 0 A": 0.139, _ACM: 0.112},
+        settings={**_PASSIVE_ACM_S, **_R_S},
     ),
     _spec(
         "6.11", "time", "Sprung-mass variation: harmonic responses",
         f"m_s = 422, 563, 703 kg (controller's nominal m_s0 = 563 kg, beta = 1.25); {_C}; {_H}.",
         MASSES,
+        settings={**_C_S, **MASSES_STATED, **_H_S},
     ),
     _spec(
         "6.12", "freq", "Sprung-mass variation: frequency responses",
         f"m_s = 422, 563, 703 kg (m_s0 = 563 kg); {_C}; {_SW}. Section 6.5: the sliding-mode "
         "controller is the most robust to the load.",
         MASSES,
+        settings={**_C_S, **MASSES_STATED, **_SW_S},
     ),
     _spec(
         "6.13", "pulse", "Sprung-mass variation: rounded-pulse responses",
         f"m_s = 422, 563, 703 kg; {_C}; {_P}. Measures in Table 6.1.", MASSES,
+        settings={**_C_S, **MASSES_STATED, **_P_S},
     ),
     _spec(
         "6.14", "psd", "Sprung-mass variation (422, 703 kg): random-road PSDs",
@@ -272,36 +326,43 @@ FIGURES: tuple[FigureSpec, ...] = (
         "0.091 and 0.141.",
         {k: v for k, v in MASSES.items() if k != "m_s = 563 kg"},
         given={"m_s = 422 kg": 0.091, "m_s = 703 kg": 0.141},
+        settings={**_C_S, **_R_S, "sprung_mass": {"m_s = 422 kg": 422.0, "m_s = 703 kg": 703.0}},
     ),
     _spec(
         "6.15", "pulse", "Vehicle-speed variation: rounded-pulse responses",
         f"V = 50 and 100 km/h (omega_0 scaled with speed, erratum 9); {_C}; a_m = 3.5 cm. "
         "Measures in Table 6.2.",
         SPEEDS,
+        settings={**_C_S, **SPEEDS_STATED, "amplitude": 0.035},
     ),
     _spec(
         "6.16", "psd", "Vehicle-speed variation: random-road PSDs",
         f"V = 50 and 100 km/h on the 'rough' preset; {_C}. The dissertation gives DLC 0.112 "
         "(50 km/h) and 0.114 (100 km/h).",
         SPEEDS, given={"V = 50 km/h": 0.112, "V = 100 km/h": 0.114},
+        settings={**_C_S, **SPEEDS_STATED, "profile": "rough"},
     ),
     _spec(
         "6.17", "time", "Harmonic amplitude variation (1.5 Hz): time histories",
         f"a = 1.5, 2.5, 3.5 cm at 1.5 Hz; {_C}.", HARMONIC_AMPS,
+        settings={**_C_S, **HARMONIC_AMPS_STATED, "frequency": 1.5},
     ),
     _spec(
         "6.18", "freq", "Harmonic amplitude variation: frequency responses",
         f"Two-stage swept excitation with a = 1.5, 2.5, 3.5 cm; {_C}.", HARMONIC_AMPS,
+        settings={**_C_S, **HARMONIC_AMPS_STATED},
     ),
     _spec(
         "6.19", "pulse", "Pulse-height variation: rounded-pulse responses",
         f"a_m = 2, 3.5, 5 cm (mu = 3, 50 km/h); {_C}. Measures in Table 6.3.", PULSE_AMPS,
+        settings={**_C_S, **PULSE_AMPS_STATED, "speed": 50.0},
     ),
     _spec(
         "6.20", "psd", "Road-roughness variation: random-road PSDs",
         f"'medium-rough' and 'rough' presets at 50 km/h; {_C}. The dissertation gives DLC 0.054 "
         "(medium-rough) and 0.112 (rough).",
         ROADS, given={"medium-rough": 0.054, "rough": 0.112},
+        settings={**_C_S, **ROADS_STATED, "speed": 50.0},
     ),
     FigureSpec(
         number="6.5b", kind="special", title="Force-tracking error against k_d",

@@ -87,11 +87,17 @@ from mrsuspension.report.toolkit import (
 __all__ = [
     "AGREEMENT_BANDS",
     "HARMONIC_AMPS",
+    "HARMONIC_AMPS_STATED",
     "KINDS",
     "MASSES",
+    "MASSES_STATED",
     "PULSE_AMPS",
+    "PULSE_AMPS_STATED",
     "ROADS",
+    "ROADS_STATED",
     "SPEEDS",
+    "SPEEDS_STATED",
+    "STATIC_LOAD",
     "TABLE_MEASURES",
     "Agreement",
     "FigureSpec",
@@ -315,6 +321,11 @@ class FigureSpec:
         ``builder(quick) -> FigureRecord`` for ``kind="special"``.
     full_only : bool
         Built only in the full report.
+    settings : mapping
+        What the caption states, as data (:mod:`mrsuspension.report.captions`): a key of
+        :data:`~mrsuspension.report.captions.SETTINGS` -> a value for every variant, or a
+        mapping variant label -> value; checked against the runs and the caption by
+        ``tests/unit/report/test_captions.py``.
     """
 
     number: str
@@ -327,9 +338,24 @@ class FigureSpec:
     given: Mapping[str, float] = field(default_factory=dict)
     builder: Callable[[bool], Any] | None = None
     full_only: bool = False
+    settings: Mapping[str, Any] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
         where = f"figure {self.number}"
+        from mrsuspension.report.captions import SETTINGS
+
+        for key, value in self.settings.items():
+            if key not in SETTINGS:
+                raise ValidationError(
+                    f"{where}: unknown setting {key!r}; valid: {', '.join(SETTINGS)}"
+                )
+            if isinstance(value, Mapping):
+                bad = [label for label in value if label not in self.variants]
+                if bad:
+                    raise ValidationError(
+                        f"{where}: setting {key!r} names variant(s) {', '.join(map(repr, bad))}, "
+                        f"not among {', '.join(self.variants)}"
+                    )
         if self.kind not in KINDS:
             raise ValidationError(
                 f"{where}: kind {self.kind!r} is not valid; valid kinds: {', '.join(KINDS)}"
@@ -414,6 +440,16 @@ def _history_payload(r: Any, window: tuple[float, float], every: int) -> dict[st
     return out
 
 
+#: Pulse payload key: the run's static tire load (m_s + m_u) g [N], for the DTR
+STATIC_LOAD = "static load [N]"
+
+
+def _static_load(tables: Mapping[str, Any]) -> float:
+    from mrsuspension.vehicle import QuarterCar
+
+    return float(QuarterCar(**tables.get("vehicle", {})).static_load)
+
+
 def run_unit(unit: Unit) -> dict[str, Any]:
     """Run one unit and reduce it to what the figures and tables need.
 
@@ -451,6 +487,7 @@ def run_unit(unit: Unit) -> dict[str, Any]:
         m = r.measures()  # SAR_s, SAR_u over the after-onset road acceleration peak
         out.update({k: float(m[k]) for k in (*SHOCK, "peak_tire_force")})
         out["road_peak"] = m["road_peak"]
+        out[STATIC_LOAD] = _static_load(unit.scenario)
     elif unit.kind == "psd":
         from mrsuspension.measures import psd
 
@@ -465,7 +502,9 @@ def run_unit(unit: Unit) -> dict[str, Any]:
         out["time"] = np.asarray(r.time)[::20]
         out["i_d"] = np.asarray(r.i_d)[::20]
         m = r.measures()
-        out["DLC"] = float(m["DLC"])
+        out["DLC"] = float(m["DLC"])  # std(F_T) over the mean tire force: the run's own load
+        out["std F_T [N]"] = float(np.std(np.asarray(r.F_T)))
+        out[STATIC_LOAD] = _static_load(unit.scenario)
         out["rms a_s [m/s^2]"] = float(m["rms_body_acceleration"])
         out["mean current [A]"] = float(m["mean_current"])
     elif unit.kind == "freq":
@@ -911,19 +950,23 @@ def shock_table(
 ) -> dict[str, Any]:
     """Rows of our shock measures beside the dissertation's, with per-cell ratios.
 
-    DTR = |F_T,peak(nominal) - F_T,peak| / ((m_s0 + m_u) g), (3.44), nominal = the row
-    without overrides. Each measure ``k`` of a row has ``k model``, ``k dissertation``,
+    DTR (3.44) against the row without overrides, read as the deviation in the peak tire
+    force *ratio* (:func:`~mrsuspension.measures.dtr_ratio`: each run's peak over its own
+    static load, the reading Tables 5.1 and 6.1 support; equal to (3.44) as printed,
+    :func:`~mrsuspension.measures.dtr`, between rows of one mass, which each row also
+    carries as ``DTR (3.44) model``). Each measure ``k`` of a row has ``k model``, ``k dissertation``,
     ``k ratio`` (model/dissertation; for DTR ``DTR difference``, model - dissertation)
     and ``k agreement``, the :func:`agreement` band. ``SAR_s`` and ``SAR_u`` divide by the
     road acceleration peak of the payloads' ``road_peak`` (``"after-onset"`` from
     :func:`run_unit`). The result's ``summary`` is :func:`agreement_summary` of the rows.
     """
-    from mrsuspension.measures import dtr
+    from mrsuspension.measures import dtr, dtr_ratio
     from mrsuspension.vehicle import QuarterCar
 
     car = QuarterCar()
     nominal = next(v for v, o in table.variants.items() if not o)
     reference = payloads[nominal]["peak_tire_force"]
+    loads = {v: _static_load(_merge(table.base, o)) for v, o in table.variants.items()}
     road_peaks = {payloads[v].get("road_peak", "after-onset") for v in table.variants}
     if len(road_peaks) != 1:
         raise ValidationError(
@@ -934,7 +977,8 @@ def shock_table(
     for value in table.variants:
         p = payloads[value]
         row: dict[str, Any] = {table.column: value}
-        model = [*(p[k] for k in SHOCK), dtr(reference, p["peak_tire_force"], car.total_mass)]
+        peak = p["peak_tire_force"]
+        model = [*(p[k] for k in SHOCK), dtr_ratio(reference, peak, loads[nominal], loads[value])]
         for k, ours, theirs in zip(TABLE_MEASURES, model, table.given[value], strict=True):
             ag = agreement(k, ours, theirs)
             row[f"{k} model"] = round(float(ours), 3)
@@ -944,7 +988,8 @@ def shock_table(
             else:
                 row[f"{k} ratio"] = ag.ratio
             row[f"{k} agreement"] = ag.band
-        row["peak F_T model [N]"] = round(float(p["peak_tire_force"]), 1)
+        row["DTR (3.44) model"] = round(float(dtr(reference, peak, car.total_mass)), 3)
+        row["peak F_T model [N]"] = round(float(peak), 1)
         rows.append(row)
     ratios = []
     for k in SHOCK:
@@ -967,8 +1012,11 @@ def shock_table(
             f"Rounded pulse (mu = 3, a_m = 3.5 cm, 50 km/h, omega_0 = 10.4 rad/s unless varied), "
             f"varying {table.column}; ratios of peaks over a {PULSE_DURATION:g} s record, step "
             f"{step:g} ms. Scenario: {json.dumps(_normalise(table.base), sort_keys=True)}. "
-            f"{sar}. DTR against the nominal row, normalised by (m_s0 + m_u) g = "
-            f"{car.static_load:.0f} N. Each cell: ours, the dissertation's and their ratio (DTR: "
+            f"{sar}. DTR against the nominal row, as the deviation in the peak tire force "
+            "ratio (each row's peak over its own static load (m_s + m_u) g; the reading Tables "
+            "5.1 and 6.1 support: (3.44) as printed divides both peaks by the nominal "
+            f"{car.static_load:.0f} N and gives the static-load change, 0.216, for every "
+            "controller at 422 and 703 kg; the rows carry it as 'DTR (3.44) model'). Each cell: ours, the dissertation's and their ratio (DTR: "
             "the difference), coloured green within 10 %, amber within 25 %, red beyond (DTR: "
             "within 0.025, 0.05). Model/dissertation ratio over the rows: "
             f"{', '.join(ratios)} (a range that is narrow but far from 1: the trend agrees, "
@@ -1475,6 +1523,19 @@ HARMONIC_AMPS = vary(
 PULSE_AMPS = vary(
     "excitation", "amplitude", (0.02, 0.035, 0.05), lambda a: f"a_m = {a * 100:g} cm", 0.035
 )
+#: What a caption varying these states (``FigureSpec.settings``, checked against the runs by
+#: :mod:`mrsuspension.report.captions`): one per variant family above
+MASSES_STATED: dict[str, Any] = {
+    "sprung_mass": {"m_s = 422 kg": 422.0, "m_s = 563 kg": 563.0, "m_s = 703 kg": 703.0}
+}
+SPEEDS_STATED: dict[str, Any] = {"speed": {"V = 50 km/h": 50.0, "V = 100 km/h": 100.0}}
+ROADS_STATED: dict[str, Any] = {"profile": {"medium-rough": "medium-rough", "rough": "rough"}}
+HARMONIC_AMPS_STATED: dict[str, Any] = {
+    "amplitude": {"a = 1.5 cm": 0.015, "a = 2.5 cm": 0.025, "a = 3.5 cm": 0.035}
+}
+PULSE_AMPS_STATED: dict[str, Any] = {
+    "amplitude": {"a_m = 2 cm": 0.02, "a_m = 3.5 cm": 0.035, "a_m = 5 cm": 0.05}
+}
 
 
 def spec_factory(base: Mapping[str, Any]) -> Callable[..., FigureSpec]:

@@ -147,6 +147,19 @@ def test_run_render_and_table_on_two_pulse_runs(tmp_path: Path) -> None:
     nominal, heavy = out["rows"]
     assert nominal["DTR model"] == 0.0
     assert heavy["DTR model"] > 0.0
+    # DTR: the peak tire force ratio, each row over its own static load (Tables 5.1/6.1's
+    # reading); (3.44) as printed beside it: the heavier car's static-load change, 0.215
+    from mrsuspension.measures import dtr_ratio
+
+    loads = [payloads[m]["static load [N]"] for m in (563.0, 703.0)]
+    assert loads == pytest.approx([653.0 * 9.81, 793.0 * 9.81])
+    peaks = [payloads[m]["peak_tire_force"] for m in (563.0, 703.0)]
+    assert heavy["DTR model"] == pytest.approx(dtr_ratio(*peaks, *loads), abs=1e-3)
+    assert heavy["DTR (3.44) model"] == pytest.approx(
+        abs(peaks[1] - peaks[0]) / (653.0 * 9.81), abs=1e-3
+    )
+    assert heavy["DTR (3.44) model"] != pytest.approx(heavy["DTR model"], abs=0.02)
+    assert "peak tire force ratio" in out["caption"]
     # a heavier body moves less after the same pulse
     assert heavy["SAR_s model"] < nominal["SAR_s model"]
     assert heavy["SDR_s dissertation"] == 0.71
@@ -298,8 +311,10 @@ def test_shock_table_html_colours_cells_and_sums_up() -> None:
         563.0: {"SDR_s": 0.70, "SAR_s": 0.22, "SDR_u": 1.5, "SAR_u": 1.92, "RDR": 0.75,
                 "peak_tire_force": 11000.0, "road_peak": "after-onset"},
         703.0: {"SDR_s": 0.62, "SAR_s": 0.15, "SDR_u": 1.2, "SAR_u": 1.5, "RDR": 0.8,
-                "peak_tire_force": 11000.0 - 0.25 * 653 * 9.81, "road_peak": "after-onset"},
+                "peak_tire_force": (11000.0 / (653 * 9.81) - 0.25) * 793 * 9.81,
+                "road_peak": "after-onset"},
     }  # fmt: skip
+    # DTR: the peak tire force ratio (each row over its own static load), 0.25 here
     tab = shock_table(table, payloads, quick=True)
     nominal, heavy = tab["rows"]
     assert [nominal[f"{k} agreement"] for k in ("SDR_s", "SAR_s", "SDR_u", "SAR_u", "RDR")] == [

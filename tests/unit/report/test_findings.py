@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import os
 import re
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -16,8 +17,10 @@ from mrsuspension.report.findings import (
     ROAD,
     SAR,
     SKIPPED,
+    Claim,
     Scorecard,
     evaluate,
+    html_section,
     units,
 )
 from mrsuspension.report.findings import checks as F
@@ -136,8 +139,9 @@ def test_fraction_of_frequencies() -> None:
 
 
 def test_dtr_and_rank() -> None:
-    nominal = {"peak_tire_force": 10000.0}
-    light = {"peak_tire_force": 10000.0 - 0.26 * 653.0 * 9.81}
+    w0 = 653.0 * 9.81
+    nominal = {"peak_tire_force": 10000.0, "static load [N]": w0}
+    light = {"peak_tire_force": 10000.0 - 0.26 * w0, "static load [N]": w0}
     check = F.dtr_values(("b", _B), {"a": (_A, 0.26)})
     assert check({"b": nominal, "a": light}).holds
     assert "0.26" in check({"b": nominal, "a": light}).numbers
@@ -206,3 +210,96 @@ def test_claims_markdown_lists_every_claim() -> None:
     page = claims_markdown()
     for c in CLAIMS:
         assert f"| {c.id} | {c.sections} |" in page
+
+
+# -- readings: the kept one, the others, none --------------------------------------------
+def test_dtr_readings_differ_over_the_mass_only() -> None:
+    w0, w = 653.0 * 9.81, 512.0 * 9.81  # 563 and 422 kg
+    nominal = {"peak_tire_force": w0 + 5000.0, "static load [N]": w0}
+    light = {"peak_tire_force": w + 5000.0, "static load [N]": w}  # same dynamic peak
+    got = {r: F.dtr_of(nominal, light, r) for r in F.DTR_READINGS}
+    assert got["3.44"] == pytest.approx((w0 - w) / w0)  # the static-load change, 0.216
+    assert got["dynamic"] == pytest.approx(0.0, abs=1e-12)
+    assert got["ratio"] == pytest.approx(5000.0 / w - 5000.0 / w0)
+    same_mass = {"peak_tire_force": w0 + 4000.0, "static load [N]": w0}
+    assert len({round(F.dtr_of(nominal, same_mass, r), 12) for r in F.DTR_READINGS}) == 1
+    with pytest.raises(ValidationError, match="DTR reading"):
+        F.dtr_of(nominal, light, "static")
+
+
+def _claim(check: F.Check) -> Claim:
+    return Claim("4.9-test", "4.9", "a quote of twenty characters", "A test.", check)
+
+
+def test_readings_give_the_stated_reading_or_none() -> None:
+    m = F.SHOCK["SDR_s"]
+    lower = F.compare(m, {"a": _A}, {"b": _B}, "<")
+    higher = F.compare(m, {"a": _A}, {"b": _B}, ">")
+    both = F.readings(("kept: lower", lower), ("other: higher", higher))
+    pay = {"a": {"SDR_s": 0.9}, "b": {"SDR_s": 0.8}}
+    v = both(pay)
+    assert (v.holds, v.reading, v.exhausted) == (True, "other: higher", False)
+    assert "under other: higher" in v.numbers
+    assert "kept: lower" in v.why
+    kept = both({"a": {"SDR_s": 0.7}, "b": {"SDR_s": 0.8}})
+    assert (kept.holds, kept.reading) == (True, "")
+    none = F.readings(("kept: lower", lower))(pay)
+    assert (none.holds, none.exhausted) == (False, True)
+    assert none.why.startswith("not held for any admissible reading")
+    # all_of: a part held under a reading carries it; exhausted only if every failure is
+    plain = F.compare(m, {"c": _C}, {"b": _B}, "<")
+    joined = F.all_of(both, plain)
+    assert joined({**pay, "c": {"SDR_s": 0.5}}).reading == "other: higher"
+    assert not joined({**pay, "c": {"SDR_s": 0.9}}).exhausted
+    assert F.all_of(F.readings(("kept: lower", lower)), plain)(
+        {**pay, "c": {"SDR_s": 0.5}}
+    ).exhausted
+    # the scorecard's statuses, counts and html
+    payloads = {
+        _A.unit(quick=True): {"SDR_s": 0.9},
+        _B.unit(quick=True): {"SDR_s": 0.8},
+    }
+    card = evaluate(
+        quick=True,
+        claims=[_claim(both), replace(_claim(F.readings(("kept: lower", lower))), id="4.9-none")],
+        payloads=payloads,
+    )
+    assert [r.status for r in card.results] == [
+        "held under a stated reading",
+        "not held for any admissible value",
+    ]
+    assert "Held under the stated reading: other: higher" in card.results[0].explanation
+    counts = card.counts()
+    assert counts["held under a stated reading"] == counts["not held for any admissible value"] == 1
+    assert counts["held"] == counts["not held"] == 0
+    page = html_section(card)
+    assert "held under a stated reading" in page
+    assert "#eef6d8" in page
+    assert "not held for any admissible value" in page
+
+
+def test_retabled_changes_only_the_named_laws_runs() -> None:
+    sm = F.Run.of("time", {"controller": {"law": "sliding-mode", "mode": "ACM"}})
+    check = F.compare(F.MEAN_CURRENT, {"sm": sm}, {"passive": _B}, "<")
+    beta = F.retabled(check, "beta 2", "sliding-mode", controller={"beta": 2.0})
+    assert set(beta.runs) == {"sm [beta 2]", "passive [beta 2]"}
+    assert beta.runs["sm [beta 2]"].scenario["controller"]["beta"] == 2.0
+    assert beta.runs["passive [beta 2]"] == _B
+    v = beta(
+        {"sm [beta 2]": {"mean current [A]": 0.1}, "passive [beta 2]": {"mean current [A]": 0.2}}
+    )
+    assert v.holds
+
+
+def test_pulse_end_and_the_dlc_over_the_nominal_load() -> None:
+    assert F.pulse_end(_B) == pytest.approx(0.5 + 3 * np.pi / (3 * 10.4), rel=1e-3)
+    fast = F.Run.of("pulse", {"excitation": {"speed": 100.0}})
+    assert F.pulse_end(fast) == pytest.approx(0.5 + 3 * np.pi / (3 * 20.8), rel=1e-3)
+    with pytest.raises(ValidationError, match="not a rounded-pulse run"):
+        F.pulse_end(F.Run.of("time", {}))
+    assert F.ROAD_DLC_NOMINAL({"std F_T [N]": 0.1 * 653.0 * 9.81}) == pytest.approx(0.1)
+    window = F.residual("x_s", 0.8)
+    t = np.arange(0.0, 4.0, 1e-3)
+    x = np.where(t < 0.8, 1.0, 0.0)
+    assert window({"time": t, "x_s": x}) == 0.0
+    assert F.residual("x_s", 0.5)({"time": t, "x_s": x}) > 0.0

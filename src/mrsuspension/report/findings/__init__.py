@@ -27,7 +27,10 @@ Readings
     transmissibility: the maximum over 0.5-4 Hz. Frequency bands: body resonance 0.5-4 Hz,
     ride range as the quote says, wheel hop 7-15 Hz.
 Statuses
-    ``held``; ``not held``; ``dissertation inconsistent`` (the dissertation contradicts
+    ``held``; ``held under a stated reading`` (it holds only under another admissible
+    reading than the kept one, :func:`~mrsuspension.report.findings.checks.readings`: the
+    row names it); ``not held``; ``not held for any admissible value`` (it fails under every
+    reading and parameter value it was checked over); ``dissertation inconsistent`` (the dissertation contradicts
     itself on the claim: the row names the evidence and which reading is tested);
     ``error`` (the check could not be evaluated). A claim with ``known`` set is expected not
     to hold (the integration test makes it a strict xfail): ``known`` holds the suspected
@@ -102,8 +105,17 @@ __all__ = [
     "write_csv",
 ]
 
-#: Claim statuses, in table order
-STATUSES: tuple[str, ...] = ("held", "not held", "dissertation inconsistent", "error")
+#: Claim statuses, in table order: "held under a stated reading" holds only under a reading
+#: other than the kept one (of a measure, a window, an unknown; the row names it); "not
+#: held for any admissible value" fails under every reading and value it was checked over
+STATUSES: tuple[str, ...] = (
+    "held",
+    "held under a stated reading",
+    "not held",
+    "not held for any admissible value",
+    "dissertation inconsistent",
+    "error",
+)
 CLAIMS_BY_ID: dict[str, Claim] = {c.id: c for c in CLAIMS}
 
 
@@ -156,7 +168,9 @@ class Scorecard:
         return {
             "tested": len(self.results),
             "held": status.count("held"),
+            "held under a stated reading": status.count("held under a stated reading"),
             "not held": status.count("not held"),
+            "not held for any admissible value": status.count("not held for any admissible value"),
             "dissertation inconsistent": status.count("dissertation inconsistent"),
             "of which the tested reading held": sum(
                 r.status == "dissertation inconsistent" and r.holds for r in self.results
@@ -185,7 +199,7 @@ class Scorecard:
         for r in self.results:
             lines.append(
                 f"{r.claim.id:28s} {r.claim.sections:12s} {'yes' if r.holds else 'no ':3s} "
-                f"{r.status:26s} {r.numbers}"
+                f"{r.status:34s} {r.numbers}"
             )
             if r.explanation:
                 lines.append(f"{'':28s} -> {r.explanation}")
@@ -195,15 +209,23 @@ class Scorecard:
 def _status(claim: Claim, verdict: Verdict) -> tuple[str, str]:
     if claim.inconsistent:
         note = f"Dissertation inconsistent: {claim.inconsistent}"
+        if verdict.holds and verdict.reading:
+            note += f" Held under the stated reading: {verdict.reading}."
         if not verdict.holds:
             note += f" Not held: {verdict.why}."
             if claim.known:
                 note += f" Suspected cause: {claim.known}."
         return "dissertation inconsistent", note
+    if verdict.holds and verdict.reading:
+        return "held under a stated reading", (
+            f"Held under the stated reading: {verdict.reading} (the kept reading fails: "
+            f"{verdict.why})."
+        )
     if verdict.holds:
         return "held", ""
     cause = claim.known or "none recorded: a new failure (not in claims.KNOWN)"
-    return "not held", f"{verdict.why}. Suspected cause: {cause}"
+    status = "not held for any admissible value" if verdict.exhausted else "not held"
+    return status, f"{verdict.why}. Suspected cause: {cause}"
 
 
 def run_payloads(
@@ -302,7 +324,9 @@ def evaluate(
 
 _CSS = {
     "held": "#e3f4e1",
+    "held under a stated reading": "#eef6d8",
     "not held": "#fbe0dd",
+    "not held for any admissible value": "#f4c9c3",
     "dissertation inconsistent": "#fff1c2",
     "error": "#e4e4e4",
 }
@@ -376,7 +400,10 @@ def html_section(card: Scorecard, csv_name: str = "findings.csv") -> str:
         "on the model (mrsuspension.report.findings; docs/report.md gives the readings of "
         "'slightly', 'insensitive', 'considerably'). 'Dissertation inconsistent': the "
         "dissertation contradicts itself on the claim; the row names the evidence and the "
-        "reading tested. Claims marked 'depends on road' use the preset random roads, "
+        "reading tested. 'Held under a stated reading': the claim holds only under another "
+        "admissible reading than the kept one (of an ambiguous measure, a time window, an "
+        "unknown parameter), named in the row with both readings' numbers; 'not held for any "
+        "admissible value': it fails under every reading it was checked over. Claims marked 'depends on road' use the preset random roads, "
         "'sar' the shock-acceleration denominator (being redefined). "
         f"{timing['distinct runs']} distinct runs, {timing['reused from the report']} of them "
         "made in the report's process pool (the figures' own runs where the scenarios "

@@ -26,12 +26,14 @@ from mrsuspension.report.families import (
 __all__ = [
     "ABOUT",
     "CONSIDERABLY",
+    "DTR_READINGS",
     "FREQUENCIES",
     "GAMMA",
     "INSENSITIVE",
     "MEAN_CURRENT",
     "ROAD",
     "ROAD_DLC",
+    "ROAD_DLC_NOMINAL",
     "SAR",
     "SHOCK",
     "SLIGHT",
@@ -63,12 +65,15 @@ __all__ = [
     "peak",
     "phase_peak",
     "psd_mean",
+    "pulse_end",
     "rank",
     "ratio",
+    "readings",
     "relative_spread",
     "relative_tracking",
     "relative_tracking_all",
     "residual",
+    "retabled",
     "rms_rate",
     "road_current_std",
     "rows",
@@ -448,7 +453,7 @@ def residual(sig: str, after: float = 1.0) -> Metric:
         y = _array(p, sig)[_array(p, "time") >= after]
         return float(np.sqrt(np.mean((y - y[-1]) ** 2)))
 
-    return Metric(f"rms {sig} after {after:g} s", unit, get, scale)
+    return Metric(f"rms {sig} after {after:.3g} s", unit, get, scale)
 
 
 def time_above(sig: str, level: float) -> Metric:
@@ -470,6 +475,38 @@ MEAN_CURRENT = value("mean current [A]", "mean i_d", "A")
 GAMMA = value("gamma", "gamma (rebound/compression peak force)")
 TRACKING = value("force-tracking error [N]", "rms(|F_d| - |F*|) while z_c < 0", "N")
 ROAD_DLC = value("DLC", "road DLC")
+
+
+def _dlc_nominal_load(p: Payload) -> float:
+    from mrsuspension.vehicle import QuarterCar
+
+    return float(p["std F_T [N]"]) / QuarterCar().static_load
+
+
+#: The road DLC normalised by the nominal car's static load (m_s0 + m_u) g for every mass
+#: (``mrsuspension.measures.dlc(F_T, static_load=...)``): the other reading of the DLC over
+#: the sprung mass (:data:`ROAD_DLC` divides by each car's own mean tire force)
+ROAD_DLC_NOMINAL = Metric("road DLC over the nominal load", "", _dlc_nominal_load)
+
+
+def pulse_end(run: Run) -> float:
+    """When a pulse run's rounded pulse is over [s]: its onset delay plus the duration
+    3 pi / (mu omega_0) that section 3.5 gives.
+
+    Examples
+    --------
+    >>> round(pulse_end(Run.of("pulse", {})), 3)  # 0.5 s + 3 pi / (3 x 10.4 rad/s)
+    0.802
+    """
+    from mrsuspension.excitation import RoundedPulse
+    from mrsuspension.scenario import Scenario
+
+    exc = Scenario.from_dict(run.unit(quick=False).scenario).excitation
+    if not isinstance(exc, RoundedPulse):
+        raise ValidationError(f"run {run.kind!r} is not a rounded-pulse run: {exc!r}")
+    return float(exc.delay + exc.pulse_duration)
+
+
 SHOCK = {k: value(k) for k in ("SDR_s", "SAR_s", "SDR_u", "SAR_u", "RDR")}
 
 
@@ -536,11 +573,18 @@ def relative_tracking_all() -> Metric:
 
 @dataclass(frozen=True)
 class Verdict:
-    """Whether a check holds, our numbers (with units) and, if not, what failed."""
+    """Whether a check holds, our numbers (with units) and, if not, what failed.
+
+    ``reading`` names the stated reading (of a measure, a window, an unknown's value) under
+    which the check holds when the kept one does not (:func:`readings`); ``exhausted``:
+    the check does not hold under any admissible reading it was given.
+    """
 
     holds: bool
     numbers: str
     why: str = ""
+    reading: str = ""
+    exhausted: bool = False
 
 
 @dataclass(frozen=True)
@@ -777,46 +821,64 @@ def fraction(
     return Check(dict([lhs, *rhs.items()]), fn)
 
 
+#: The admissible readings of DTR (3.44) over the sprung mass (they agree between runs of
+#: one mass), the kept one first: name -> what it computes. Tables 5.1 and 6.1 support
+#: "ratio" (docs/excitations-and-measures.md; :func:`mrsuspension.measures.dtr_ratio`)
+DTR_READINGS: dict[str, str] = {
+    "ratio": "DTR read as the deviation in the peak tire force ratio (each run's peak over "
+    "its own static load (m_s + m_u) g)",
+    "3.44": "DTR read as (3.44) is printed (both peaks over the nominal (m_s0 + m_u) g)",
+    "dynamic": "DTR read on the dynamic tire force (each peak less its own static load, over "
+    "the nominal (m_s0 + m_u) g)",
+}
+
+
+def dtr_of(nominal: Payload, other: Payload, reading: str = "ratio") -> float:
+    """DTR of ``other`` against ``nominal`` (pulse payloads) under one of
+    :data:`DTR_READINGS`.
+
+    Examples
+    --------
+    >>> light = {"peak_tire_force": 10500.0, "static load [N]": 5022.8}
+    >>> nominal = {"peak_tire_force": 12000.0, "static load [N]": 6405.93}
+    >>> [round(dtr_of(nominal, light, r), 3) for r in DTR_READINGS]
+    [0.217, 0.234, 0.018]
+    """
+    from mrsuspension.measures import dtr, dtr_ratio
+    from mrsuspension.report.families import STATIC_LOAD
+    from mrsuspension.vehicle import QuarterCar
+
+    f0, f = float(nominal["peak_tire_force"]), float(other["peak_tire_force"])
+    w0, w = float(nominal[STATIC_LOAD]), float(other[STATIC_LOAD])
+    total = QuarterCar().total_mass
+    if reading == "ratio":
+        return float(dtr_ratio(f0, f, w0, w))
+    if reading == "3.44":
+        return float(dtr(f0, f, total))
+    if reading == "dynamic":
+        return float(dtr(f0 - w0, f - w, total))
+    raise ValidationError(f"DTR reading {reading!r} is not valid; valid: {', '.join(DTR_READINGS)}")
+
+
 def dtr_values(
     nominal: tuple[str, Run],
     changed: Mapping[str, tuple[Run, float]],
     tol: float = 0.3,
+    reading: str = "ratio",
 ) -> Check:
-    """DTR (3.44) against the nominal run within ``tol`` (relative) of the stated values.
-
-    DTR = |F_T,peak(nominal) - F_T,peak| / ((m_s0 + m_u) g) with the nominal car's mass.
-    """
-    from mrsuspension.measures import dtr
-    from mrsuspension.vehicle import QuarterCar
-
-    car = QuarterCar()
+    """DTR against the nominal run within ``tol`` (relative) of the stated values, under
+    one of :data:`DTR_READINGS` (default the kept one)."""
 
     def fn(p: Mapping[str, Payload]) -> Verdict:
-        ref = float(p[nominal[0]]["peak_tire_force"])
         parts, bad = [], []
         for k, (_run, stated) in changed.items():
-            d = dtr(ref, float(p[k]["peak_tire_force"]), car.total_mass)
+            d = dtr_of(p[nominal[0]], p[k], reading)
             parts.append(f"{k} {d:.3g} (dissertation {stated:g})")
             if abs(d - stated) > tol * stated:
                 bad.append(f"{k}: {d:.3g} not within {100 * tol:.0f} % of {stated:g}")
         return Verdict(not bad, "DTR: " + ", ".join(parts), "; ".join(bad))
 
     return Check(dict([nominal, *((k, r) for k, (r, _s) in changed.items())]), fn)
-
-
-def dtr_of(nominal: Payload, other: Payload) -> float:
-    """DTR of ``other`` against ``nominal`` (pulse payloads), nominal car (3.44)."""
-    from mrsuspension.measures import dtr
-    from mrsuspension.vehicle import QuarterCar
-
-    car = QuarterCar()
-    return float(
-        dtr(
-            float(nominal["peak_tire_force"]),
-            float(other["peak_tire_force"]),
-            car.total_mass,
-        )
-    )
 
 
 def rank(
@@ -861,21 +923,101 @@ def relative_spread(metric: Metric) -> Callable[[Mapping[str, Payload]], float]:
     return measure
 
 
-def all_of(*checks: Check) -> Check:
-    """Every check holds; numbers of all, failures of each."""
+def _union(checks: Sequence[Check]) -> dict[str, Run]:
     runs: dict[str, Run] = {}
     for c in checks:
         for k, r in c.runs.items():
             if k in runs and runs[k] != r:
                 raise ValidationError(f"label {k!r} names two different runs in one claim")
             runs[k] = r
+    return runs
+
+
+def all_of(*checks: Check) -> Check:
+    """Every check holds; numbers of all, failures of each (a :func:`readings` part passes
+    on its reading; the whole is exhausted when every failing part is)."""
+    runs = _union(checks)
 
     def fn(p: Mapping[str, Payload]) -> Verdict:
         verdicts = [c(p) for c in checks]
+        holds = all(v.holds for v in verdicts)
+        failed = [v for v in verdicts if not v.holds]
         return Verdict(
-            all(v.holds for v in verdicts),
+            holds,
             "; ".join(v.numbers for v in verdicts),
-            "; ".join(v.why for v in verdicts if not v.holds),
+            "; ".join(v.why for v in failed),
+            reading="; ".join(dict.fromkeys(v.reading for v in verdicts if v.reading)),
+            exhausted=bool(failed) and all(v.exhausted for v in failed),
+        )
+
+    return Check(runs, fn)
+
+
+def retabled(check: Check, tag: str, law: str | None = None, **overrides: Any) -> Check:
+    """The same check on changed runs: each run's scenario updated by ``overrides`` (only
+    the runs of controller ``law``, if given), its label tagged ``[tag]`` so that it can sit
+    beside the original in :func:`readings` (a sensitivity to an unknown parameter).
+
+    Examples
+    --------
+    >>> a = Run.of("pulse", {"controller": {"law": "sliding-mode"}})
+    >>> c = retabled(compare(SHOCK["SDR_s"], {"a": a}, {}), "beta 1.5", "sliding-mode",
+    ...              controller={"beta": 1.5})
+    >>> list(c.runs), c.runs["a [beta 1.5]"].scenario["controller"]["beta"]
+    (['a [beta 1.5]'], 1.5)
+    """
+
+    def changed(run: Run) -> Run:
+        if law is not None and run.scenario.get("controller", {}).get("law") != law:
+            return run
+        return Run.of(run.kind, merge_tables(run.scenario, overrides))
+
+    runs = {f"{k} [{tag}]": changed(r) for k, r in check.runs.items()}
+
+    def fn(p: Mapping[str, Payload]) -> Verdict:
+        return check.fn({k: p[f"{k} [{tag}]"] for k in check.runs})
+
+    return Check(runs, fn)
+
+
+def readings(kept: tuple[str, Check], *others: tuple[str, Check]) -> Check:
+    """A check under every admissible reading: ``kept`` first, then the ``others``.
+
+    Each reading is a name (what is read how, e.g. a measure's definition, a time window,
+    a value of an unknown parameter) and the check under it (its runs may differ). The
+    verdict holds if the kept reading holds; else it holds *under a stated reading* (its
+    ``reading``) if another does; else it is ``exhausted``: not held for any admissible
+    reading. The numbers show every reading's.
+
+    Examples
+    --------
+    >>> a, b = Run.of("pulse", {}), Run.of("pulse", {"vehicle": {"sprung_mass": 422.0}})
+    >>> lower = compare(SHOCK["SDR_s"], {"a": a}, {"b": b}, "<")
+    >>> higher = compare(SHOCK["SDR_s"], {"a": a}, {"b": b}, ">")
+    >>> v = readings(("lower", lower), ("higher", higher))({"a": {"SDR_s": 0.9}, "b": {"SDR_s": 0.8}})
+    >>> v.holds, v.reading
+    (True, 'higher')
+    >>> readings(("lower", lower))({"a": {"SDR_s": 0.9}, "b": {"SDR_s": 0.8}}).exhausted
+    True
+    """
+    cases = (kept, *others)
+    runs = _union([c for _name, c in cases])
+
+    def fn(p: Mapping[str, Payload]) -> Verdict:
+        verdicts = [(name, c(p)) for name, c in cases]
+        numbers = "; ".join(
+            f"{'' if i == 0 else 'under '}{name}: {v.numbers}"
+            for i, (name, v) in enumerate(verdicts)
+        )
+        first = verdicts[0][1]
+        if first.holds:
+            return Verdict(True, numbers)
+        held = [name for name, v in verdicts[1:] if v.holds]
+        if held:
+            return Verdict(True, numbers, f"{kept[0]}: {first.why}", reading=held[0])
+        why = "; ".join(f"{name}: {v.why}" for name, v in verdicts)
+        return Verdict(
+            False, numbers, f"not held for any admissible reading ({why})", exhausted=True
         )
 
     return Check(runs, fn)
