@@ -978,8 +978,8 @@ def _build_sensing(
             )
     if kind == "ideal" and "fs" in table:
         raise ValidationError("[sensing] fs does not apply to velocity = 'ideal'")
-    dt = float(simulation.get("dt", RunSettings().dt))
-    fs = float(table.get("fs", min(1000.0, 1.0 / dt)))
+    dt = simulation.get("dt", RunSettings().dt)  # checked with [simulation] later
+    fs = float(table.get("fs", min(1000.0, 1.0 / dt) if dt > 0 else 1000.0))
     with _in_section("sensing"):
         velocity: LeakyIntegrator | BandPassObserver | None = None
         if kind == "leaky-integrator":
