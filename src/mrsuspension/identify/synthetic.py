@@ -480,12 +480,9 @@ def field_campaign(
     conds = [(f, a, i) for f, a, _, _ in FIELD_PAIRS for i in FIELD_CURRENTS]
     rates = [r for _, _, r, _ in FIELD_PAIRS for _ in FIELD_CURRENTS]
     cycles = [n for _, _, _, n in FIELD_PAIRS for _ in FIELD_CURRENTS]
-    return synthetic_campaign(
+    return _field_damper_campaign(
         folder,
-        "wang-symmetric",
         conds,
-        parameters=dict(FIELD_PARAMETERS),
-        model_options={"max_current": 1.0},
         noise=noise,
         cycles=cycles,
         sample_rate=rates,
@@ -494,6 +491,20 @@ def field_campaign(
         stroke_offset=stroke_offset,
         stroke_drift=stroke_drift,
         motion_noise=motion_noise,
+    )
+
+
+def _field_damper_campaign(
+    folder: str | Path, conditions: Sequence[tuple[float, float, float]], **options: Any
+) -> Path:
+    """:func:`synthetic_campaign` of the field damper (:data:`FIELD_PARAMETERS`, 1 A)."""
+    return synthetic_campaign(
+        folder,
+        "wang-symmetric",
+        conditions,
+        parameters=dict(FIELD_PARAMETERS),
+        model_options={"max_current": 1.0},
+        **options,
     )
 
 
@@ -562,12 +573,9 @@ def ramped_campaign(
     plateau = [int(p) for p in rng.integers(lo_p, hi_p + 1, n)]
     cut_start = [float(rng.uniform(0, r)) if rng.random() < 0.5 else 0.0 for r in ramp_in]
     cut_end = [float(rng.uniform(0, r)) if rng.random() < 0.5 else 0.0 for r in ramp_out]
-    return synthetic_campaign(
+    return _field_damper_campaign(
         folder,
-        "wang-symmetric",
         conds,
-        parameters=dict(FIELD_PARAMETERS),
-        model_options={"max_current": 1.0},
         noise=noise,
         cycles=plateau,
         sample_rate=rates,
