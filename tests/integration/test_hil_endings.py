@@ -274,7 +274,10 @@ def test_every_ending_leaves_the_rig_home(tmp_path: Path, rig: str, how: str) ->
         signalled = how in ("sigint", "sigterm", "sighup", "kill9")
 
         def ready() -> bool:
-            return witness.driven if witness is not None else _driven(tmp_path)
+            # this run's own recording shows a commanded current (a witness alone could
+            # count a stray datagram from another test's loop to a reused port: the
+            # signal would then hit a command whose loop has not started)
+            return _driven(tmp_path) and (witness is None or witness.driven)
 
         ended = run_cli(args, tmp_path, how if signalled else None, ready if signalled else None)
     print(f"{how} over {rig}: exit {ended.code} in {ended.seconds:.2f} s; {ended.stderr[-300:]}")
