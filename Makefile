@@ -11,8 +11,8 @@ $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --upgrade pip
 
-# reinstall only when the project metadata changes; then compile the kernels (numba's
-# cache), so the first command does not wait for them
+# reinstall only when the project metadata changes (`report` and `test` then compile the
+# kernels into numba's cache, so the first command does not wait for them)
 # (with uv, which installs the same versions in 25 s where pip takes a minute; pip if uv
 # cannot; bytecode compiled, as pip does: without it every test process compiles numpy,
 # scipy, ... from source, measured +20 % CPU on the suite with PYTHONDONTWRITEBYTECODE)
@@ -20,10 +20,10 @@ $(VENV)/.stamp-install: pyproject.toml | $(BIN)/python
 	$(BIN)/python -m pip install --quiet uv
 	$(BIN)/uv pip install --quiet --compile-bytecode --python $(BIN)/python -e ".[dev,plot]" \
 	  || $(BIN)/python -m pip install --quiet -e ".[dev,plot]"
-	$(BIN)/mrsus cache warm
 	touch $@
 
 report: $(VENV)/.stamp-install
+	$(BIN)/mrsus cache warm
 	$(BIN)/mrsus reproduce --out $(OUT)
 
 lint: $(VENV)/.stamp-install
@@ -42,9 +42,15 @@ system-deps:
 # compiled kernels instead of each compiling them. The suite runs on JOBS workers
 # (pytest-xdist; a test module stays on one worker, so its fixtures are built once),
 # then the tests that keep 1 kHz deadlines (marker `realtime`) run alone on a quiet machine
+# (the kernels compile, ~25 s on a fresh clone, beside the lint, whose mypy takes ~30 s:
+# one core each; the warm's lines are printed when both are done)
 JOBS ?= 2
-test: $(VENV)/.stamp-install lint system-deps
-	$(BIN)/mrsus cache warm
+test: $(VENV)/.stamp-install system-deps
+	@log=$$(mktemp); echo "$(BIN)/mrsus cache warm (beside the lint)"; \
+	  $(BIN)/mrsus cache warm >$$log 2>&1 & warm=$$!; \
+	  $(MAKE) --no-print-directory lint; lint=$$?; \
+	  wait $$warm; compiled=$$?; cat $$log; rm -f $$log; \
+	  [ $$lint = 0 ] && [ $$compiled = 0 ]
 	$(BIN)/python -m pytest -n $(JOBS) --dist loadscope -m "not realtime"
 	$(BIN)/python -m pytest -m realtime tests/integration
 
