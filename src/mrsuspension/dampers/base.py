@@ -6,7 +6,7 @@ from abc import ABC
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, ClassVar
+from typing import TYPE_CHECKING, Any, ClassVar, overload
 
 import numpy as np
 import numpy.typing as npt
@@ -219,6 +219,18 @@ class DamperModel(ABC):
         return check_range("drive current", current, 0.0, self.max_current, unit="A")
 
     # -- public API ------------------------------------------------------------------
+    @overload
+    def force(
+        self,
+        stroke: float,
+        velocity: float,
+        acceleration: float = 0.0,
+        current: float = 0.0,
+        *,
+        peak_velocity: float | None = None,
+    ) -> float: ...
+
+    @overload
     def force(
         self,
         stroke: npt.ArrayLike,
@@ -227,7 +239,17 @@ class DamperModel(ABC):
         current: npt.ArrayLike = 0.0,
         *,
         peak_velocity: npt.ArrayLike | None = None,
-    ) -> FloatArray:
+    ) -> FloatArray: ...
+
+    def force(
+        self,
+        stroke: npt.ArrayLike,
+        velocity: npt.ArrayLike,
+        acceleration: npt.ArrayLike = 0.0,
+        current: npt.ArrayLike = 0.0,
+        *,
+        peak_velocity: npt.ArrayLike | None = None,
+    ) -> Any:
         """Damper force [N] at each point of the broadcast inputs.
 
         Parameters
@@ -242,8 +264,17 @@ class DamperModel(ABC):
 
         Returns
         -------
-        numpy.ndarray
-            Force [N] with the broadcast shape of the inputs (0-d for scalars).
+        numpy.ndarray or float
+            Force [N] with the broadcast shape of the inputs; a ``float`` when every
+            input is a scalar.
+
+        Examples
+        --------
+        >>> from mrsuspension.dampers import WangSymmetric
+        >>> round(WangSymmetric().force(0.01, 0.1, 0.0, 0.2), 1)  # scalars in, a scalar out
+        912.7
+        >>> WangSymmetric().force([0.01, 0.0], 0.1, 0.0, 0.2).shape
+        (2,)
         """
         x, v, a, i, vm, shape = self._validated(
             stroke, velocity, acceleration, current, peak_velocity
@@ -251,7 +282,7 @@ class DamperModel(ABC):
         out = np.asarray(self._force_arrays(x, v, a, i, vm), dtype=float)
         if out.shape != shape:
             out = np.broadcast_to(out, shape).copy()
-        return out
+        return float(out) if out.ndim == 0 else out
 
     def _validated(
         self,

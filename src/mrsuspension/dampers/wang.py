@@ -8,7 +8,7 @@ either becomes the *mean* model with ``k4 = 0`` (``hysteresis=False``).
 from __future__ import annotations
 
 import dataclasses
-from typing import Any, ClassVar, Literal
+from typing import Any, ClassVar, Literal, overload
 
 import numpy as np
 import numpy.typing as npt
@@ -288,6 +288,19 @@ class WangSymmetric(DamperModel):
         """
         return self._inverse(0.0, velocity, acceleration, stroke, peak_velocity, None)[1]
 
+    @overload
+    def inverse_current(
+        self,
+        target_force: float,
+        velocity: float,
+        acceleration: float = 0.0,
+        *,
+        stroke: float = 0.0,
+        peak_velocity: float | None = None,
+        max_current: float | None = None,
+    ) -> float: ...
+
+    @overload
     def inverse_current(
         self,
         target_force: npt.ArrayLike,
@@ -297,7 +310,18 @@ class WangSymmetric(DamperModel):
         stroke: npt.ArrayLike = 0.0,
         peak_velocity: npt.ArrayLike | None = None,
         max_current: float | None = None,
-    ) -> FloatArray:
+    ) -> FloatArray: ...
+
+    def inverse_current(
+        self,
+        target_force: npt.ArrayLike,
+        velocity: npt.ArrayLike,
+        acceleration: npt.ArrayLike = 0.0,
+        *,
+        stroke: npt.ArrayLike = 0.0,
+        peak_velocity: npt.ArrayLike | None = None,
+        max_current: float | None = None,
+    ) -> Any:
         """Drive current that produces ``|target_force|`` (model reference, section 2.3).
 
         The damper can only produce the sign of its passive hysteron ``F_h``, so only the
@@ -310,7 +334,7 @@ class WangSymmetric(DamperModel):
         --------
         >>> m = WangSymmetric(vh_variant="2.13")
         >>> f = m.force(0.0, 0.1, -1.0, 0.3, peak_velocity=0.2)
-        >>> float(m.inverse_current(f, 0.1, -1.0, peak_velocity=0.2))  # doctest: +ELLIPSIS
+        >>> m.inverse_current(f, 0.1, -1.0, peak_velocity=0.2)  # scalars in: a float  # doctest: +ELLIPSIS
         0.3000000...
         """
         if self.values.get("k5", 0.0) != 0.0 or self.values.get("k6", 0.0) != 0.0:
@@ -325,9 +349,10 @@ class WangSymmetric(DamperModel):
                 "the inverse model needs k2 > 0 and a2 > 0 (a current-dependent damper); "
                 f"got k2={self._p[K.W_K2]}, a2={self._p[K.W_A2]}"
             )
-        return self._inverse(
+        current = self._inverse(
             target_force, velocity, acceleration, stroke, peak_velocity, max_current
         )[0]
+        return float(current) if np.ndim(current) == 0 else current
 
     def _inverse(
         self,
