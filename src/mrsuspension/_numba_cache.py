@@ -10,10 +10,29 @@ dependencies' source changed since they were written.
 from __future__ import annotations
 
 import hashlib
+import os
+import sys
 from pathlib import Path
-from typing import Any
+from typing import Any, TextIO
 
-__all__ = ["DEPENDENCIES", "INLINED", "invalidate_if_changed"]
+__all__ = [
+    "COMPILE_NOTICE",
+    "DEPENDENCIES",
+    "INLINED",
+    "announce_compile",
+    "cache_cold",
+    "invalidate_if_changed",
+    "quiet_compiles",
+]
+
+#: said once on stderr before an entry point compiles (its numba cache is cold)
+COMPILE_NOTICE = (
+    "compiling the engine (first run only, 5-20 s; `mrsus cache warm` compiles ahead)..."
+)
+#: entry points ``(module file, name)`` already looked at in this process, and whether
+#: the notice was said (once per process, whatever compiles next)
+_SEEN: set[tuple[str, str]] = set()
+_SAID: list[bool] = [False]
 
 #: numba options of the kernels that the entry points (``engine.kernel.run``, the lane
 #: kernel, the damper and HiL loops) call: each is compiled once, as its own function,
@@ -76,3 +95,68 @@ def invalidate_if_changed(module_file: str, *dependencies: str) -> None:
         stamp.write_text(value)
     except OSError:
         return
+
+
+def cache_cold(module_file: str, *names: str) -> bool:
+    """Whether any entry point ``names`` of ``module_file`` is missing from numba's cache.
+
+    Looks for each cache index (``<stem>.<name>-*.nbi``) in the module's ``__pycache__``,
+    or under ``NUMBA_CACHE_DIR`` when set.
+
+    Examples
+    --------
+    >>> import mrsuspension.engine.kernel as kernel
+    >>> cache_cold(kernel.__file__, "run") in (True, False)
+    True
+    """
+    stem = Path(module_file).stem
+    root = os.environ.get("NUMBA_CACHE_DIR")
+    for name in names:
+        pattern = f"{stem}.{name}-*.nbi"
+        if root:
+            found = any(Path(root).rglob(pattern))
+        else:
+            found = any((Path(module_file).parent / "__pycache__").glob(pattern))
+        if not found:
+            return True
+    return False
+
+
+def announce_compile(module_file: str, *names: str, stream: TextIO | None = None) -> bool:
+    """Say :data:`COMPILE_NOTICE` on stderr, once per process, before a cold entry point runs.
+
+    Called by the engine before it calls a compiled entry point (the quarter car's and
+    the vehicles' loops, the lanes, the reduced loop), so that a first run from Python or
+    from any command says why it waits. Each entry point is looked at once per process
+    (a glob in ``__pycache__``), the notice is said at most once per process, and only
+    the main process speaks (a pool's workers stay quiet). Returns whether it spoke.
+
+    Examples
+    --------
+    >>> import io, mrsuspension.engine.kernel as kernel
+    >>> log = io.StringIO()
+    >>> announce_compile(kernel.__file__, "run", stream=log) == bool(log.getvalue())
+    True
+    >>> announce_compile(kernel.__file__, "run", stream=log)  # once per process
+    False
+    """
+    import multiprocessing
+
+    keys = [(module_file, n) for n in names if (module_file, n) not in _SEEN]
+    if not keys:
+        return False
+    _SEEN.update(keys)
+    if _SAID[0] or multiprocessing.parent_process() is not None:
+        return False
+    if not cache_cold(module_file, *(n for _, n in keys)):
+        return False
+    _SAID[0] = True
+    out = sys.stderr if stream is None else stream
+    out.write(COMPILE_NOTICE + "\n")
+    out.flush()
+    return True
+
+
+def quiet_compiles() -> None:
+    """Say no notice in this process (``mrsus cache warm`` reports each step itself)."""
+    _SAID[0] = True

@@ -4,7 +4,11 @@ numba compiles the engine on its first call (5-10 s; 17-40 s before the kernels 
 inlined by LLVM, see :data:`~mrsuspension._numba_cache.INLINED`) and keeps the result in
 ``__pycache__`` beside the sources; without a word the first ``mrsus simulate``,
 ``sweep``, ``study``, ``optimize``, ``reproduce`` or ``hil`` command looks hung. The
-commands call :func:`notify_if_compiling` before their first run. :func:`warm_kernels`
+commands call :func:`notify_if_compiling` before their first run; the engine itself says
+the same once per process before a cold entry point runs (the quarter car's and the
+vehicles' loops, the lanes, the reduced loop:
+:func:`~mrsuspension._numba_cache.announce_compile`), so a first run from Python says it
+too. :func:`warm_kernels`
 (``mrsus cache warm``, run by ``make`` after installing and before the tests) compiles
 every entry point ahead of time, so that the tests' processes share the compiled kernels.
 """
@@ -16,6 +20,8 @@ import time
 from collections.abc import Callable
 from typing import Any, TextIO
 
+from mrsuspension._numba_cache import COMPILE_NOTICE, cache_cold, quiet_compiles
+
 __all__ = [
     "COMPILE_NOTICE",
     "WARM_STEPS",
@@ -24,46 +30,30 @@ __all__ = [
     "warm_kernels",
 ]
 
-#: said on stderr before the first run when the engine's numba cache is cold
-COMPILE_NOTICE = (
-    "compiling the engine (first run only, 5-10 s; `mrsus cache warm` compiles ahead)..."
-)
-
 
 def engine_cache_cold(*kernels: str) -> bool:
     """Whether any of the engine's entry points ``kernels`` is missing from numba's cache.
 
     ``kernels`` are names in :mod:`mrsuspension.engine.kernel` (default: ``run``, the
     offline loop; ``step`` is the tick-by-tick step of HiL). Imports the module (which
-    drops a stale cache, see :mod:`mrsuspension._numba_cache`) and looks for each cache
-    index in ``engine/__pycache__`` (or under ``NUMBA_CACHE_DIR`` when set).
+    drops a stale cache, see :mod:`mrsuspension._numba_cache`).
 
     Examples
     --------
     >>> engine_cache_cold() in (True, False)
     True
     """
-    import os
-    from pathlib import Path
-
     import mrsuspension.engine.kernel as kernel
 
-    root = os.environ.get("NUMBA_CACHE_DIR")
-    for name in kernels or ("run",):
-        pattern = f"{Path(kernel.__file__).stem}.{name}-*.nbi"
-        if root:
-            found = any(Path(root).rglob(pattern))
-        else:
-            found = any((Path(kernel.__file__).parent / "__pycache__").glob(pattern))
-        if not found:
-            return True
-    return False
+    return cache_cold(kernel.__file__, *(kernels or ("run",)))
 
 
 def notify_if_compiling(stream: TextIO | None = None, *kernels: str) -> bool:
-    """Write :data:`COMPILE_NOTICE` on stderr when an entry point is cold; say whether.
+    """Say :data:`COMPILE_NOTICE` on stderr when an entry point is cold; say whether.
 
-    ``kernels`` as in :func:`engine_cache_cold` (default: ``run``).
+    ``kernels`` as in :func:`engine_cache_cold` (default: ``run``). A command asks before
+    its first run; the engine then does not repeat the notice in this process
+    (:func:`~mrsuspension._numba_cache.announce_compile`).
 
     Examples
     --------
@@ -77,6 +67,7 @@ def notify_if_compiling(stream: TextIO | None = None, *kernels: str) -> bool:
     out = sys.stderr if stream is None else stream
     out.write(COMPILE_NOTICE + "\n")
     out.flush()
+    quiet_compiles()  # said: the engine's own notice stays quiet
     return True
 
 
@@ -144,6 +135,16 @@ def _warm_identify() -> None:
 
 
 #: what :func:`warm_kernels` compiles: (what, a call that compiles it, or loads it)
+def _warm_vehicles() -> None:
+    from mrsuspension.engine.vehicle import VehicleSimulation
+    from mrsuspension.excitation import Harmonic, WheelRoads
+    from mrsuspension.vehicle import FullCar
+
+    car = FullCar()
+    road = WheelRoads.from_excitation(Harmonic(2.0, 0.01), car, speed_kmh=50.0)
+    VehicleSimulation(car, road).run(0.01, dt=2e-4)
+
+
 WARM_STEPS: tuple[tuple[str, Callable[[], None]], ...] = (
     ("engine run loop (simulate, sweep, study, report)", _warm_engine),
     ("engine run loop reducing to measures (runs of sweeps outside lanes)", _warm_reduced),
@@ -151,6 +152,7 @@ WARM_STEPS: tuple[tuple[str, Callable[[], None]], ...] = (
     ("tick-by-tick step and simulated rig (hil)", _warm_stepper),
     ("damper force, response and inverse (damper)", _warm_dampers),
     ("time-domain record (identify)", _warm_identify),
+    ("half- and full-car run loop (vehicle scenarios)", _warm_vehicles),
 )
 
 
@@ -167,6 +169,7 @@ def warm_kernels(say: Callable[[str], None] = lambda _m: None) -> list[dict[str,
     >>> [r["what"].split(" (")[0] for r in rows][:3]
     ['engine run loop', 'engine run loop reducing to measures', 'lane kernel, recording or reducing to measures']
     """
+    quiet_compiles()  # each step is reported here
     rows = []
     for i, (what, call) in enumerate(WARM_STEPS, 1):
         say(f"[{i}/{len(WARM_STEPS)}] {what}...")

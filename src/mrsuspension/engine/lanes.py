@@ -52,7 +52,7 @@ import numpy as np
 from numba import njit
 
 from mrsuspension import shaping as _shaping
-from mrsuspension._numba_cache import invalidate_if_changed
+from mrsuspension._numba_cache import announce_compile, invalidate_if_changed
 from mrsuspension.control import kernel as CK
 from mrsuspension.control.kernel import EST_SHARED, F_MODEL, P_C0, P_CS, P_MS0, P_P
 from mrsuspension.dampers import kernels as DK
@@ -608,6 +608,7 @@ def run_lanes(
         return []
     run = run_settings(settings, duration=duration, dt=dt, output_rate=output_rate)
     plans = [run.plan(s, check_stability=check_stability) for s in sims]
+    announce_compile(__file__, "run_lanes_kernel")
     dt = plans[0].dt
     decimate = plans[0].decimate
     keys = {lane_key(s, dt) for s in sims}

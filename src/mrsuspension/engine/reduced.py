@@ -31,7 +31,7 @@ import numpy as np
 from numba import njit
 
 from mrsuspension import shaping as _shaping
-from mrsuspension._numba_cache import INLINED, invalidate_if_changed
+from mrsuspension._numba_cache import INLINED, announce_compile, invalidate_if_changed
 from mrsuspension.control import kernel as CK
 from mrsuspension.dampers import kernels as DK
 from mrsuspension.dampers.kernels import NO_REFCOUNT
@@ -428,6 +428,7 @@ def run_measures(
     run = run_settings(settings, duration=duration, dt=dt, output_rate=output_rate)
     run.check_for(simulation.excitation)
     plan = run.plan(simulation, check_stability=check_stability)
+    announce_compile(__file__, "run_reduced")
     red = reduction_of(simulation, plan)
     dt, n, decimate = plan
     zr, zrd = simulation.road_samples(n, dt)

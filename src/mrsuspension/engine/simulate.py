@@ -13,6 +13,7 @@ from typing import TYPE_CHECKING, Any, Protocol
 import numpy as np
 import numpy.typing as npt
 
+from mrsuspension._numba_cache import announce_compile
 from mrsuspension.control import Controller, Passive
 from mrsuspension.control.kernel import EST_SHARED, F_EXTERNAL, F_MODEL, P_CS
 from mrsuspension.dampers import CycleRms, DamperModel, PeakVelocityEstimator, WangSymmetric
@@ -313,6 +314,7 @@ class Simulation:
         settings = run_settings(settings, duration=duration, dt=dt, output_rate=output_rate)
         settings.check_for(self.excitation)
         plan = settings.plan(self, check_stability=check_stability)
+        announce_compile(EK.__file__, "run")  # a first run says why it waits
         dt, n, decimate = plan
         zr, zrd = self.road_samples(n, dt)
         a = self.kernel_arrays(dt, check_stability=False)  # dt is checked by plan()
@@ -755,6 +757,7 @@ def run_many(
         return []
     n_workers = worker_count(workers, len(sims))
     tasks, batches = _tasks(sims, plan, reduce, lanes, n_workers)
+    announce_compile(EK.__file__, "run")  # the workers compile quietly: say it here
     values = pool_map(
         _run_task,
         tasks,

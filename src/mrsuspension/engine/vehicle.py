@@ -28,6 +28,7 @@ from typing import TYPE_CHECKING, Any, Protocol, runtime_checkable
 import numpy as np
 import numpy.typing as npt
 
+from mrsuspension._numba_cache import announce_compile
 from mrsuspension.control import Controller, Passive
 from mrsuspension.control.kernel import F_EXTERNAL
 from mrsuspension.control.modal import CornerSkyhook, ModalSkyhook, distribution_matrix
@@ -793,6 +794,7 @@ class VehicleSimulation:
         run = run_settings(settings, duration=duration, dt=dt, output_rate=output_rate)
         run.check_for(getattr(self.excitation, "excitation", self.excitation))
         plan = run.plan(self)
+        announce_compile(VX.__file__, "run")  # a first run says why it waits
         dt, n, decimate = plan
         nc = len(self.corners)
         grid = getattr(self.excitation, "sample_grid", None)
@@ -1064,6 +1066,7 @@ def run_vehicles(
     from mrsuspension._pool import pool_map, worker_count
 
     plan = run_settings(settings, duration=duration, dt=dt, output_rate=output_rate)
+    announce_compile(VX.__file__, "run")  # the workers compile quietly: say it here
     sims = list(simulations)
     for sim in sims:
         if not isinstance(sim, VehicleSimulation):
