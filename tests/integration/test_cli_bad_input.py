@@ -42,6 +42,7 @@ BAD_TEXTS: dict[str, str] = {
 
 #: arguments a command needs besides the option under test (``{name}`` is a fixture path)
 BASE: dict[str, list[str]] = {
+    "examples copy": ["scenarios/passive-harmonic.toml"],
     "simulate": ["{scenario}"],
     "sweep": ["{scenario}"],
     "optimize": ["{problem}"],
@@ -92,6 +93,7 @@ PATH_KIND: dict[tuple[str, str], str] = {
     ("damper matrix", "--out"): "out-folder",
     ("damper figures", "--out"): "out-folder",
     ("monitor", "--workdir"): "out-folder",
+    ("examples copy", "--to"): "out-folder",
     ("monitor", "--token-file"): "in-file",
     ("hil run", "--token-file"): "in-file",
 }

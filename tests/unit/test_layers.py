@@ -33,6 +33,7 @@ LAYERS: dict[str, int] = {
     "_progress": 0,
     "_output": 0,
     "_inputs": 0,
+    "examples": 0,  # the packaged example files (`mrsus examples`)
     "errata": 0,
     "parameters": 1,
     "measures": 1,

@@ -24,6 +24,7 @@ from typer.core import TyperGroup
 from mrsuspension.cli import bench as _bench
 from mrsuspension.cli import cache as _cache
 from mrsuspension.cli import damper as _damper
+from mrsuspension.cli import examples as _examples
 from mrsuspension.cli import hil as _hil
 from mrsuspension.cli import monitor as _monitor
 from mrsuspension.cli import optimize as _optimize
@@ -158,6 +159,8 @@ _register(app, "optimize", _optimize.optimize_command)
 _register(app, "study", _study.study)
 _plain_commands(_cache.app)
 app.add_typer(_cache.app, name="cache")
+_plain_commands(_examples.app)
+app.add_typer(_examples.app, name="examples")
 _register(_hil.app, "run", _hil.hil_run_command)
 _register(_hil.app, "validate", _hil.hil_validate_command)
 _register(_hil.app, "latency", _hil.hil_latency_command)
