@@ -922,7 +922,7 @@ def synthesise_road(
     if source is not None and not isinstance(source, str):
         raise ValidationError(f"source must be a string; got {source!r}")
 
-    def label(held: RoadSpectrum, seed: int) -> str:
+    def label(held: RoadSpectrum, seed: int, dx: float) -> str:
         return source or f"synthesised road, seed {seed}"
 
     return _synthesise(spectrum, length, spacing, seed, speed_kmh, fade_in, label)
@@ -935,11 +935,11 @@ def _synthesise(
     seed: int,
     speed_kmh: float,
     fade_in: float,
-    label: Callable[[RoadSpectrum, int], str],
+    label: Callable[[RoadSpectrum, int, float], str],
     *,
     what: str = "a synthesised road",
 ) -> RoadProfile:
-    """:func:`synthesise_road`; ``label(held spectrum, seed)`` names the profile's source.
+    """:func:`synthesise_road`; ``label(held spectrum, seed, spacing)`` names its source.
 
     ``spacing`` None: :func:`band_spacing`. A given spacing that puts the band's top above
     :data:`BAND_TOP_WARN` of the Nyquist frequency warns (``what`` names the road), except
@@ -979,7 +979,7 @@ def _synthesise(
         elevation,
         speed_kmh,
         fade_in=fade_in,
-        source=label(held, int(seed)),
+        source=label(held, int(seed), dx),
         spectrum=held,
     )
 
@@ -1090,9 +1090,8 @@ def iso8608(
     key = _road_class(road_class)
     spectrum = RoadSpectrum(ISO8608_CLASSES[key], 2.0, band)
 
-    def label(held: RoadSpectrum, seed: int) -> str:
+    def label(held: RoadSpectrum, seed: int, dx: float) -> str:
         lo, hi = held.band
-        dx = band_spacing(spectrum.band[1]) if spacing is None else spacing
         cut = f" (cut from {band[1]:g} by the spacing)" if hi < spectrum.band[1] else ""
         return f"ISO 8608 class {key}, seed {seed}, band {lo:g}-{hi:.4g} cycle/m{cut} at {dx:g} m spacing"
 
@@ -1171,7 +1170,7 @@ class PresetRoad:
         """The preset's road (see :func:`preset_road`)."""
         s = self.seed if seed is None else seed
 
-        def label(held: RoadSpectrum, seed: int) -> str:
+        def label(held: RoadSpectrum, seed: int, dx: float) -> str:
             return f"preset {self.name!r} (stand-in for the dissertation's road), seed {seed}"
 
         return _synthesise(
