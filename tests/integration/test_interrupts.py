@@ -178,7 +178,12 @@ def interrupt(
             proc.wait(timeout=30)
         seconds = time.monotonic() - start
         code = -1 if proc.returncode is None else proc.returncode
-        time.sleep(0.1)  # reparented workers are reaped
+        # reparented workers are reaped; a loop process still importing when its parent
+        # ended stops once it can take the parent's death signal: allow it a few seconds
+        # on a loaded machine (one that stayed would still be reported)
+        gone_by = time.monotonic() + 5.0
+        while any(_alive(p) for p in tree) and time.monotonic() < gone_by:
+            time.sleep(0.05)
         return Stopped(seconds, code, proc.stderr.read(), [p.pid for p in tree if _alive(p)])  # type: ignore[union-attr]
     finally:
         for p in _tree(parent):
