@@ -52,7 +52,8 @@ test: $(VENV)/.stamp-install system-deps
 	  wait $$warm; compiled=$$?; cat $$log; rm -f $$log; \
 	  [ $$lint = 0 ] && [ $$compiled = 0 ]
 	$(BIN)/python -m pytest -n $(JOBS) --dist loadscope -m "not realtime"
-	$(BIN)/python -m pytest -m realtime tests/integration
+	$(BIN)/python -m pytest -m realtime tests/integration/test_hil.py \
+	  tests/integration/test_hil_udp.py tests/integration/test_monitor.py  # REALTIME_FILES
 
 bench: $(VENV)/.stamp-install
 	$(BIN)/python benchmarks/bench_damper.py

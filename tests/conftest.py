@@ -123,3 +123,23 @@ def wang_reference():
 def spec_sets():
     """Tables 2.2 and 2.3 as typed in from the model reference, by registry name."""
     return {k: dict(v) for k, v in SPEC_SETS.items()}
+
+
+#: the files that hold the tests marked ``realtime``: ``make test`` runs exactly these
+#: after the parallel run (collecting only them saves the rest's import and collection)
+REALTIME_FILES = (
+    "tests/integration/test_hil.py",
+    "tests/integration/test_hil_udp.py",
+    "tests/integration/test_monitor.py",
+)
+
+
+def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
+    """A ``realtime`` test outside :data:`REALTIME_FILES` would never run in ``make test``."""
+    for item in items:
+        path = item.nodeid.split("::")[0]
+        if item.get_closest_marker("realtime") and path not in REALTIME_FILES:
+            raise pytest.UsageError(
+                f"{item.nodeid} is marked realtime: add {path} to REALTIME_FILES "
+                "(tests/conftest.py) and to the realtime run of `make test` (Makefile)"
+            )
