@@ -14,6 +14,7 @@ import numpy as np
 import pytest
 from typer.testing import CliRunner
 
+from _helpers import noise_floor
 from mrsuspension import parameters
 from mrsuspension.characterisation import harmonic_loop
 from mrsuspension.cli.identify import app
@@ -214,9 +215,7 @@ def test_field_campaign_fits_at_the_noise_floor_on_every_test(tmp_path: Path) ->
         loop = t.loop
         assert loop is not None
         assert t.nrmse is not None
-        f_true = true.force(loop.stroke, loop.velocity, loop.acceleration, loop.current,
-                            peak_velocity=loop.peak_velocity)  # fmt: skip
-        floor = math.sqrt(float(np.mean((f_true - loop.force) ** 2))) / loop.force_range
+        floor = noise_floor(true, loop)
         assert t.nrmse < 1.25 * floor, (t.file, t.nrmse, floor)
         assert t.nrmse < 0.012, t.file
     evidence = result.fits[0].result.evidence

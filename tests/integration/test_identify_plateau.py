@@ -11,13 +11,13 @@ from __future__ import annotations
 
 import dataclasses
 import json
-import math
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 import pytest
 
+from _helpers import noise_floor
 from mrsuspension.dampers import make_damper
 from mrsuspension.identify import (
     PreprocessOptions,
@@ -97,9 +97,7 @@ def test_ramped_campaign_fits_at_the_noise_floor_on_every_test(ramped) -> None:
         loop = t.loop
         assert loop is not None
         assert t.nrmse is not None
-        f_true = true.force(loop.stroke, loop.velocity, loop.acceleration, loop.current,
-                            peak_velocity=loop.peak_velocity)  # fmt: skip
-        floor = math.sqrt(float(np.mean((f_true - loop.force) ** 2))) / loop.force_range
+        floor = noise_floor(true, loop)
         assert t.nrmse < 1.25 * floor, (t.file, t.nrmse, floor)
         floors.append(floor)
         ratios.append(t.nrmse / floor)
