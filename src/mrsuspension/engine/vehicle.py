@@ -77,6 +77,7 @@ __all__ = [
     "VehicleSimulation",
     "VehicleStepper",
     "WheelInput",
+    "measure_vehicles",
     "run_vehicles",
 ]
 
@@ -1090,4 +1091,57 @@ def run_vehicles(
         [(sim, plan, reduce) for sim in sims],
         workers=worker_count(workers, len(sims)),
         progress=progress,
+    )
+
+
+def _measure_vehicle(
+    args: tuple[VehicleSimulation, RunSettings, str],
+) -> dict[str, Any] | SimulationDiverged:
+    sim, plan, road_peak = args
+    try:
+        return sim.run(settings=plan).measures(road_peak=road_peak)
+    except SimulationDiverged as err:
+        return err
+
+
+def measure_vehicles(
+    simulations: Sequence[VehicleSimulation],
+    settings: Sequence[RunSettings],
+    *,
+    pool: Any = None,
+    road_peak: str = "after-onset",
+) -> list[dict[str, Any] | SimulationDiverged]:
+    """The measures of each vehicle run (its own settings), in order.
+
+    The vehicle counterpart of :func:`~mrsuspension.engine.simulate.measure_many`: the
+    body's RMS accelerations and every corner's measures
+    (:meth:`VehicleResult.measures`); a diverged run gives its
+    :class:`SimulationDiverged` in its place. ``pool``: an open process pool (e.g.
+    :func:`mrsuspension._pool.process_pool`) to run on; None: this process.
+
+    Examples
+    --------
+    >>> from mrsuspension.excitation import Harmonic
+    >>> from mrsuspension.vehicle import HalfCar
+    >>> sims = [VehicleSimulation(HalfCar(), SameRoadAtEveryWheel(Harmonic(f, 0.005), ("front", "rear")))
+    ...         for f in (5.0, 8.0)]
+    >>> rows = measure_vehicles(sims, [RunSettings(dt=2e-4)] * 2)  # 10 cycles settled
+    >>> [list(r)[:2] for r in rows]
+    [['heave_ddot_rms', 'pitch_ddot_rms'], ['heave_ddot_rms', 'pitch_ddot_rms']]
+    """
+    from mrsuspension._pool import pool_map
+
+    sims = list(simulations)
+    plans = list(settings)
+    if len(plans) != len(sims):
+        raise ValidationError(
+            f"measure_vehicles needs one RunSettings per run: {len(sims)} runs, "
+            f"{len(plans)} settings"
+        )
+    announce_compile(VX.__file__, "run")  # the workers compile quietly: say it here
+    return pool_map(
+        _measure_vehicle,
+        [(sim, plan, road_peak) for sim, plan in zip(sims, plans, strict=True)],
+        pool=pool,
+        workers=1,
     )
