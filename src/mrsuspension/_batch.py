@@ -15,14 +15,10 @@ from dataclasses import dataclass
 from typing import Any
 
 from mrsuspension._pool import process_pool
+from mrsuspension.engine.batch import measure_batch
+from mrsuspension.engine.plants import RunModel
 from mrsuspension.engine.settings import RunSettings
-from mrsuspension.engine.simulate import (
-    Simulation,
-    SimulationDiverged,
-    measure_many,
-    measures_of,
-    run_quietly,
-)
+from mrsuspension.engine.simulate import SimulationDiverged, measures_of, run_quietly
 from mrsuspension.scenario import Scenario
 
 __all__ = ["Job", "job_of", "measure_job", "process_pool", "run_jobs"]
@@ -34,13 +30,14 @@ class Job:
 
     Examples
     --------
+    >>> from mrsuspension.engine import Simulation
     >>> from mrsuspension.excitation import RoundedPulse
     >>> job = Job(Simulation(RoundedPulse(0.02, 1.0)), RunSettings(dt=5e-4, duration=1.0))
     >>> sorted(measure_job(job))[:2]
     ['RDR', 'SAR_s']
     """
 
-    simulation: Simulation
+    simulation: RunModel
     settings: RunSettings
 
 
@@ -53,15 +50,16 @@ def measure_job(job: Job) -> dict[str, Any] | None:
 
 
 def job_of(scenario: Scenario) -> Job:
-    """The run of a (single-run) scenario, with its ``[simulation]`` settings."""
-    return Job(scenario.simulations()[0], scenario.settings)
+    """The run of a (single-run) scenario of any model, with its ``[simulation]`` settings."""
+    return Job(scenario.runs()[0], scenario.settings)
 
 
 def run_jobs(jobs: Sequence[Job], pool: Executor | None) -> list[dict[str, Any] | None]:
     """Measures of each job, in order (None for a diverged run); ``pool`` None: here.
 
-    Jobs that differ only in their excitation step together in lanes, and every run is
-    reduced to its measures inside the kernel (:func:`~mrsuspension.engine.simulate.measure_many`).
+    Any model (:func:`~mrsuspension.engine.batch.measure_batch`): quarter cars that differ
+    only in their excitation step together in lanes, reduced to their measures inside the
+    kernel; half and full cars give the body and per-corner measures.
     """
-    values = measure_many([j.simulation for j in jobs], [j.settings for j in jobs], pool=pool)
+    values = measure_batch([j.simulation for j in jobs], [j.settings for j in jobs], pool=pool)
     return [None if isinstance(v, SimulationDiverged) else v for v in values]

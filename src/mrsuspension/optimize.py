@@ -77,9 +77,7 @@ import numpy as np
 
 from mrsuspension._batch import job_of, process_pool, run_jobs
 from mrsuspension._inputs import read_toml
-from mrsuspension.engine.result import SimulationDiverged
-from mrsuspension.engine.settings import RunSettings
-from mrsuspension.engine.vehicle import VehicleSimulation
+from mrsuspension.engine.plants import PLANTS
 from mrsuspension.errors import (
     ValidationError,
     check_keys,
@@ -88,11 +86,8 @@ from mrsuspension.errors import (
 )
 from mrsuspension.excitation import EXCITATION_OPTIONS, FULL_CAR_CORNERS, HALF_CAR_CORNERS
 from mrsuspension.scenario import (
-    BODY_MEASURES,
     SCENARIO_KEYS,
-    VEHICLE_MODELS,
     Scenario,
-    run_measures,
 )
 from mrsuspension.studies.study import MEASURES, merge_scenario_tables
 
@@ -192,13 +187,8 @@ def _objective_measures(base: Mapping[str, Any]) -> tuple[str, ...]:
     The quarter car's :data:`OBJECTIVE_MEASURES`; a half or full car's body RMS
     accelerations and every corner's ``"<measure>.<corner>"``.
     """
-    model = base.get("vehicle", {}).get("model", "quarter-car")
-    cls = VEHICLE_MODELS.get(model)
-    corners: tuple[str, ...] = getattr(cls, "corners", ())
-    if not corners:
-        return OBJECTIVE_MEASURES
-    body = tuple(m for m in BODY_MEASURES if m != "roll_ddot_rms" or len(corners) == 4)
-    return body + tuple(f"{m}.{c}" for c in corners for m in OBJECTIVE_MEASURES)
+    model = PLANTS.get(base.get("vehicle", {}).get("model", "quarter-car"))
+    return OBJECTIVE_MEASURES if model is None else model.measure_names(OBJECTIVE_MEASURES)
 
 
 # -- the parts of a problem ---------------------------------------------------------------
@@ -1011,39 +1001,11 @@ def optimize(
     )
 
 
-def _measure_vehicle(
-    run: tuple[VehicleSimulation, RunSettings],
-) -> dict[str, Any] | None:
-    """A half- or full-car run reduced to its measures; None when it diverges (picklable)."""
-    sim, settings = run
-    try:
-        return run_measures(sim.run(settings=settings))
-    except SimulationDiverged:
-        return None
-
-
 def _measure_runs(scenarios: Sequence[Scenario], pool: Any) -> list[dict[str, Any] | None]:
-    """Measures of each single-run scenario, in order (None for a diverged run).
-
-    Quarter cars go through :func:`~mrsuspension._batch.run_jobs`; half and full cars
-    (:func:`~mrsuspension.scenario.run_measures`: body and per-corner) through the same
-    process pool.
-    """
-    if not any(s.is_vehicle for s in scenarios):
-        return run_jobs([job_of(s) for s in scenarios], pool)
-    from mrsuspension._pool import pool_map
-
-    out: list[dict[str, Any] | None] = [None] * len(scenarios)
-    cars = [k for k, s in enumerate(scenarios) if s.is_vehicle]
-    quarter = [k for k, s in enumerate(scenarios) if not s.is_vehicle]
-    runs = [(scenarios[k].vehicle_simulations()[0], scenarios[k].settings) for k in cars]
-    for k, row in zip(cars, pool_map(_measure_vehicle, runs, pool=pool, workers=1), strict=True):
-        out[k] = row
-    if quarter:
-        rows = run_jobs([job_of(scenarios[k]) for k in quarter], pool)
-        for k, row in zip(quarter, rows, strict=True):
-            out[k] = row
-    return out
+    """Measures of each single-run scenario of any model, in order (None for a diverged
+    run): :func:`~mrsuspension._batch.run_jobs` (the engine's
+    :func:`~mrsuspension.engine.batch.measure_batch`) on the open pool."""
+    return run_jobs([job_of(s) for s in scenarios], pool)
 
 
 def _floats(row: Mapping[str, Any]) -> dict[str, float]:

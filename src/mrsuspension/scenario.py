@@ -54,9 +54,11 @@ from mrsuspension.control.modal import CornerSkyhook, ModalSkyhook
 from mrsuspension.control.sensing import BandPassObserver, LeakyIntegrator, Sensing, StrokeSensor
 from mrsuspension.dampers import DAMPERS, ESTIMATORS, DamperModel, damper_options, make_damper
 from mrsuspension.dampers.wang import VEHICLE_VH_VARIANT
+from mrsuspension.engine.batch import run_batch
+from mrsuspension.engine.plants import PLANTS, Plant, RunModel, RunParts, plant
 from mrsuspension.engine.result import SimulationResult
 from mrsuspension.engine.settings import RunSettings
-from mrsuspension.engine.simulate import Simulation, run_many
+from mrsuspension.engine.simulate import Simulation
 from mrsuspension.engine.vehicle_result import BODY_MEASURES
 from mrsuspension.errors import ValidationError, did_you_mean
 from mrsuspension.excitation import (
@@ -71,7 +73,7 @@ from mrsuspension.excitation import (
 from mrsuspension.excitation.base import positive
 from mrsuspension.excitation.deterministic import REFERENCE_SPEED_KMH
 from mrsuspension.vehicle import QuarterCar
-from mrsuspension.vehicle.body import FullCar, HalfCar, VehicleBody, available_sets
+from mrsuspension.vehicle.body import FullCar, HalfCar, VehicleBody
 
 if TYPE_CHECKING:
     from mrsuspension.engine.vehicle import VehicleSimulation
@@ -79,7 +81,6 @@ if TYPE_CHECKING:
 __all__ = [
     "BODY_MEASURES",
     "SCENARIO_KEYS",
-    "VEHICLE_MODELS",
     "WHEEL_KINDS",
     "Scenario",
     "run_measures",
@@ -89,26 +90,39 @@ __all__ = [
 # Value kinds: "number", "integer", "bool", "string", "numbers" (a list of numbers),
 # "text" (a string; a number is accepted and turned into its text, e.g. vh_variant = 2.12).
 
-#: ``[vehicle] model`` -> the class it builds (the quarter car by default)
-VEHICLE_MODELS: dict[str, type] = {
-    "quarter-car": QuarterCar,
-    "half-car": HalfCar,
-    "full-car": FullCar,
-}
-#: ``[vehicle]`` keys of each model (``model`` and ``set`` apply to the half and full car)
-_MODEL_KEYS: dict[str, tuple[str, ...]] = {
-    name: (
+
+def _model_keys(model: Plant) -> tuple[str, ...]:
+    """``[vehicle]`` keys of a model: ``model``, ``set`` (a model with published sets) and
+    its parameter fields."""
+    return (
         ("model",)
-        + (() if cls is QuarterCar else ("set",))
-        + tuple(f.name for f in dataclasses.fields(cls))
+        + (() if model.sets is None else ("set",))
+        + tuple(f.name for f in dataclasses.fields(model.params))
     )
-    for name, cls in VEHICLE_MODELS.items()
-}
-_VEHICLE_KEYS: dict[str, str] = {
-    k: "string" if k in ("model", "set") else "number"
-    for keys in _MODEL_KEYS.values()
-    for k in keys
-}
+
+
+class _VehicleKeys(Mapping[str, str]):
+    """``[vehicle]`` keys of every registered model (:data:`~mrsuspension.engine.plants.PLANTS`,
+    read live: a model registered later has its keys) -> value kind."""
+
+    def _keys(self) -> dict[str, str]:
+        return {
+            k: "string" if k in ("model", "set") else "number"
+            for p in PLANTS.values()
+            for k in _model_keys(p)
+        }
+
+    def __getitem__(self, key: str) -> str:
+        return self._keys()[key]
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self._keys())
+
+    def __len__(self) -> int:
+        return len(self._keys())
+
+
+_VEHICLE_KEYS: Mapping[str, str] = _VehicleKeys()
 
 #: every ``[damper]`` key of any model (each model's own: :func:`damper_options`)
 _DAMPER_KEYS: dict[str, str] = {k: v for m in DAMPERS for k, v in damper_options(m).items()}
@@ -250,7 +264,7 @@ _SENSING_KEYS: dict[str, str] = {
 _VELOCITY_ESTIMATORS = ("ideal", "leaky-integrator", "band-pass")
 
 #: Every section of a scenario file and the keys it accepts (with their value kind).
-SCENARIO_KEYS: dict[str, dict[str, str]] = {
+SCENARIO_KEYS: dict[str, Mapping[str, str]] = {
     "vehicle": _VEHICLE_KEYS,
     "damper": _DAMPER_KEYS,
     "controller": _CONTROLLER_KEYS,
@@ -472,13 +486,13 @@ class Scenario:
         base = Path.cwd() if base_dir is None else Path(base_dir)
         tables = {section: _table(data, section) for section in SCENARIO_KEYS}
 
-        vehicle = _build_vehicle(tables["vehicle"])
-        corners = () if isinstance(vehicle, QuarterCar) else vehicle.corners
+        model, vehicle = _build_vehicle(tables["vehicle"])
+        corners = model.corners
         damper_table, damper_corners = _split_corners("damper", tables["damper"], corners)
         controller_table, law_corners = _split_corners("controller", tables["controller"], corners)
         damper, max_current = _build_damper(damper_table, base)
-        sensing = _build_sensing(tables["sensing"], vehicle, tables["simulation"])
-        body_control = _build_body_control(controller_table, law_corners, vehicle)
+        sensing = _build_sensing(tables["sensing"], corners, tables["simulation"])
+        body_control = _build_body_control(controller_table, law_corners, vehicle, corners)
         if body_control is not None:  # the corners run passive at 0 A: the law sets them
             controller_table = {"law": "passive"}
         controller = _build_controller(controller_table)
@@ -495,7 +509,8 @@ class Scenario:
             corner_dampers[corner] = _build_damper(merged, base, section)[0]
             merged = _corner_table(controller_table, law_corners[corner], "law", "passive")
             corner_controllers[corner] = _build_controller(merged, f"controller.{corner}")
-        excitation, road_speed = _build_any_excitation(tables["excitation"], base, vehicle)
+        excitation, road_speed = _build_any_excitation(tables["excitation"], base, model,
+                                                       vehicle)  # fmt: skip
 
         with _in_section("simulation"):
             settings = RunSettings(**tables["simulation"])
@@ -521,17 +536,12 @@ class Scenario:
                 f"[controller] high_current = {body_control.high_current:g} A is above the "
                 f"drive-current limit [damper] max_current = {max_current:g} A"
             )
-        if scenario.is_vehicle:
-            vsims = scenario.vehicle_simulations()
-            with _in_section("simulation"):
-                vsims[0].check_dt(settings.dt)
-            for corner, law in corner_controllers.items():
-                with _in_section(f"controller.{corner}"):
-                    law.params(max_current)
-        else:
-            sims = scenario._build_simulations()
-            with _in_section("simulation"):
-                sims[0].check_dt(settings.dt)
+        first = scenario.runs()[0]
+        with _in_section("simulation"):
+            first.check_dt(settings.dt)
+        for corner, law in corner_controllers.items():
+            with _in_section(f"controller.{corner}"):
+                law.params(max_current)
         with _in_section("controller"):
             controller.params(max_current)  # e.g. a passive current above max_current
         return scenario
@@ -559,14 +569,38 @@ class Scenario:
         return isinstance(self.excitation, SteppedSweep)
 
     @property
-    def is_vehicle(self) -> bool:
-        """True for a half or full car (``[vehicle] model``); False for the quarter car."""
-        return not isinstance(self.vehicle, QuarterCar)
+    def model(self) -> str:
+        """``[vehicle] model``: ``"quarter-car"``, ``"half-car"``, ``"full-car"`` or a
+        registered model's name."""
+        name = self.data.get("vehicle", {}).get("model")
+        return str(name or getattr(self.vehicle, "model_name", "quarter-car"))
 
     @property
-    def model(self) -> str:
-        """``[vehicle] model``: ``"quarter-car"``, ``"half-car"`` or ``"full-car"``."""
-        return "quarter-car" if isinstance(self.vehicle, QuarterCar) else self.vehicle.model_name
+    def plant(self) -> Plant:
+        """The :class:`~mrsuspension.engine.plants.Plant` of ``[vehicle] model``."""
+        return plant(self.model)
+
+    @property
+    def corners(self) -> tuple[str, ...]:
+        """The damper corners (a half or full car's; empty for a one-damper model)."""
+        return self.plant.corners
+
+    def measure_names(self) -> tuple[str, ...]:
+        """The measures each run reports: the quarter car's of the excitation kind, or a
+        half or full car's body and per-corner measures (``"<measure>.<corner>"``).
+
+        Examples
+        --------
+        >>> s = Scenario.from_dict({"vehicle": {"model": "half-car"},
+        ...                         "excitation": {"kind": "bump", "side": "left",
+        ...                                        "height": 0.02, "length": 0.5}})
+        >>> s.measure_names()[:4]
+        ('heave_ddot_rms', 'pitch_ddot_rms', 'DLC.front', 'rms_body_acceleration.front')
+        """
+        from mrsuspension.engine.result import MEASURES_BY_KIND
+
+        kind = getattr(self.excitations[0], "measures_kind", "road")  # wheel roads: road
+        return self.plant.measure_names(MEASURES_BY_KIND[kind])
 
     @property
     def excitations(self) -> list[Any]:
@@ -600,7 +634,7 @@ class Scenario:
         (('front', 'rear'), 0.2348)
         """
         car = self.vehicle
-        if isinstance(car, QuarterCar):
+        if not self.plant.wheel_roads:
             raise ValidationError("wheel roads need [vehicle] model = 'half-car' or 'full-car'")
         # a speedless kind's [excitation] speed, else the scenario road's own speed
         speed = self.road_speed
@@ -634,50 +668,65 @@ class Scenario:
         >>> [sim.corner_simulation(c).controller.law for c in sim.corners]
         ['skyhook-hilo', 'skyhook-hilo', 'passive', 'skyhook-hilo']
         """
-        from mrsuspension.engine.vehicle import VehicleSimulation
-
-        car = self.vehicle
-        if isinstance(car, QuarterCar):
+        if not self.plant.wheel_roads:
             raise ValidationError(
                 "vehicle_simulations needs [vehicle] model = 'half-car' or 'full-car'; "
-                "a quarter car has simulations()"
+                f"a {self.model} scenario has runs()"
             )
-        return [
-            VehicleSimulation(
-                car,
-                roads,
-                dampers=dict(self.corner_dampers),
-                controllers=dict(self.corner_controllers),
-                max_current=self.max_current,
-                **({} if self.sensing is None else {"sensing": self.sensing}),
-                body_control=self.body_control,
-            )
-            for roads in self.wheel_roads(excitations)
-        ]
+        return self.runs(excitations)  # type: ignore[return-value]
 
-    def _build_simulations(
-        self, excitations: Sequence[Excitation] | None = None
-    ) -> list[Simulation]:
-        if self.is_vehicle:
-            raise ValidationError(
-                f"this is a {self.model} scenario ([vehicle] model); this use needs a quarter "
-                "car (model = 'quarter-car'), or use vehicle_simulations()"
-            )
-        assert isinstance(self.vehicle, QuarterCar)
+    def runs(self, excitations: Sequence[Any] | None = None) -> list[RunModel]:
+        """One run per road input (one per frequency for a swept excitation), any model.
+
+        Quarter cars give :class:`~mrsuspension.engine.simulate.Simulation` objects, half
+        and full cars :class:`~mrsuspension.engine.vehicle.VehicleSimulation` objects (the
+        road of :meth:`wheel_roads` under every wheel), a registered model its own; all
+        keep the run contract (:class:`~mrsuspension.engine.plants.RunModel`) and go to
+        :func:`~mrsuspension.engine.batch.run_batch`.
+
+        Parameters
+        ----------
+        excitations : sequence, optional
+            Other road inputs for this vehicle, damper and controller (e.g. a sweep given
+            on the command line); default: the scenario's own.
+
+        Examples
+        --------
+        >>> s = Scenario.from_dict({"vehicle": {"model": "half-car"},
+        ...                         "excitation": {"kind": "swept", "frequencies": [1.0, 2.0],
+        ...                                        "amplitude": 0.01}})
+        >>> [type(r).__name__ for r in s.runs()], s.runs()[0].model_name
+        (['VehicleSimulation', 'VehicleSimulation'], 'half-car')
+        """
+        model = self.plant
+        roads = (
+            self.wheel_roads(excitations)
+            if model.wheel_roads
+            else list(self.excitations if excitations is None else excitations)
+        )
         with _in_section("damper"):
             return [
-                Simulation(
-                    excitation=exc,
-                    vehicle=self.vehicle,
-                    damper=self.damper,
-                    controller=self.controller,
-                    max_current=self.max_current,
+                model.build(
+                    self.vehicle,
+                    RunParts(
+                        road=road,
+                        damper=self.damper,
+                        controller=self.controller,
+                        max_current=self.max_current,
+                        corner_dampers=self.corner_dampers,
+                        corner_controllers=self.corner_controllers,
+                        sensing=self.sensing,
+                        body_control=self.body_control,
+                    ),
                 )
-                for exc in (self.excitations if excitations is None else excitations)
+                for road in roads
             ]
 
     def simulations(self, excitations: Sequence[Excitation] | None = None) -> list[Simulation]:
-        """One :class:`Simulation` per run (one per frequency for a swept excitation).
+        """One quarter-car :class:`Simulation` per run (one per frequency for a sweep).
+
+        The quarter car's typed view of :meth:`runs` (a half or full car is refused:
+        :meth:`runs` takes any model).
 
         Parameters
         ----------
@@ -685,7 +734,12 @@ class Scenario:
             Other road inputs for this vehicle, damper and controller (e.g. a sweep
             given on the command line); default: the scenario's own.
         """
-        return self._build_simulations(excitations)
+        if self.model != "quarter-car":
+            raise ValidationError(
+                f"this is a {self.model} scenario ([vehicle] model); this use needs a quarter "
+                "car (model = 'quarter-car'), or use runs()"
+            )
+        return self.runs(excitations)  # type: ignore[return-value]
 
     def run(
         self,
@@ -717,18 +771,7 @@ class Scenario:
         settings = self.settings
         if duration is not None:
             settings = dataclasses.replace(settings, duration=duration)
-        if self.is_vehicle:
-            from mrsuspension.engine.vehicle import run_vehicles
-
-            return run_vehicles(
-                self.vehicle_simulations(), settings=settings, workers=workers, progress=progress
-            )
-        return run_many(
-            self.simulations(),
-            settings=settings,
-            workers=workers,
-            progress=progress,
-        )
+        return run_batch(self.runs(), settings=settings, workers=workers, progress=progress)
 
     def to_dict(self) -> dict[str, dict[str, Any]]:
         """The scenario as plain tables (TOML-ready), with the defaults filled in.
@@ -737,7 +780,7 @@ class Scenario:
         """
         out = copy.deepcopy(self.data)
         out["vehicle"] = dataclasses.asdict(self.vehicle)
-        if self.is_vehicle:
+        if self.model != "quarter-car":
             out["vehicle"] = {"model": self.model, **out["vehicle"]}
         out["damper"] = {
             "model": self.damper.name,
@@ -777,32 +820,26 @@ def run_measures(result: SimulationResult, **kwargs: Any) -> dict[str, Any]:
 
 
 # -- section builders ---------------------------------------------------------------------
-def _build_vehicle(table: dict[str, Any]) -> QuarterCar | HalfCar | FullCar:
-    """``[vehicle]``: the model (quarter car by default), a published set, overrides."""
-    model = _choice("vehicle", "model", table.get("model", "quarter-car"), VEHICLE_MODELS)
-    allowed = _MODEL_KEYS[model]
+def _build_vehicle(table: dict[str, Any]) -> tuple[Plant, Any]:
+    """``[vehicle]``: ``(the model, its parameters)``: quarter car by default, a published
+    set, overrides."""
+    name = _choice("vehicle", "model", table.get("model", "quarter-car"), PLANTS)
+    model = PLANTS[name]
+    allowed = _model_keys(model)
     for key in table:
         if key not in _VEHICLE_KEYS:
             raise _unknown_key("vehicle", key, allowed)
         if key not in allowed:
             valid = sorted(allowed)
             raise ValidationError(
-                f"{_where('vehicle', key)} does not apply to model {model!r}."
+                f"{_where('vehicle', key)} does not apply to model {name!r}."
                 f"{did_you_mean(key, valid)} Its keys: {', '.join(valid)}."
             )
     values = {k: v for k, v in table.items() if k not in ("model", "set")}
-    if model == "quarter-car":
-        with _in_section("vehicle"):
-            return QuarterCar(**values)
-    cls: type[HalfCar] | type[FullCar] = HalfCar if model == "half-car" else FullCar
     with _in_section("vehicle"):
-        if "set" in table:
-            _choice("vehicle", "set", table["set"], dict.fromkeys(available_sets()))
-            car = cls.from_set(table["set"])
-        else:
-            car = cls()
-        out: HalfCar | FullCar = car.with_(**values)
-        return out
+        if "set" in table and model.sets is not None:
+            _choice("vehicle", "set", table["set"], dict.fromkeys(model.sets()))
+        return model, model.make_params(values, table.get("set"))
 
 
 def _split_corners(
@@ -907,7 +944,8 @@ def _build_controller(table: dict[str, Any], section: str = "controller") -> Con
 def _build_body_control(
     table: dict[str, Any],
     corner_tables: Mapping[str, Mapping[str, Any]],
-    vehicle: QuarterCar | VehicleBody,
+    vehicle: Any,
+    corners: tuple[str, ...],
 ) -> ModalSkyhook | CornerSkyhook | None:
     """``[controller] law = "modal-skyhook"`` or ``"corner-skyhook"``: the vehicle's law.
 
@@ -918,7 +956,7 @@ def _build_body_control(
     law = table.get("law")
     if law not in VEHICLE_LAWS:
         return None
-    if isinstance(vehicle, QuarterCar):
+    if not corners:
         raise ValidationError(
             f"[controller] law {law!r} drives a whole vehicle: it needs [vehicle] model = "
             "'half-car' or 'full-car' (the quarter car's skyhook laws: skyhook-hilo, "
@@ -945,7 +983,7 @@ def _build_body_control(
         if not options:
             x, y = vehicle.corner_positions()
             return ModalSkyhook.corner_equivalent(
-                x, y if isinstance(vehicle, FullCar) else None, **currents
+                x, y if "roll" in vehicle.body_dofs else None, **currents
             )
         missing = [k for k in ("heave", "pitch") if k not in options]
         if missing:
@@ -957,12 +995,12 @@ def _build_body_control(
 
 
 def _build_sensing(
-    table: dict[str, Any], vehicle: QuarterCar | VehicleBody, simulation: Mapping[str, Any]
+    table: dict[str, Any], corners: tuple[str, ...], simulation: Mapping[str, Any]
 ) -> Sensing | None:
     """``[sensing]``: the body-velocity estimator and the stroke sensor of every corner."""
     if not table:
         return None
-    if isinstance(vehicle, QuarterCar):
+    if not corners:
         raise ValidationError(
             "[sensing] applies to half and full cars ([vehicle] model = 'half-car' or "
             "'full-car'); the quarter car's controllers measure ideally"
@@ -1008,15 +1046,15 @@ def _build_sensing(
 
 
 def _build_any_excitation(
-    table: dict[str, Any], base: Path, vehicle: QuarterCar | VehicleBody
+    table: dict[str, Any], base: Path, model: Plant, vehicle: Any
 ) -> tuple[Excitation | SteppedSweep | WheelRoads, float | None]:
     """``[excitation]`` of any model: ``(excitation, speed [km/h] of a speedless kind)``."""
     kind = table.get("kind")
-    if isinstance(vehicle, QuarterCar):
+    if not model.wheel_roads:
         if kind in WHEEL_KINDS:
             raise ValidationError(
                 f"[excitation] kind {kind!r} gives a road per wheel: it needs [vehicle] "
-                "model = 'half-car' or 'full-car' (the quarter car has one wheel)"
+                f"model = 'half-car' or 'full-car' (a {model.name} has one road)"
             )
         return _build_excitation(table, base), None
     if kind in WHEEL_KINDS:

@@ -30,7 +30,8 @@ def test_models_sets_and_overrides() -> None:
     assert isinstance(Scenario.from_dict({"excitation": HARMONIC}).vehicle, QuarterCar)
     half = Scenario.from_dict({"vehicle": {"model": "half-car"}, "excitation": HARMONIC})
     assert half.vehicle == HalfCar()
-    assert half.is_vehicle
+    assert half.corners == ("front", "rear")
+    assert half.plant.name == "half-car"
     assert half.model == "half-car"
     full = Scenario.from_dict(
         {
@@ -66,10 +67,11 @@ def test_per_corner_tables() -> None:
 
 def test_quarter_car_path_is_unchanged() -> None:
     s = Scenario.from_dict({"excitation": HARMONIC})
-    assert not s.is_vehicle
+    assert s.corners == ()
+    assert s.model == "quarter-car"
     assert s.corner_dampers == {}
     assert "model" not in s.to_dict()["vehicle"]
-    with pytest.raises(ValidationError, match="quarter car"):
+    with pytest.raises(ValidationError, match="quarter-car scenario"):
         s.vehicle_simulations()
 
 

@@ -388,7 +388,7 @@ def simulate_command(
             if folder is not None and out is not None:
                 relocate_files(folder, out)
                 files = [Path(f) for f in relocated([str(f) for f in files], folder, out)]
-    _clamp_note([r.velocity_clamp_fraction for r in results])
+    _clamp_note([getattr(r, "velocity_clamp_fraction", None) for r in results])
     _spare_teardown()
     if as_json:
         typer.echo(json.dumps(payload))
@@ -438,7 +438,8 @@ def sweep_command(
     """
     from mrsuspension._progress import progress_bar
     from mrsuspension.cli.compiling import notify_if_compiling
-    from mrsuspension.engine.simulate import measures_of, run_many
+    from mrsuspension.engine.batch import run_batch
+    from mrsuspension.engine.simulate import measures_of
     from mrsuspension.scenario import Scenario
 
     with user_errors({"frequency": "--frequencies"}):
@@ -449,12 +450,12 @@ def sweep_command(
         scn = Scenario.load(scenario)
         sweep = _sweep_for(scn, frequencies, amplitude)
         excitations = list(sweep.excitations())
-        sims = _sweep_simulations(scn, excitations)  # quarter, half or full car
+        sims = scn.runs(excitations)  # any model: quarter, half or full car
         files: list[Path] = []
         with prepare_output(out, "sweep", force=force) as folder:  # checked before the runs
             notify_if_compiling()
             with progress_bar(not as_json, "sweep") as progress:
-                results = _runner(sims, run_many)(
+                results = run_batch(
                     sims,
                     dt=scn.dt,
                     output_rate=scn.output_rate,
@@ -518,7 +519,12 @@ def measure_unit(key: str) -> str | None:
 
     if key in BODY_MEASURES:
         return BODY_MEASURES[key][1]
-    return MEASURE_UNITS.get(key, MEASURE_UNITS.get(key.split(".", 1)[0]))
+    unit = MEASURE_UNITS.get(key, MEASURE_UNITS.get(key.split(".", 1)[0]))
+    if unit is None:  # a registered model's own measure
+        from mrsuspension.engine.plants import PLANTS
+
+        unit = next((p.units[key] for p in PLANTS.values() if key in p.units), None)
+    return unit
 
 
 def _label(key: str) -> str:
@@ -535,19 +541,3 @@ def _sweep_panels(row: Mapping[str, Any]) -> list[list[str]]:
     body = [[k] for k in ("heave_ddot_rms", "pitch_ddot_rms", "roll_ddot_rms") if k in row]
     corners = [[k for k in row if k.startswith(f"{m}.")] for m in ("T_as", "DLC")]
     return body + [keys for keys in corners if keys]
-
-
-def _sweep_simulations(scn: Scenario, excitations: Sequence[Any]) -> list[Any]:
-    """The sweep's runs: quarter-car ``Simulation``s or half/full-car ``VehicleSimulation``s."""
-    if scn.is_vehicle:
-        return list(scn.vehicle_simulations(excitations))
-    return list(scn.simulations(excitations))
-
-
-def _runner(sims: Sequence[Any], quarter: Callable[..., list[Any]]) -> Callable[..., list[Any]]:
-    """The batch runner of ``sims``: ``quarter`` (``run_many``), or ``run_vehicles`` for cars."""
-    from mrsuspension.engine.vehicle import VehicleSimulation, run_vehicles
-
-    if sims and isinstance(sims[0], VehicleSimulation):
-        return run_vehicles
-    return quarter

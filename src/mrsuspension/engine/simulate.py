@@ -22,6 +22,7 @@ from mrsuspension.dampers.wang import VEHICLE_VH_VARIANT
 from mrsuspension.engine import kernel as EK
 from mrsuspension.engine import lanes as LN
 from mrsuspension.engine.arrays import KernelArrays
+from mrsuspension.engine.contract import RunModel
 from mrsuspension.engine.result import (
     SimulationDiverged,
     SimulationResult,
@@ -171,6 +172,11 @@ class Simulation:
             raise ValidationError(f"{arg} must be a {kind.__name__} object; got {value!r}: {hint}")
 
     # -- helpers ---------------------------------------------------------------------
+    @property
+    def model_name(self) -> str:
+        """``"quarter-car"``: the :class:`~mrsuspension.engine.plants.Plant` of this run."""
+        return "quarter-car"
+
     @property
     def controller_estimator(self) -> PeakVelocityEstimator:
         """The estimator giving the controller its v_m."""
@@ -638,7 +644,7 @@ def _run_one(args: tuple[Simulation, RunSettings, Reducer | None]) -> Any:
     return result if reduce is None else reduce(result)
 
 
-def run_quietly(sim: Simulation, settings: RunSettings) -> SimulationResult:
+def run_quietly(sim: RunModel, settings: RunSettings) -> Any:
     """:meth:`Simulation.run` without the clamp warning, for batch runners: the result
     carries its time at the clamp (``vm_clamp_fraction``) for the caller to report."""
     with warnings.catch_warnings():

@@ -450,6 +450,12 @@ class VehicleSimulation:
         self._check_sensing_and_law(controllers)
 
     @property
+    def model_name(self) -> str:
+        """``"half-car"`` or ``"full-car"``: the :class:`~mrsuspension.engine.plants.Plant`
+        of this run."""
+        return str(self.vehicle.model_name)
+
+    @property
     def corners(self) -> tuple[str, ...]:
         """The vehicle's corner names."""
         return self.vehicle.corners

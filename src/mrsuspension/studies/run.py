@@ -28,9 +28,9 @@ import numpy as np
 
 from mrsuspension._batch import Job
 from mrsuspension._progress import progress_bar as _bar
+from mrsuspension.engine.batch import run_batch
 from mrsuspension.engine.result import SimulationResult
-from mrsuspension.engine.settings import RunSettings
-from mrsuspension.engine.simulate import MeasuresOf, run_many, run_quietly
+from mrsuspension.engine.simulate import MeasuresOf, run_quietly
 from mrsuspension.errors import ValidationError
 from mrsuspension.measures.shock import DEFAULT_ROAD_PEAK, RoadPeak
 from mrsuspension.studies.study import PROGRESS_POINTS, SCHEDULER_TIMEOUT, Study
@@ -214,31 +214,15 @@ def _run_local(
     progress: Progress | None,
     road_peak: RoadPeak = DEFAULT_ROAD_PEAK,
 ) -> list[dict[str, Any]]:
-    """The engine's batch runner, once per group of equal run settings."""
-    groups: dict[RunSettings, list[int]] = {}
-    for k, job in enumerate(jobs):
-        groups.setdefault(job.settings, []).append(k)
-    out: list[dict[str, Any]] = [{} for _ in jobs]
-    done = 0
-    total = len(jobs)
-    for settings, idx in groups.items():
-        offset = done
-
-        def tick(n: int, _total: int, offset: int = offset) -> None:
-            if progress:
-                progress(offset + n, total)
-
-        results = run_many(
-            [jobs[k].simulation for k in idx],
-            settings=settings,
-            workers=workers,
-            progress=tick,
-            reduce=MeasuresOf(road_peak),  # reduced inside the kernels
-        )
-        for k, r in zip(idx, results, strict=True):
-            out[k] = r
-        done += len(idx)
-    return out
+    """The engine's batch front door (:func:`~mrsuspension.engine.batch.run_batch`), any
+    model: runs reduced to their measures inside the kernels where the model can."""
+    return run_batch(
+        [job.simulation for job in jobs],
+        settings=[job.settings for job in jobs],
+        workers=workers,
+        progress=progress,
+        reduce=MeasuresOf(road_peak),
+    )
 
 
 def _run_dask(
@@ -313,54 +297,6 @@ def _dataset(study: Study, rows: Sequence[dict[str, Any]], run_time: float) -> x
     return ds
 
 
-def _run_local_any(
-    jobs: Sequence[Job],
-    workers: int | None,
-    progress: Progress | None,
-    road_peak: RoadPeak = DEFAULT_ROAD_PEAK,
-) -> list[dict[str, Any]]:
-    """:func:`_run_local` for quarter cars; half and full cars (issue 19) through
-    :func:`~mrsuspension.engine.vehicle.run_vehicles`, once per group of equal settings."""
-    from mrsuspension.engine.vehicle import VehicleSimulation, run_vehicles
-
-    cars = [k for k, job in enumerate(jobs) if isinstance(job.simulation, VehicleSimulation)]
-    if not cars:
-        return _run_local(jobs, workers, progress, road_peak)
-    taken = set(cars)
-    quarter = [k for k in range(len(jobs)) if k not in taken]
-    out: list[dict[str, Any]] = [{} for _ in jobs]
-    total = len(jobs)
-    done = 0
-
-    def ticker(offset: int) -> Progress:
-        def tick(n: int, _total: int) -> None:
-            if progress:
-                progress(offset + n, total)
-
-        return tick
-
-    if quarter:
-        rows = _run_local([jobs[k] for k in quarter], workers, ticker(0), road_peak)
-        for k, row in zip(quarter, rows, strict=True):
-            out[k] = row
-        done = len(quarter)
-    groups: dict[RunSettings, list[int]] = {}
-    for k in cars:
-        groups.setdefault(jobs[k].settings, []).append(k)
-    for settings, idx in groups.items():
-        results = run_vehicles(
-            [jobs[k].simulation for k in idx],  # type: ignore[misc]
-            settings=settings,
-            workers=workers,
-            progress=ticker(done),
-            reduce=functools.partial(_measures, road_peak=road_peak),
-        )
-        for k, row in zip(idx, results, strict=True):
-            out[k] = row
-        done += len(idx)
-    return out
-
-
 def run_study(
     study: Study | str | Path,
     *,
@@ -378,7 +314,7 @@ def run_study(
         A study, or a study TOML file to load.
     executor : "local", str or dask.distributed.Client
         ``"local"`` (default): the engine's process pool
-        (:func:`~mrsuspension.engine.simulate.run_many`); a scheduler address such as
+        (:func:`~mrsuspension.engine.batch.run_batch`); a scheduler address such as
         ``"tcp://10.0.0.5:8786"`` or a ``Client``: the same reducer on a Dask cluster.
     workers : int, optional
         Local processes (None: one per core; 1: this process). Ignored for Dask.
@@ -446,7 +382,7 @@ def run_study(
         ]
         start = time.perf_counter()
         if (isinstance(executor, str) and executor == "local") or executor is None:
-            rows = _run_local_any(jobs, workers, tick, study.road_peak)
+            rows = _run_local(jobs, workers, tick, study.road_peak)
         else:
             rows = _run_dask(jobs, executor, tick, study.road_peak, scheduler_timeout)
     elapsed = time.perf_counter() - start

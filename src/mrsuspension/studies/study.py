@@ -73,7 +73,7 @@ from mrsuspension.errors import (
 from mrsuspension.excitation import EXCITATIONS, FULL_CAR_CORNERS, HALF_CAR_CORNERS, log_frequencies
 from mrsuspension.excitation.deterministic import DEFAULT_SWEEP_POINTS, MAX_FREQUENCIES
 from mrsuspension.measures.shock import DEFAULT_ROAD_PEAK, RoadPeak, check_road_peak
-from mrsuspension.scenario import BODY_MEASURES, SCENARIO_KEYS, Scenario
+from mrsuspension.scenario import SCENARIO_KEYS, Scenario
 
 __all__ = [
     "MAX_RUNS",
@@ -173,11 +173,19 @@ _SPEC = re.compile(r"^\s*(log|lin)\s*:\s*(\d+)\s*:\s*([^:]+)\s*:\s*([^:]+)\s*$")
 _CORNERS: tuple[str, ...] = (*FULL_CAR_CORNERS, *HALF_CAR_CORNERS)
 #: sections with per-corner tables: ``damper.front_left.hysteresis``
 _CORNER_SECTIONS = ("damper", "controller")
+
+
 #: every dotted field a grid may vary (``section.key``, or ``section.corner.key`` for the
 #: per-corner ``[damper.<corner>]``/``[controller.<corner>]`` tables of a half or full car)
-FIELDS: tuple[str, ...] = tuple(
-    f"{s}.{k}" for s, keys in SCENARIO_KEYS.items() for k in keys
-) + tuple(f"{s}.{c}.{k}" for s in _CORNER_SECTIONS for c in _CORNERS for k in SCENARIO_KEYS[s])
+def study_fields() -> tuple[str, ...]:
+    """Every dotted field a grid may vary, read live (a registered vehicle model's keys
+    included): :data:`FIELDS` as of now."""
+    return tuple(f"{s}.{k}" for s, keys in SCENARIO_KEYS.items() for k in keys) + tuple(
+        f"{s}.{c}.{k}" for s in _CORNER_SECTIONS for c in _CORNERS for k in SCENARIO_KEYS[s]
+    )
+
+
+FIELDS: tuple[str, ...] = study_fields()
 
 
 def expand_frequencies(value: Any, where: str = "frequencies") -> Any:
@@ -288,9 +296,10 @@ class Axis:
 
 
 def _check_field(name: object, where: str) -> str:
-    if not isinstance(name, str) or name not in FIELDS:
+    fields = study_fields()
+    if not isinstance(name, str) or name not in fields:
         raise ValidationError(
-            f"{where} unknown field {name!r}.{did_you_mean(str(name), FIELDS)} "
+            f"{where} unknown field {name!r}.{did_you_mean(str(name), fields)} "
             "Fields are 'section.key' with a section of vehicle, damper, controller, "
             "excitation, simulation and a key of that section, or 'damper.<corner>.key' / "
             "'controller.<corner>.key' for one corner of a half or full car "
@@ -345,7 +354,7 @@ def _grid_axis(name: str, values: Any) -> Axis:
 
 def _case_axis(name: str, cases: Any) -> Axis:
     where = f"[cases.{name}]"
-    if name in FIELDS or name == "frequency":
+    if name in study_fields() or name == "frequency":
         raise ValidationError(f"{where}: the name {name!r} is taken; choose another case name")
     if not isinstance(cases, Mapping):
         raise ValidationError(f"{where} must be a table of cases; got {cases!r}")
@@ -389,13 +398,7 @@ def scenario_measures(scenario: Scenario) -> tuple[str, ...]:
     >>> scenario_measures(s)[:4]
     ('heave_ddot_rms', 'pitch_ddot_rms', 'DLC.front', 'rms_body_acceleration.front')
     """
-    kind = scenario.data["excitation"]["kind"]
-    if not scenario.is_vehicle:
-        return MEASURES[kind]
-    corners = scenario.vehicle.corners  # type: ignore[union-attr]
-    body = tuple(m for m in BODY_MEASURES if m != "roll_ddot_rms" or len(corners) == 4)
-    per_corner = MEASURES.get(kind, MEASURES["road"])  # a wheel-only kind: road measures
-    return body + tuple(f"{m}.{c}" for c in corners for m in per_corner)
+    return scenario.measure_names()
 
 
 def _check_run_count(axes: list[Axis], excitation: Mapping[str, Any]) -> int:
@@ -610,12 +613,8 @@ class Study:
             raise ValidationError("every grid point of a swept study must use the same frequencies")
         frequencies = next(iter(sweeps)) if sweeps else None
 
-        if any(s.is_vehicle for s in scenarios):  # body and per-corner measures
-            available = tuple(dict.fromkeys(m for s in scenarios for m in scenario_measures(s)))
-            valid = sorted(available)
-        else:
-            available = tuple(m for names in MEASURES_BY_KIND.values() for m in names)
-            valid = sorted({m for k in kinds for m in MEASURES[k]})
+        available = tuple(dict.fromkeys(m for s in scenarios for m in scenario_measures(s)))
+        valid = sorted(available)
         requested = meta.get("measures")
         if requested is None:
             measures = tuple(m for m in dict.fromkeys(available) if m in valid)
@@ -678,11 +677,7 @@ class Study:
 
     def simulations(self) -> list[Any]:
         """Every run, in C order of :attr:`dims` (grid points, then frequencies)."""
-        return [
-            sim
-            for s in self.scenarios
-            for sim in (s.vehicle_simulations() if s.is_vehicle else s.simulations())
-        ]
+        return [run for s in self.scenarios for run in s.runs()]
 
     def run_settings(self) -> list[RunSettings]:
         """The :class:`RunSettings` of every run (its grid point's ``[simulation]``),
