@@ -85,10 +85,7 @@ from mrsuspension.errors import (
     did_you_mean,
 )
 from mrsuspension.excitation import EXCITATION_OPTIONS, FULL_CAR_CORNERS, HALF_CAR_CORNERS
-from mrsuspension.scenario import (
-    SCENARIO_KEYS,
-    Scenario,
-)
+from mrsuspension.scenario import SCENARIO_KEYS, WHEEL_KINDS, Scenario
 from mrsuspension.studies.study import MEASURES, merge_scenario_tables
 
 if TYPE_CHECKING:
@@ -124,7 +121,14 @@ _PROBLEM_KEYS = (
 )
 _PARAMETER_KEYS = ("field", "lower", "upper", "integer", "log")
 _ROAD_OPTIONS = tuple(EXCITATION_OPTIONS["road"])
-_ROAD_KEYS = ("name", "weight", *_ROAD_OPTIONS)
+#: the road kinds of an objective and their options: one track (every model; a half or
+#: full car gets it under both sides, the rear wheels later) or a two-track road (a half
+#: or full car: left and right tracks of the same class, correlated as ISO 8608 roads are)
+ROAD_KINDS: dict[str, tuple[str, ...]] = {
+    "road": _ROAD_OPTIONS,
+    "two-track": tuple(WHEEL_KINDS["two-track"]),
+}
+_ROAD_KEYS = ("name", "weight", "kind", *dict.fromkeys(k for v in ROAD_KINDS.values() for k in v))
 _OBJECTIVE_KEYS = ("weights", "reference")
 #: road options that select the profile (a road giving one drops the base's others)
 _PROFILE_KEYS = {
@@ -315,17 +319,23 @@ def _parameter(index: int, table: object) -> Parameter:
 
 @dataclass(frozen=True)
 class Road:
-    """One road of the objective: excitation options (kind ``road``), a name and a weight.
+    """One road of the objective: excitation options, a name and a weight.
+
+    ``kind`` is ``"road"`` (one track; default) or ``"two-track"`` (a half or full car:
+    its own track under each side, :data:`ROAD_KINDS`).
 
     Examples
     --------
     >>> Road.from_dict({"profile": "rough", "speed": 80.0}).name
     'rough, 80 km/h'
+    >>> Road.from_dict({"kind": "two-track", "iso_class": "C", "length": 200.0}).name
+    'two-track ISO 8608 C, seed 0, 200 m, 50 km/h'
     """
 
     name: str
     options: dict[str, Any]
     weight: float = 1.0
+    kind: str = "road"
 
     @classmethod
     def from_dict(
@@ -334,12 +344,25 @@ class Road:
         """A ``[[roads]]`` table over the base ``[excitation]`` options ``shared``."""
         where = f"[[roads]] #{index + 1}"
         t = check_keys(where, table, _ROAD_KEYS)
-        options = {k: v for k, v in (shared or {}).items() if k != "kind"}
+        kind = t.get("kind", (shared or {}).get("kind", "road"))
+        if kind not in ROAD_KINDS:
+            raise ValidationError(
+                f"{where} kind: {kind!r} is not a road kind of an objective."
+                f"{did_you_mean(str(kind), list(ROAD_KINDS))} Valid: {', '.join(ROAD_KINDS)}."
+            )
+        for key in t:
+            if key not in ("name", "weight", "kind") and key not in ROAD_KINDS[kind]:
+                valid = ["name", "weight", "kind", *ROAD_KINDS[kind]]
+                raise ValidationError(
+                    f"{where} {key} does not apply to kind {kind!r}."
+                    f"{did_you_mean(str(key), valid)} Valid: {', '.join(valid)}."
+                )
+        options = {k: v for k, v in (shared or {}).items() if k != "kind" and k in ROAD_KINDS[kind]}
         for key, dropped in _PROFILE_KEYS.items():
             if key in t:
                 for other in dropped:
                     options.pop(other, None)
-        options.update({k: v for k, v in t.items() if k not in ("name", "weight")})
+        options.update({k: v for k, v in t.items() if k not in ("name", "weight", "kind")})
         if "profile" not in options and "iso_class" not in options:
             raise ValidationError(
                 f"{where} needs 'profile' (a preset name or a CSV file) or 'iso_class' (ISO 8608 A-H)"
@@ -349,18 +372,19 @@ class Road:
             raise ValidationError(f"{where} weight must be >= 0; got {weight:g}")
         name = t.get("name")
         if name is None:
-            name = _road_name(options)
+            name = ("" if kind == "road" else f"{kind} ") + _road_name(options)
         elif not isinstance(name, str) or not name:
             raise ValidationError(f"{where} name must be a non-empty string; got {name!r}")
-        return cls(name, options, weight)
+        return cls(name, options, weight, kind)
 
     def excitation(self) -> dict[str, Any]:
         """The ``[excitation]`` table of this road."""
-        return {"kind": "road", **copy.deepcopy(self.options)}
+        return {"kind": self.kind, **copy.deepcopy(self.options)}
 
     def to_dict(self) -> dict[str, Any]:
         """The ``[[roads]]`` table."""
-        return {"name": self.name, "weight": self.weight, **self.options}
+        kind = {} if self.kind == "road" else {"kind": self.kind}
+        return {"name": self.name, "weight": self.weight, **kind, **self.options}
 
 
 def _road_name(options: Mapping[str, Any]) -> str:
@@ -420,9 +444,16 @@ def objective_value(
         for r in range(n):
             ref = float(reference[r][m])
             if not math.isfinite(ref) or ref == 0.0:
+                hint = (
+                    " (the same profile under both sides rolls the body by nothing: give "
+                    "kind = 'two-track' roads)"
+                    if m.startswith("roll_")
+                    else ""
+                )
                 raise ValidationError(
                     f"the reference controller's {m} is {ref:g} on road #{r + 1}: cannot "
-                    "normalise by it; choose another [objective] reference or drop the weight"
+                    f"normalise by it{hint}; choose another [objective] reference or drop the "
+                    "weight"
                 )
             value += (w / total_w) * (vw[r] / total_v) * float(measures[r][m]) / ref
     return value
@@ -545,13 +576,15 @@ class OptimizationProblem:
 
         base = merge_scenario_tables({}, data)
         shared = base.pop("excitation", {})
-        if shared.get("kind", "road") != "road":
+        shared_kind = shared.get("kind", "road")
+        if shared_kind not in ROAD_KINDS:
             raise ValidationError(
-                f"[excitation] kind must be 'road' in an optimisation problem; got {shared['kind']!r}"
+                f"[excitation] kind must be one of {', '.join(ROAD_KINDS)} in an optimisation "
+                f"problem; got {shared_kind!r}"
             )
         for key in shared:
-            if key != "kind" and key not in _ROAD_OPTIONS:
-                valid = ["kind", *_ROAD_OPTIONS]
+            if key != "kind" and key not in ROAD_KINDS[shared_kind]:
+                valid = ["kind", *ROAD_KINDS[shared_kind]]
                 raise ValidationError(
                     f"unknown key [excitation] {key} for roads.{did_you_mean(str(key), valid)} "
                     f"Valid: {', '.join(valid)}."

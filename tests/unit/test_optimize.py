@@ -129,7 +129,7 @@ def test_road_options_over_the_shared_excitation() -> None:
         ({"objective": {"weights": {}}}, ("non-empty table",)),
         ({"objective": {"weights": {"DLC": 0.0}}}, ("at least one weight must be > 0",)),
         ({"objective": {"weights": {"DLC": -1.0}}}, ("DLC must be >= 0",)),
-        ({"excitation": {"kind": "harmonic"}}, ("kind must be 'road'",)),
+        ({"excitation": {"kind": "harmonic"}}, ("kind must be one of road, two-track",)),
         ({"problem": {"population": 3}}, ("population must be an integer >= 5",)),
         ({"problem": {"max_evaluations": 4, "population": 6}}, ("below one population",)),
     ],

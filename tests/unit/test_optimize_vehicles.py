@@ -60,3 +60,33 @@ def test_errors() -> None:
                      parameters=[{"field": "controller.gain", "lower": 1, "upper": 2}],
                      objective={"weights": {"DLC.front_left": 1.0}})
         )  # fmt: skip
+
+
+def test_two_track_roads_roll_the_body_and_tune_roll() -> None:
+    """Issue 31: a full car tuned for roll needs a road per side; one track rolls nothing."""
+    one_track = OptimizationProblem.from_dict(_problem())
+    with pytest.raises(ValidationError, match="give kind = 'two-track' roads"):
+        optimize(one_track, max_evaluations=6, workers=1, progress=False)
+    data = _problem(roads=[{"kind": "two-track", "iso_class": "C", "length": 30.0}])
+    problem = OptimizationProblem.from_dict(data)
+    road = problem.roads[0]
+    assert road.kind == "two-track"
+    assert road.name == "two-track ISO 8608 C, seed 0, 30 m, 50 km/h"
+    assert OptimizationProblem.from_dict(problem.to_dict()).roads == problem.roads  # round trip
+    result = optimize(problem, max_evaluations=6, workers=1, progress=False)
+    assert result.measures[road.name]["roll_ddot_rms"] > 0.0
+    assert 0.0 < result.objective < 1.5
+    with pytest.raises(ValidationError, match="scale does not apply to kind 'two-track'"):
+        OptimizationProblem.from_dict(
+            _problem(roads=[{"kind": "two-track", "iso_class": "C", "scale": 2.0}])
+        )
+    with pytest.raises(ValidationError, match="not a road kind of an objective"):
+        OptimizationProblem.from_dict(_problem(roads=[{"kind": "bump", "iso_class": "C"}]))
+    quarter = _problem(
+        vehicle={}, controller={"law": "skyhook-hilo"},
+        parameters=[{"field": "controller.gain", "lower": 1, "upper": 2}],
+        roads=[{"kind": "two-track", "iso_class": "C"}],
+        objective={"weights": {"DLC": 1.0}},
+    )  # fmt: skip
+    with pytest.raises(ValidationError, match="gives a road per wheel"):
+        OptimizationProblem.from_dict(quarter)
