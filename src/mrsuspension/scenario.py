@@ -86,6 +86,10 @@ __all__ = [
     "run_measures",
 ]
 
+#: :meth:`Scenario.current_note`: a law whose mean current stays below this share of
+#: ``max_current`` in every run is noted as leaving the damper near 0 A
+LOW_CURRENT_SHARE = 0.05
+
 # -- the public keys -----------------------------------------------------------------------
 # Value kinds: "number", "integer", "bool", "string", "numbers" (a list of numbers),
 # "text" (a string; a number is accepted and turned into its text, e.g. vh_variant = 2.12).
@@ -772,6 +776,48 @@ class Scenario:
         if duration is not None:
             settings = dataclasses.replace(settings, duration=duration)
         return run_batch(self.runs(), settings=settings, workers=workers, progress=progress)
+
+    def current_note(self, rows: Sequence[Mapping[str, Any]]) -> str | None:
+        """A note when the controller left the drive current near zero, else None.
+
+        A gain tuned for one vehicle (the dissertation's quarter car) can leave a law's
+        current at a few percent of ``max_current`` on another (a full car), which then
+        runs as a passive damper at 0 A. ``rows``: the measures of the scenario's runs;
+        the note is given when every run's mean current (every corner's) stays below
+        :data:`LOW_CURRENT_SHARE` of ``max_current`` for a law that sets the current.
+
+        Examples
+        --------
+        >>> s = Scenario.from_dict({"controller": {"law": "skyhook-hilo", "gain": 2.0},
+        ...                         "excitation": {"kind": "pulse", "amplitude": 0.02,
+        ...                                        "severity": 1.0}})
+        >>> print(s.current_note([{"mean_current": 0.004}]))
+        skyhook-hilo drew a mean current of 0.004 A at most (0.8 % of max_current = 0.5 A): its gain (gain = 2) may suit another vehicle; tune it (mrsus optimize) or check [controller]
+        >>> s.current_note([{"mean_current": 0.2}]) is None
+        True
+        """
+        law = str(self.data.get("controller", {}).get("law", self.controller.law))
+        if law == "passive" or self.max_current <= 0.0:
+            return None
+        currents = [
+            float(v)
+            for row in rows
+            for k, v in row.items()
+            if (k == "mean_current" or k.startswith("mean_current.")) and v is not None
+        ]
+        if not currents or max(currents) >= LOW_CURRENT_SHARE * self.max_current:
+            return None
+        peak = max(currents)
+        table = self.data.get("controller", {})
+        gains = [f"{k} = {table[k]:g}" for k in ("gain", "heave", "pitch", "roll") if k in table]
+        if not gains and "gain" in self.controller.describe():
+            gains = [f"gain = {self.controller.describe()['gain']:g}"]
+        what = f"its gain ({', '.join(gains)})" if gains else "its gains"
+        return (
+            f"{law} drew a mean current of {peak:.3g} A at most "
+            f"({100 * peak / self.max_current:.1f} % of max_current = {self.max_current:g} A): "
+            f"{what} may suit another vehicle; tune it (mrsus optimize) or check [controller]"
+        )
 
     def to_dict(self) -> dict[str, dict[str, Any]]:
         """The scenario as plain tables (TOML-ready), with the defaults filled in.

@@ -113,3 +113,16 @@ def test_a_crg_file_with_a_nan(tmp_path: Path) -> None:
         "error: [excitation] CRG file 'hole.crg': the elevation grid has no value (NaN)"
     )
     assert len(stderr.strip().splitlines()) == 1
+
+
+def test_a_law_left_near_zero_current_is_noted() -> None:
+    """Issue 31: the quarter car's skyhook gain on a full car leaves the damper near 0 A."""
+    car = ROOT / "examples" / "vehicles" / "full_car_two_track.toml"
+    code, _stdout, stderr = _invoke("simulate", str(car), "--duration", "2", "--json")
+    assert code == 0, stderr
+    assert "note: skyhook-hilo drew a mean current of" in stderr
+    assert "may suit another vehicle" in stderr
+    quarter = ROOT / "examples" / "scenarios" / "skyhook-hilo-acm-harmonic.toml"
+    code, _stdout, stderr = _invoke("simulate", str(quarter), "--json")
+    assert code == 0, stderr
+    assert "mean current" not in stderr  # the dissertation's gain on its own car

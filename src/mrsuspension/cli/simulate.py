@@ -279,6 +279,13 @@ def _clamp_note(fractions: Sequence[float | None]) -> None:
     )
 
 
+def _current_note(scn: Scenario, rows: Sequence[Mapping[str, Any]]) -> None:
+    """Say on stderr when the law left the current near zero (:meth:`Scenario.current_note`)."""
+    note = scn.current_note(rows)
+    if note is not None:
+        typer.echo(f"note: {note}", err=True)
+
+
 def _echo_rows(rows: Sequence[Mapping[str, Any]]) -> None:
     """A table, one row per run, headers ``name [unit]`` (columns as wide as needed)."""
     keys = [k for k in rows[0] if k != "amplitude"]
@@ -389,6 +396,7 @@ def simulate_command(
                 relocate_files(folder, out)
                 files = [Path(f) for f in relocated([str(f) for f in files], folder, out)]
     _clamp_note([getattr(r, "velocity_clamp_fraction", None) for r in results])
+    _current_note(scn, payload if scn.is_sweep else [payload])
     _spare_teardown()
     if as_json:
         typer.echo(json.dumps(payload))
@@ -471,6 +479,7 @@ def sweep_command(
                 except OSError as exc:
                     raise ValidationError(f"cannot write --out {str(out)!r}: {exc}") from None
     _clamp_note([m.get("vm_clamp_fraction") for m in results])
+    _current_note(scn, rows)
     if as_json:
         typer.echo(json.dumps(rows))
         return
