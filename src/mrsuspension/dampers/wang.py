@@ -29,18 +29,23 @@ from mrsuspension.dampers.peak_velocity import (
 )
 from mrsuspension.errors import ValidationError, check_finite, check_range, unknown_name
 
-__all__ = ["VEHICLE_VH_VARIANT", "WangAsymmetric", "WangSymmetric"]
+__all__ = ["CHARACTERISATION_VH", "VEHICLE_VH_VARIANT", "WangAsymmetric", "WangSymmetric"]
 
 VhVariant = Literal["2.12", "2.13"]
 
-#: v_h variant of the dissertation's model in vehicle simulations (Simulation's default
-#: damper, scenarios, studies, the report, HiL) when none is given. The damper model on its
-#: own keeps the identified (2.12). Chosen by evidence (docs/errata.md, "v_h in vehicle
+#: v_h variant of the dissertation's model when none is given: the damper model on its own
+#: (``WangSymmetric()``, ``mrsus damper``) and in vehicle simulations (Simulation's default
+#: damper, scenarios, studies, the report, HiL) alike, so that the same name is one model.
+#: The characterisation figures and the 13-parameter fit ask for (2.12)
+#: (:data:`CHARACTERISATION_VH`). Chosen by evidence (docs/errata.md, "v_h in vehicle
 #: studies"): (2.15) is the decoupled product C_i(i) F_h(v); the inverse model and the
 #: dissertation's inverse check use (2.13); (2.12)'s H(i) is extrapolated past the 0.4 A
 #: tests (x2.28 at 0.5 A) and lets policy I at 3.5 cm, 2.0-2.6 Hz reach 14.5 kN against
 #: 8.0 kN with (2.13) (the HiL load cell was rated 8.8 kN).
 VEHICLE_VH_VARIANT: VhVariant = "2.13"
+#: ``v_h`` of the dissertation's characterisation (Chapter 2 figures, the 13-parameter
+#: identification): the current-dependent (2.12)
+CHARACTERISATION_VH: VhVariant = "2.12"
 
 _COMMON_RULES = {
     "a0": "positive", "a1": "any", "a2": "nonnegative", "a3": "nonnegative",
@@ -66,9 +71,11 @@ class WangSymmetric(DamperModel):
         Parameter set (default ``"wang-symmetric-low"``, Table 2.2, 0.5-5 Hz).
     hysteresis : bool
         ``False`` gives the mean model (``k4 = 0``, so ``v_h = 0``).
-    vh_variant : {"2.12", "2.13"}
-        Zero-force velocity intercept: current dependent (2.12, all 13 identified
-        parameters, default) or the simplified (2.13).
+    vh_variant : {"2.13", "2.12"}
+        Zero-force velocity intercept: the simplified (2.13), default, as in every
+        simulation, the inverse model and the HiL loop (:data:`VEHICLE_VH_VARIANT`,
+        ``docs/errata.md``), or the current-dependent (2.12) with all 13 identified
+        parameters (the dissertation's characterisation figures).
     force_gain : float
         ``k_d`` multiplying the force (sections 5.3/6.2; default 1).
     estimator : str or PeakVelocityEstimator
@@ -110,7 +117,7 @@ class WangSymmetric(DamperModel):
         parameters: ParameterSpec = None,
         *,
         hysteresis: bool = True,
-        vh_variant: VhVariant = "2.12",
+        vh_variant: VhVariant = VEHICLE_VH_VARIANT,
         force_gain: float = 1.0,
         estimator: str | PeakVelocityEstimator | None = None,
         max_current: float | None = None,
@@ -209,6 +216,9 @@ class WangSymmetric(DamperModel):
         decay = np.exp(-p[K.W_A4] * vm)  # (2.10)
         arg = np.sign(a) * (p[K.W_K4] * vm * h)  # v_h, (2.12)/(2.13)
         arg = np.asarray(arg + v)  # allocates the broadcast shape once (0-d for scalars)
+        shape = np.broadcast_shapes(arg.shape, np.shape(ci))
+        if shape != arg.shape:  # (2.13) has no current factor in v_h: take i's shape now
+            arg = np.broadcast_to(arg, shape).copy()
         if p[K.W_K6] != 0.0:
             arg += p[K.W_K6] * vm  # v_b, (2.20)
         arg *= 0.5 * alpha

@@ -40,6 +40,9 @@ from mrsuspension.dampers import (
     WangAsymmetric,
     WangSymmetric,
 )
+from mrsuspension.dampers.wang import (
+    CHARACTERISATION_VH,
+)
 from mrsuspension.errors import ValidationError, unknown_name
 from mrsuspension.identify.preprocess import Loop
 
@@ -234,6 +237,10 @@ class WangFit(FitModel):
     # starts from the global stage that head for a poor local minimum otherwise run to
     # scipy's 1300 evaluations; the best start of a 30-test campaign needs ~150
     default_max_nfev: ClassVar[int | None] = 400
+
+    def __init__(self, options: Mapping[str, Any] | None = None) -> None:
+        # all 13 identified parameters: the current-dependent v_h (2.12) unless asked
+        super().__init__({"vh_variant": CHARACTERISATION_VH, **(options or {})})
 
     def fixed_by_options(self) -> tuple[str, ...]:
         fixed: list[str] = []

@@ -53,7 +53,7 @@ from mrsuspension._numba_cache import invalidate_if_changed
 from mrsuspension.dampers import kernels as K
 from mrsuspension.dampers.base import DamperModel
 from mrsuspension.dampers.peers import Bingham, SpencerBoucWen
-from mrsuspension.dampers.wang import WangSymmetric
+from mrsuspension.dampers.wang import CHARACTERISATION_VH, WangSymmetric
 from mrsuspension.errors import ValidationError, check_range, unknown_name
 from mrsuspension.identify.record import TimeRecord
 
@@ -547,7 +547,10 @@ class WangLag(TimeDomainModel):
 
     name: ClassVar[str] = "wang"
     damper: ClassVar[type[DamperModel]] = WangSymmetric
-    damper_options: ClassVar[Mapping[str, Any]] = {"estimator": "cycle-rms"}
+    damper_options: ClassVar[Mapping[str, Any]] = {
+        "estimator": "cycle-rms",
+        "vh_variant": CHARACTERISATION_VH,  # all 13 identified parameters
+    }
     default_set: ClassVar[str] = "wang-symmetric-low"
     _NAMES = ("a0", "a1", "a2", "a3", "a4", "I0", "I1", "k0", "k1", "k2", "k3", "k4", "F0")
 

@@ -23,6 +23,7 @@ from mrsuspension.dampers import (
     WangSymmetric,
     make_damper,
 )
+from mrsuspension.dampers.wang import CHARACTERISATION_VH
 from mrsuspension.report.toolkit import (
     Chapter,
     Context,
@@ -48,7 +49,7 @@ _CURRENTS = (0.0, 0.1, 0.2, 0.3, 0.4)
 def band_model(frequency: float, **options: Any) -> WangSymmetric:
     """The symmetric model with the Table 2.2 set of the frequency band (<= 5 Hz: low)."""
     name = "wang-symmetric-low" if frequency <= 5.0 else "wang-symmetric-high"
-    return WangSymmetric(name, **options)
+    return WangSymmetric(name, **{"vh_variant": CHARACTERISATION_VH, **options})
 
 
 def _loop_axes(ax: Axes, kind: str = "F-v") -> None:
@@ -225,8 +226,8 @@ def fig_2_8() -> FigureRecord:
     conditions = [(0.5, 0.025), (1.5, 0.0125)]
     currents = (0.0, 0.1, 0.2, 0.3)
     fig, axes = subplots(2, len(conditions), layout="fixed", title_rows=1)
-    asym = WangAsymmetric()
-    sym = WangSymmetric()
+    asym = WangAsymmetric(vh_variant=CHARACTERISATION_VH)
+    sym = WangSymmetric(vh_variant=CHARACTERISATION_VH)
 
     def adfg(v: np.ndarray, vm: np.ndarray, i_c: float) -> np.ndarray:
         return adfg_multiplier(v, vm, p=0.0, xi=2.0) * i_c
@@ -304,14 +305,18 @@ def _generalised(model: WangSymmetric, number: str, title: str) -> FigureRecord:
 def fig_2_9() -> FigureRecord:
     """Generalised hysteretic F-v curve with its mean curve (symmetric model)."""
     return _generalised(
-        WangSymmetric(), "2.9", "Generalized hysteretic F-v curve (hysteretic and mean)"
+        WangSymmetric(vh_variant=CHARACTERISATION_VH),
+        "2.9",
+        "Generalized hysteretic F-v curve (hysteretic and mean)",
     )
 
 
 def fig_2_11() -> FigureRecord:
     """Generalised asymmetric F-v curve with its mean curve."""
     return _generalised(
-        WangAsymmetric(), "2.11", "Generalized asymmetric F-v characteristics (hysteretic and mean)"
+        WangAsymmetric(vh_variant=CHARACTERISATION_VH),
+        "2.11",
+        "Generalized asymmetric F-v characteristics (hysteretic and mean)",
     )
 
 

@@ -77,7 +77,7 @@ def test_the_damper_force_uses_it_at_round_off() -> None:
     """The Wang force with the kernels' tanh equals the model reference's formula with math.tanh."""
     from mrsuspension.dampers import WangSymmetric
 
-    model = WangSymmetric()
+    model = WangSymmetric(vh_variant="2.12")  # H(i) in v_h: every factor exercised
     p = model.kernel(1e-3).params
     vm, sgn_a = 0.2, -1.0
     for v in np.linspace(-0.4, 0.4, 81):

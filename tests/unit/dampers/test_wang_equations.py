@@ -162,10 +162,21 @@ def test_h_factor_hand_value():
     # H(0.2) of the 0.5-5 Hz set: 1 + 9.186 (sigma(6.635 * 0.467) - sigma(6.635 * 0.267))
     h = 1.0 + 9.186 / (1.0 + math.exp(-6.635 * 0.467)) - 9.186 / (1.0 + math.exp(-6.635 * 0.267))
     assert h == pytest.approx(1.93865291, rel=1e-8)
-    kp = params_of(WangSymmetric("wang-symmetric-low"))
+    kp = params_of(WangSymmetric("wang-symmetric-low", vh_variant="2.12"))
     assert K.hysteresis_current_factor(kp, 0.2) == pytest.approx(h, rel=1e-14)
     kp13 = params_of(WangSymmetric("wang-symmetric-low", vh_variant="2.13"))
     assert K.hysteresis_current_factor(kp13, 0.2) == 1.0
+
+
+def test_one_name_one_model_the_default_is_the_simulations():
+    """Issue 31: ``WangSymmetric()`` is the model every simulation runs ((2.13))."""
+    from mrsuspension.dampers.wang import VEHICLE_VH_VARIANT
+    from mrsuspension.engine import Simulation
+    from mrsuspension.excitation import Harmonic
+
+    assert WangSymmetric().vh_variant == VEHICLE_VH_VARIANT == "2.13"
+    assert WangAsymmetric().vh_variant == "2.13"
+    assert Simulation(Harmonic(1.0, 0.01)).damper.describe() == WangSymmetric().describe()
 
 
 def test_v_h_variants_differ_by_h():
@@ -187,7 +198,7 @@ def test_full_force_eq_2_15_hand_values(wang_reference):
         ({"vh_variant": "2.13"}, {"variant": "2.13"}, 1173.4263372066903),
         ({"hysteresis": False}, {"hysteresis": False}, 1109.1850566841504),
         ({"hysteresis": False, "vh_variant": "2.13"}, {"hysteresis": False}, 1109.1850566841504),
-        ({"force_gain": 2.5}, {"kd": 2.5}, 2998.1765823886913),
+        ({"force_gain": 2.5, "vh_variant": "2.12"}, {"kd": 2.5}, 2998.1765823886913),
         ({"force_gain": 2.5, "vh_variant": "2.13"}, {"kd": 2.5, "variant": "2.13"}, 2933.565843017),
     ]  # fmt: skip
     for options, kwargs, pinned in cases:
@@ -254,7 +265,7 @@ def test_asymmetric_force_written_out():
     kve = p["k1e"] * math.exp(-p["a4"] * 0.25)
     expected = ci * (ft * math.tanh(alpha * (-0.1 + vh + vb) / 2) - fb) * (1 + kve * 0.1)
     assert expected == pytest.approx(-481.37881033, rel=1e-9)
-    got = float(WangAsymmetric().force(0.0, -0.1, 1.0, 0.2, peak_velocity=0.25))
+    got = float(WangAsymmetric(vh_variant="2.12").force(0.0, -0.1, 1.0, 0.2, peak_velocity=0.25))
     assert got == pytest.approx(expected, rel=1e-12)
 
 
