@@ -72,7 +72,8 @@ HystOpt = Annotated[
     typer.Option("--hysteresis/--mean", help="hysteretic (default) or mean model (k4 = 0)"),
 ]
 VhOpt = Annotated[
-    str | None, typer.Option("--vh-variant", help="v_h from (2.13) (default, as in simulations) or (2.12)")
+    str | None,
+    typer.Option("--vh-variant", help="v_h from (2.13) (default, as in simulations) or (2.12)"),
 ]
 GainOpt = Annotated[float | None, typer.Option("--force-gain", help="force gain k_d (default 1)")]
 EstOpt = Annotated[
