@@ -19,7 +19,7 @@ from __future__ import annotations
 import html
 import math
 from collections.abc import Iterable, Mapping, Sequence
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Literal
 
 from mrsuspension.errors import ValidationError
 
@@ -183,8 +183,11 @@ def _is_number(value: Any) -> bool:
     return isinstance(value, numbers.Real) and not isinstance(value, bool)
 
 
-def new_figure(width: float, height: float) -> Figure:
-    """A figure of ``width`` x ``height`` inches made without pyplot (tight layout).
+def new_figure(
+    width: float, height: float, layout: Literal["tight", "constrained"] = "tight"
+) -> Figure:
+    """A figure of ``width`` x ``height`` inches made without pyplot (``layout``:
+    matplotlib's layout engine, ``"tight"`` by default).
 
     pyplot is not involved, so a notebook shows a returned figure once (as the cell's
     value) and ``plt.close`` is not needed; ``fig.savefig`` works as usual.
@@ -199,7 +202,7 @@ def new_figure(width: float, height: float) -> Figure:
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
 
-    fig = Figure(figsize=(width, height), layout="tight")
+    fig = Figure(figsize=(width, height), layout=layout)
     FigureCanvasAgg(fig)
     return fig
 

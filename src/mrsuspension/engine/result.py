@@ -718,12 +718,16 @@ def controller_text(scenario: Mapping[str, Any]) -> str:
     --------
     >>> controller_text({"controller": {"law": "passive", "current": 0.2}})
     'passive (current 0.2)'
+    >>> controller_text({"controller": {"law": "skyhook-hilo", "p": 0.0, "gain": 3.0}})
+    'skyhook-hilo ACM (gain 3)'
     """
     ctrl = dict(scenario.get("controller", {}))
     if not ctrl:
         return ""
     law = str(ctrl.pop("law", "controller"))
     mode = ctrl.pop("mode", None)
+    if mode is None and ctrl.get("p") in (0.0, 1.0):  # the ADFG asymmetry p of a mode
+        mode = "ACM" if ctrl["p"] == 0.0 else "SCM"
     first = f"{law} {mode}" if mode else law
     extra = [f"{k} {v:g}" for k, v in ctrl.items() if k in ("current", "gain")]
     return first + (f" ({', '.join(extra)})" if extra else "")

@@ -180,6 +180,11 @@ FIELDS: tuple[str, ...] = tuple(
 ) + tuple(f"{s}.{c}.{k}" for s in _CORNER_SECTIONS for c in _CORNERS for k in SCENARIO_KEYS[s])
 
 
+#: the results' dimension of every field (``controller.gain`` -> ``controller_gain``): a
+#: case table may not take one of these names
+_DIMENSIONS = frozenset(f.replace(".", "_") for f in FIELDS)
+
+
 def expand_frequencies(value: Any, where: str = "frequencies") -> Any:
     """Expand a ``"log:N:f_min:f_max"`` / ``"lin:N:f_min:f_max"`` spec; other values unchanged.
 
@@ -345,7 +350,7 @@ def _grid_axis(name: str, values: Any) -> Axis:
 
 def _case_axis(name: str, cases: Any) -> Axis:
     where = f"[cases.{name}]"
-    if name in FIELDS or name == "frequency":
+    if name in FIELDS or name in _DIMENSIONS or name in ("frequency", "corner"):
         raise ValidationError(f"{where}: the name {name!r} is taken; choose another case name")
     if not isinstance(cases, Mapping):
         raise ValidationError(f"{where} must be a table of cases; got {cases!r}")
