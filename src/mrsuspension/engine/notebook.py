@@ -183,6 +183,37 @@ def _is_number(value: Any) -> bool:
     return isinstance(value, numbers.Real) and not isinstance(value, bool)
 
 
+_FIGURE_CLASS: type[Figure] | None = None
+
+
+def _figure_class() -> type[Figure]:
+    """:class:`ResultFigure`, made on first use (matplotlib is imported only then)."""
+    global _FIGURE_CLASS
+    if _FIGURE_CLASS is None:
+        from matplotlib.figure import Figure
+
+        class ResultFigure(Figure):
+            """A matplotlib Figure that a notebook shows without pyplot (``_repr_png_``)."""
+
+            def _repr_png_(self) -> bytes:
+                import io
+
+                buffer = io.BytesIO()
+                self.savefig(buffer, format="png", dpi=100)
+                return buffer.getvalue()
+
+        ResultFigure.__module__ = __name__
+        ResultFigure.__qualname__ = "ResultFigure"
+        _FIGURE_CLASS = ResultFigure
+    return _FIGURE_CLASS
+
+
+def __getattr__(name: str) -> Any:
+    if name == "ResultFigure":  # pickle finds the figure class by its name
+        return _figure_class()
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
 def new_figure(
     width: float, height: float, layout: Literal["tight", "constrained"] = "tight"
 ) -> Figure:
@@ -190,7 +221,8 @@ def new_figure(
     matplotlib's layout engine, ``"tight"`` by default).
 
     pyplot is not involved, so a notebook shows a returned figure once (as the cell's
-    value) and ``plt.close`` is not needed; ``fig.savefig`` works as usual.
+    value: its ``_repr_png_``, or the inline backend's renderer when pyplot is in use)
+    and ``plt.close`` is not needed; ``fig.savefig`` works as usual.
 
     Examples
     --------
@@ -198,11 +230,12 @@ def new_figure(
     >>> import matplotlib.pyplot as plt
     >>> fig.get_size_inches().tolist(), fig in map(plt.figure, plt.get_fignums())
     ([4.0, 3.0], False)
+    >>> fig._repr_png_()[:4]
+    b'\x89PNG'
     """
     from matplotlib.backends.backend_agg import FigureCanvasAgg
-    from matplotlib.figure import Figure
 
-    fig = Figure(figsize=(width, height), layout=layout)
+    fig = _figure_class()(figsize=(width, height), layout=layout)
     FigureCanvasAgg(fig)
     return fig
 
