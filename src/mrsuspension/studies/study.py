@@ -180,11 +180,6 @@ FIELDS: tuple[str, ...] = tuple(
 ) + tuple(f"{s}.{c}.{k}" for s in _CORNER_SECTIONS for c in _CORNERS for k in SCENARIO_KEYS[s])
 
 
-#: the results' dimension of every field (``controller.gain`` -> ``controller_gain``): a
-#: case table may not take one of these names
-_DIMENSIONS = frozenset(f.replace(".", "_") for f in FIELDS)
-
-
 def expand_frequencies(value: Any, where: str = "frequencies") -> Any:
     """Expand a ``"log:N:f_min:f_max"`` / ``"lin:N:f_min:f_max"`` spec; other values unchanged.
 
@@ -350,7 +345,7 @@ def _grid_axis(name: str, values: Any) -> Axis:
 
 def _case_axis(name: str, cases: Any) -> Axis:
     where = f"[cases.{name}]"
-    if name in FIELDS or name in _DIMENSIONS or name in ("frequency", "corner"):
+    if name in FIELDS or name == "frequency":
         raise ValidationError(f"{where}: the name {name!r} is taken; choose another case name")
     if not isinstance(cases, Mapping):
         raise ValidationError(f"{where} must be a table of cases; got {cases!r}")
@@ -576,6 +571,16 @@ class Study:
         for a in axes:
             if names.count(a.name) > 1:
                 raise ValidationError(f"dimension {a.name!r} is given twice")
+        from mrsuspension.studies.units import dimension_name
+
+        fields = {dimension_name(a.name): a.name for a in axes if "." in a.name}
+        for a in axes:  # the results name a field's dimension controller_gain, add corner
+            if "." not in a.name and (a.name in fields or a.name == "corner"):
+                field = f" (the dimension of {fields[a.name]})" if a.name in fields else ""
+                raise ValidationError(
+                    f"[cases.{a.name}]: the name {a.name!r} is taken{field}; choose another "
+                    "case name"
+                )
 
         points = _check_run_count(axes, exc)
         name = str(meta.get("name", "study"))

@@ -281,13 +281,22 @@ def test_study_dataset_follows_cf_and_reads_old_cache_files(studies: dict[str, A
 def test_a_case_table_may_not_take_a_dimension_name() -> None:
     from mrsuspension.studies import Study
 
-    with pytest.raises(ValidationError, match="the name 'controller_current' is taken"):
+    base = {"excitation": {"kind": "harmonic", "frequency": 5.0, "amplitude": 0.005}}
+    taken = "the name 'controller_current' is taken (the dimension of controller.current)"
+    with pytest.raises(ValidationError, match=re.escape(taken)):
         Study.from_dict(
             {
-                "excitation": {"kind": "harmonic", "frequency": 5.0, "amplitude": 0.005},
-                "cases": {"controller_current": {"a": {"controller.current": 0.1}}},
+                **base,
+                "grid": {"controller.current": [0.0, 0.1]},
+                "cases": {"controller_current": {"a": {"damper.force_gain": 1.0}}},
             }
         )
+    with pytest.raises(ValidationError, match="the name 'corner' is taken"):
+        Study.from_dict({**base, "cases": {"corner": {"a": {"controller.current": 0.1}}}})
+    alone = Study.from_dict(
+        {**base, "cases": {"controller_current": {"a": {"controller.current": 0.1}}}}
+    )
+    assert alone.dims == ("controller_current",)  # no field of that name: a valid case name
 
 
 # -- measures() carrying units ---------------------------------------------------------------
