@@ -25,7 +25,7 @@ from __future__ import annotations
 import copy
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, TypeVar, overload
 
 import numpy as np
 import numpy.typing as npt
@@ -38,6 +38,8 @@ from mrsuspension.scenario import Scenario
 if TYPE_CHECKING:
     import pandas as pd
     from matplotlib.figure import Figure
+
+_A = TypeVar("_A")  # the Axes a plot(..., ax=...) draws into and returns
 
 __all__ = [
     "TRADEOFF_MEASURES",
@@ -233,7 +235,15 @@ class TradeoffResult:
 
         return pd.DataFrame(self.rows())
 
-    def plot(self, extra: Mapping[str, Mapping[str, float]] | None = None) -> Figure:
+    @overload
+    def plot(
+        self, extra: Mapping[str, Mapping[str, float]] | None = ..., *, ax: None = None
+    ) -> Figure: ...
+    @overload
+    def plot(self, extra: Mapping[str, Mapping[str, float]] | None = ..., *, ax: _A) -> _A: ...
+    def plot(
+        self, extra: Mapping[str, Mapping[str, float]] | None = None, *, ax: Any = None
+    ) -> Any:
         """Comfort against road holding (left) and against rattle space (right).
 
         Each panel marks its two-measure Pareto front (a line through the non-dominated
@@ -244,17 +254,22 @@ class TradeoffResult:
         extra : mapping, optional
             Label -> measures of further points to mark with a star (e.g. the
             optimiser's best controller).
+        ax : sequence of two matplotlib Axes, optional
+            Draw the two panels there (the legend in the second) and return ``ax``;
+            default: a new Figure made without pyplot (a notebook shows it once).
         """
-        import matplotlib
-
-        matplotlib.use("Agg", force=False)
-        import matplotlib.pyplot as plt
+        from mrsuspension.engine.notebook import axes_for, new_figure
 
         data = self.matrix()
         all3 = self.pareto()
         families = list(dict.fromkeys(p.family for p in self.points))
         markers = dict(zip(families, "osD^vXPh", strict=False))
-        fig, axes = plt.subplots(1, 2, figsize=(11, 5.2), layout="constrained")
+        given = ax  # the loop below names each panel ax
+        if given is None:
+            fig = new_figure(11.0, 5.2, layout="constrained")
+            axes = list(fig.subplots(1, 2))
+        else:
+            axes = axes_for(given, 2, "panels")
         scale = (1.0, 1.0, 1e3)  # stroke in mm
         for ax, j in zip(axes, (1, 2), strict=True):
             x = data[:, 0]
@@ -293,6 +308,9 @@ class TradeoffResult:
         axes[0].set_title("comfort vs road holding (down-left is better)", fontsize=9)
         axes[1].set_title("comfort vs rattle space (down-left is better)", fontsize=9)
         handles, labels = axes[1].get_legend_handles_labels()
+        if given is not None:
+            axes[1].legend(handles, labels, fontsize=7)
+            return given
         fig.legend(handles, labels, loc="outside lower center", ncol=4, fontsize=7)
         return fig
 

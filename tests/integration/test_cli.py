@@ -172,7 +172,7 @@ def test_study_command_runs_the_example_study(tmp_path: Path) -> None:
     rows = json.loads(out)
     assert len(rows) == 18
     assert (tmp_path / "study.nc").exists()
-    peak = {c: max(r["T_as"] for r in rows if r["controller.current"] == c) for c in (0.0, 0.1)}
+    peak = {c: max(r["T_as"] for r in rows if r["controller_current"] == c) for c in (0.0, 0.1)}
     assert peak[0.1] < peak[0.0]  # section 4.3.2: passive current lowers the T_as peak
 
 

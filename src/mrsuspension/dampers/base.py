@@ -108,20 +108,29 @@ class DamperResponse:
         return float(np.trapezoid(self.force * self.velocity, self.time))
 
     def to_pandas(self) -> pd.DataFrame:
-        """The signals as a DataFrame indexed by time (needs pandas)."""
+        """The signals as a DataFrame indexed by ``time``, columns by plain name
+        (``df["force"]``), units in ``df.attrs["units"]``."""
         import pandas as pd
 
-        data = {f"{k} [{u}]": getattr(self, k) for k, u in self.units.items() if k != "time"}
-        return pd.DataFrame(data, index=pd.Index(self.time, name="time [s]"))
+        df = pd.DataFrame(
+            {k: getattr(self, k) for k in self.units if k != "time"},
+            index=pd.Index(self.time, name="time"),
+        )
+        df.attrs["units"] = dict(self.units)
+        return df
 
     def plot(self, kind: str = "F-v", ax: Axes | None = None, **style: Any) -> Axes:
-        """Plot the force loop against velocity (``"F-v"``) or stroke (``"F-x"``)."""
+        """Plot the force loop against velocity (``"F-v"``) or stroke (``"F-x"``).
+
+        Draws into ``ax`` when given, else into a new figure made without pyplot
+        (:func:`~mrsuspension.engine.notebook.new_figure`; ``ax.figure``); returns the Axes.
+        """
         if kind not in ("F-v", "F-x"):
             raise ValidationError(f"plot kind must be 'F-v' or 'F-x'; got {kind!r}")
         if ax is None:
-            import matplotlib.pyplot as plt
+            from mrsuspension.engine.notebook import new_figure
 
-            _, ax = plt.subplots()
+            ax = new_figure(6.4, 4.8).subplots()
         if kind == "F-v":
             ax.plot(self.velocity, self.force, **style)
             ax.set_xlabel("damper velocity $v_d$ [m/s]")

@@ -7,6 +7,8 @@ controller outputs, compiled with numba.
 * :class:`RunSettings` - ``dt``, ``duration`` and ``output_rate`` of a run;
 * :class:`KernelArrays` - the compiled step's arrays by name
   (:meth:`Simulation.kernel_arrays`);
+* :class:`Measures` - a run's measures: a ``dict`` that carries their units
+  (``result.measures().units``);
 * :class:`VehicleSimulation` - a half or full car with a damper and a controller at every
   corner on a :class:`WheelInput` (e.g. :class:`SameRoadAtEveryWheel`), and
   :func:`run_vehicles` for batches, loaded on first use (:mod:`mrsuspension.engine.vehicle`).
@@ -21,6 +23,7 @@ from typing import TYPE_CHECKING
 
 from mrsuspension._lazy import lazy_namespace
 from mrsuspension.engine.arrays import KernelArrays
+from mrsuspension.engine.notebook import Measures
 from mrsuspension.engine.result import SIGNALS, SimulationDiverged, SimulationResult
 from mrsuspension.engine.settings import RunPlan, RunSettings
 from mrsuspension.engine.simulate import (
@@ -62,6 +65,7 @@ __all__ = [
     "DEFAULT_DT",
     "SIGNALS",
     "KernelArrays",
+    "Measures",
     "RoadInput",
     "RunPlan",
     "RunSettings",

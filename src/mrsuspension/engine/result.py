@@ -6,11 +6,12 @@ import json
 from collections.abc import Iterator, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, TypeVar, overload
 
 import numpy as np
 import numpy.typing as npt
 
+from mrsuspension.engine.notebook import Measures, axes_for, html_table, new_figure
 from mrsuspension.errors import MRSuspensionError, ValidationError, unknown_name
 
 if TYPE_CHECKING:
@@ -23,14 +24,18 @@ if TYPE_CHECKING:
 __all__ = [
     "CLAMP_WARN_FRACTION",
     "MEASURES_BY_KIND",
+    "MEASURE_NAMES",
     "MEASURE_NOTES",
     "MEASURE_UNITS",
     "PARQUET_METADATA_KEY",
     "SIGNALS",
+    "Measures",
     "SimulationDiverged",
     "SimulationResult",
     "VelocityClampWarning",
+    "controller_text",
     "describe_run",
+    "excitation_text",
     "measure_label",
     "measures_context",
     "pulse_measures",
@@ -38,6 +43,8 @@ __all__ = [
     "road_measures",
     "warn_if_clamped",
 ]
+
+_A = TypeVar("_A")  # the Axes a plot(..., ax=...) draws into and returns
 
 #: Share of a record with v_m at its upper clamp above which a run warns: beyond it the
 #: force model is pinned at the edge of its identified range (model reference, section 2.4).
@@ -92,6 +99,32 @@ MEASURE_UNITS: dict[str, str] = {
     "wk_rms_body_acceleration": "m/s^2",
     "vdv": "m/s^1.75",
     "rms_stroke": "m",
+}
+#: What each measure of :data:`MEASURE_UNITS` is, in a few words (the ``long_name`` of
+#: a study data set's variables and coordinates; model reference, section 9).
+MEASURE_NAMES: dict[str, str] = {
+    "frequency": "excitation frequency",
+    "amplitude": "excitation amplitude",
+    "T_as": "sprung-mass acceleration transmissibility",
+    "T_au": "unsprung-mass acceleration transmissibility",
+    "T_dr": "stroke over road displacement (rms ratio)",
+    "T_ds": "sprung-mass displacement transmissibility",
+    "T_du": "unsprung-mass displacement transmissibility",
+    "DLC": "dynamic load coefficient (tire force std over load)",
+    "gamma": "damper force asymmetry (max rebound over max compression)",
+    "mean_current": "mean drive current",
+    "mean_square_current": "mean square drive current",
+    "vm_clamp_fraction": "share of the record with v_m at its upper clamp",
+    "SDR_s": "peak sprung-mass displacement over peak road displacement",
+    "SAR_s": "peak sprung-mass acceleration over road acceleration peak",
+    "SDR_u": "peak unsprung-mass displacement over peak road displacement",
+    "SAR_u": "peak unsprung-mass acceleration over road acceleration peak",
+    "RDR": "peak damper stroke over peak road displacement",
+    "peak_tire_force": "peak tire force",
+    "rms_body_acceleration": "rms body acceleration",
+    "wk_rms_body_acceleration": "Wk-weighted rms body acceleration (ISO 2631-1)",
+    "vdv": "vibration dose value (ISO 2631-1)",
+    "rms_stroke": "rms damper stroke",
 }
 #: Key of the JSON entry (scenario, ``dt``, units) in a saved Parquet file's schema metadata.
 PARQUET_METADATA_KEY = "mrsuspension"
@@ -198,10 +231,49 @@ class SimulationResult(Mapping[str, np.ndarray]):
         raise AttributeError(key)
 
     def __repr__(self) -> str:
-        law = self.scenario.get("controller", {}).get("law", "?")
-        return (
-            f"SimulationResult({self.time.size} samples, {self.time[-1]:.3g} s, controller={law!r})"
-        )
+        return f"{type(self).__name__}({self._summary_line()})"
+
+    def _summary_line(self) -> str:
+        """``"<model>, <controller>, <excitation>: N samples over T s, dt"``."""
+        what = ", ".join(
+            t for t in (self._model_text(), self._controller_text(),
+                        excitation_text(self.scenario)) if t
+        )  # fmt: skip
+        return f"{what}: {self.time.size} samples over {self._duration():.4g} s, dt {_dt_text(self.dt)}"
+
+    def _duration(self) -> float:
+        return float(self.time[-1] - self.time[0]) if self.time.size else 0.0
+
+    def _model_text(self) -> str:
+        """The vehicle and the damper, e.g. ``"quarter car, wang-symmetric damper"``."""
+        damper = self.scenario.get("damper", {}).get("model")
+        return "quarter car" + (f", {damper} damper" if damper else "")
+
+    def _controller_text(self) -> str:
+        return controller_text(self.scenario)
+
+    def _summary_rows(self) -> list[tuple[str, str]]:
+        """The rows of the HTML summary before the measures."""
+        rows = [("model", self._model_text())]
+        ctrl = self._controller_text()
+        if ctrl:
+            rows.append(("controller", ctrl))
+        rows.append(("excitation", excitation_text(self.scenario) or "-"))
+        rows.append(("duration", f"{self._duration():.4g} s ({self.time.size} samples)"))
+        rows.append(("dt", _dt_text(self.dt)))
+        return rows
+
+    def _repr_html_(self) -> str:
+        """A notebook's view: model, controller, excitation, duration, dt, the measures."""
+        head = html_table(self._summary_rows(), caption=type(self).__name__)
+        return f"<div>{head}{self._html_measures()}</div>"
+
+    def _html_measures(self) -> str:
+        """The measures' table of the HTML summary (or why there is none)."""
+        try:
+            return self.measures()._repr_html_()
+        except Exception as exc:  # a record too short for its measures: say so, still show
+            return html_table([("measures", f"not available: {exc}")])
 
     # -- peak-velocity clamp (model reference, section 2.4) --------------------------------
     @property
@@ -227,8 +299,11 @@ class SimulationResult(Mapping[str, np.ndarray]):
         return self.velocity_clamp_fraction * float(self.time[-1] - self.time[0])
 
     # -- measures (model reference, section 9) ---------------------------------------------
-    def measures(self, *, road_peak: RoadPeak = "after-onset") -> dict[str, Any]:
+    def measures(self, *, road_peak: RoadPeak = "after-onset") -> Measures:
         """The measures suited to the excitation, by their names (model reference, section 9).
+
+        A :class:`~mrsuspension.engine.notebook.Measures`: a ``dict`` whose ``units``
+        give each measure's unit (:data:`MEASURE_UNITS`).
 
         * harmonic: ``T_as``, ``T_au``, ``T_dr``, ``T_ds``, ``T_du``, ``DLC``, ``gamma``,
           ``mean_current``, ``mean_square_current`` (steady window, model reference, section 9);
@@ -259,6 +334,8 @@ class SimulationResult(Mapping[str, np.ndarray]):
         >>> m = res.measures()
         >>> m["road_peak"], round(m["SAR_s"] / res.measures(road_peak="onset")["SAR_s"], 2)
         ('after-onset', 4.85)
+        >>> m.units["peak_tire_force"], m.label("SAR_s")
+        ('N', 'SAR_s [-]')
         """
         from mrsuspension.measures import check_road_peak
 
@@ -266,7 +343,7 @@ class SimulationResult(Mapping[str, np.ndarray]):
         kind, exc, static_load = measures_context(self.scenario)
         out: dict[str, Any] = self._kind_measures(kind, exc, static_load, how)
         out["vm_clamp_fraction"] = self.velocity_clamp_fraction
-        return out
+        return Measures(out, units=MEASURE_UNITS)
 
     def _kind_measures(
         self, kind: Any, exc: Mapping[str, Any], static_load: float, how: RoadPeak
@@ -315,11 +392,26 @@ class SimulationResult(Mapping[str, np.ndarray]):
 
     # -- exports -----------------------------------------------------------------------
     def to_pandas(self) -> pd.DataFrame:
-        """The signals as a DataFrame indexed by time, columns ``"name [unit]"``."""
+        """The signals as a DataFrame indexed by ``time``, one column per signal by its
+        plain name (``df["z_s"]``); the units are in ``df.attrs["units"]`` (name -> unit,
+        ``"time"`` included).
+
+        Examples
+        --------
+        >>> res = SimulationResult(time=np.arange(3.0), signals={"F_d": np.zeros(3)},
+        ...     units={"time": "s", "F_d": "N"})
+        >>> df = res.to_pandas()
+        >>> list(df.columns), df.index.name, df.attrs["units"]
+        (['F_d'], 'time', {'time': 's', 'F_d': 'N'})
+        """
         import pandas as pd
 
-        data = {f"{k} [{self.units[k]}]": v for k, v in self.signals.items()}
-        return pd.DataFrame(data, index=pd.Index(self.time, name="time [s]"))
+        df = pd.DataFrame(dict(self.signals), index=pd.Index(self.time, name="time"))
+        df.attrs["units"] = {
+            "time": self.units.get("time", "s"),
+            **{k: self.units.get(k, "") for k in self.signals},
+        }
+        return df
 
     def to_xarray(self) -> xr.Dataset:
         """The signals as an xarray Dataset over ``time``, with units and descriptions."""
@@ -330,11 +422,20 @@ class SimulationResult(Mapping[str, np.ndarray]):
                 k: ("time", v, {"units": self.units[k], "long_name": SIGNALS.get(k, ("", k))[1]})
                 for k, v in self.signals.items()
             },
-            coords={"time": ("time", self.time, {"units": "s"})},
+            coords={"time": ("time", self.time, {"units": "s", "long_name": "time"})},
         )
         ds.attrs["scenario"] = json.dumps(self.scenario, default=str)
         ds.attrs["dt"] = self.dt
         return ds
+
+    def _file_metadata(self) -> dict[str, Any]:
+        """Further metadata a saved file keeps (a vehicle: its corners)."""
+        return {}
+
+    @classmethod
+    def _loaded(cls, meta: Mapping[str, Any], signals: Mapping[str, Any]) -> dict[str, Any]:
+        """Further constructor arguments from a loaded file's metadata."""
+        return {}
 
     def save(self, path: str | Path) -> Path:
         """Write to ``.csv`` (with a JSON side file of the scenario), ``.nc`` or ``.parquet``.
@@ -354,7 +455,10 @@ class SimulationResult(Mapping[str, np.ndarray]):
             require_pyarrow()
         path.parent.mkdir(parents=True, exist_ok=True)
         if suffix == ".csv":
-            header = ",".join(["time [s]", *(f"{k} [{self.units[k]}]" for k in self.signals)])
+            from mrsuspension.engine.notebook import with_unit_headers
+
+            labelled = with_unit_headers(self.to_pandas())  # "name [unit]" headers
+            header = ",".join(map(str, [labelled.index.name, *labelled.columns]))
             table = np.column_stack([self.time, *self.signals.values()])
             np.savetxt(path, table, delimiter=",", header=header, comments="", fmt="%.9g")
             path.with_suffix(".json").write_text(
@@ -374,12 +478,15 @@ class SimulationResult(Mapping[str, np.ndarray]):
         df = self.to_pandas()
         df.attrs = {}
         table = pa.Table.from_pandas(df)
-        labels = {"time": "time [s]", **{k: f"{k} [{self.units[k]}]" for k in self.signals}}
+        # columns by plain name (files written before name them "name [unit]"): the
+        # "columns" entry maps each signal to its column either way
+        labels = {"time": "time", **{k: k for k in self.signals}}
         meta = {
             "scenario": self.scenario,
             "dt": self.dt,
             "units": {k: self.units[k] for k in labels},
             "columns": labels,
+            **self._file_metadata(),
         }
         entry = {PARQUET_METADATA_KEY.encode(): json.dumps(meta, default=str).encode()}
         pq.write_table(
@@ -418,16 +525,17 @@ class SimulationResult(Mapping[str, np.ndarray]):
         else:
             import xarray as xr
 
+            where = f"result file {str(path)!r}"
             with xr.open_dataset(path) as ds:
-                data = {"time": ds["time"].to_numpy().astype(np.float64)}
-                data.update({str(k): ds[k].to_numpy().astype(np.float64) for k in ds.data_vars})
-                units = {k: str(ds[k].attrs.get("units", "")) for k in data}
+                data, units = _flat_signals(ds)
                 meta = {
-                    "scenario": parse_json(
-                        str(ds.attrs.get("scenario", "{}")), f"result file {str(path)!r}"
-                    ),
+                    "scenario": parse_json(str(ds.attrs.get("scenario", "{}")), where),
                     "dt": float(ds.attrs.get("dt", 0.0)),
                 }
+                if "corner" in ds.coords:
+                    meta["corners"] = [str(c) for c in ds["corner"].values]
+                if "corner_scenarios" in ds.attrs:
+                    meta["corner_scenarios"] = parse_json(str(ds.attrs["corner_scenarios"]), where)
         time = data.pop("time")
         return cls(
             time=time,
@@ -435,13 +543,22 @@ class SimulationResult(Mapping[str, np.ndarray]):
             scenario=dict(meta.get("scenario", {})),
             dt=float(meta.get("dt", 0.0)),
             units={"time": "s", **{k: str(units.get(k, "")) for k in data}},
+            **cls._loaded(meta, data),
         )
 
+    @overload
+    def plot(
+        self, signals: tuple[str, ...] = ..., title: str | None = ..., *, ax: None = None
+    ) -> Figure: ...
+    @overload
+    def plot(self, signals: tuple[str, ...] = ..., title: str | None = ..., *, ax: _A) -> _A: ...
     def plot(
         self,
         signals: tuple[str, ...] = ("z_s_ddot", "x_d", "F_d", "F_T", "i_d"),
         title: str | None = None,
-    ) -> Figure:
+        *,
+        ax: Any = None,
+    ) -> Any:
         """Time histories of some signals, one panel each, titled with the run.
 
         Parameters
@@ -449,8 +566,18 @@ class SimulationResult(Mapping[str, np.ndarray]):
         signals : tuple of str
             Signals to show, one panel each.
         title : str, optional
-            Figure title; default: the controller and the excitation of the run
-            (:func:`describe_run`).
+            Title; default: the controller and the excitation of the run
+            (:func:`describe_run`). With ``ax``, set on the first Axes only when given.
+        ax : matplotlib Axes or sequence of Axes, optional
+            Draw into these instead of a new figure: one Axes per signal, or a single
+            Axes for all of them (each line labelled ``"name [unit]"``, with a legend).
+
+        Returns
+        -------
+        matplotlib.figure.Figure or Axes
+            Without ``ax``: a new :class:`~matplotlib.figure.Figure`, made without
+            pyplot (a notebook shows it once; no ``plt.close`` needed). With ``ax``:
+            ``ax``, as given.
 
         Examples
         --------
@@ -460,24 +587,36 @@ class SimulationResult(Mapping[str, np.ndarray]):
         >>> fig = res.plot(("F_d",))
         >>> fig._suptitle.get_text()
         'passive (current 0.1)'
-        >>> import matplotlib.pyplot as plt; plt.close(fig)
+        >>> from mrsuspension.engine.notebook import new_figure
+        >>> ax = new_figure(4.0, 3.0).subplots()
+        >>> res.plot(("F_d", "F_d"), ax=ax) is ax, len(ax.get_lines())
+        (True, 2)
         """
-        import matplotlib
-
-        matplotlib.use("Agg", force=False)
-        import matplotlib.pyplot as plt
-
         for s in signals:
             self[s]
-        fig, axes = plt.subplots(len(signals), 1, sharex=True, figsize=(8, 1.8 * len(signals)))
-        for ax, s in zip(np.atleast_1d(axes), signals, strict=True):
-            ax.plot(self.time, self[s], lw=0.8)
-            ax.set_ylabel(f"{s} [{self.units[s]}]")
-            ax.grid(True, alpha=0.3)
-        np.atleast_1d(axes)[-1].set_xlabel("time [s]")
+        if ax is not None:
+            axes = axes_for(ax, len(signals))
+            shared = len(signals) > 1 and len({id(a) for a in axes}) == 1
+            for a, s in zip(axes, signals, strict=True):
+                a.plot(self.time, self[s], lw=0.8, label=self._label(s) if shared else None)
+                if not shared:
+                    a.set_ylabel(self._label(s))
+                a.grid(True, alpha=0.3)
+            axes[-1].set_xlabel(f"time [{self.units.get('time', 's')}]")
+            if shared:
+                axes[0].legend(fontsize=8)
+            if title is not None:
+                axes[0].set_title(title, fontsize=10)
+            return ax
+        fig = new_figure(8.0, 1.8 * len(signals))
+        panels = fig.subplots(len(signals), 1, sharex=True, squeeze=False)[:, 0]
+        self.plot(signals, ax=list(panels))
         fig.suptitle(describe_run(self.scenario) if title is None else title, fontsize=10)
-        fig.tight_layout()
         return fig
+
+    def _label(self, name: str) -> str:
+        unit = self.units.get(name)
+        return f"{name} [{unit}]" if unit else name
 
 
 def measures_context(scenario: Mapping[str, Any]) -> tuple[Any, Mapping[str, Any], float]:
@@ -568,23 +707,59 @@ def describe_run(scenario: Mapping[str, Any]) -> str:
     >>> describe_run({})
     'simulation'
     """
-    parts = []
+    parts = [controller_text(scenario), excitation_text(scenario)]
+    return ", ".join(p for p in parts if p) or "simulation"
+
+
+def controller_text(scenario: Mapping[str, Any]) -> str:
+    """The controller of a run in a few words (``""`` without one).
+
+    Examples
+    --------
+    >>> controller_text({"controller": {"law": "passive", "current": 0.2}})
+    'passive (current 0.2)'
+    >>> controller_text({"controller": {"law": "skyhook-hilo", "p": 0.0, "gain": 3.0}})
+    'skyhook-hilo ACM (gain 3)'
+    """
     ctrl = dict(scenario.get("controller", {}))
-    if ctrl:
-        law = str(ctrl.pop("law", "controller"))
-        mode = ctrl.pop("mode", None)
-        first = f"{law} {mode}" if mode else law
-        extra = [f"{k} {v:g}" for k, v in ctrl.items() if k in ("current", "gain")]
-        parts.append(first + (f" ({', '.join(extra)})" if extra else ""))
+    if not ctrl:
+        return ""
+    law = str(ctrl.pop("law", "controller"))
+    mode = ctrl.pop("mode", None)
+    if mode is None and ctrl.get("p") in (0.0, 1.0):  # the ADFG asymmetry p of a mode
+        mode = "ACM" if ctrl["p"] == 0.0 else "SCM"
+    first = f"{law} {mode}" if mode else law
+    extra = [f"{k} {v:g}" for k, v in ctrl.items() if k in ("current", "gain")]
+    return first + (f" ({', '.join(extra)})" if extra else "")
+
+
+def excitation_text(scenario: Mapping[str, Any]) -> str:
+    """The excitation of a run in a few words (``""`` without one); a vehicle's road
+    that wraps one excitation names both.
+
+    Examples
+    --------
+    >>> excitation_text({"excitation": {"kind": "same-road-at-every-wheel",
+    ...     "excitation": {"kind": "harmonic", "frequency": 2.0, "amplitude": 0.01}}})
+    'same-road-at-every-wheel: harmonic 2 Hz, 10 mm'
+    """
     exc = scenario.get("excitation", {})
-    if exc:
-        kind = str(exc.get("kind", "excitation"))
-        if kind == "harmonic" and "frequency" in exc:
-            kind += f" {exc['frequency']:g} Hz, {1e3 * float(exc.get('amplitude', 0.0)):g} mm"
-        elif "speed_kmh" in exc:
-            kind += f" at {exc['speed_kmh']:g} km/h"
-        parts.append(kind)
-    return ", ".join(parts) or "simulation"
+    if not exc:
+        return ""
+    kind = str(exc.get("kind", "excitation"))
+    if kind == "harmonic" and "frequency" in exc:
+        kind += f" {exc['frequency']:g} Hz, {1e3 * float(exc.get('amplitude', 0.0)):g} mm"
+    elif "speed_kmh" in exc:
+        kind += f" at {exc['speed_kmh']:g} km/h"
+    inner = exc.get("excitation")
+    if isinstance(inner, Mapping) and inner:
+        kind += f": {excitation_text({'excitation': inner})}"
+    return kind
+
+
+def _dt_text(dt: float) -> str:
+    """A time step for a summary: ``"0.1 ms"`` (``"-"`` when not recorded)."""
+    return f"{dt * 1e3:.4g} ms" if dt > 0.0 else "-"
 
 
 def require_pyarrow() -> None:
@@ -622,6 +797,27 @@ def warn_if_clamped(result: SimulationResult) -> None:
             VelocityClampWarning,
             stacklevel=3,
         )
+
+
+def _flat_signals(
+    ds: xr.Dataset,
+) -> tuple[dict[str, npt.NDArray[np.float64]], dict[str, str]]:
+    """Signals by name and their units from a NetCDF result: a variable over
+    ``("time", "corner")`` becomes one ``"<name>.<corner>"`` signal per corner."""
+    data = {"time": ds["time"].to_numpy().astype(np.float64)}
+    units = {"time": str(ds["time"].attrs.get("units", "s"))}
+    for key in ds.data_vars:
+        var = ds[key]
+        unit = str(var.attrs.get("units", ""))
+        if "corner" in var.dims:
+            var = var.transpose("time", "corner")
+            for c, column in zip(ds["corner"].values, var.to_numpy().T, strict=True):
+                data[f"{key}.{c}"] = column.astype(np.float64)
+                units[f"{key}.{c}"] = unit
+        else:
+            data[str(key)] = var.to_numpy().astype(np.float64)
+            units[str(key)] = unit
+    return data, units
 
 
 def _read_parquet(

@@ -9,14 +9,16 @@ produces them.
 
 from __future__ import annotations
 
+import json
 from collections.abc import Mapping
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, TypeVar, overload
 
 import numpy as np
 
 from mrsuspension.engine import vehicle_kernel as VX
-from mrsuspension.engine.result import SIGNALS, SimulationResult
+from mrsuspension.engine.notebook import Measures, html_table
+from mrsuspension.engine.result import MEASURE_UNITS, SIGNALS, SimulationResult, controller_text
 from mrsuspension.errors import ValidationError, check_range, unknown_name
 
 if TYPE_CHECKING:
@@ -31,6 +33,8 @@ __all__ = [
     "VEHICLE_MEASURE_UNITS",
     "VehicleResult",
 ]
+
+_A = TypeVar("_A")  # the Axes a plot(..., ax=...) draws into and returns
 
 #: Body signals of a vehicle result: name -> (unit, description).
 BODY_SIGNALS: dict[str, tuple[str, str]] = {
@@ -65,7 +69,7 @@ BODY_MEASURES: dict[str, tuple[str, str]] = {
 }
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)  # the short repr of SimulationResult
 class VehicleResult(SimulationResult):
     """Time histories of a half- or full-car run: body and per-corner signals with units.
 
@@ -74,15 +78,55 @@ class VehicleResult(SimulationResult):
     body at the corner, ``z_u``, ``z_r``, ``x_d`` the stroke, ``v_d``, ``F_d``, ``F_T``,
     ``i_d``, ...) named ``"<signal>.<corner>"``, e.g. ``result["F_T.rear_left"]``.
     :meth:`corner` gives one corner as a quarter-car
-    :class:`~mrsuspension.engine.result.SimulationResult` (with its measures). Exports
-    (``to_pandas``, ``to_xarray``, ``save``) are the quarter car's.
+    :class:`~mrsuspension.engine.result.SimulationResult` (with its measures).
+    ``to_pandas`` has one column per signal (``df["F_T.rear_left"]``, units in
+    ``df.attrs["units"]``); ``to_xarray`` stacks the corners along a ``corner``
+    dimension (``ds["F_T"].sel(corner="rear_left")``); ``save`` and ``load`` keep the
+    corners.
     """
 
     corners: tuple[str, ...] = ()
     corner_scenarios: Mapping[str, dict[str, Any]] = field(default_factory=dict)
 
-    def __repr__(self) -> str:
-        return f"VehicleResult({self.time.size} samples, {self.time[-1]:.3g} s, corners={self.corners})"
+    def _model_text(self) -> str:
+        """The vehicle, its corners and dampers, e.g. ``"full-car (4 corners), wang-symmetric dampers"``."""
+        model = str(self.scenario.get("vehicle", {}).get("model", "vehicle"))
+        dampers = {
+            str(cs.get("damper", {}).get("model"))
+            for cs in self.corner_scenarios.values()
+            if cs.get("damper", {}).get("model")
+        }
+        text = f"{model} ({len(self.corners)} corners)"
+        return text + (f", {', '.join(sorted(dampers))} dampers" if dampers else "")
+
+    def _html_measures(self) -> str:
+        """The measures for the HTML summary; the body's alone when the corners' fail."""
+        try:
+            return self.measures()._repr_html_()
+        except Exception as exc:  # e.g. a harmonic record too short for its steady window
+            units = {k: u for k, (_, u) in BODY_MEASURES.items()}
+            body = Measures(self._body_measures(), units=units)._repr_html_()
+            return body + html_table([("corner measures", f"not available: {exc}")])
+
+    def _body_measures(self) -> dict[str, float]:
+        """The RMS of the body accelerations (:data:`BODY_MEASURES`)."""
+        out: dict[str, float] = {}
+        for name, (signal, _) in BODY_MEASURES.items():
+            if signal == "roll_ddot" and len(self.corners) < 4:
+                continue  # a half car has no roll
+            values = np.asarray(self.signals[signal], dtype=float)
+            out[name] = float(np.sqrt(np.mean(values * values)))
+        return out
+
+    def _controller_text(self) -> str:
+        """The vehicle's controller, or the corners' (one text when they agree)."""
+        own = controller_text(self.scenario)
+        if own:
+            return own
+        texts = {c: controller_text(cs) for c, cs in self.corner_scenarios.items()}
+        if len(set(texts.values())) == 1:
+            return next(iter(texts.values()))
+        return "; ".join(f"{c}: {t}" for c, t in texts.items() if t)
 
     def corner(self, name: str) -> SimulationResult:
         """One corner as a quarter-car result (``z_s`` is the body's motion there).
@@ -109,7 +153,12 @@ class VehicleResult(SimulationResult):
         )
 
     def to_xarray(self) -> xr.Dataset:
-        """The signals as an xarray Dataset over ``time``, with units and descriptions.
+        """The signals as an xarray Dataset over ``time`` and ``corner``, CF-style.
+
+        Body signals have the dimension ``time``; every per-corner signal is one
+        variable by its quarter-car name with the dimensions ``("time", "corner")``
+        (``ds["F_T"].sel(corner="rear")``). Every variable carries ``units`` and
+        ``long_name``; the scenario is a JSON attribute.
 
         Examples
         --------
@@ -118,33 +167,80 @@ class VehicleResult(SimulationResult):
         >>> from mrsuspension.vehicle import HalfCar
         >>> sim = VehicleSimulation(HalfCar(), SameRoadAtEveryWheel(Harmonic(2.0, 0.01), ("front", "rear")))
         >>> ds = sim.run(0.1).to_xarray()
-        >>> ds["F_T.rear"].attrs["long_name"], ds["pitch"].attrs["units"]
-        ('tire force (total, 0 when lifted off) at rear', 'rad')
+        >>> ds["F_T"].dims, ds["F_T"].attrs["long_name"], ds["pitch"].attrs["units"]
+        (('time', 'corner'), 'tire force (total, 0 when lifted off)', 'rad')
+        >>> ds["corner"].values.tolist()
+        ['front', 'rear']
         """
-        ds = super().to_xarray()
-        for name in ds.data_vars:
-            key = str(name)
-            if key in BODY_SIGNALS:
-                ds[key].attrs["long_name"] = BODY_SIGNALS[key][1]
-            elif "." in key:
-                base, corner = key.split(".", 1)
-                if base in SIGNALS:
-                    ds[key].attrs["long_name"] = f"{SIGNALS[base][1]} at {corner}"
-                elif base in VEHICLE_CORNER_SIGNALS:
-                    ds[key].attrs["long_name"] = f"{VEHICLE_CORNER_SIGNALS[base][1]} at {corner}"
+        import xarray as xr
+
+        per_corner: dict[str, dict[str, np.ndarray]] = {}
+        body: dict[str, np.ndarray] = {}
+        for key, values in self.signals.items():
+            base, dot, corner = key.partition(".")
+            if dot and corner in self.corners:
+                per_corner.setdefault(base, {})[corner] = values
+            else:
+                body[key] = values
+        data_vars: dict[str, Any] = {}
+        for key, values in body.items():
+            attrs = {"units": self.units.get(key, ""), "long_name": _signal_name(key)}
+            data_vars[key] = ("time", values, attrs)
+        blank = np.full(self.time.size, np.nan)
+        for base, by_corner in per_corner.items():
+            stack = np.column_stack([by_corner.get(c, blank) for c in self.corners])
+            unit = next(self.units[f"{base}.{c}"] for c in by_corner if f"{base}.{c}" in self.units)
+            attrs = {"units": unit, "long_name": _signal_name(base)}
+            data_vars[base] = (("time", "corner"), stack, attrs)
+        coords = {
+            "time": ("time", self.time, {"units": "s", "long_name": "time"}),
+            "corner": ("corner", list(self.corners), {"long_name": "wheel corner"}),
+        }
+        ds = xr.Dataset(data_vars, coords=coords)
+        ds.attrs["scenario"] = json.dumps(self.scenario, default=str)
+        ds.attrs["dt"] = self.dt
+        ds.attrs["corner_scenarios"] = json.dumps(self.corner_scenarios, default=str)
         return ds
 
+    @classmethod
+    def _loaded(cls, meta: Mapping[str, Any], signals: Mapping[str, Any]) -> dict[str, Any]:
+        corners = meta.get("corners")
+        if corners is None:  # a file without the list: the corners its signals name
+            names = [k.partition(".")[2] for k in signals if "." in k]
+            corners = list(dict.fromkeys(names))
+        return {
+            "corners": tuple(str(c) for c in corners),
+            "corner_scenarios": dict(meta.get("corner_scenarios", {})),
+        }
+
+    def _file_metadata(self) -> dict[str, Any]:
+        return {"corners": list(self.corners), "corner_scenarios": dict(self.corner_scenarios)}
+
+    @overload
+    def plot(
+        self, signals: tuple[str, ...] = ..., title: str | None = ..., *, ax: None = None
+    ) -> Figure: ...
+    @overload
+    def plot(self, signals: tuple[str, ...] = ..., title: str | None = ..., *, ax: _A) -> _A: ...
     def plot(
         self,
         signals: tuple[str, ...] = ("heave_ddot", "pitch_ddot", "roll_ddot"),
         title: str | None = None,
-    ) -> Figure:
-        """Time histories of some signals, one panel each (default: body accelerations)."""
-        return super().plot(signals, title=title)
+        *,
+        ax: Any = None,
+    ) -> Any:
+        """Time histories of some signals, one panel each (default: body accelerations).
 
-    def measures(self, **kwargs: Any) -> dict[str, Any]:
+        As :meth:`SimulationResult.plot <mrsuspension.engine.result.SimulationResult.plot>`:
+        a new pyplot-free Figure, or drawn into ``ax`` (one Axes or one per signal) and
+        ``ax`` returned.
+        """
+        return super().plot(signals, title=title, ax=ax)
+
+    def measures(self, **kwargs: Any) -> Measures:
         """The body's RMS accelerations (:data:`BODY_MEASURES`), then every corner's
-        quarter-car measures, keyed ``"<measure>.<corner>"``.
+        quarter-car measures, keyed ``"<measure>.<corner>"``, with their units
+        (a :class:`~mrsuspension.engine.notebook.Measures`).
 
         Takes the keywords of :meth:`SimulationResult.measures
         <mrsuspension.engine.result.SimulationResult.measures>`.
@@ -155,19 +251,17 @@ class VehicleResult(SimulationResult):
         >>> from mrsuspension.excitation import Harmonic
         >>> from mrsuspension.vehicle import HalfCar
         >>> sim = VehicleSimulation(HalfCar(), SameRoadAtEveryWheel(Harmonic(5.0, 0.005), ("front", "rear")))
-        >>> list(sim.run().measures())[:3]  # the harmonic's own duration (steady-state rule)
-        ['heave_ddot_rms', 'pitch_ddot_rms', 'T_as.front']
+        >>> m = sim.run().measures()  # the harmonic's own duration (steady-state rule)
+        >>> list(m)[:3], m.units["pitch_ddot_rms"], m.units["mean_current.rear"]
+        (['heave_ddot_rms', 'pitch_ddot_rms', 'T_as.front'], 'rad/s^2', 'A')
         """
-        out: dict[str, Any] = {}
-        for name, (signal, _) in BODY_MEASURES.items():
-            if signal == "roll_ddot" and len(self.corners) < 4:
-                continue  # a half car has no roll
-            values = np.asarray(self.signals[signal], dtype=float)
-            out[name] = float(np.sqrt(np.mean(values * values)))
+        out: dict[str, Any] = self._body_measures()
         for c in self.corners:
             for k, v in self.corner(c).measures(**kwargs).items():
                 out[f"{k}.{c}"] = v
-        return out
+        return Measures(
+            out, units={**MEASURE_UNITS, **{k: u for k, (_, u) in BODY_MEASURES.items()}}
+        )
 
     def vehicle_measures(
         self,
@@ -176,8 +270,9 @@ class VehicleResult(SimulationResult):
         purpose: str = "comfort",
         resistance: float | None = None,
         start: float = 0.0,
-    ) -> dict[str, float]:
-        """Measures of the whole vehicle, with units in :data:`VEHICLE_MEASURE_UNITS`.
+    ) -> Measures:
+        """Measures of the whole vehicle, with units in :data:`VEHICLE_MEASURE_UNITS`
+        (a :class:`~mrsuspension.engine.notebook.Measures`: ``m.units`` holds them).
 
         Body: ``heave_ddot_rms`` [m/s^2], ``pitch_ddot_rms`` and ``roll_ddot_rms``
         [rad/s^2] (the full car only); the seat (ISO 2631-1,
@@ -207,7 +302,7 @@ class VehicleResult(SimulationResult):
         >>> car = FullCar()
         >>> road = WheelRoads.bump("left", 0.03, 0.5, (car.wheelbase, car.front_track), position=1.0)
         >>> m = VehicleSimulation(car, road).run(1.0, dt=2e-4).vehicle_measures()
-        >>> m["roll_ddot_rms"] > 0.0, VEHICLE_MEASURE_UNITS["lift_off_time"]
+        >>> m["roll_ddot_rms"] > 0.0, m.units["lift_off_time.front_left"]
         (True, 's')
         """
         from mrsuspension.measures import vehicle as MV
@@ -251,7 +346,7 @@ class VehicleResult(SimulationResult):
             out[f"peak_to_peak_travel.{c}"] = travel[c].peak_to_peak
             out[f"coil_energy.{c}"] = energy[c]
         out["coil_energy"] = float(sum(energy.values()))
-        return out
+        return Measures(out, units=VEHICLE_MEASURE_UNITS)
 
 
 #: Per-corner signals of a vehicle only: name -> (unit, description).
@@ -287,3 +382,11 @@ VEHICLE_MEASURE_UNITS: dict[str, str] = {
     "peak_to_peak_travel": "m",
     "coil_energy": "J",
 }
+
+
+def _signal_name(name: str) -> str:
+    """The description of a body or quarter-car signal (the name itself when unknown)."""
+    for table in (BODY_SIGNALS, SIGNALS, VEHICLE_CORNER_SIGNALS):
+        if name in table:
+            return table[name][1]
+    return name

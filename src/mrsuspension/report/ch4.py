@@ -163,7 +163,7 @@ def fig_4_hysteresis(quick: bool = False) -> FigureRecord:
     """Influence of damper hysteresis on the skyhook hi-lo frequency responses."""
     result = _hysteresis_study(quick)
     selections = {
-        f"{m}, {'hysteretic' if h else 'mean'}": {"mode": m, "damper.hysteresis": h}
+        f"{m}, {'hysteretic' if h else 'mean'}": {"mode": m, "damper_hysteresis": h}
         for m in ("SCM", "ACM")
         for h in (True, False)
     }

@@ -160,15 +160,107 @@ class StudyResult:
     cache_file: Path | None = None
 
     def __getitem__(self, measure: str) -> xr.DataArray:
-        return self.dataset[measure]
+        """One measure over the study's dimensions; ``"<measure>.<corner>"`` selects one
+        corner of a vehicle's per-corner measure (``result["DLC.front_left"]``)."""
+        ds = self.dataset
+        if measure not in ds.data_vars:
+            base, dot, corner = measure.rpartition(".")
+            per_corner = dot and base in ds.data_vars and "corner" in ds[base].dims
+            if per_corner and corner in set(map(str, ds["corner"].values)):
+                return ds[base].sel(corner=corner)
+            from mrsuspension.errors import unknown_name
+
+            names = [*map(str, ds.data_vars)]
+            if "corner" in ds.dims:
+                corners = [str(c) for c in ds["corner"].values]
+                names += [
+                    f"{n}.{c}" for n in ds.data_vars if "corner" in ds[n].dims for c in corners
+                ]
+            raise unknown_name("measure", measure, names)
+        return ds[measure]
+
+    def __repr__(self) -> str:
+        dims = " x ".join(f"{d} ({n})" for d, n in self.dataset.sizes.items()) or "one point"
+        cached = ", from cache" if self.from_cache else ""
+        return (
+            f"StudyResult({self.study.name!r}: {len(self.study)} runs over {dims}; "
+            f"{len(self.dataset.data_vars)} measures{cached})"
+        )
+
+    def _repr_html_(self) -> str:
+        """A notebook's view: the study, its dimensions and measures with units, then
+        the data set itself (folded)."""
+        from mrsuspension.engine.notebook import html_table
+
+        ds = self.dataset
+        rows: list[tuple[str, str]] = [("study", self.study.name)]
+        if self.study.description:
+            rows.append(("description", self.study.description))
+        rows.append(("runs", f"{len(self.study)}"))
+        for d, n in ds.sizes.items():
+            field = ds[d].attrs.get("field") if d in ds.coords else None
+            rows.append((f"dimension {d}", f"{n}" + (f" ({field})" if field else "")))
+        rows.append(
+            ("run time", f"{self.run_time:.3g} s" + (" (from cache)" if self.from_cache else ""))
+        )
+        head = html_table(rows, caption="StudyResult")
+        measures = html_table(
+            (
+                (str(n), ds[n].attrs.get("units", ""), " x ".join(map(str, ds[n].dims)),
+                 ds[n].attrs.get("long_name", ""))
+                for n in ds.data_vars
+            ),
+            header=("measure", "unit", "dimensions", "description"),
+        )  # fmt: skip
+        return (
+            f"<div>{head}{measures}<details><summary>data set</summary>"
+            f"{ds._repr_html_()}</details></div>"
+        )
 
     def to_xarray(self) -> xr.Dataset:
-        """The results as an :class:`xarray.Dataset`."""
+        """The results as an :class:`xarray.Dataset` (CF-style ``units`` and ``long_name``).
+
+        Dimensions: the ``[grid]`` fields named without dots (``controller_gain``; the
+        dotted field is the coordinate's ``field`` attribute), the ``[cases]`` tables,
+        ``frequency`` for a sweep, and ``corner`` for a vehicle's per-corner measures
+        (``ds["DLC"].sel(corner="front_left")``).
+        """
         return self.dataset
 
     def to_pandas(self) -> pd.DataFrame:
-        """Long table: one row per run, a column per dimension and per measure."""
-        return self.dataset.to_dataframe().reset_index()
+        """Long table: one row per run, a column per dimension and per measure.
+
+        A vehicle's per-corner measure is one column per corner (``"DLC.front_left"``);
+        the units are in ``df.attrs["units"]`` (column -> unit) and the dotted field of
+        each grid column in ``df.attrs["fields"]``.
+        """
+        ds = self.dataset
+        flat = ds.drop_dims("corner") if "corner" in ds.dims else ds
+        units = {str(n): str(ds[n].attrs["units"]) for n in ds.variables if "units" in ds[n].attrs}
+        kept = set(self.study.measures)
+        if "corner" in ds.dims:
+            columns = {
+                f"{name}.{c}": ds[name].sel(corner=c, drop=True)
+                for name in ds.data_vars
+                if "corner" in ds[name].dims
+                for c in map(str, ds["corner"].values)
+            }
+            if kept & set(columns):  # the corners' measures the study kept, not the NaN rest
+                columns = {k: v for k, v in columns.items() if k in kept}
+            for key in columns:
+                base = key.rpartition(".")[0]
+                if base in units:
+                    units[key] = units[base]
+            flat = flat.assign(columns)
+        df = flat.to_dataframe().reset_index()
+        dims = [c for c in df.columns if c not in flat.data_vars]
+        order = [m for m in self.study.measures if m in df.columns]
+        df = df[[*dims, *order, *(c for c in df.columns if c not in dims and c not in order)]]
+        df.attrs["units"] = {c: units[c] for c in map(str, df.columns) if c in units}
+        df.attrs["fields"] = {
+            str(n): str(ds[n].attrs["field"]) for n in ds.coords if "field" in ds[n].attrs
+        }
+        return df
 
     def save(self, path: str | Path) -> Path:
         """Write ``.nc`` (NetCDF, with the study in the attributes and ``units`` on every
@@ -179,10 +271,9 @@ class StudyResult:
         if suffix == ".nc":
             self.dataset.to_netcdf(path)
         elif suffix == ".csv":
-            from mrsuspension.studies.units import csv_headers
+            from mrsuspension.engine.notebook import with_unit_headers
 
-            table = self.to_pandas()
-            table.rename(columns=csv_headers(self.dataset)).to_csv(path, index=False)
+            with_unit_headers(self.to_pandas()).to_csv(path, index=False)
             path.with_suffix(".json").write_text(
                 json.dumps(
                     {"study": self.study.describe(), "content_hash": self.content_hash},
@@ -282,9 +373,9 @@ def _dataset(study: Study, rows: Sequence[dict[str, Any]], run_time: float) -> x
         sweep = study.scenarios[0].excitation
         coords["amplitude"] = ("frequency", np.asarray(sweep.amplitudes))  # type: ignore[union-attr]
         coords["frequency"] = ("frequency", np.asarray(study.frequencies), {"units": "Hz"})
-    from mrsuspension.studies.units import add_units
+    from mrsuspension.studies.units import add_units, conventional
 
-    ds = add_units(xr.Dataset(data_vars, coords=coords))
+    ds = conventional(add_units(xr.Dataset(data_vars, coords=coords)))
     ds.attrs["study"] = json.dumps(study.describe(), default=str)
     ds.attrs["content_hash"] = study.content_hash()
     ds.attrs["code_fingerprint"] = code_fingerprint()
@@ -401,7 +492,9 @@ def _read_cache(path: Path) -> xr.Dataset | None:
 
     try:
         with xr.open_dataset(path) as cached:
-            return cached.load()
+            from mrsuspension.studies.units import conventional
+
+            return conventional(cached.load())  # a file of an earlier layout: today's
     except Exception as exc:  # any unreadable file is recomputed
         warnings.warn(
             f"the study cache file {path} is unreadable ({type(exc).__name__}); recomputing "

@@ -574,6 +574,16 @@ class Study:
         for a in axes:
             if names.count(a.name) > 1:
                 raise ValidationError(f"dimension {a.name!r} is given twice")
+        from mrsuspension.studies.units import dimension_name
+
+        fields = {dimension_name(a.name): a.name for a in axes if "." in a.name}
+        for a in axes:  # the results name a field's dimension controller_gain, add corner
+            if "." not in a.name and (a.name in fields or a.name == "corner"):
+                field = f" (the dimension of {fields[a.name]})" if a.name in fields else ""
+                raise ValidationError(
+                    f"[cases.{a.name}]: the name {a.name!r} is taken{field}; choose another "
+                    "case name"
+                )
 
         points = _check_run_count(axes, exc)
         name = str(meta.get("name", "study"))

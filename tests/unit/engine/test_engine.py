@@ -308,7 +308,8 @@ def test_result_exports(tmp_path) -> None:  # type: ignore[no-untyped-def]
     assert table.shape == (res.time.size, len(res))
     np.testing.assert_allclose(table[:, 0], res.time)
     df = res.to_pandas()
-    assert "F_d [N]" in df.columns
+    assert "F_d" in df.columns
+    assert df.attrs["units"]["F_d"] == "N"
     with pytest.raises(ValidationError, match=r"use \.csv, \.nc"):
         res.save(tmp_path / "run.xlsx")
 
@@ -352,7 +353,7 @@ def test_result_round_trips_through_standard_formats(tmp_path, suffix: str) -> N
         import pandas as pd
 
         df = pd.read_parquet(path)
-        np.testing.assert_allclose(df["i_d [A]"].to_numpy(), res.i_d)
+        np.testing.assert_allclose(df["i_d"].to_numpy(), res.i_d)
 
 
 class _PlainHarmonic:

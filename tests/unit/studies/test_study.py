@@ -130,8 +130,9 @@ def test_run_cache_and_save(tmp_path: Path) -> None:
     assert not first.from_cache
     assert calls[-1] == (6, 6)
     ds = first.to_xarray()
-    assert ds["T_as"].dims == ("controller.current", "frequency")
-    assert ds["mean_current"].sel({"controller.current": 0.2}).values == pytest.approx(0.2)
+    assert ds["T_as"].dims == ("controller_current", "frequency")
+    assert ds["controller_current"].attrs["field"] == "controller.current"
+    assert ds["mean_current"].sel(controller_current=0.2).values == pytest.approx(0.2)
     assert "amplitude" in ds.coords
     again = run_study(study, workers=1, progress=False, cache_dir=tmp_path)
     assert again.from_cache
@@ -146,13 +147,13 @@ def test_run_cache_and_save(tmp_path: Path) -> None:
     assert units == {
         "T_as": "-",
         "mean_current": "A",
-        "controller.current": "A",
+        "controller_current": "A",
         "frequency": "Hz",
         "amplitude": "m",
     }
     assert again.to_xarray()["mean_current"].attrs["units"] == "A"
     df = first.to_pandas()
-    assert list(df.columns[:2]) == ["controller.current", "frequency"]
+    assert list(df.columns[:2]) == ["controller_current", "frequency"]
     assert len(df) == 6
     assert csv.with_suffix(".json").is_file()
     with pytest.raises(ValidationError, match=r"use \.nc"):
@@ -169,7 +170,7 @@ def test_pulse_study_without_frequency_dim() -> None:
         }
     )
     res = run_study(study, workers=1, progress=False, cache_dir=False)
-    assert res["SAR_s"].dims == ("excitation.speed",)
+    assert res["SAR_s"].dims == ("excitation_speed",)
     assert res["SAR_s"].notnull().all()
 
 

@@ -38,8 +38,10 @@ def test_per_corner_fields_and_vehicle_measures() -> None:
     result = run_study(st, workers=1, progress=False, cache_dir=False)
     ds = result.to_xarray()
     assert ds["roll_ddot_rms"].attrs["units"] == "rad/s^2"
-    assert ds["DLC.front_left"].attrs["units"] == "-"
-    assert ds["vehicle.roll_inertia"].attrs["units"] == "kg m^2"
+    assert ds["DLC"].dims == ("damper_front_left_force_gain", "vehicle_roll_inertia", "corner")
+    assert ds["DLC"].attrs["units"] == "-"
+    assert float(result["DLC.front_left"].min()) > 0.0
+    assert ds["vehicle_roll_inertia"].attrs["units"] == "kg m^2"
     assert float(ds["roll_ddot_rms"].min()) > 0.0
 
 
