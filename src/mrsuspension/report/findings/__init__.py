@@ -330,6 +330,10 @@ _CSS = {
     "dissertation inconsistent": "#fff1c2",
     "error": "#e4e4e4",
 }
+#: Claims whose verdict in quick mode (coarse grids, shorter runs) differs from the full
+#: report's: claim id -> the full report's status. Found by evaluating both (the
+#: slow test ``tests/integration/test_findings_modes.py`` holds it to them).
+QUICK_DIFFERS: dict[str, str] = {}
 #: Columns of findings.csv (and of each claim in manifest.json)
 CSV_COLUMNS: tuple[str, ...] = (
     "id",
@@ -355,28 +359,106 @@ def write_csv(card: Scorecard, path: Path) -> Path:
     return path
 
 
+def _chapter(sections: str) -> str:
+    """``"Chapter N"`` of a claim's first section (``"4.3.2, 8"`` -> ``"Chapter 4"``)."""
+    head = sections.strip().split(",")[0].strip()
+    return f"Chapter {head.split('.')[0]}" if head[:1].isdigit() else "other"
+
+
+def summary_table(card: Scorecard) -> str:
+    """Counts per chapter and status, as an html table (the scorecard's summary).
+
+    Examples
+    --------
+    >>> "<table" in summary_table(Scorecard([], quick=True))
+    True
+    """
+    import html
+
+    chapters: dict[str, dict[str, int]] = {}
+    for r in card.results:
+        row = chapters.setdefault(_chapter(r.claim.sections), dict.fromkeys(STATUSES, 0))
+        row[r.status] = row.get(r.status, 0) + 1
+    shown = [s for s in STATUSES if any(row[s] for row in chapters.values())] or ["held"]
+    head = "".join(f"<th style='background:{_CSS[s]}'>{html.escape(s)}</th>" for s in shown)
+    body = "".join(
+        f"<tr><td class='l'>{html.escape(ch)}</td><td>{sum(row.values())}</td>"
+        + "".join(f"<td>{row[s] or ''}</td>" for s in shown)
+        + "</tr>"
+        for ch, row in sorted(chapters.items())
+    )
+    total = {s: sum(row[s] for row in chapters.values()) for s in shown}
+    foot = (
+        f"<tr><th class='l'>all</th><th>{len(card.results)}</th>"
+        + "".join(f"<th>{total[s]}</th>" for s in shown)
+        + "</tr>"
+    )
+    return (
+        f"<table class='summary'><tr><th class='l'>part</th><th>tested</th>{head}</tr>"
+        f"{body}{foot}</table>"
+    )
+
+
+#: The scorecard's filter: status boxes and a text box show or hide the claim rows
+#: (``data-status``, ``data-text``); plain JavaScript, no outside resource.
+_FILTER_JS = """
+(function () {
+  var boxes = document.querySelectorAll('#findings-filter input[type=checkbox]');
+  var text = document.getElementById('findings-text');
+  var count = document.getElementById('findings-shown');
+  function apply() {
+    var on = {};
+    boxes.forEach(function (b) { on[b.value] = b.checked; });
+    var words = text.value.toLowerCase().trim();
+    var n = 0;
+    document.querySelectorAll('#findings-table tr[data-status]').forEach(function (row) {
+      var show = on[row.dataset.status] && (!words || row.dataset.text.indexOf(words) >= 0);
+      row.style.display = show ? '' : 'none';
+      if (show) { n += 1; }
+    });
+    count.textContent = n;
+  }
+  boxes.forEach(function (b) { b.addEventListener('change', apply); });
+  text.addEventListener('input', apply);
+  apply();
+})();
+"""
+
+
 def html_section(card: Scorecard, csv_name: str = "findings.csv") -> str:
-    """The "Findings scorecard" section: counts, then claim | section | holds? | numbers.
+    """The "Findings scorecard" section: a summary by chapter and status, then every claim
+    (claim | section | holds? | numbers) in a folded table with a status and text filter.
+
+    In quick mode the claims whose verdict differs in the full report
+    (:data:`QUICK_DIFFERS`) are flagged in their row and listed under the summary.
 
     Examples
     --------
     >>> card = Scorecard([], quick=True)
-    >>> "Findings scorecard" in html_section(card)
-    True
+    >>> page = html_section(card)
+    >>> "Findings scorecard" in page, "findings-filter" in page
+    (True, True)
     """
     import html
 
     counts = card.counts()
     summary = ", ".join(f"<b>{v}</b> {html.escape(k)}" for k, v in counts.items())
     rows = []
+    flagged = []
     for r in card.results:
         c = r.claim
         tags = f" <span class='meta'>[depends on {', '.join(c.depends_on)}]</span>" * bool(
             c.depends_on
         )
         note = f"<br><span class='meta'>{html.escape(r.explanation)}</span>" * bool(r.explanation)
+        full = QUICK_DIFFERS.get(c.id) if card.quick else None
+        if full is not None:
+            flagged.append((c.id, r.status, full))
+            note += f"<br><b>quick mode only: the full report gives {html.escape(full)}</b>"
+        text = " ".join((c.id, c.claim, c.sections, r.status, r.numbers)).lower()
         rows.append(
-            f"<tr style='background:{_CSS[r.status]}'>"
+            f"<tr data-status='{html.escape(r.status)}' data-text='{html.escape(text)}' "
+            f"style='background:{_CSS[r.status]}'>"
             f"<td class='l'><b>{html.escape(c.id)}</b><br>{html.escape(c.claim)}<br>"
             f"<i>&ldquo;{html.escape(c.quote)}&rdquo;</i>{tags}</td>"
             f"<td class='l'>{html.escape(c.sections)}</td>"
@@ -388,13 +470,29 @@ def html_section(card: Scorecard, csv_name: str = "findings.csv") -> str:
         for s, what, why in SKIPPED
     )
     timing = card.timing()
-    legend = "".join(
-        f"<span style='background:{colour};padding:0 .4em'>{html.escape(status)}</span> "
+    boxes = "".join(
+        f"<label style='background:{colour};padding:0 .4em;margin-right:.3em'>"
+        f"<input type='checkbox' value='{html.escape(status)}' checked> "
+        f"{html.escape(status)} ({counts.get(status, 0)})</label>"
         for status, colour in _CSS.items()
+        if status != "error" or counts.get("error")
     )
+    quick_note = ""
+    if card.quick:
+        items = "".join(
+            f"<li><b>{html.escape(i)}</b>: {html.escape(q)} here, {html.escape(f)} in the full "
+            "report</li>"
+            for i, q, f in flagged
+        )
+        quick_note = "<p class='meta'>Quick mode: coarse grids and shorter runs. " + (
+            f"These verdicts differ from the full report's:</p><ul>{items}</ul>"
+            if items
+            else "No verdict is known to differ from the full report's.</p>"
+        )
     return (
         "<h2 id='findings'>Findings scorecard</h2>"
         f"<p>{summary}.</p>"
+        f"{summary_table(card)}{quick_note}"
         "<p>Every qualitative claim of the dissertation's Chapters 4-6 (texts and summaries) "
         "and of the Chapter 8 conclusions that a quarter-car simulation can test, checked "
         "on the model (mrsuspension.report.findings; docs/report.md gives the readings of "
@@ -403,19 +501,24 @@ def html_section(card: Scorecard, csv_name: str = "findings.csv") -> str:
         "reading tested. 'Held under a stated reading': the claim holds only under another "
         "admissible reading than the kept one (of an ambiguous measure, a time window, an "
         "unknown parameter), named in the row with both readings' numbers; 'not held for any "
-        "admissible value': it fails under every reading it was checked over. Claims marked 'depends on road' use the preset random roads, "
-        "'sar' the shock-acceleration denominator (being redefined). "
-        f"{timing['distinct runs']} distinct runs, {timing['reused from the report']} of them "
-        "made in the report's process pool (the figures' own runs where the scenarios "
-        f"coincide), {timing['run cpu time [s]']} s of CPU for the rest. "
+        "admissible value': it fails under every reading it was checked over. Claims marked "
+        "'depends on road' use the preset random roads, 'sar' the shock-acceleration "
+        f"denominator. {timing['distinct runs']} distinct runs, "
+        f"{timing['reused from the report']} of them made in the report's process pool (the "
+        "figures' own runs where the scenarios coincide), "
+        f"{timing['run cpu time [s]']} s of CPU for the rest. "
         f"<a href='{html.escape(csv_name)}'>{html.escape(csv_name)}</a></p>"
-        f"<p>{legend}</p>"
-        "<table><tr><th class='l'>claim</th><th class='l'>section</th>"
+        f"<details id='findings-claims'><summary>Every claim ({len(card.results)}): "
+        "open to read, filter by status or text</summary>"
+        f"<p id='findings-filter'>{boxes} <input id='findings-text' type='search' "
+        "placeholder='filter: id, words, section'> <span class='meta'><span "
+        "id='findings-shown'></span> shown</span></p>"
+        "<table id='findings-table'><tr><th class='l'>claim</th><th class='l'>section</th>"
         "<th class='l'>holds?</th><th class='l'>our numbers</th></tr>"
         + "".join(rows)
-        + "</table><h3>Not tested (no quarter-car simulation can)</h3><ul>"
+        + "</table></details><h3>Not tested (no quarter-car simulation can)</h3><ul>"
         + skipped
-        + "</ul>"
+        + f"</ul><script>{_FILTER_JS}</script>"
     )
 
 
