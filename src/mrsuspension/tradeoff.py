@@ -258,7 +258,7 @@ class TradeoffResult:
             Draw the two panels there (the legend in the second) and return ``ax``;
             default: a new Figure made without pyplot (a notebook shows it once).
         """
-        from mrsuspension.engine.notebook import axes_for, new_figure
+        from mrsuspension._notebook import axes_for, new_figure
 
         data = self.matrix()
         all3 = self.pareto()

@@ -123,12 +123,12 @@ class DamperResponse:
         """Plot the force loop against velocity (``"F-v"``) or stroke (``"F-x"``).
 
         Draws into ``ax`` when given, else into a new figure made without pyplot
-        (:func:`~mrsuspension.engine.notebook.new_figure`; ``ax.figure``); returns the Axes.
+        (:func:`~mrsuspension._notebook.new_figure`; ``ax.figure``); returns the Axes.
         """
         if kind not in ("F-v", "F-x"):
             raise ValidationError(f"plot kind must be 'F-v' or 'F-x'; got {kind!r}")
         if ax is None:
-            from mrsuspension.engine.notebook import new_figure
+            from mrsuspension._notebook import new_figure
 
             ax = new_figure(6.4, 4.8).subplots()
         if kind == "F-v":

@@ -22,8 +22,8 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 from mrsuspension._lazy import lazy_namespace
+from mrsuspension._notebook import Measures
 from mrsuspension.engine.arrays import KernelArrays
-from mrsuspension.engine.notebook import Measures
 from mrsuspension.engine.result import SIGNALS, SimulationDiverged, SimulationResult
 from mrsuspension.engine.settings import RunPlan, RunSettings
 from mrsuspension.engine.simulate import (

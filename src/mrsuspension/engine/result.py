@@ -11,7 +11,7 @@ from typing import TYPE_CHECKING, Any, TypeVar, overload
 import numpy as np
 import numpy.typing as npt
 
-from mrsuspension.engine.notebook import Measures, axes_for, html_table, new_figure
+from mrsuspension._notebook import Measures, axes_for, html_table, new_figure
 from mrsuspension.errors import MRSuspensionError, ValidationError, unknown_name
 
 if TYPE_CHECKING:
@@ -302,7 +302,7 @@ class SimulationResult(Mapping[str, np.ndarray]):
     def measures(self, *, road_peak: RoadPeak = "after-onset") -> Measures:
         """The measures suited to the excitation, by their names (model reference, section 9).
 
-        A :class:`~mrsuspension.engine.notebook.Measures`: a ``dict`` whose ``units``
+        A :class:`~mrsuspension._notebook.Measures`: a ``dict`` whose ``units``
         give each measure's unit (:data:`MEASURE_UNITS`).
 
         * harmonic: ``T_as``, ``T_au``, ``T_dr``, ``T_ds``, ``T_du``, ``DLC``, ``gamma``,
@@ -455,7 +455,7 @@ class SimulationResult(Mapping[str, np.ndarray]):
             require_pyarrow()
         path.parent.mkdir(parents=True, exist_ok=True)
         if suffix == ".csv":
-            from mrsuspension.engine.notebook import with_unit_headers
+            from mrsuspension._notebook import with_unit_headers
 
             labelled = with_unit_headers(self.to_pandas())  # "name [unit]" headers
             header = ",".join(map(str, [labelled.index.name, *labelled.columns]))
@@ -587,7 +587,7 @@ class SimulationResult(Mapping[str, np.ndarray]):
         >>> fig = res.plot(("F_d",))
         >>> fig._suptitle.get_text()
         'passive (current 0.1)'
-        >>> from mrsuspension.engine.notebook import new_figure
+        >>> from mrsuspension._notebook import new_figure
         >>> ax = new_figure(4.0, 3.0).subplots()
         >>> res.plot(("F_d", "F_d"), ax=ax) is ax, len(ax.get_lines())
         (True, 2)

@@ -16,8 +16,8 @@ from typing import TYPE_CHECKING, Any, TypeVar, overload
 
 import numpy as np
 
+from mrsuspension._notebook import Measures, html_table
 from mrsuspension.engine import vehicle_kernel as VX
-from mrsuspension.engine.notebook import Measures, html_table
 from mrsuspension.engine.result import MEASURE_UNITS, SIGNALS, SimulationResult, controller_text
 from mrsuspension.errors import ValidationError, check_range, unknown_name
 
@@ -240,7 +240,7 @@ class VehicleResult(SimulationResult):
     def measures(self, **kwargs: Any) -> Measures:
         """The body's RMS accelerations (:data:`BODY_MEASURES`), then every corner's
         quarter-car measures, keyed ``"<measure>.<corner>"``, with their units
-        (a :class:`~mrsuspension.engine.notebook.Measures`).
+        (a :class:`~mrsuspension._notebook.Measures`).
 
         Takes the keywords of :meth:`SimulationResult.measures
         <mrsuspension.engine.result.SimulationResult.measures>`.
@@ -272,7 +272,7 @@ class VehicleResult(SimulationResult):
         start: float = 0.0,
     ) -> Measures:
         """Measures of the whole vehicle, with units in :data:`VEHICLE_MEASURE_UNITS`
-        (a :class:`~mrsuspension.engine.notebook.Measures`: ``m.units`` holds them).
+        (a :class:`~mrsuspension._notebook.Measures`: ``m.units`` holds them).
 
         Body: ``heave_ddot_rms`` [m/s^2], ``pitch_ddot_rms`` and ``roll_ddot_rms``
         [rad/s^2] (the full car only); the seat (ISO 2631-1,

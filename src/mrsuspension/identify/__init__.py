@@ -12,7 +12,8 @@ The pipeline of ``mrsus identify``, usable piece by piece:
   (:func:`fit_loops`);
 * :mod:`~mrsuspension.identify.campaign` - all of it, with per-test outcomes
   (:func:`identify`);
-* :mod:`~mrsuspension.identify.report` - parameter set, tables, plots, HTML;
+* :mod:`~mrsuspension.identify.results` - the result types and their outputs (parameter
+  set, tables, plots, HTML; also named by :mod:`~mrsuspension.identify.report`);
 * :mod:`~mrsuspension.identify.results` - the result types (per test, per band, all);
 * :mod:`~mrsuspension.identify.synthetic` - synthetic campaigns from any model (with a
   rig's ramps: :func:`ramped_campaign`), and the example campaign shipped with the

@@ -190,7 +190,7 @@ class StudyResult:
     def _repr_html_(self) -> str:
         """A notebook's view: the study, its dimensions and measures with units, then
         the data set itself (folded)."""
-        from mrsuspension.engine.notebook import html_table
+        from mrsuspension._notebook import html_table
 
         ds = self.dataset
         rows: list[tuple[str, str]] = [("study", self.study.name)]
@@ -271,7 +271,7 @@ class StudyResult:
         if suffix == ".nc":
             self.dataset.to_netcdf(path)
         elif suffix == ".csv":
-            from mrsuspension.engine.notebook import with_unit_headers
+            from mrsuspension._notebook import with_unit_headers
 
             with_unit_headers(self.to_pandas()).to_csv(path, index=False)
             path.with_suffix(".json").write_text(

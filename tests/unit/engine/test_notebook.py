@@ -16,8 +16,8 @@ from typing import Any
 import numpy as np
 import pytest
 
+from mrsuspension._notebook import new_figure, with_unit_headers
 from mrsuspension.engine import Measures, Simulation, SimulationResult
-from mrsuspension.engine.notebook import new_figure, with_unit_headers
 from mrsuspension.engine.result import MEASURE_UNITS
 from mrsuspension.errors import ValidationError
 from mrsuspension.excitation import Harmonic
