@@ -66,3 +66,18 @@ def test_counts_add_up(scorecard: Scorecard) -> None:
     # the shared runs: far fewer than the claims' run references
     references = sum(len(c.check.runs) for c in CLAIMS)
     assert scorecard.runs < references / 2, (scorecard.runs, references)
+
+
+def test_quick_mode_flags_the_verdicts_the_full_report_changes(scorecard: Scorecard) -> None:
+    """Issue 31: the two verdicts quick mode reads otherwise are named, and hold in full."""
+    from mrsuspension.report.findings import CLAIMS_BY_ID, QUICK_DIFFERS, html_section
+
+    assert QUICK_DIFFERS
+    for claim_id, full in QUICK_DIFFERS.items():
+        assert scorecard[claim_id].status != full, f"{claim_id} no longer differs in quick mode"
+    full_card = evaluate(quick=False, claims=[CLAIMS_BY_ID[i] for i in QUICK_DIFFERS])
+    assert {r.claim.id: r.status for r in full_card.results} == QUICK_DIFFERS
+    page = html_section(scorecard)
+    for claim_id in QUICK_DIFFERS:
+        assert f"<b>{claim_id}</b>: {scorecard[claim_id].status} here" in page
+    assert "quick mode only" not in html_section(full_card)
