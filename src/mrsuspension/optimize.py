@@ -76,6 +76,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from mrsuspension._batch import job_of, process_pool, run_jobs
+from mrsuspension._docs import doc
 from mrsuspension._inputs import read_toml
 from mrsuspension.engine.plants import PLANTS
 from mrsuspension.errors import (
@@ -299,7 +300,7 @@ def _parameter(index: int, table: object) -> Parameter:
         raise ValidationError(
             f"{where} field: {name!r} is not a numeric scenario field of "
             f"{', '.join(_TUNABLE_SECTIONS)}.{did_you_mean(str(name), tunable)}{extra} "
-            "See docs/scenarios.md for the keys."
+            f"See {doc('scenarios')} for the keys."
         )
     flags = {}
     for key in ("integer", "log"):

@@ -33,6 +33,7 @@ LAYERS: dict[str, int] = {
     "_progress": 0,
     "_output": 0,
     "_inputs": 0,
+    "_docs": 0,  # online links to docs/ pages
     "_notebook": 0,  # notebook conventions: Measures, html tables, figures without pyplot
     "examples": 0,  # the packaged example files (`mrsus examples`)
     "errata": 0,

@@ -22,6 +22,7 @@ from typing import Annotated, Any
 
 import typer
 
+from mrsuspension._docs import doc
 from mrsuspension._jsonsafe import to_jsonable
 from mrsuspension._output import (
     check_output_folder,
@@ -70,7 +71,7 @@ def hil_run_command(
         Path,
         typer.Argument(
             metavar="SCENARIO",
-            help="scenario TOML file (see docs/scenarios.md)",
+            help=f"scenario TOML file (see {doc('scenarios')})",
             show_default=False,
         ),
     ],
@@ -100,14 +101,14 @@ def hil_run_command(
         bool, typer.Option("--json", help="print the outcome and tick statistics as JSON")
     ] = False,
     realtime: Annotated[
-        str, typer.Option(help="scheduling: auto | fifo | spin | off (docs/hil.md)")
+        str, typer.Option(help=f"scheduling: auto | fifo | spin | off ({doc('hil')})")
     ] = "auto",
     isolate: Annotated[
         bool,
         typer.Option(
             "--isolate",
             help="move every other movable task off the loop's core meanwhile, and back "
-            "afterwards (needs --realtime auto, fifo or spin; docs/hil.md)",
+            f"afterwards (needs --realtime auto, fifo or spin; {doc('hil')})",
         ),
     ] = False,
     monitor: Annotated[
@@ -469,7 +470,7 @@ def hil_validate_command(
         Path,
         typer.Argument(
             metavar="SCENARIO",
-            help="scenario TOML file (see docs/scenarios.md)",
+            help=f"scenario TOML file (see {doc('scenarios')})",
             show_default=False,
         ),
     ],
@@ -658,7 +659,7 @@ def rig_emulator_command(
         typer.Option(help="client silence [s] after which the rig goes safe (0: never)"),
     ] = 0.25,
     realtime: Annotated[
-        str, typer.Option(help="scheduling: auto | fifo | spin | off (docs/hil.md)")
+        str, typer.Option(help=f"scheduling: auto | fifo | spin | off ({doc('hil')})")
     ] = "auto",
 ) -> None:
     """Serve a simulated rig over UDP (the network rig protocol, docs/hil.md).

@@ -7,6 +7,7 @@ from typing import Annotated
 
 import typer
 
+from mrsuspension._docs import doc
 from mrsuspension.cli.errors import user_errors
 from mrsuspension.hil.rigs import rig_syntax
 
@@ -68,7 +69,7 @@ def monitor_command(
         typer.Option(
             "--isolate",
             help="move every other movable task off the loop's core during each run, and "
-            "back afterwards (needs --realtime auto, fifo or spin; docs/hil.md)",
+            f"back afterwards (needs --realtime auto, fifo or spin; {doc('hil')})",
         ),
     ] = False,
 ) -> None:

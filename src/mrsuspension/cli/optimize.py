@@ -12,6 +12,7 @@ from typing import Annotated
 
 import typer
 
+from mrsuspension._docs import doc
 from mrsuspension._output import check_output_folder
 from mrsuspension.cli.errors import user_errors
 from mrsuspension.errors import check_count
@@ -23,7 +24,7 @@ def optimize_command(
     problem: Annotated[
         Path,
         typer.Argument(
-            help="optimisation problem (TOML, see docs/optimisation.md)", show_default=False
+            help=f"optimisation problem (TOML, see {doc('optimisation')})", show_default=False
         ),
     ],
     out: Annotated[

@@ -19,6 +19,7 @@ from typing import TYPE_CHECKING, Annotated, Any
 
 import typer
 
+from mrsuspension._docs import doc
 from mrsuspension._jsonsafe import to_jsonable
 from mrsuspension._output import (
     check_output_folder,
@@ -55,7 +56,7 @@ DEFAULT_RESULT_FORMATS = "csv,nc"
 ScenarioArg = Annotated[
     Path,
     typer.Argument(
-        metavar="SCENARIO", help="scenario TOML file (see docs/scenarios.md)", show_default=False
+        metavar="SCENARIO", help=f"scenario TOML file (see {doc('scenarios')})", show_default=False
     ),
 ]
 JsonOpt = Annotated[bool, typer.Option("--json", help="print the measures as JSON on stdout")]
@@ -274,7 +275,7 @@ def _clamp_note(fractions: Sequence[float | None]) -> None:
         f"note: in {runs} the peak-velocity estimate v_m sat at its upper clamp for "
         f"{100 * max(hit):.0f} % of the time{'' if len(shares) == 1 else ' at most'} "
         "(vm_clamp_fraction): the damper model ran beyond its identified velocity range and "
-        "its forces there are an extrapolation (docs/damper-models.md)",
+        f"its forces there are an extrapolation ({doc('damper-models')})",
         err=True,
     )
 

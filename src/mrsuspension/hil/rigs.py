@@ -12,6 +12,7 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
+from mrsuspension._docs import doc
 from mrsuspension.errors import MRSuspensionError, ValidationError
 
 if TYPE_CHECKING:
@@ -83,7 +84,7 @@ RIGS: dict[str, RigKind] = {
         RigKind(
             "simulated",
             "simulated",
-            "simulated rig: actuator, current driver and A/D quantisation (docs/hil.md)",
+            f"simulated rig: actuator, current driver and A/D quantisation ({doc('hil')})",
             True,
             lambda s: s == "simulated",
             _simulated,

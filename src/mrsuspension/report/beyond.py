@@ -21,6 +21,7 @@ from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any
 
+from mrsuspension._docs import doc
 from mrsuspension.optimize import OptimizationProblem, OptimizationResult, Road, optimize
 from mrsuspension.report.toolkit import FigureRecord, table
 from mrsuspension.report.toolkit import inverse_model_step as step
@@ -200,7 +201,7 @@ def build(
         "stroke). Read a panel from the lower left: a setting on the dashed front cannot be "
         "improved in one measure without losing in the other; settings above or right of "
         "it are beaten by another setting in both. Then the optimiser (mrsus optimize, "
-        "docs/optimisation.md) tunes the skyhook hi-lo gain for a weighted objective.</p>"
+        f"<a href='{doc('optimisation')}'>optimisation</a>) tunes the skyhook hi-lo gain for a weighted objective.</p>"
         + sections[0]
         + "<h3>The points</h3><p><a href='beyond/tradeoff_points.csv'>tradeoff_points.csv</a>"
         "</p>" + table(rows) + f"<h3>Optimiser: {html.escape(best_label)}</h3>"

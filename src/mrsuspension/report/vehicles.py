@@ -37,6 +37,7 @@ from typing import Any
 
 import numpy as np
 
+from mrsuspension._docs import doc
 from mrsuspension.control import HiLo, Passive
 from mrsuspension.control.modal import ModalSkyhook
 from mrsuspension.control.sensing import (
@@ -372,7 +373,7 @@ def build(
         "<p>The dissertation's first recommendation (section 8.3): carry the controllers to "
         "a vehicle with roll and pitch, and obtain the body velocity skyhook needs from "
         "measurable acceleration. The quarter car of one corner against the full car "
-        "(docs/vehicles.md), passive, skyhook hi-lo ACM at every corner and modal skyhook "
+        f"(<a href='{doc('vehicles')}'>vehicles</a>), passive, skyhook hi-lo ACM at every corner and modal skyhook "
         "(heave, pitch and roll damped to the sky; hi-lo currents per corner), on a "
         "two-track class C road and a one-sided bump.</p>"
         + sections[0]

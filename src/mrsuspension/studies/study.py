@@ -60,6 +60,7 @@ from typing import Any
 
 import numpy as np
 
+from mrsuspension._docs import doc
 from mrsuspension._inputs import read_toml
 from mrsuspension._progress import progress_bar
 from mrsuspension.engine.result import MEASURES_BY_KIND
@@ -303,7 +304,7 @@ def _check_field(name: object, where: str) -> str:
             "Fields are 'section.key' with a section of vehicle, damper, controller, "
             "excitation, simulation and a key of that section, or 'damper.<corner>.key' / "
             "'controller.<corner>.key' for one corner of a half or full car "
-            "(see docs/scenarios.md)."
+            f"(see {doc('scenarios')})."
         )
     return name
 

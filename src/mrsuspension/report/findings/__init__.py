@@ -59,6 +59,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from mrsuspension._docs import doc
 from mrsuspension._pool import pool_map
 from mrsuspension.report.families import Unit
 from mrsuspension.report.findings.checks import (
@@ -499,7 +500,8 @@ def html_section(card: Scorecard, csv_name: str = "findings.csv") -> str:
         f"{summary_table(card)}{quick_note}"
         "<p>Every qualitative claim of the dissertation's Chapters 4-6 (texts and summaries) "
         "and of the Chapter 8 conclusions that a quarter-car simulation can test, checked "
-        "on the model (mrsuspension.report.findings; docs/report.md gives the readings of "
+        "on the model (mrsuspension.report.findings; "
+        f"<a href='{doc('report')}'>the report's documentation</a> gives the readings of "
         "'slightly', 'insensitive', 'considerably'). 'Dissertation inconsistent': the "
         "dissertation contradicts itself on the claim; the row names the evidence and the "
         "reading tested. 'Held under a stated reading': the claim holds only under another "
