@@ -86,6 +86,7 @@ from mrsuspension.hil.realtime import (
 from mrsuspension.hil.recorder import META_FILE, Recorder, Recording, load_recording
 from mrsuspension.hil.rig import Rig, RigSample, SimulatedRig
 from mrsuspension.hil.safety import SafetyLimits, SafetySupervisor, StartUp
+from mrsuspension.hil.vehicle import BODY_CHANNELS, CornerPlant, check_corner, is_vehicle_simulation
 
 __all__ = [
     "CHANNELS",
@@ -455,9 +456,16 @@ class HilResult:
         x = self.recording[channel][self.running()]
         return float(np.sqrt(np.mean(x * x))) if x.size else math.nan
 
+    @property
+    def corner(self) -> str | None:
+        """The rig corner of a half or full car run (None: a quarter car)."""
+        vehicle = self.meta.get("vehicle")
+        return str(vehicle["corner"]) if isinstance(vehicle, dict) else None
+
     def describe(self) -> dict[str, Any]:
-        """Plain-data summary (for ``--json``)."""
-        return {
+        """Plain-data summary (for ``--json``); a vehicle run adds its rig ``corner`` and
+        the RMS heave acceleration (``rms_body_acceleration`` is the body's at that corner)."""
+        out = {
             "reason": self.reason,
             "tripped": self.tripped,
             "ending": self.ending,
@@ -467,26 +475,42 @@ class HilResult:
             "stats": self.stats.describe(),
             "rms_body_acceleration": self.rms("z_s_ddot"),
         }
+        if self.corner is not None:
+            out["corner"] = self.corner
+            out["rms_heave_acceleration"] = self.rms("heave_ddot")
+        return out
 
 
 # -- helpers --------------------------------------------------------------------------------
-def _simulation_of(target: Any) -> Simulation:
-    if isinstance(target, Simulation):
+def _simulation_of(target: Any) -> Any:
+    """The one run of ``target``: a quarter car's :class:`Simulation`, or a half or full
+    car's :class:`~mrsuspension.engine.vehicle.VehicleSimulation` (the scenario's
+    ``[vehicle] model`` says which)."""
+    if isinstance(target, Simulation) or is_vehicle_simulation(target):
         return target
     from mrsuspension.scenario import Scenario
 
     if isinstance(target, str | Path):
         target = Scenario.load(target)
     if isinstance(target, Scenario):
-        sims = target.simulations()
+        quarter = target.model == "quarter-car"
+        sims = target.simulations() if quarter else target.vehicle_simulations()
         if len(sims) != 1:
             raise ValidationError(
                 f"HiL runs one scenario at a time; this one is a sweep of {len(sims)} runs"
             )
         return sims[0]
     raise ValidationError(
-        f"run_hil needs a Simulation, a Scenario or a scenario path; got {type(target).__name__}"
+        "run_hil needs a Simulation, a VehicleSimulation, a Scenario or a scenario path; "
+        f"got {type(target).__name__}"
     )
+
+
+def _rig_damper(sim: Any, corner: str | None = None) -> Any:
+    """The damper model on the rig: the quarter car's, or the rig corner's of a vehicle."""
+    if is_vehicle_simulation(sim):
+        return sim.corner_simulation(check_corner(sim, corner)).damper
+    return sim.damper
 
 
 def _spin_window(period: float, spin_all: bool) -> float:
@@ -537,8 +561,8 @@ def _wait_until(deadline: float, spin: float = _SPIN) -> float:
     return now
 
 
-def _default_rig(sim: Simulation) -> SimulatedRig:
-    return SimulatedRig(damper=sim.damper)
+def _default_rig(sim: Any, corner: str | None = None) -> SimulatedRig:
+    return SimulatedRig(damper=_rig_damper(sim, corner))
 
 
 # -- the loop -------------------------------------------------------------------------------
@@ -561,16 +585,23 @@ def run_hil(
     hooks: LoopHooks | None = None,
     settings: RunSettings | None = None,
     recover: str | Path | None = None,
+    corner: str | None = None,
 ) -> HilResult:
     """Run a scenario in the loop with a rig.
 
     Parameters
     ----------
-    target : Simulation, Scenario or path
-        What to run (a scenario file is loaded; sweeps are refused).
+    target : Simulation, VehicleSimulation, Scenario or path
+        What to run (a scenario file is loaded; sweeps are refused). A half or full car
+        (:class:`~mrsuspension.engine.vehicle.VehicleSimulation`, or a scenario with
+        ``[vehicle] model = "half-car"`` or ``"full-car"``) runs with the damper of
+        ``corner`` on the rig and the rest of the car simulated in the loop
+        (:mod:`~mrsuspension.hil.vehicle`); the recording then holds that corner's
+        signals under the quarter car's channel names and the body's
+        (:data:`~mrsuspension.hil.vehicle.BODY_CHANNELS`).
     rig : Rig, optional
         The rig (default: a :class:`~mrsuspension.hil.rig.SimulatedRig` carrying the
-        scenario's damper model).
+        scenario's damper model, a vehicle's rig corner's).
     duration : float
         Run time [s] (the return to mid-stroke follows).
     rate : float
@@ -621,6 +652,9 @@ def run_hil(
         With ``process=True``: where the loop process keeps its recording if this process
         dies during the run (``NAME.recovered`` beside ``recover``, see
         :func:`~mrsuspension._output.keep_recovered`); default: left in ``out``.
+    corner : str, optional
+        A half or full car's corner whose damper is on the rig (default: the first,
+        ``front`` or ``front_left``); an error for a quarter car.
 
     Returns
     -------
@@ -652,12 +686,19 @@ def run_hil(
         return _run_in_process(
             target, rig, duration, rate, Path(out), recover, model_dt=model_dt, limits=limits,
             startup=startup, driver=driver, realtime=realtime, isolate=isolate,
-            cap_current=cap_current, hooks=hooks,
+            cap_current=cap_current, hooks=hooks, corner=corner,
         )  # fmt: skip
     mode = normalise_mode(realtime)
     check_isolate(mode, isolate)
     realtime = mode != "unpaced"
     sim = _simulation_of(target)
+    vehicle = is_vehicle_simulation(sim)
+    if vehicle:
+        corner = check_corner(sim, corner)
+    elif corner is not None:
+        raise ValidationError(
+            f"corner = {corner!r}: a quarter-car run has no corners (half and full cars do)"
+        )
     limits = limits or SafetyLimits()
     startup = startup if startup is not None else StartUp()
     rate = float(check_range("rate", rate, 1.0, 100000.0, unit="Hz"))
@@ -667,7 +708,7 @@ def run_hil(
     check_recording_memory(duration, rate)
     if cap_current and sim.max_current > limits.current:
         sim = dataclasses.replace(sim, max_current=limits.current)
-    rig = rig if rig is not None else _default_rig(sim)
+    rig = rig if rig is not None else _default_rig(sim, corner)
     if not realtime and not isinstance(rig, SimulatedRig):
         raise ValidationError(
             f"realtime='unpaced' needs a rig simulated in this process (simulated or ideal); "
@@ -677,17 +718,26 @@ def run_hil(
     period = 1.0 / rate
     dt = tick_step(rate, model_dt)
     n_sub = round(period / dt)
-    stepper = sim.stepper(dt, external_force=True)
     n_ticks = max(1, round(duration * rate))
-    # the whole run's road at once; with live hooks (the excitation can change between
-    # ticks) one tick at a time, or a few for an excitation without a compiled grid
-    if hooks is None:
-        road_src = _Road(sim.excitation, n_sub, dt, n_ticks)
+    plant: CornerPlant | None = None
+    if vehicle:  # the whole car, one corner outside; every wheel's road for the whole run
+        assert corner is not None
+        plant = CornerPlant(sim, corner, dt, n_sub, n_ticks)
+        stepper: Any = plant
+        road_src: _Road | None = None  # the plant holds the roads
+        z0, zd0 = plant.road_at(0)
+        road, road_v = [z0], [zd0]
     else:
-        road_src = _Road(sim.excitation, n_sub, dt, live_chunk(n_sub), fast_chunk=1)
-    road, road_v = road_src.block(0)
-    if hooks is not None:
-        road_src.warm_up()
+        stepper = sim.stepper(dt, external_force=True)
+        # the whole run's road at once; with live hooks (the excitation can change between
+        # ticks) one tick at a time, or a few for an excitation without a compiled grid
+        if hooks is None:
+            road_src = _Road(sim.excitation, n_sub, dt, n_ticks)
+        else:
+            road_src = _Road(sim.excitation, n_sub, dt, live_chunk(n_sub), fast_chunk=1)
+        road, road_v = road_src.block(0)
+        if hooks is not None:
+            road_src.warm_up()
     max_return = limits.stroke / limits.return_rate + 2 * _SETTLE
     n_max = n_ticks + math.ceil(max_return * rate) + 1
 
@@ -695,8 +745,12 @@ def run_hil(
     rig.reset(period)
     rig.command(0.0, 0.0, 0.0)
     rig.read()
-    stepper.step(road[0], road_v[0], damper_force=0.0)
-    stepper.reset(road[0], road_v[0])
+    if plant is not None:
+        plant.tick(0, 0.0)
+        plant.reset()
+    else:
+        stepper.step(road[0], road_v[0], damper_force=0.0)
+        stepper.reset(road[0], road_v[0])
     rig.reset(period)
     driver.reset(period)
     supervisor = SafetySupervisor(limits, link_status=rig.link_status)
@@ -717,11 +771,14 @@ def run_hil(
         "isolate": bool(isolate),
         "paced": realtime,
         "scenario": sim.describe(),
+        **({"vehicle": plant.describe()} if plant is not None else {}),
         "rig": rig.describe(),
         "limits": limits.describe(),
         "startup": dataclasses.asdict(startup),
         "driver": dataclasses.asdict(driver),
     }
+    channels = CHANNELS + BODY_CHANNELS if plant is not None else CHANNELS
+    names = tuple(n for n, _ in channels)
     abort = _Abort(_BOUND_PARENT[0] if _BOUND_PARENT else None)
     compute = np.zeros(n_max)
     lateness = np.zeros(n_max)
@@ -730,8 +787,8 @@ def run_hil(
         with yield_loop_cpu():  # the recorder's writer process keeps off the loop's core
             recorder = Recorder(
                 rec_dir,
-                _NAMES,
-                units=dict(CHANNELS),
+                names,
+                units=dict(channels),
                 buffer_rows=max(16384, round(_RING_SECONDS * rate)),
                 wait=not realtime,  # unpaced: wait for the writer rather than lose rows
                 meta=meta,
@@ -747,7 +804,7 @@ def run_hil(
                     reason, ticks, ending = _loop(
                         stepper, rig, driver, supervisor, startup, recorder, road, road_v,
                         n_ticks, n_max, n_sub, period, realtime, compute, lateness, hooks,
-                        road_src, rt.spin, abort,
+                        road_src, rt.spin, abort, plant,
                     )  # fmt: skip
                 stats = TickStats.from_arrays(
                     compute[:ticks], lateness[:ticks], period, realtime, scheduling=rt.label()
@@ -819,18 +876,20 @@ def _loop(
     compute: np.ndarray,
     lateness: np.ndarray,
     hooks: LoopHooks | None,
-    road_src: _Road,
+    road_src: _Road | None,
     spin_all: bool = False,
     abort: _Abort | None = None,
+    plant: CornerPlant | None = None,
 ) -> tuple[str, int, str]:
     """The hot loop; returns (stop reason, ticks run, ending).
 
     Anything a tick raises trips the supervisor (ending ``"failed"``), and the rig is
     still commanded: current 0, back to mid-stroke. So do an abort request (a signal, the
-    parent's death) and a failed recording.
+    parent's death) and a failed recording. With a ``plant`` (a half or full car) the
+    model advances a whole tick in one call and every row gets the body's channels.
     """
     perf = time.perf_counter
-    step = stepper.step
+    step: Any = stepper.step if plant is None else None
     read = rig.read
     command = rig.command
     append = recorder.append
@@ -860,6 +919,9 @@ def _loop(
     settle = 0
     out = {"z_s": 0.0, "z_u": 0.0, "z_s_dot": 0.0, "z_u_dot": 0.0, "z_s_ddot": 0.0}
     out.update({"z_u_ddot": 0.0, "x_d": 0.0, "v_d": 0.0, "F_T": 0.0, "i_d": 0.0})
+    plant_tick = plant.tick if plant is not None else None
+    body = tuple(n for n, _ in BODY_CHANNELS) if plant is not None else ()
+    out.update(dict.fromkeys(body, 0.0))
     v_d = 0.0
     zr_now = road[0]
     zrd_now = road_v[0]
@@ -906,7 +968,7 @@ def _loop(
                     trip(abort.reason, abort.ending, t)
                 if hooked and state <= STATE_RUN and k % hk.poll_every == 0:
                     ramp = _apply_settings(hk, stepper, road_src, supervisor, t, period)
-                    if ramp:
+                    if ramp and road_src is not None:
                         ramp_left = ramp
                         ramp_step_i = lim.current * period / hk.ramp_now
                         k_road = -road_src.chunk  # the new road from this tick on
@@ -926,24 +988,31 @@ def _loop(
                                 t, sample.force, sample.displacement, sample.current,
                                 sample.timestamp,
                             )  # fmt: skip
-                        if not tripped and k - k_road >= road_src.chunk:
-                            k_road = k
-                            road, road_v = road_src.block(k)
                         if not tripped:
                             c = startup.damping_at(t) if state == STATE_STARTUP else 0.0
-                            j = 2 * n_sub * (k - k_road)
-                            for _ in range(n_sub):
-                                fd = sample.force + c * v_d
-                                out = step(
-                                    road[j], road_v[j],
-                                    road_mid=(road[j + 1], road_v[j + 1]),
-                                    road_end=(road[j + 2], road_v[j + 2]),
-                                    damper_force=fd,
-                                )  # fmt: skip
+                            if plant_tick is not None:  # a vehicle: the whole tick compiled
+                                out = plant_tick(k, sample.force, c)
                                 v_d = out["v_d"]
-                                j += 2
-                            zr_now = road[j]
-                            zrd_now = road_v[j]
+                                fd = out["F_d"]
+                                zr_now = out["z_r"]
+                                zrd_now = out["z_r_dot"]
+                            else:
+                                if road_src is not None and k - k_road >= road_src.chunk:
+                                    k_road = k
+                                    road, road_v = road_src.block(k)
+                                j = 2 * n_sub * (k - k_road)
+                                for _ in range(n_sub):
+                                    fd = sample.force + c * v_d
+                                    out = step(
+                                        road[j], road_v[j],
+                                        road_mid=(road[j + 1], road_v[j + 1]),
+                                        road_end=(road[j + 2], road_v[j + 2]),
+                                        damper_force=fd,
+                                    )  # fmt: skip
+                                    v_d = out["v_d"]
+                                    j += 2
+                                zr_now = road[j]
+                                zrd_now = road_v[j]
                             i_d = out["i_d"]
                             if state == STATE_STARTUP and k + 1 >= startup_ticks:
                                 state = STATE_RUN
@@ -1008,6 +1077,8 @@ def _loop(
             late = start - release if realtime else 0.0
             row = _row(t, state, zr_now, zrd_now, out, sample, fd, i_d, i_out, x_cmd,
                        end - start, late)  # fmt: skip
+            if body:
+                row += tuple([out[n] for n in body])
             compute[k] = end - start
             lateness[k] = late
             k += 1
