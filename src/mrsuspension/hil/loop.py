@@ -1,4 +1,5 @@
-"""The real-time HiL loop: rig <-> quarter car, tick by tick, with deadline tracking.
+"""The real-time HiL loop: rig <-> quarter car (or one corner of a half or full car,
+:mod:`~mrsuspension.hil.vehicle`), tick by tick, with deadline tracking.
 
 Each tick (default 1 kHz):
 
