@@ -40,6 +40,13 @@ an external **stop** event (the safety path: current 0 in the tick it is seen, a
 back to mid-stroke, reason recorded) and a **settings** queue of new
 :class:`~mrsuspension.hil.live.LiveChange` configurations applied between ticks (a
 controller change ramps the drive current, an excitation change cross-fades the road).
+
+This module prepares a run and holds :func:`run_hil` (the run's settings, the model, the
+road, the recorder, the scheduling); the rest is split by concern and re-exported here:
+:mod:`~mrsuspension.hil._ticks` (pacing and the hot loop, ``_loop``),
+:mod:`~mrsuspension.hil._process` (the signals, :func:`bind_to_parent`, the loop in a
+process of its own: :func:`start_process`) and :mod:`~mrsuspension.hil._result` (the
+channels, :class:`TickStats`, :class:`HilResult`, :func:`load_result`).
 """
 
 from __future__ import annotations
