@@ -129,8 +129,11 @@ def test_acceptance_simulated_rig(
         " const d = c.getContext('2d').getImageData(0, 30, c.width, c.height - 30).data;"
         " let n = 0; for (let i = 3; i < d.length; i += 4) if (d[i]) n++; return n; })"
     )
-    assert len(drawn) == 10
-    assert min(drawn) > 100  # every plot has a trace below its title
+    assert len(drawn) == 11
+    assert min(drawn[:10]) > 100  # every plot has a trace below its title
+    # but the body's (heave, pitch, roll): streamed, NaN for a quarter car, nothing drawn
+    assert drawn[10] == 0
+    assert all(c in st["data"] for c in ("heave", "pitch", "roll"))
     ticks0 = _status(server)["ticks"]
 
     # invalid entries are refused in the page and never reach the loop

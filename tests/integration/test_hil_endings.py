@@ -314,6 +314,62 @@ def test_every_ending_leaves_the_rig_home(tmp_path: Path, rig: str, how: str) ->
         assert _one_line(ended, "stopped: ") == f"stopped: {stop['reason']}"
 
 
+#: a half car, the rear damper (passive 0.1 A) on the rig, the rest of the car simulated
+HALF_CAR = ROOT / "examples" / "vehicles" / "half_car.toml"
+#: a half car on a harmonic road far beyond the commanded stroke rate limit: it trips
+TRIP_HALF_CAR = """
+[vehicle]
+model = "half-car"
+
+[damper]
+model = "wang-symmetric"
+parameters = "wang-symmetric-low"
+
+[controller]
+law = "passive"
+current = 0.1
+
+[excitation]
+kind = "harmonic"
+frequency = 12.0
+amplitude = 0.06
+speed = 54.0
+"""
+
+
+@pytest.mark.audit("hil endings")
+@pytest.mark.parametrize("how", ["trip", "sigint"])
+def test_a_half_car_run_ends_with_the_rig_home(tmp_path: Path, how: str) -> None:
+    """Issue 28: a half car with one corner on the rig ends as a quarter car does: a trip
+    exits 1, Ctrl-C to the process group exits 130, the rig home at 0 A either way."""
+    scenario = HALF_CAR
+    if how == "trip":
+        scenario = tmp_path / "trip.toml"
+        scenario.write_text(TRIP_HALF_CAR)
+    args = [str(scenario), "--corner", "rear", "--duration", "30", "--rate", str(RATE)]
+    args += ["--realtime", "off", "--out", "rec"]
+    signalled = how == "sigint"
+    ended = run_cli(args, tmp_path, how if signalled else None, (lambda: _driven(tmp_path)))
+    print(f"half car, {how}: exit {ended.code} in {ended.seconds:.2f} s; {ended.stderr[-300:]}")
+    assert ended.left == [], f"processes left: {ended.left}"
+    stop = _check_home(tmp_path / "rec", None, driven=signalled)
+    meta = json.loads((tmp_path / "rec" / "meta.json").read_text())
+    assert meta["vehicle"]["corner"] == "rear"
+    assert "heave" in meta["channels"]
+    if signalled:
+        assert ended.code == 130, ended.stderr
+        assert stop["ending"] == "interrupted"
+        assert _one_line(ended, "interrupted: ").startswith(
+            "interrupted: kept the recording in 'rec' (loop stopped: interrupted (SIGINT"
+        )
+        assert ended.seconds < 10.0
+    else:
+        assert ended.code == 1, ended.stderr
+        assert stop["ending"] == "tripped"
+        assert "exceeds" in stop["reason"]
+        assert _one_line(ended, "stopped: ") == f"stopped: {stop['reason']}"
+
+
 @pytest.mark.audit("hil endings")
 def test_a_dead_link_trips_and_the_rig_is_left_home(tmp_path: Path) -> None:
     """The rig server stops answering (every reply lost after 1.5 s): the loop's watchdog

@@ -286,3 +286,39 @@ def test_api_acquisition_and_live_changes(tmp_path: Path) -> None:
     # the switch to 0.3 A ramped over 0.1 s: steps of at most 0.3 A x 2 ms / 0.1 s (+ 1 LSB)
     assert i_cmd.max() == pytest.approx(0.3, abs=1e-3)
     assert np.max(np.diff(i_cmd)) <= 0.3 * 2e-3 / 0.1 + 0.5 / 4096 + 1e-9
+
+
+def test_a_half_car_run_streams_its_corner_and_the_body(tmp_path: Path) -> None:
+    """Issue 28: ``hil run HALF_CAR --monitor``'s attached run (one corner on the rig) is
+    streamed as that corner's quarter-car channels plus the body's heave, pitch and roll;
+    a live change is refused (the page's form describes a quarter car)."""
+    from starlette.testclient import TestClient
+
+    from mrsuspension.hil.loop import _simulation_of
+    from mrsuspension.monitor.app import AttachedRun, create_app
+
+    car = _simulation_of(ROOT / "examples" / "vehicles" / "half_car.toml")
+    run = AttachedRun(car, rate=1000.0, duration=1.5, corner="rear")
+    app = create_app(workdir=tmp_path, rig="ideal", realtime="off", attach=run)
+    state = app.state.monitor
+    base = "http://127.0.0.1:8765"
+    rows: list[list[float | None]] = []
+    with TestClient(app, base_url=base, headers={"Origin": base}) as client:
+        with client.websocket_connect("ws://127.0.0.1:8765/ws", headers={"Origin": base}) as ws:
+            channels = ws.receive_json()["channels"]
+            r = client.post("/api/apply", json={"controller": "passive", "current": 0.2})
+            assert r.status_code == 400
+            assert "half or full car" in r.json()["error"]
+            deadline = time.time() + 90
+            while time.time() < deadline and state.status.get("state") != "ended":
+                rows += ws.receive_json()["rows"]
+        assert state.status["state"] == "ended", state.status
+        assert state.status["reason"] == "completed"
+        assert state.status["corner"] == "rear"
+    for name in ("heave", "pitch", "roll", "z_s", "F_dm"):
+        assert name in channels
+    body = np.array([[r[channels.index(n)] for n in ("heave", "pitch")] for r in rows])
+    assert len(rows) > 100
+    assert np.all(np.isfinite(body))
+    assert np.ptp(body[:, 0]) > 1e-3  # the body heaves on the 1 cm road
+    assert all(r[channels.index("roll")] == 0.0 for r in rows)  # a half car does not roll

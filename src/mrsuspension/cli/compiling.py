@@ -112,6 +112,14 @@ def _warm_stepper() -> None:
     rig.reset(1e-3)
     rig.command(0.0, 0.1)
     rig.read()
+    from mrsuspension.engine.vehicle import VehicleSimulation
+    from mrsuspension.excitation import WheelRoads
+    from mrsuspension.hil.vehicle import CornerPlant
+    from mrsuspension.vehicle import HalfCar
+
+    car = HalfCar()  # a vehicle's tick with one corner on the rig
+    roads = WheelRoads.from_excitation(Harmonic(1.0, 0.01), car, 54.0)
+    CornerPlant(VehicleSimulation(car, roads), "front", 1e-4, 2, 1).tick(0, 0.0)
 
 
 def _warm_dampers() -> None:
@@ -149,7 +157,7 @@ WARM_STEPS: tuple[tuple[str, Callable[[], None]], ...] = (
     ("engine run loop (simulate, sweep, study, report)", _warm_engine),
     ("engine run loop reducing to measures (runs of sweeps outside lanes)", _warm_reduced),
     ("lane kernel, recording or reducing to measures (sweeps, studies)", _warm_lanes),
-    ("tick-by-tick step and simulated rig (hil)", _warm_stepper),
+    ("tick-by-tick step, vehicle tick and simulated rig (hil)", _warm_stepper),
     ("damper force, response and inverse (damper)", _warm_dampers),
     ("time-domain record (identify)", _warm_identify),
     ("half- and full-car run loop (vehicle scenarios)", _warm_vehicles),

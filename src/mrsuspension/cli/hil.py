@@ -134,6 +134,14 @@ def hil_run_command(
             "environment variable MRSUS_MONITOR_TOKEN)"
         ),
     ] = None,
+    corner: Annotated[
+        str | None,
+        typer.Option(
+            help="a half or full car's corner whose damper is on the rig; the rest of the "
+            "car is simulated in the loop (default: the first corner)",
+            show_default=False,
+        ),
+    ] = None,
 ) -> None:
     """Run SCENARIO hardware-in-the-loop for DURATION seconds at RATE Hz.
 
@@ -142,10 +150,13 @@ def hil_run_command(
     monitor is served instead, with this run started and attached (live plots, live
     changes, STOP, recording download), until Ctrl-C, and the exit code is 1 if that
     run tripped (not when STOP was pressed); with --monitor --json the run's outcome is printed as JSON when it ends
-    (the monitor's address goes to stderr).
+    (the monitor's address goes to stderr). A half or full car scenario runs with the
+    damper of one corner (--corner) on the rig and the rest of the car simulated; the
+    recording adds the body's heave, pitch and roll.
     """
     from mrsuspension.engine.settings import DEFAULT_DT
     from mrsuspension.hil.loop import (
+        _rig_damper,
         _simulation_of,
         check_recording_memory,
     )
@@ -182,6 +193,7 @@ def hil_run_command(
         check_range("--rate", rate, 50.0, MONITOR_MAX_RATE if monitor else MAX_RATE, unit="Hz")
         check_recording_memory(duration, rate, name="--duration")
         sim = _simulation_of(scn)
+        corner = _rig_corner(sim, corner)
         from mrsuspension.cli.compiling import notify_if_compiling
 
         notify_if_compiling(None, "step")
@@ -206,7 +218,8 @@ def hil_run_command(
             end = serve(
                 host, port, token, rig=rig, workdir=out, url_to_stderr=as_json, realtime=realtime,
                 isolate=isolate, attach=AttachedRun(
-                    sim, rate=rate, duration=duration, model_dt=model_dt, on_end=on_end
+                    sim, rate=rate, duration=duration, model_dt=model_dt, on_end=on_end,
+                    corner=corner,
                 ),
             )  # fmt: skip
             # as `hil run`: a signal that stopped the attached run (the loop's own, or the
@@ -223,11 +236,12 @@ def hil_run_command(
             if (ended.get("tripped") and not stopped) or ended.get("state") == "error":
                 raise typer.Exit(1)
             return
-        the_rig = make_rig(rig, sim.damper)
+        the_rig = make_rig(rig, _rig_damper(sim, corner))
         # SIGHUP stops it as Ctrl-C does (the command's `interrupts`, _pool.handle_signals)
         result, kept, interrupted = _run_recorded(
             sim, the_rig, out, force=force, duration=duration, rate=rate, realtime=realtime,
             isolate=isolate, model_dt=DEFAULT_DT if model_dt is None else model_dt,
+            corner=corner,
         )  # fmt: skip
     _report_ending(result, kept, out, interrupted, as_json)
 
@@ -259,6 +273,7 @@ def _run_recorded(
     realtime: str,
     isolate: bool,
     model_dt: float,
+    corner: str | None = None,
 ) -> tuple[Any, Path | None, KeyboardInterrupt | None]:
     """Run the loop in its own process; keep its recording whatever the ending.
 
@@ -288,6 +303,7 @@ def _run_recorded(
                 result = run_hil(
                     sim, the_rig, duration=duration, rate=rate, out=target, process=True,
                     realtime=realtime, isolate=isolate, model_dt=model_dt, recover=out,
+                    corner=corner,
                 )  # fmt: skip
             except KeyboardInterrupt as exc:  # the loop stopped the safe way: keep the data
                 interrupted = exc
@@ -367,13 +383,38 @@ def _report_ending(
     if not as_json:
         typer.echo(f"stopped: {result.reason}")
         typer.echo(result.stats.summary())
-        typer.echo(f"rms body acceleration: {info['rms_body_acceleration']:.4g} m/s^2")
+        at = f" at {info['corner']}" if info.get("corner") else ""
+        typer.echo(f"rms body acceleration{at}: {info['rms_body_acceleration']:.4g} m/s^2")
+        if "rms_heave_acceleration" in info:
+            typer.echo(f"rms heave acceleration: {info['rms_heave_acceleration']:.4g} m/s^2")
         if info["out"]:
             note = " (not committed to --out)" if kept is not None and out is not None else ""
             typer.echo(f"recording: {info['out']}{note}")
     code = EXIT_CODES.get(result.ending, 1)
     if code:
         raise typer.Exit(code)
+
+
+def _rig_corner(sim: Any, corner: str | None) -> str | None:
+    """``--corner``, checked: a half or full car's rig corner (default: its first); an
+    error for a quarter car.
+
+    Examples
+    --------
+    >>> from mrsuspension.hil.loop import _simulation_of
+    >>> _rig_corner(_simulation_of("examples/vehicles/half_car.toml"), None)
+    'front'
+    """
+    from mrsuspension.hil.vehicle import check_corner, is_vehicle_simulation
+
+    if is_vehicle_simulation(sim):
+        return check_corner(sim, corner, "--corner")
+    if corner is not None:
+        raise ValidationError(
+            f"--corner {corner!r}: this is a quarter-car scenario, it has no corners "
+            "(--corner is for half and full car scenarios)"
+        )
+    return None
 
 
 def _run_settings(scn: Any, duration: float | None) -> tuple[float, float | None]:
@@ -517,6 +558,14 @@ def hil_validate_command(
             "rigs, auto for a UDP rig, which always runs paced)"
         ),
     ] = None,
+    corner: Annotated[
+        str | None,
+        typer.Option(
+            help="a half or full car's corner whose damper is on the rig (default: the "
+            "first corner); a vehicle is compared on 'time' only",
+            show_default=False,
+        ),
+    ] = None,
 ) -> None:
     """Run SCENARIO in HiL and offline and compare them (Chapter 7 validation).
 
@@ -528,6 +577,8 @@ def hil_validate_command(
     --out writes the figures, validation.json (every number), index.html, and for
     'time' summary.json and the HiL recording. A simulated or ideal rig runs unpaced by
     default (as fast as possible; the outputs say so). A safety trip exits with code 1.
+    A half or full car scenario runs with one corner's damper on the rig (--corner) and
+    is compared on 'time' with the offline vehicle run: that corner's RMS and the body's.
     """
     from mrsuspension.hil.chapter7 import (
         parse_cases,
@@ -535,7 +586,7 @@ def hil_validate_command(
         parse_masses,
         parse_what,
     )
-    from mrsuspension.hil.loop import _simulation_of
+    from mrsuspension.hil.loop import _rig_damper, _simulation_of
     from mrsuspension.hil.realtime import normalise_mode
     from mrsuspension.hil.rigs import make_rig
     from mrsuspension.report.ch7 import validate_chapter7
@@ -553,15 +604,16 @@ def hil_validate_command(
         if road_duration is not None:
             check_range("--road-duration", road_duration, 0.0, 1e5, unit="s", low_inclusive=False)
         sim = _simulation_of(scenario)
+        corner = _rig_corner(sim, corner)
         from mrsuspension.cli.compiling import notify_if_compiling
 
         notify_if_compiling(None, "run", "step")
-        the_rig = make_rig(rig, sim.damper)
+        the_rig = make_rig(rig, _rig_damper(sim, corner))
         with prepare_output(out, "hil validate", force=force) as staged:
             data = validate_chapter7(
                 sim, the_rig, staged, what=chosen, cases=case_list, frequencies=freq_list,
                 amplitude=amplitude, duration=duration, road_duration=road_duration, rate=rate,
-                realtime=realtime, masses=mass_list,
+                realtime=realtime, masses=mass_list, corner=corner,
             )  # fmt: skip
             if staged is not None and out is not None:
                 relocate_files(staged, out)
@@ -608,11 +660,14 @@ def _print_validation(data: dict[str, Any], out: Path | None) -> None:
     typer.echo(data["pacing"])
     for t in _time_reports(data):
         mass = "" if _flat_time(data) else f", m_s = {t['sprung_mass']:g} kg"
-        typer.echo(f"time histories{mass}: HiL stopped: {t['reason']}")
-        typer.echo(f"{'RMS':<34}{'HiL':>12}{'offline':>12}{'diff':>10}")
-        for m in t["rms"].values():
+        corner = f", {t['corner']} damper on the rig" if t.get("corner") else ""
+        typer.echo(f"time histories{mass}{corner}: HiL stopped: {t['reason']}")
+        labels = [f"{m['label']} [{m['unit']}]" for m in t["rms"].values()]
+        w = max([34, *(len(label) + 2 for label in labels)])
+        typer.echo(f"{'RMS':<{w}}{'HiL':>12}{'offline':>12}{'diff':>10}")
+        for label, m in zip(labels, t["rms"].values(), strict=True):
             typer.echo(
-                f"{m['label'] + ' [' + m['unit'] + ']':<34}{m['hil']:>12.5g}"
+                f"{label:<{w}}{m['hil']:>12.5g}"
                 f"{m['offline']:>12.5g}{_pct(m['relative_difference']):>10}"
             )
     for case, fr in data.get("frequency", {}).items():

@@ -9,6 +9,8 @@ measured force closes the loop through the engine's compiled step. Pieces:
 - :mod:`~mrsuspension.hil.safety`: limits, trips and the start-up sequence;
 - :mod:`~mrsuspension.hil.recorder`: incremental recording and :func:`load_recording`;
 - :mod:`~mrsuspension.hil.loop`: the real-time loop, :func:`run_hil`;
+- :mod:`~mrsuspension.hil.vehicle`: a half or full car in that loop, one corner's damper
+  on the rig and the rest of the car simulated (:class:`~mrsuspension.hil.vehicle.CornerPlant`);
 - :mod:`~mrsuspension.hil.latency`: the machine's latency floor for that loop
   (``measure_latency``, ``mrsus hil latency``);
 - :mod:`~mrsuspension.hil.live`: its live hooks (:class:`LoopHooks`,

@@ -35,6 +35,12 @@ The output folder gets ``validation.json`` (every number) and the ``time`` compa
 files; the figures of the other comparisons and ``index.html`` come from a renderer passed
 in (``render=``): :func:`mrsuspension.report.ch7.validate_chapter7` passes the report's,
 :func:`mrsuspension.report.ch7.render` (``hil`` does not import the report).
+
+A half or full car (:class:`~mrsuspension.engine.vehicle.VehicleSimulation`) is compared
+on ``time`` only, with one corner's damper on the rig (``corner=``), against
+``VehicleSimulation.run``: the rig corner's measures and the body's
+(:func:`~mrsuspension.hil.validate.validate`). The other comparisons, the controller
+cases and the sprung masses are the quarter car's (Chapter 7's rig) and are refused.
 """
 
 from __future__ import annotations
@@ -65,6 +71,7 @@ from mrsuspension.hil.loop import run_hil
 from mrsuspension.hil.realtime import normalise_mode
 from mrsuspension.hil.rig import Rig, SimulatedRig
 from mrsuspension.hil.safety import SafetyLimits, StartUp
+from mrsuspension.hil.vehicle import check_corner, is_vehicle_simulation
 
 __all__ = [
     "CASES",
@@ -473,6 +480,7 @@ def validate_chapter7(
     realtime: bool | str | None = None,
     masses: Sequence[float] | None = None,
     render: Renderer | None = None,
+    corner: str | None = None,
 ) -> dict[str, Any]:
     """The Chapter 7 comparisons of HiL against offline (see the module docstring).
 
@@ -518,6 +526,10 @@ def validate_chapter7(
         (:func:`mrsuspension.report.ch7.render`, which
         :func:`mrsuspension.report.ch7.validate_chapter7` passes). Without it only the
         numbers and the ``time`` files are written.
+    corner : str, optional
+        A half or full car's rig corner (default: the first). A vehicle is compared on
+        ``time`` only: ``what`` must be every comparison (the default: read as those
+        that apply) or ``time``, ``cases`` the scenario's and ``masses`` its own.
 
     Returns
     -------
@@ -545,25 +557,23 @@ def validate_chapter7(
     cases = parse_cases(list(cases))
     frequencies = parse_frequencies(list(frequencies))
     mass_list = parse_masses(None if masses is None else list(masses))
+    if is_vehicle_simulation(sim):
+        return _validate_vehicle(
+            sim, rig, out, what=what, cases=cases, masses=mass_list, duration=duration,
+            rate=rate, model_dt=model_dt, limits=limits, realtime=realtime, render=render,
+            corner=corner,
+        )  # fmt: skip
+    if corner is not None:
+        raise ValidationError(
+            f"--corner {corner!r}: a quarter-car scenario has no corners (half and full cars do)"
+        )
     mass_list = mass_list or (sim.vehicle.sprung_mass,)
     several = len(mass_list) > 1
     # the vehicles first: a mass the vehicle refuses fails before any run
     vehicles = {m: sim.vehicle.with_(sprung_mass=m) for m in mass_list}
     if not (isinstance(amplitude, int | float) and 0.0 < amplitude <= 0.1):
         raise ValidationError(f"amplitude must be in (0, 0.1] m; got {amplitude!r}")
-    if realtime is None:
-        realtime = "unpaced" if isinstance(rig, SimulatedRig) else "auto"
-    mode = normalise_mode(realtime)
-    if mode == "unpaced" and not isinstance(rig, SimulatedRig):
-        raise ValidationError(
-            f"realtime='unpaced' needs a rig simulated in this process; a "
-            f"{type(rig).__name__} always runs paced (auto, fifo or off)"
-        )
-    pacing = (
-        "UNPACED: as fast as possible, not real time (simulated rig)"
-        if mode == "unpaced"
-        else f"paced in real time at {rate:g} Hz (realtime={mode})"
-    )
+    mode, pacing = _pacing(rig, realtime, rate)
     out_dir = Path(out) if out is not None else None
     if out_dir is not None:
         out_dir.mkdir(parents=True, exist_ok=True)
@@ -631,5 +641,89 @@ def validate_chapter7(
         data["figures"] = figures
         if render is not None:
             figures.update(render(data, pulses, out_dir))
+        (out_dir / "validation.json").write_text(json.dumps(_clean(data), indent=1) + "\n")
+    return data
+
+
+def _pacing(rig: Rig, realtime: bool | str | None, rate: float) -> tuple[str, str]:
+    """The loop's scheduling mode (unpaced by default for a rig in this process) and the
+    line every output starts with."""
+    if realtime is None:
+        realtime = "unpaced" if isinstance(rig, SimulatedRig) else "auto"
+    mode = normalise_mode(realtime)
+    if mode == "unpaced" and not isinstance(rig, SimulatedRig):
+        raise ValidationError(
+            f"realtime='unpaced' needs a rig simulated in this process; a "
+            f"{type(rig).__name__} always runs paced (auto, fifo or off)"
+        )
+    pacing = (
+        "UNPACED: as fast as possible, not real time (simulated rig)"
+        if mode == "unpaced"
+        else f"paced in real time at {rate:g} Hz (realtime={mode})"
+    )
+    return mode, pacing
+
+
+def _validate_vehicle(
+    sim: Any,
+    rig: Rig,
+    out: str | Path | None,
+    *,
+    what: Sequence[str],
+    cases: Sequence[str],
+    masses: Sequence[float],
+    duration: float,
+    rate: float,
+    model_dt: float,
+    limits: SafetyLimits | None,
+    realtime: bool | str | None,
+    render: Renderer | None,
+    corner: str | None,
+) -> dict[str, Any]:
+    """:func:`validate_chapter7` of a half or full car: ``time`` only, one rig corner."""
+    model = str(getattr(sim.vehicle, "model_name", "vehicle"))
+    if tuple(what) != WHAT and set(what) - {"time"}:
+        others = ", ".join(w for w in what if w != "time")
+        raise ValidationError(
+            f"--what {others}: a {model} scenario is validated on 'time' only (the "
+            "frequency, pulse and road comparisons are the quarter car's, Chapter 7)"
+        )
+    if tuple(cases) != ("scenario",):
+        raise ValidationError(
+            f"--cases {','.join(cases)}: a {model} scenario is validated with its own "
+            "controllers only (--cases scenario)"
+        )
+    if masses:
+        raise ValidationError(
+            f"--masses: a {model} scenario is validated at its own masses (the sprung-mass "
+            "cases are the quarter car's)"
+        )
+    corner = check_corner(sim, corner, "--corner")
+    mode, pacing = _pacing(rig, realtime, rate)
+    out_dir = Path(out) if out is not None else None
+    if out_dir is not None:
+        out_dir.mkdir(parents=True, exist_ok=True)
+    from mrsuspension.hil.validate import validate
+
+    report = validate(
+        sim, rig, duration=duration, rate=rate, out=out_dir, model_dt=model_dt,
+        limits=limits, realtime=mode, corner=corner,
+    )  # fmt: skip
+    data: dict[str, Any] = {
+        "pacing": pacing,
+        "realtime": mode,
+        "rate": rate,
+        "rig": _clean(rig.describe()),
+        "scenario": sim.describe(),
+        "corner": corner,
+        "what": ["time"],
+        "cases": ["scenario"],
+        "masses": [],
+        "time": report.describe(),
+    }
+    if out_dir is not None:
+        data["figures"] = {"time": [p.relative_to(out_dir).as_posix() for p in report.figures]}
+        if render is not None:
+            data["figures"].update(render(data, {}, out_dir))
         (out_dir / "validation.json").write_text(json.dumps(_clean(data), indent=1) + "\n")
     return data

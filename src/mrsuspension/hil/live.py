@@ -416,12 +416,16 @@ class _Road:
 def _apply_settings(
     hooks: LoopHooks,
     stepper: Any,
-    road_src: _Road,
+    road_src: _Road | None,
     supervisor: SafetySupervisor,
     t: float,
     period: float,
 ) -> int:
-    """Apply the newest queued configuration between two ticks; ramp length in ticks."""
+    """Apply the newest queued configuration between two ticks; ramp length in ticks.
+
+    A run whose model takes no live changes (a half or full car, ``live_changes`` False)
+    refuses each one (a ``rejected`` message) and carries on.
+    """
     q = hooks.settings
     if q is None:
         return 0
@@ -432,6 +436,13 @@ def _apply_settings(
     except Exception:  # queue.Empty
         pass
     if new is None:
+        return 0
+    if road_src is None or not getattr(stepper, "live_changes", True):
+        hooks.send(
+            "rejected",
+            {"time": t, "error": "live changes apply to quarter-car runs; this run is a "
+             "half or full car (restart it with the new scenario)"},
+        )  # fmt: skip
         return 0
     try:
         if isinstance(new, Simulation):  # not prepared: compare here

@@ -6,6 +6,12 @@ engine step, output at the loop rate), with the controller's current capped at t
 safety limit in both, so that they are comparable. The comparison gives RMS measures both
 ways with their relative difference, and figures: overlaid time histories of the body
 acceleration and the damper force, and the overlaid F-v loop.
+
+A half or full car (:class:`~mrsuspension.engine.vehicle.VehicleSimulation`) runs with one
+corner's damper on the rig (:mod:`~mrsuspension.hil.vehicle`) against
+:meth:`VehicleSimulation.run <mrsuspension.engine.vehicle.VehicleSimulation.run>` on the
+same roads and engine step: the rig corner's measures (:data:`MEASURES`) and the body's
+(:data:`BODY_MEASURES`).
 """
 
 from __future__ import annotations
@@ -23,8 +29,9 @@ from mrsuspension.engine.simulate import DEFAULT_DT, Simulation
 from mrsuspension.hil.loop import HilResult, run_hil
 from mrsuspension.hil.rig import Rig
 from mrsuspension.hil.safety import SafetyLimits, StartUp
+from mrsuspension.hil.vehicle import check_corner, is_vehicle_simulation
 
-__all__ = ["MEASURES", "ValidationReport", "validate"]
+__all__ = ["BODY_MEASURES", "MEASURES", "ValidationReport", "validate"]
 
 #: compared RMS measures: (key, label, unit, channel, remove the mean)
 MEASURES: tuple[tuple[str, str, str, str, bool], ...] = (
@@ -35,6 +42,16 @@ MEASURES: tuple[tuple[str, str, str, str, bool], ...] = (
     ("damper_force", "damper force F_d", "N", "F_d", False),
     ("dynamic_tire_force", "dynamic tire force F_T - mean", "N", "F_T", True),
     ("drive_current", "drive current demand i_d", "A", "i_d", False),
+)
+#: the body's RMS measures of a half or full car, as :data:`MEASURES` (a degree of freedom
+#: the vehicle does not have, the half car's roll, is left out: both runs give 0)
+BODY_MEASURES: tuple[tuple[str, str, str, str, bool], ...] = (
+    ("heave", "body heave", "m", "heave", False),
+    ("pitch", "body pitch", "rad", "pitch", False),
+    ("roll", "body roll", "rad", "roll", False),
+    ("heave_acceleration", "heave acceleration", "m/s^2", "heave_ddot", False),
+    ("pitch_acceleration", "pitch acceleration", "rad/s^2", "pitch_ddot", False),
+    ("roll_acceleration", "roll acceleration", "rad/s^2", "roll_ddot", False),
 )
 
 
@@ -59,9 +76,12 @@ class ValidationReport:
     hil_signals, offline_signals : dict of numpy.ndarray
         The compared channels (:data:`MEASURES`), aligned sample by sample.
     rms : dict
-        Per measure: ``{"label", "unit", "hil", "offline", "relative_difference"}``.
+        Per measure: ``{"label", "unit", "hil", "offline", "relative_difference"}``
+        (a vehicle's rig-corner labels name the corner).
     figures : list of Path
         PNG files written (empty without an output directory).
+    corner : str or None
+        A vehicle's rig corner (None: a quarter car).
     """
 
     hil: HilResult
@@ -70,10 +90,11 @@ class ValidationReport:
     offline_signals: dict[str, np.ndarray]
     rms: dict[str, dict[str, Any]]
     figures: list[Path] = dataclasses.field(default_factory=list)
+    corner: str | None = None
 
     def describe(self) -> dict[str, Any]:
         """Plain-data summary (the JSON summary)."""
-        return {
+        out = {
             "reason": self.hil.reason,
             "tripped": self.hil.tripped,
             "samples": int(self.time.size),
@@ -81,10 +102,13 @@ class ValidationReport:
             "stats": self.hil.stats.describe(),
             "figures": [str(p) for p in self.figures],
         }
+        if self.corner is not None:
+            out["corner"] = self.corner
+        return out
 
 
 def validate(
-    sim: Simulation,
+    sim: Simulation | Any,
     rig: Rig,
     duration: float = 10.0,
     rate: float = 1000.0,
@@ -93,13 +117,15 @@ def validate(
     model_dt: float = DEFAULT_DT,
     limits: SafetyLimits | None = None,
     realtime: bool | str = True,
+    corner: str | None = None,
 ) -> ValidationReport:
     """Run ``sim`` in HiL with ``rig`` and offline; compare them.
 
     Parameters
     ----------
-    sim : Simulation
-        The scenario's simulation.
+    sim : Simulation or VehicleSimulation
+        The scenario's simulation: a quarter car, or a half or full car with the damper
+        of ``corner`` on the rig.
     rig : Rig
         The rig of the HiL run.
     duration : float
@@ -116,13 +142,30 @@ def validate(
     realtime : bool or str
         Pacing and scheduling of the HiL loop (see :func:`~mrsuspension.hil.loop.run_hil`;
         ``"unpaced"`` runs a simulated rig as fast as possible).
+    corner : str, optional
+        A vehicle's rig corner (default: the first); the offline run is
+        :meth:`VehicleSimulation.run <mrsuspension.engine.vehicle.VehicleSimulation.run>`
+        and the body's measures (:data:`BODY_MEASURES`) are compared too.
 
     Returns
     -------
     ValidationReport
         RMS comparison, aligned signals and the HiL result.
+
+    Examples
+    --------
+    >>> from mrsuspension.hil import ideal_rig
+    >>> from mrsuspension.hil.loop import _simulation_of
+    >>> car = _simulation_of("examples/vehicles/half_car.toml")
+    >>> rig = ideal_rig(car.corner_simulation("front").damper)
+    >>> rep = validate(car, rig, duration=1.0, realtime="unpaced")
+    >>> rep.corner, "roll" in rep.rms, abs(rep.rms["heave_acceleration"]["relative_difference"]) < 0.01
+    ('front', False, True)
     """
     limits = limits or SafetyLimits()
+    vehicle = is_vehicle_simulation(sim)
+    if vehicle:
+        corner = check_corner(sim, corner)
     if sim.max_current > limits.current:
         sim = dataclasses.replace(sim, max_current=limits.current)
     out_dir = Path(out) if out is not None else None
@@ -132,7 +175,7 @@ def validate(
         sim, rig, duration=duration, rate=rate,
         out=out_dir / "recording" if out_dir is not None else None,
         model_dt=model_dt, limits=limits, startup=StartUp.none(), realtime=realtime,
-        cap_current=False,
+        cap_current=False, corner=corner,
     )  # fmt: skip
     offline = sim.run(duration, dt=model_dt, output_rate=rate)
     run = hil.running()
@@ -142,16 +185,22 @@ def validate(
     hil_sig: dict[str, np.ndarray] = {}
     off_sig: dict[str, np.ndarray] = {}
     rms: dict[str, dict[str, Any]] = {}
-    for key, label, unit, channel, detrend in MEASURES:
+    measures = [(m, f".{corner}" if vehicle else "") for m in MEASURES]
+    measures += [(m, "") for m in (BODY_MEASURES if vehicle else ())]
+    for (key, label, unit, channel, detrend), suffix in measures:
         h = np.asarray(hil.recording[channel][run][:n], dtype=float)
-        o = np.asarray(offline.signals[channel][1 : n + 1], dtype=float)
+        o = np.asarray(offline.signals[channel + suffix][1 : n + 1], dtype=float)
+        if not suffix and vehicle and not (np.any(o) or np.any(h)):
+            continue  # a degree of freedom this vehicle does not have (a half car's roll)
         hil_sig[channel] = h
         off_sig[channel] = o
         rh, ro = _rms(h, detrend), _rms(o, detrend)
         rel = rh / ro - 1.0 if ro > 0 and math.isfinite(rh) else math.nan
+        if suffix:
+            label = f"{label} ({corner})"
         rms[key] = {"label": label, "unit": unit, "hil": rh, "offline": ro}
         rms[key]["relative_difference"] = rel
-    report = ValidationReport(hil, time, hil_sig, off_sig, rms)
+    report = ValidationReport(hil, time, hil_sig, off_sig, rms, corner=corner)
     if out_dir is not None:
         report.figures = _figures(report, out_dir)
         summary = report.describe()

@@ -48,6 +48,7 @@ from mrsuspension.errors import MRSuspensionError, ValidationError
 from mrsuspension.hil.loop import CHANNELS, LiveChange, load_result
 from mrsuspension.hil.realtime import check_isolate, normalise_mode
 from mrsuspension.hil.recorder import META_FILE, load_recording
+from mrsuspension.hil.vehicle import BODY_CHANNELS, check_corner, is_vehicle_simulation
 from mrsuspension.measures.steady import T_as, T_au, T_dr, T_ds, T_du, dlc
 from mrsuspension.monitor.acquisition import Acquisition, acquisition_from_settings
 from mrsuspension.monitor.runner import TAP_RATE, LoopHandle
@@ -68,12 +69,14 @@ __all__ = [
     "live_measures",
 ]
 
-#: channels shown by the page (loop channels plus the derived z_r'' and model force F_dmod)
+#: channels shown by the page (loop channels plus the derived z_r'' and model force F_dmod;
+#: a half or full car run's body heave, pitch and roll, NaN in a quarter-car run)
 DISPLAY_CHANNELS: tuple[str, ...] = (
     "time", "state", "z_r", "z_r_dot", "z_r_ddot", "z_s", "z_s_ddot", "z_u", "z_u_ddot",
-    "x_d", "x_m", "F_dm", "F_dmod", "F_T", "i_d", "i_cmd", "i_dm",
+    "x_d", "x_m", "F_dm", "F_dmod", "F_T", "i_d", "i_cmd", "i_dm", "heave", "pitch", "roll",
 )  # fmt: skip
-_COL = {name: j for j, (name, _) in enumerate(CHANNELS)}
+#: columns of a tapped row: the loop's channels, then a vehicle run's body channels
+_COL = {name: j for j, (name, _) in enumerate(CHANNELS + BODY_CHANNELS)}
 #: longest wait for a stopped loop to bring the actuator back to mid-stroke and end [s]
 _RETURN_WAIT = 15.0
 #: live measures are recomputed this often [s]
@@ -174,17 +177,23 @@ class AttachedRun:
     model_dt : float, optional
         Largest engine step [s] per tick (the scenario's ``[simulation] dt``; None: the
         loop's default, :data:`~mrsuspension.engine.settings.DEFAULT_DT`).
+    corner : str, optional
+        With a half or full car (a :class:`~mrsuspension.engine.vehicle.VehicleSimulation`):
+        the corner whose damper is on the rig (default: the first). The page shows that
+        corner as a quarter car and the body's heave, pitch and roll; live changes are
+        refused (they describe a quarter car).
     on_end : callable, optional
         Called once with the run's result description (what ``mrsus hil run --json``
         prints: :meth:`~mrsuspension.hil.loop.HilResult.describe`) when the run has
         ended, or with ``{"state": "error", "reason": ...}`` when its loop failed.
     """
 
-    simulation: Simulation
+    simulation: Simulation | Any
     rate: float = 1000.0
     duration: float = 60.0
     model_dt: float | None = None
     on_end: Callable[[dict[str, Any]], None] | None = None
+    corner: str | None = None
 
 
 class MonitorState:
@@ -229,6 +238,8 @@ class MonitorState:
         self.settings: MonitorSettings | None = None
         self.base: Simulation | None = None
         self.simulation: Simulation | None = None
+        #: the rig corner of a half or full car run (None: a quarter car)
+        self.corner: str | None = None
         self.run_id = 0
         self.status: dict[str, Any] = {"state": "idle", "reason": "", "rig": rig}
         self.recording: Path | None = None
@@ -277,10 +288,17 @@ class MonitorState:
         """Start the attached run (its scenario's damper is kept for live changes)."""
         with self.lock:
             self._check_idle()
-            self.base = run.simulation
+            corner = None
+            target: Any = run.simulation
+            if is_vehicle_simulation(target):  # the page's runs keep that corner's damper
+                corner = check_corner(target, run.corner)
+                self.base = target.corner_simulation(corner)
+            else:
+                self.base = target
             info = self._launch(
-                run.simulation, run.rate, run.duration, 0.2, None, model_dt=run.model_dt
-            )
+                run.simulation, run.rate, run.duration, 0.2, None, model_dt=run.model_dt,
+                corner=corner,
+            )  # fmt: skip
             self._on_end = run.on_end
         return info
 
@@ -336,12 +354,17 @@ class MonitorState:
         ramp_time: float,
         settings: MonitorSettings | None,
         model_dt: float | None = None,
+        corner: str | None = None,
     ) -> dict[str, Any]:
         if self.handle is not None:  # ended (checked by the caller, under the lock)
             self.handle.join(_RETURN_WAIT)
             self.report_end()
         self.run_id, out = self._reserve_run()
         self.settings = settings
+        run_sim: Any = sim
+        self.corner = corner
+        if corner is not None:  # shown as the rig corner's quarter car, plus the body
+            sim = run_sim.corner_simulation(corner)
         self.simulation = sim
         self.static_load = sim.vehicle.static_load
         for buf in self.buffers.values():
@@ -363,11 +386,11 @@ class MonitorState:
         self.recording = None
         self.status = {
             "state": "starting", "reason": "", "run": self.run_id, "rig": self.rig,
-            "applied": 0, "safe": False, "fields": page_fields(sim),
+            "applied": 0, "safe": False, "fields": page_fields(sim), "corner": corner,
         }  # fmt: skip
         self.handle = LoopHandle(
-            sim, self.rig, rate, duration, out, ramp_time=ramp_time, realtime=self.realtime,
-            cpus=self.loop_cpus, isolate=self.isolate, model_dt=model_dt,
+            run_sim, self.rig, rate, duration, out, ramp_time=ramp_time, realtime=self.realtime,
+            cpus=self.loop_cpus, isolate=self.isolate, model_dt=model_dt, corner=corner,
         )  # fmt: skip
         return {"run": self.run_id, "rig": self.rig, "fields": self.status["fields"]}
 
@@ -385,6 +408,11 @@ class MonitorState:
             or self.status.get("state") not in ("starting", "startup", "running")
         ):
             raise ValidationError("no run is going: press Start first")
+        if self.corner is not None:
+            raise ValidationError(
+                "live changes apply to quarter-car runs; this run is a half or full car "
+                f"(corner {self.corner!r} on the rig): stop it and start a new run"
+            )
         old = self.simulation if self.simulation is not None else sim
         # prepared here: the loop only swaps arrays
         change = LiveChange.prepare(sim, old, h.rate, ramp_time=settings.ramp_time)
@@ -487,8 +515,10 @@ class MonitorState:
                 out[:, j] = zr_dd[-n:]
             elif name == "F_dmod":
                 out[:, j] = f_mod[-n:]
-            else:
+            elif _COL[name] < new.shape[1]:
                 out[:, j] = new[:, _COL[name]]
+            else:  # a body channel of a quarter-car run
+                out[:, j] = math.nan
         return out
 
     def poll(self) -> None:

@@ -61,6 +61,7 @@ def loop_main(
     isolate: bool = False,
     model_dt: float | None = None,
     parent: int | None = None,
+    corner: str | None = None,
 ) -> None:
     """Body of the loop process: build the rig and run :func:`run_hil` with the hooks.
 
@@ -97,12 +98,16 @@ def loop_main(
     model_dt : float, optional
         Largest engine step [s] (:func:`~mrsuspension.hil.loop.run_hil`'s ``model_dt``;
         None: its default).
+    corner : str, optional
+        A half or full car's rig corner (:func:`~mrsuspension.hil.loop.run_hil`'s
+        ``corner``).
     """
     from mrsuspension.engine.settings import DEFAULT_DT
     from mrsuspension.hil.loop import (
         LOOP_SIGNALS,
         LoopHooks,
         _raise_interrupted,
+        _rig_damper,
         bind_to_parent,
         load_result,
         run_hil,
@@ -122,7 +127,7 @@ def loop_main(
             tap.put(("end", info), timeout=2.0)
 
     try:
-        rig = make_rig(rig_spec, sim.damper)
+        rig = make_rig(rig_spec, _rig_damper(sim, corner))
         every = max(1, round(rate / TAP_RATE))
         hooks = LoopHooks(
             tap=tap,
@@ -138,6 +143,7 @@ def loop_main(
         result = run_hil(
             sim, rig, duration=duration, rate=rate, out=out, hooks=hooks, realtime=realtime,
             isolate=isolate, model_dt=DEFAULT_DT if model_dt is None else model_dt,
+            corner=corner,
         )  # fmt: skip
     except KeyboardInterrupt as exc:  # a signal: after the loop's safe stop, or before it
         try:
@@ -196,6 +202,8 @@ class LoopHandle:
         CPUs the loop process may use (the server may keep off the loop's core).
     isolate : bool
         Move the machine's other movable tasks off the loop's core for the run.
+    corner : str, optional
+        A half or full car's rig corner: the tapped rows carry the body's channels too.
     """
 
     def __init__(
@@ -211,8 +219,10 @@ class LoopHandle:
         cpus: set[int] | None = None,
         isolate: bool = False,
         model_dt: float | None = None,
+        corner: str | None = None,
     ) -> None:
         from mrsuspension._pool import ensure_resource_tracker
+        from mrsuspension.hil.vehicle import BODY_CHANNELS
 
         ensure_resource_tracker()  # before the queues: it outlives a terminal's hang-up
         ctx = multiprocessing.get_context("spawn")
@@ -221,7 +231,8 @@ class LoopHandle:
         self.queue: Any = ctx.Queue(maxsize=queue_size)
         self.settings = ChangeQueue(4, ctx)  # the loop polls it without a system call
         self.stop_event = StopFlag(ctx)  # lock-free: the loop never waits on it
-        self.ring = TapRing(len(CHANNELS), capacity=4096, context=ctx)
+        width = len(CHANNELS) + (len(BODY_CHANNELS) if corner is not None else 0)
+        self.ring = TapRing(width, capacity=4096, context=ctx)
         self.lost = 0
         self._seq = 0.0
         self.process = ctx.Process(
@@ -229,7 +240,7 @@ class LoopHandle:
             args=(
                 sim, rig, float(rate), float(duration), str(self.out), float(ramp_time),
                 self.queue, self.stop_event, self.settings, self.ring, realtime, cpus,
-                isolate, model_dt, os.getpid(),
+                isolate, model_dt, os.getpid(), corner,
             ),
             name="mrsus-monitor-loop",
             daemon=True,

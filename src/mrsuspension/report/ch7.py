@@ -313,8 +313,17 @@ def index_page(data: dict[str, Any], figures: dict[str, list[str]]) -> str:
         "<h1>HiL against offline (dissertation Chapter 7)</h1>",
         f"<p class='pacing'>{html.escape(data['pacing'])}</p>",
         f"<p>rig: {html.escape(json.dumps(data['rig']))}</p>",
-        "<p>sprung mass m_s: " + ", ".join(f"{m:g} kg" for m in data["masses"]) + "</p>",
+        "<p>sprung mass m_s: " + ", ".join(f"{m:g} kg" for m in data["masses"]) + "</p>"
+        if data["masses"]
+        else "",
     ]
+    if data.get("corner"):  # a half or full car: one corner's damper on the rig
+        model = data.get("scenario", {}).get("vehicle", {}).get("model", "vehicle")
+        parts.append(
+            f"<p>{html.escape(str(model))}, the damper of corner "
+            f"<b>{html.escape(str(data['corner']))}</b> on the rig, the rest of the car "
+            "simulated in the loop; RMS of that corner's signals and of the body's</p>"
+        )
     if "time" in data:
         parts.append(
             "<h2>Time histories and F-v loop, scenario excitation "

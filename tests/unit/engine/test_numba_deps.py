@@ -27,6 +27,7 @@ MODULES = [
     "mrsuspension.engine.vehicle_kernel",
     "mrsuspension.engine.reduced",
     "mrsuspension.hil._kernels",
+    "mrsuspension.hil._vehicle_kernel",
     "mrsuspension.identify.timedomain",
     "mrsuspension.shaping",
 ]

@@ -15,6 +15,7 @@
     { title: "stroke [m]: model x_d, measured x_m", ch: ["x_d", "x_m"] },
     { title: "z_r [m]", ch: ["z_r"] },
     { title: "z_r'' [m/s^2]", ch: ["z_r_ddot"] },
+    { title: "body (half or full car): heave [m], pitch [rad], roll [rad]", ch: ["heave", "pitch", "roll"] },
   ];
   const COLORS = ["#c33", "#36c", "#999"];
   const MEASURES = ["T_as", "T_ds", "T_au", "T_du", "T_dr", "DLC"];
