@@ -151,8 +151,7 @@ def _simulation_of(target: Any) -> Any:
     if isinstance(target, str | Path):
         target = Scenario.load(target)
     if isinstance(target, Scenario):
-        quarter = target.model == "quarter-car"
-        sims = target.simulations() if quarter else target.vehicle_simulations()
+        sims = target.runs()  # any model (the run contract); HiL needs one run
         if len(sims) != 1:
             raise ValidationError(
                 f"HiL runs one scenario at a time; this one is a sweep of {len(sims)} runs"

@@ -48,7 +48,9 @@ BODY_CHANNELS: tuple[tuple[str, str], ...] = (
 
 
 def is_vehicle_simulation(sim: Any) -> bool:
-    """Whether ``sim`` is a half or full car (it has corners), not a quarter car.
+    """Whether ``sim`` is a run of a model with corners (a half or full car), not a
+    one-damper model such as the quarter car (its :class:`~mrsuspension.engine.plants.Plant`
+    says).
 
     Examples
     --------
@@ -57,7 +59,10 @@ def is_vehicle_simulation(sim: Any) -> bool:
     >>> is_vehicle_simulation(Simulation(Harmonic(1.5, 0.01)))
     False
     """
-    return callable(getattr(sim, "corner_simulation", None))
+    from mrsuspension.engine.plants import PLANTS
+
+    model = PLANTS.get(str(getattr(sim, "model_name", "")))  # a run (not a path, a scenario)
+    return model is not None and bool(model.corners)
 
 
 def check_corner(sim: Any, corner: str | None, name: str = "corner") -> str:
