@@ -405,9 +405,9 @@ def _rig_corner(sim: Any, corner: str | None) -> str | None:
     >>> _rig_corner(_simulation_of("examples/vehicles/half_car.toml"), None)
     'front'
     """
-    from mrsuspension.hil.vehicle import check_corner, is_vehicle_simulation
+    from mrsuspension.hil.vehicle import check_corner, has_corners
 
-    if is_vehicle_simulation(sim):
+    if has_corners(sim):
         return check_corner(sim, corner, "--corner")
     if corner is not None:
         raise ValidationError(

@@ -71,7 +71,7 @@ from mrsuspension.hil.loop import run_hil
 from mrsuspension.hil.realtime import normalise_mode
 from mrsuspension.hil.rig import Rig, SimulatedRig
 from mrsuspension.hil.safety import SafetyLimits, StartUp
-from mrsuspension.hil.vehicle import check_corner, is_vehicle_simulation
+from mrsuspension.hil.vehicle import check_corner, has_corners
 
 __all__ = [
     "CASES",
@@ -557,7 +557,7 @@ def validate_chapter7(
     cases = parse_cases(list(cases))
     frequencies = parse_frequencies(list(frequencies))
     mass_list = parse_masses(None if masses is None else list(masses))
-    if is_vehicle_simulation(sim):
+    if has_corners(sim):
         return _validate_vehicle(
             sim, rig, out, what=what, cases=cases, masses=mass_list, duration=duration,
             rate=rate, model_dt=model_dt, limits=limits, realtime=realtime, render=render,

@@ -116,7 +116,7 @@ from mrsuspension.hil.realtime import (
 from mrsuspension.hil.recorder import Recorder, load_recording
 from mrsuspension.hil.rig import Rig, SimulatedRig
 from mrsuspension.hil.safety import SafetyLimits, SafetySupervisor, StartUp
-from mrsuspension.hil.vehicle import BODY_CHANNELS, CornerPlant, check_corner, is_vehicle_simulation
+from mrsuspension.hil.vehicle import BODY_CHANNELS, CornerPlant, check_corner, has_corners
 
 __all__ = [
     "CHANNELS",
@@ -144,7 +144,7 @@ def _simulation_of(target: Any) -> Any:
     """The one run of ``target``: a quarter car's :class:`Simulation`, or a half or full
     car's :class:`~mrsuspension.engine.vehicle.VehicleSimulation` (the scenario's
     ``[vehicle] model`` says which)."""
-    if isinstance(target, Simulation) or is_vehicle_simulation(target):
+    if isinstance(target, Simulation) or has_corners(target):
         return target
     from mrsuspension.scenario import Scenario
 
@@ -165,7 +165,7 @@ def _simulation_of(target: Any) -> Any:
 
 def _rig_damper(sim: Any, corner: str | None = None) -> Any:
     """The damper model on the rig: the quarter car's, or the rig corner's of a vehicle."""
-    if is_vehicle_simulation(sim):
+    if has_corners(sim):
         return sim.corner_simulation(check_corner(sim, corner)).damper
     return sim.damper
 
@@ -301,7 +301,7 @@ def run_hil(
     check_isolate(mode, isolate)
     realtime = mode != "unpaced"
     sim = _simulation_of(target)
-    vehicle = is_vehicle_simulation(sim)
+    vehicle = has_corners(sim)
     if vehicle:
         corner = check_corner(sim, corner)
     elif corner is not None:

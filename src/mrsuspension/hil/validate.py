@@ -29,7 +29,7 @@ from mrsuspension.engine.simulate import DEFAULT_DT, Simulation
 from mrsuspension.hil.loop import HilResult, run_hil
 from mrsuspension.hil.rig import Rig
 from mrsuspension.hil.safety import SafetyLimits, StartUp
-from mrsuspension.hil.vehicle import check_corner, is_vehicle_simulation
+from mrsuspension.hil.vehicle import check_corner, has_corners
 
 __all__ = ["BODY_MEASURES", "MEASURES", "ValidationReport", "validate"]
 
@@ -163,7 +163,7 @@ def validate(
     ('front', False, True)
     """
     limits = limits or SafetyLimits()
-    vehicle = is_vehicle_simulation(sim)
+    vehicle = has_corners(sim)
     if vehicle:
         corner = check_corner(sim, corner)
     if sim.max_current > limits.current:

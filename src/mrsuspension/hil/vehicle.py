@@ -33,7 +33,7 @@ from mrsuspension.engine.result import SimulationDiverged
 from mrsuspension.engine.settings import check_memory
 from mrsuspension.errors import ValidationError
 
-__all__ = ["BODY_CHANNELS", "CornerPlant", "check_corner", "is_vehicle_simulation"]
+__all__ = ["BODY_CHANNELS", "CornerPlant", "check_corner", "has_corners"]
 
 #: body channels recorded after the quarter car's (:data:`~mrsuspension.hil.loop.CHANNELS`)
 #: in a vehicle run, with their units
@@ -47,7 +47,7 @@ BODY_CHANNELS: tuple[tuple[str, str], ...] = (
 )
 
 
-def is_vehicle_simulation(sim: Any) -> bool:
+def has_corners(sim: Any) -> bool:
     """Whether ``sim`` is a run of a model with corners (a half or full car), not a
     one-damper model such as the quarter car (its :class:`~mrsuspension.engine.plants.Plant`
     says).
@@ -56,7 +56,7 @@ def is_vehicle_simulation(sim: Any) -> bool:
     --------
     >>> from mrsuspension.engine.simulate import Simulation
     >>> from mrsuspension.excitation import Harmonic
-    >>> is_vehicle_simulation(Simulation(Harmonic(1.5, 0.01)))
+    >>> has_corners(Simulation(Harmonic(1.5, 0.01)))
     False
     """
     from mrsuspension.engine.plants import PLANTS

@@ -48,7 +48,7 @@ from mrsuspension.errors import MRSuspensionError, ValidationError
 from mrsuspension.hil.loop import CHANNELS, LiveChange, load_result
 from mrsuspension.hil.realtime import check_isolate, normalise_mode
 from mrsuspension.hil.recorder import META_FILE, load_recording
-from mrsuspension.hil.vehicle import BODY_CHANNELS, check_corner, is_vehicle_simulation
+from mrsuspension.hil.vehicle import BODY_CHANNELS, check_corner, has_corners
 from mrsuspension.measures.steady import T_as, T_au, T_dr, T_ds, T_du, dlc
 from mrsuspension.monitor.acquisition import Acquisition, acquisition_from_settings
 from mrsuspension.monitor.runner import TAP_RATE, LoopHandle
@@ -290,7 +290,7 @@ class MonitorState:
             self._check_idle()
             corner = None
             target: Any = run.simulation
-            if is_vehicle_simulation(target):  # the page's runs keep that corner's damper
+            if has_corners(target):  # the page's runs keep that corner's damper
                 corner = check_corner(target, run.corner)
                 self.base = target.corner_simulation(corner)
             else:
