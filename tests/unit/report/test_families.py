@@ -228,10 +228,10 @@ def _started(seconds: float) -> float:
 def test_pool_starts_the_longest_tasks_first_and_counts_idle_time(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    from mrsuspension.report import families
+    from mrsuspension.report.families import pool
 
     costs = {"a": (1.0, 1.0), "b": (4.0, 4.0), "c": (2.0, 2.0), "d": (3.0, 3.0)}
-    monkeypatch.setattr(families, "TASK_COST", costs)
+    monkeypatch.setattr(pool, "TASK_COST", costs)  # where task_cost reads it
     sleep = {"a": 0.1, "b": 0.3, "c": 0.2, "d": 0.1}  # c starts at 0.1 s, a at 0.3 s
     calls = {name: (_started, (sleep[name],)) for name in costs}  # given in another order
     built = build_all({}, [], quick=True, out=tmp_path, calls=calls, workers=2)
