@@ -71,7 +71,7 @@ from mrsuspension.errors import ValidationError, check_range, unknown_name
 from mrsuspension.vehicle.body import CORNERS_FULL, CORNERS_HALF, FullCar, HalfCar, VehicleBody
 
 if TYPE_CHECKING:
-    from mrsuspension.measures import RoadPeak
+    pass
 
 __all__ = [
     "CORNERS_FULL",
@@ -815,12 +815,14 @@ class VehicleSimulation:
         dt: float | None = None,
         output_rate: float | None = None,
         settings: RunSettings | None = None,
-        road_peak: RoadPeak = "after-onset",
+        road_peak: str = "after-onset",
     ) -> dict[str, Any]:
         """``self.run(...).measures(road_peak=...)`` reduced in the kernel: no time history.
 
-        The same arguments as :meth:`run` and the same measures as
-        :meth:`VehicleResult.measures` (the body's RMS accelerations, then every
+        The same arguments as :meth:`run` (``road_peak``: ``"after-onset"`` or ``"onset"``,
+        as :meth:`SimulationResult.measures
+        <mrsuspension.engine.result.SimulationResult.measures>` takes it) and the same
+        measures as :meth:`VehicleResult.measures` (the body's RMS accelerations, then every
         corner's quarter-car measures keyed ``"<measure>.<corner>"``), equal to round-off
         (sums in another order). Every corner accumulates what its measures need at each
         output sample with the quarter car's accumulators
@@ -1235,7 +1237,7 @@ def run_vehicles(
 
 
 def _measure_vehicle(
-    args: tuple[VehicleSimulation, RunSettings, RoadPeak],
+    args: tuple[VehicleSimulation, RunSettings, str],
 ) -> dict[str, Any] | SimulationDiverged:
     sim, plan, road_peak = args
     try:
@@ -1249,7 +1251,7 @@ def measure_vehicles(
     settings: Sequence[RunSettings],
     *,
     pool: Any = None,
-    road_peak: RoadPeak = "after-onset",
+    road_peak: str = "after-onset",
 ) -> list[dict[str, Any] | SimulationDiverged]:
     """The measures of each vehicle run (its own settings), reduced in the kernel, in order.
 
