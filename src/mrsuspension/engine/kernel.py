@@ -31,6 +31,12 @@ A step of length ``dt``:
 4. evaluate the rates at the new state (accelerations, forces for the record and the
    next step's ``a_d``), then advance the damper's internal dynamics.
 
+:func:`run` is the one drive loop of an offline run (start, step, limit checks,
+decimation): each output sample either fills a row of the record or, for a run reduced
+to its measures (:mod:`mrsuspension.engine.reduced`), goes to the accumulators
+(:func:`accumulate`, also the lanes' and every vehicle corner's), behind one flag
+(:func:`output`; :func:`recording` and :func:`reducing` give the arguments of either).
+
 Arrays: the state ``y`` and the vehicle's ``vp`` have the layouts of
 :mod:`mrsuspension.vehicle.kernel`, the controller's ``cp`` (and the codes ``ck``,
 ``fk``) those of :mod:`mrsuspension.control.kernel`, the damper's and the estimators'

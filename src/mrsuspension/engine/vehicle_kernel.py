@@ -36,6 +36,12 @@ controller's arrays (padded to the longest); ``mem`` one row per corner with the
 car's layout (``engine.kernel.M_*``). State ``y``: ``[z, theta, phi, z', theta', phi']``
 then ``[z_u, z_u', z_0, z_0']`` per corner.
 
+:func:`run` is the one drive loop (start, step, limit checks, decimation), resumable so
+that a run takes its road a piece at a time: each output sample fills a row of the record
+or, reduced (``VehicleSimulation.run_measures``), goes to every corner's accumulators
+(the quarter car's :func:`~mrsuspension.engine.kernel.accumulate` on the corner's
+quarter-car view) and the body's sums of squared accelerations (:func:`output`).
+
 :mod:`mrsuspension.engine.vehicle` runs it (``VehicleSimulation``); the step is kept apart
 so that editing the Python side does not recompile it (about a minute).
 """
