@@ -31,6 +31,12 @@ A step of length ``dt``:
 4. evaluate the rates at the new state (accelerations, forces for the record and the
    next step's ``a_d``), then advance the damper's internal dynamics.
 
+:func:`run` is the one drive loop of an offline run (start, step, limit checks,
+decimation): each output sample either fills a row of the record or, for a run reduced
+to its measures (:mod:`mrsuspension.engine.reduced`), goes to the accumulators
+(:func:`accumulate`, also the lanes' and every vehicle corner's), behind one flag
+(:func:`output`; :func:`recording` and :func:`reducing` give the arguments of either).
+
 Arrays: the state ``y`` and the vehicle's ``vp`` have the layouts of
 :mod:`mrsuspension.vehicle.kernel`, the controller's ``cp`` (and the codes ``ck``,
 ``fk``) those of :mod:`mrsuspension.control.kernel`, the damper's and the estimators'
@@ -48,6 +54,7 @@ controller touches :mod:`mrsuspension.control` only.
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 from numba import njit
@@ -383,6 +390,113 @@ def check_limits(y: np.ndarray, mem: np.ndarray, limits: np.ndarray) -> tuple[in
     return D_OK, 0, 0.0
 
 
+# accumulators of one reduced run (a row of N_ACC floats; engine.reduced plans and
+# finishes the reduction)
+(
+    A_N,  # output samples
+    A_I1,  # sum i_d
+    A_FT1, A_FT2,  # sums of F_T - shift and its square
+    A_XD1, A_XD2,  # sums of x_d and x_d^2
+    A_PZS, A_PZU, A_PZR, A_PAS, A_PAU, A_PXD,  # max |z_s|, |z_u|, |z_r|, |z_s''|, |z_u''|, |x_d|
+    A_FTMAX,  # max F_T
+    A_CLAMP,  # samples with v_m at its clamp
+    A_NW,  # samples in the steady window
+    A_WAS2, A_WAU2, A_WXD2, A_WZS2, A_WZU2, A_WZR2,  # window sums of squares
+    A_WFT1, A_WFT2,  # window sums of F_T - shift and its square
+    A_WFDMAX, A_WFDNEG,  # window max F_d and max -F_d
+    A_WI1, A_WI2,  # window sums of i_d and i_d^2
+) = range(27)  # fmt: skip
+N_ACC = 27
+
+
+# compiled once and inlined by LLVM (numba's IR inlining of its call sites here, in the
+# vehicle kernel and in the lane kernel cost compile time); whether the sample is in the
+# steady window comes as a bool: a literal row number would compile a specialisation
+@njit(cache=True, **INLINED)
+def accumulate(
+    acc: np.ndarray,
+    in_window: bool,
+    shift: float,
+    threshold: float,
+    y: np.ndarray,
+    zr: float,
+    mem: np.ndarray,
+) -> None:
+    """Add an output sample (state ``y``, road ``zr``, outputs in ``mem``) to ``acc``.
+
+    ``in_window``: whether the sample is in the steady window (its row at or after
+    :attr:`~mrsuspension.engine.reduced.Reduction.window_start`); ``shift`` is subtracted
+    from ``F_T`` before summing; ``v_m >= threshold`` counts as at the clamp.
+
+    The signals are those :meth:`~mrsuspension.engine.Simulation.result_from_record`
+    reads from a record row, computed the same way (``y`` in the quarter car's layout:
+    a vehicle corner passes its quarter-car view).
+    """
+    zs = y[0]
+    zu = y[2]
+    xd = zu - zs
+    a_s = mem[M_AS]
+    a_u = mem[M_AU]
+    fd = mem[M_FD]
+    i = mem[M_ID]
+    d = mem[M_FT] - shift
+    acc[A_N] += 1.0
+    acc[A_I1] += i
+    acc[A_FT1] += d
+    acc[A_FT2] += d * d
+    acc[A_XD1] += xd
+    acc[A_XD2] += xd * xd
+    acc[A_PZS] = max(acc[A_PZS], abs(zs))
+    acc[A_PZU] = max(acc[A_PZU], abs(zu))
+    acc[A_PZR] = max(acc[A_PZR], abs(zr))
+    acc[A_PAS] = max(acc[A_PAS], abs(a_s))
+    acc[A_PAU] = max(acc[A_PAU], abs(a_u))
+    acc[A_PXD] = max(acc[A_PXD], abs(xd))
+    acc[A_FTMAX] = max(acc[A_FTMAX], mem[M_FT])
+    if mem[M_VM] >= threshold:
+        acc[A_CLAMP] += 1.0
+    if in_window:
+        acc[A_NW] += 1.0
+        acc[A_WAS2] += a_s * a_s
+        acc[A_WAU2] += a_u * a_u
+        acc[A_WXD2] += xd * xd
+        acc[A_WZS2] += zs * zs
+        acc[A_WZU2] += zu * zu
+        acc[A_WZR2] += zr * zr
+        acc[A_WFT1] += d
+        acc[A_WFT2] += d * d
+        acc[A_WFDMAX] = max(acc[A_WFDMAX], fd)
+        acc[A_WFDNEG] = max(acc[A_WFDNEG], -fd)
+        acc[A_WI1] += i
+        acc[A_WI2] += i * i
+
+
+# inlined by numba: called with literal row numbers (see record)
+@njit(cache=True, inline="always")
+def output(
+    reduced: bool,
+    rec: np.ndarray,
+    acc: np.ndarray,
+    trace: np.ndarray,
+    row: int,
+    in_window: bool,
+    shift: float,
+    threshold: float,
+    y: np.ndarray,
+    zr: float,
+    zrd: float,
+    mem: np.ndarray,
+) -> None:
+    """Output sample ``row``: a record row, or (``reduced``) the accumulators ``acc``
+    (:func:`accumulate`) and, with a non-empty ``trace``, ``z_s''`` into ``trace[row]``."""
+    if reduced:
+        accumulate(acc, in_window, shift, threshold, y, zr, mem)
+        if trace.size > 0:
+            trace[row] = mem[M_AS]
+    elif row < rec.shape[0]:
+        record(rec, row, y, zr, zrd, mem)
+
+
 @njit(cache=True, **NO_REFCOUNT)
 def run(
     y: np.ndarray,
@@ -405,19 +519,29 @@ def run(
     ces: np.ndarray,
     mem: np.ndarray,
     decimate: int,
-    rec: np.ndarray,
     limits: np.ndarray,
     scratch: np.ndarray,
+    reduced: bool,
+    rec: np.ndarray,
+    acc: np.ndarray,
+    window_start: int,
+    shift: float,
+    threshold: float,
+    trace: np.ndarray,
 ) -> tuple[int, int, int, float]:
     """``n_steps`` steps with the road sampled every dt/2 (``zr``, ``zrd``: 2 n + 1 values).
 
-    Records row 0 (initial state) and every ``decimate`` steps. Returns
-    ``(status, step, index, value)``: status 0 when every state stayed finite and within
-    ``limits = [max |z|, max |z'|, max |F_d|, max F_T]``, else the first offence.
-    ``scratch`` is work space of ``SCRATCH_SIZE``.
+    The quarter car's one drive loop. The output samples are the initial state and every
+    ``decimate`` steps; each is a row of the record ``rec`` or, with ``reduced``, goes to
+    the accumulators ``acc`` (:data:`N_ACC` values; steady window from output row
+    ``window_start``, ``shift`` and ``threshold`` as :func:`accumulate` takes them) and,
+    when ``trace`` is not empty, its ``z_s''`` to ``trace`` (see :func:`output`; the
+    unused ones may be empty). Returns ``(status, step, index, value)``: status 0 when
+    every state stayed finite and within ``limits = [max |z|, max |z'|, max |F_d|, max
+    F_T]``, else the first offence. ``scratch`` is work space of ``SCRATCH_SIZE``.
     """
     start(y, zr[0], zrd[0], vp, fk, dk, dp, ds, dek, dep, des, ck, cp, cek, cep, ces, mem, scratch)
-    record(rec, 0, y, zr[0], zrd[0], mem)
+    output(reduced, rec, acc, trace, 0, window_start <= 0, shift, threshold, y, zr[0], zrd[0], mem)
     row = 1
     for k in range(n_steps):
         j = 2 * k
@@ -428,7 +552,24 @@ def run(
         status, q, value = check_limits(y, mem, limits)
         if status != D_OK:
             return status, k + 1, q, value
-        if (k + 1) % decimate == 0 and row < rec.shape[0]:
-            record(rec, row, y, zr[j + 2], zrd[j + 2], mem)
+        if (k + 1) % decimate == 0:
+            output(
+                reduced, rec, acc, trace, row, row >= window_start, shift, threshold, y,
+                zr[j + 2], zrd[j + 2], mem,
+            )  # fmt: skip
             row += 1
     return D_OK, n_steps, 0, 0.0
+
+
+def recording(rec: np.ndarray) -> tuple[Any, ...]:
+    """The output arguments of :func:`run` (``reduced`` to ``trace``) that fill the record
+    ``rec`` (rows of :data:`N_REC` columns)."""
+    return (False, rec, np.zeros(N_ACC), 0, 0.0, math.inf, np.zeros(0))
+
+
+def reducing(
+    acc: np.ndarray, window_start: int, shift: float, threshold: float, trace: np.ndarray
+) -> tuple[Any, ...]:
+    """The output arguments of :func:`run` (``reduced`` to ``trace``) that reduce the run
+    into the accumulators ``acc`` (and ``trace``, possibly empty) instead of recording."""
+    return (True, np.zeros((0, N_REC)), acc, window_start, shift, threshold, trace)

@@ -327,8 +327,9 @@ class Simulation:
         y = np.array([zr[0], 0.0, zr[0], 0.0, zr[0], 0.0])
         rec = np.zeros((plan.rows, EK.N_REC))
         status, k, idx, value = EK.run(
-            y, n, dt, zr, zrd, *a.args(), decimate, rec, EK.LIMITS, np.zeros(EK.SCRATCH_SIZE)
-        )
+            y, n, dt, zr, zrd, *a.args(), decimate, EK.LIMITS, np.zeros(EK.SCRATCH_SIZE),
+            *EK.recording(rec),
+        )  # fmt: skip
         if status != EK.D_OK:
             raise self.divergence(status, k * dt, idx, value, dt)
         result = self.result_from_record(plan.time(), rec, dt)

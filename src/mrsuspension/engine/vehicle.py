@@ -44,6 +44,9 @@ from mrsuspension.dampers import DamperModel, WangSymmetric
 from mrsuspension.dampers.wang import VEHICLE_VH_VARIANT
 from mrsuspension.engine import kernel as EK
 from mrsuspension.engine import vehicle_kernel as VX
+from mrsuspension.engine.kernel import N_ACC
+from mrsuspension.engine.lanes import ROAD_CHUNK
+from mrsuspension.engine.reduced import finish, new_accumulators, reduction_of
 from mrsuspension.engine.result import SIGNALS, SimulationDiverged
 from mrsuspension.engine.settings import (
     DEFAULT_DT,
@@ -54,9 +57,10 @@ from mrsuspension.engine.settings import (
     check_step,
     run_settings,
 )
-from mrsuspension.engine.simulate import Simulation
+from mrsuspension.engine.simulate import Reducer, Simulation, _in_kernel
 from mrsuspension.engine.vehicle_result import (
     BODY_COLUMNS,
+    BODY_MEASURES,
     BODY_SIGNALS,
     CORNER_COLUMNS,
     SENSED_COLUMNS,
@@ -72,6 +76,7 @@ if TYPE_CHECKING:
 __all__ = [
     "CORNERS_FULL",
     "CORNERS_HALF",
+    "ROAD_CHUNK",
     "SameRoadAtEveryWheel",
     "VehicleArrays",
     "VehicleSimulation",
@@ -273,6 +278,10 @@ class _CornerRoad:
     def duration(self) -> float:
         d = self.wheels.duration
         return math.inf if d is None else float(d)
+
+
+#: the body's accumulator (``vehicle_kernel.BA_*``) of each signal of :data:`BODY_MEASURES`
+_BODY_SUMS = {"heave_ddot": VX.BA_AZ2, "pitch_ddot": VX.BA_APITCH2, "roll_ddot": VX.BA_AROLL2}
 
 
 @dataclass(frozen=True, eq=False)
@@ -798,40 +807,160 @@ class VehicleSimulation:
         >>> sim.run(settings=RunSettings(dt=2e-4, duration=0.5, output_rate=100.0)).time.size
         51
         """
+        plan = self._plan(settings, duration, dt, output_rate)
+        nc = len(self.corners)
+        rec = np.zeros((plan.rows, VX.REC_BODY + VX.REC_CORNER * nc))
+        self._drive(plan, (False, rec, np.zeros((0, N_ACC)), np.zeros((0, VX.RED_SIZE)),
+                           np.zeros((0, 0))))  # fmt: skip
+        return self.result_from_record(plan.time(), rec, plan.dt)
+
+    def run_measures(
+        self,
+        duration: float | None = None,
+        *,
+        dt: float | None = None,
+        output_rate: float | None = None,
+        settings: RunSettings | None = None,
+        road_peak: str = "after-onset",
+    ) -> dict[str, Any]:
+        """``self.run(...).measures(road_peak=...)`` reduced in the kernel: no time history.
+
+        The same arguments as :meth:`run` (``road_peak``: ``"after-onset"`` or ``"onset"``,
+        as :meth:`SimulationResult.measures
+        <mrsuspension.engine.result.SimulationResult.measures>` takes it) and the same
+        measures as :meth:`VehicleResult.measures` (the body's RMS accelerations, then every
+        corner's quarter-car measures keyed ``"<measure>.<corner>"``), equal to round-off
+        (sums in another order). Every corner accumulates what its measures need at each
+        output sample with the quarter car's accumulators
+        (:func:`~mrsuspension.engine.kernel.accumulate`, finished by
+        :func:`~mrsuspension.engine.reduced.finish`), the body its squared
+        accelerations, and the road is sampled a piece at a time: the memory of a run
+        does not grow with its duration (but for a road profile's corner body
+        accelerations, one signal per corner, which the ISO 2631 weighting filters).
+
+        Raises
+        ------
+        ValidationError
+            As :meth:`run` and :meth:`VehicleResult.measures` (a harmonic run too short
+            for the steady-state rule is refused before it runs).
+        SimulationDiverged
+            As :meth:`run`.
+
+        Examples
+        --------
+        >>> from mrsuspension.excitation import Harmonic
+        >>> from mrsuspension.vehicle import HalfCar
+        >>> sim = VehicleSimulation(HalfCar(), SameRoadAtEveryWheel(Harmonic(5.0, 0.005), ("front", "rear")))
+        >>> fast = sim.run_measures(dt=2e-4)
+        >>> slow = sim.run(dt=2e-4).measures()
+        >>> bool(abs(fast["T_as.rear"] / slow["T_as.rear"] - 1.0) < 1e-12), list(fast)[:2]
+        (True, ['heave_ddot_rms', 'pitch_ddot_rms'])
+        """
+        from mrsuspension.measures import check_road_peak
+
+        how = check_road_peak(road_peak)
+        plan = self._plan(settings, duration, dt, output_rate)
+        nc = len(self.corners)
+        reductions = [reduction_of(self.corner_simulation(c), plan) for c in self.corners]
+        acc = new_accumulators(nc + 1)
+        acc[nc] = 0.0  # the body's sums (VX.BA_*)
+        red = np.array([[r.window_start, r.shift, r.threshold] for r in reductions])
+        trace = np.zeros((nc, plan.rows if any(r.trace for r in reductions) else 0))
+        rec = np.zeros((0, VX.REC_BODY + VX.REC_CORNER * nc))
+        self._drive(plan, (True, rec, acc, red, trace))
+        body = acc[nc]
+        out: dict[str, Any] = {}
+        for name, (signal, _) in BODY_MEASURES.items():
+            if signal == "roll_ddot" and nc < 4:
+                continue  # a half car has no roll (as VehicleResult.measures)
+            out[name] = float(np.sqrt(body[_BODY_SUMS[signal]] / body[VX.BA_N]))
+        for i, (c, r) in enumerate(zip(self.corners, reductions, strict=True)):
+            road = _CornerRoad(self.excitation, i).acceleration
+            for k, v in finish(r, acc[i], trace[i], road, how).items():
+                out[f"{k}.{c}"] = v
+        return out
+
+    def _plan(
+        self,
+        settings: RunSettings | None,
+        duration: float | None,
+        dt: float | None,
+        output_rate: float | None,
+    ) -> RunPlan:
+        """The checked plan of a run (:meth:`run`'s arguments); says so when it compiles."""
         run = run_settings(settings, duration=duration, dt=dt, output_rate=output_rate)
         run.check_for(getattr(self.excitation, "excitation", self.excitation))
         plan = run.plan(self)
         announce_compile(VX.__file__, "run")  # a first run says why it waits
-        dt, n, decimate = plan
+        return plan
+
+    def road_samples(
+        self, steps: int, dt: float, *, first: int = 0
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """Every wheel's road ``(z_r, z_r')`` at every half step of steps ``first`` to
+        ``first + steps``: two ``(corners, 2 steps + 1)`` arrays (the wheel input's fast
+        grid where it has one).
+
+        Raises
+        ------
+        ValidationError
+            A wheel input returning arrays of the wrong shape or non-finite values.
+
+        Examples
+        --------
+        >>> from mrsuspension.excitation import Harmonic
+        >>> from mrsuspension.vehicle import HalfCar
+        >>> sim = VehicleSimulation(HalfCar(), SameRoadAtEveryWheel(Harmonic(2.0, 0.01), ("front", "rear")))
+        >>> zr, zrd = sim.road_samples(10, 1e-3, first=5)  # t = 5 ms to 15 ms
+        >>> zr.shape, bool(np.allclose(zr[0, 0], 0.01 * np.sin(2 * np.pi * 2.0 * 5e-3)))
+        ((2, 21), True)
+        """
         nc = len(self.corners)
+        m = 2 * steps + 1
+        start = first * dt
         grid = getattr(self.excitation, "sample_grid", None)
         if grid is not None:  # the wheel input's fast grid
-            zr, zrd = grid(2 * n + 1, 0.5 * dt)
+            zr, zrd = grid(m, 0.5 * dt) if first == 0 else grid(m, 0.5 * dt, start)
         else:
-            t_half = np.arange(2 * n + 1) * (0.5 * dt)
+            t_half = start + np.arange(m) * (0.5 * dt)
             zr, zrd = self.excitation.displacement(t_half), self.excitation.velocity(t_half)
         zr = np.ascontiguousarray(zr, dtype=float)
         zrd = np.ascontiguousarray(zrd, dtype=float)
-        if zr.shape != (nc, 2 * n + 1) or zrd.shape != zr.shape:
+        if zr.shape != (nc, m) or zrd.shape != zr.shape:
             raise ValidationError(
                 f"the wheel input must return ({nc}, len(t)) arrays; got {zr.shape} and {zrd.shape}"
             )
         if not (np.all(np.isfinite(zr)) and np.all(np.isfinite(zrd))):
             raise ValidationError("the wheel input returned a NaN or infinite road value")
+        return zr, zrd
+
+    def _drive(self, plan: RunPlan, out: tuple[Any, ...]) -> None:
+        """Drive a run of ``plan`` through :func:`~mrsuspension.engine.vehicle_kernel.run`,
+        :data:`ROAD_CHUNK` steps of road at a time; ``out`` are its output arguments
+        (``reduced`` to ``trace``). Raises the run's :class:`SimulationDiverged`."""
+        dt, n, decimate = plan
+        nc = len(self.corners)
         a = self.arrays(dt, n_steps=n)
-        y = self.initial_state(zr[:, 0])
-        rec = np.zeros((plan.rows, VX.REC_BODY + VX.REC_CORNER * nc))
-        scratch = np.zeros((3, y.size))
+        args = a.args()
+        scratch: np.ndarray | None = None
         work = np.zeros((nc + 1, 8))
-        status, k, idx, value = VX.run(
-            y, n, dt, zr, zrd, *a.args(), decimate, rec, VX.LIMITS, scratch, work
-        )
-        if status != VX.D_OK:
-            raise self._divergence(status, k * dt, idx, value, dt)
-        return self.result_from_record(plan.time(), rec, dt)
+        first = 0
+        while first == 0 or first < n:
+            steps = min(ROAD_CHUNK, n - first)
+            zr, zrd = self.road_samples(steps, dt, first=first)
+            if first == 0:
+                y = self.initial_state(zr[:, 0])
+                scratch = np.zeros((3, y.size))
+            status, k, idx, value = VX.run(
+                y, first, steps, dt, zr, zrd, *args, decimate, VX.LIMITS, scratch, work, *out
+            )
+            if status != VX.D_OK:
+                raise self._divergence(status, k * dt, idx, value, dt)
+            first += steps
 
     def record_values(self, plan: RunPlan) -> float:
-        """Floats a run of ``plan`` allocates: the record and every wheel's road.
+        """Floats a run of ``plan`` allocates: the record and every wheel's road (sampled
+        :data:`ROAD_CHUNK` steps at a time).
 
         Examples
         --------
@@ -842,7 +971,8 @@ class VehicleSimulation:
         1277.0
         """
         nc = len(self.corners)
-        return float(plan.rows * (VX.REC_BODY + VX.REC_CORNER * nc) + 2 * nc * (2 * plan.steps + 1))
+        road = 2 * nc * (2 * min(plan.steps, ROAD_CHUNK) + 1)
+        return float(plan.rows * (VX.REC_BODY + VX.REC_CORNER * nc) + road)
 
     def _divergence(
         self, status: int, t: float, idx: int, value: float, dt: float
@@ -1035,10 +1165,11 @@ class VehicleStepper:
 VX_BODY_STATE = {"heave": 0, "pitch": 1, "roll": 2, "heave_dot": 3, "pitch_dot": 4, "roll_dot": 5}
 
 
-def _run_vehicle(
-    args: tuple[VehicleSimulation, RunSettings, Callable[[VehicleResult], Any] | None],
-) -> Any:
+def _run_vehicle(args: tuple[VehicleSimulation, RunSettings, Reducer | None]) -> Any:
     sim, plan, reduce = args
+    wanted = _in_kernel(reduce)
+    if wanted is not None:  # the measures: reduced in the kernel
+        return sim.run_measures(settings=plan, road_peak=wanted.road_peak)
     result = sim.run(settings=plan)
     return result if reduce is None else reduce(result)
 
@@ -1052,23 +1183,34 @@ def run_vehicles(
     settings: RunSettings | None = None,
     workers: int | None = None,
     progress: Callable[[int, int], None] | None = None,
-    reduce: Callable[[VehicleResult], Any] | None = None,
+    reduce: Reducer | None = None,
 ) -> list[Any]:
     """Run many vehicle simulations across processes (default: one per core), in order.
 
     The vehicle counterpart of :func:`~mrsuspension.engine.run_many`: the same
     ``settings`` (or ``duration``, ``dt``, ``output_rate``) for every run,
     ``progress(done, total)`` as runs finish and ``reduce`` (a module-level function)
-    applied to each result in its worker; ``workers=1`` runs in this process.
+    applied to each result in its worker; ``workers=1`` runs in this process. Given
+    :func:`~mrsuspension.engine.measures_of` or a
+    :class:`~mrsuspension.engine.simulate.MeasuresOf` (the measures the quarter car's
+    :func:`~mrsuspension.engine.run_many` reduces in its kernels too), each run is
+    reduced to its measures in the kernel (:meth:`VehicleSimulation.run_measures`):
+    no time history is kept.
 
     Examples
     --------
+    >>> from mrsuspension.engine.simulate import MeasuresOf
     >>> from mrsuspension.excitation import Harmonic
     >>> from mrsuspension.vehicle import HalfCar
     >>> sims = [VehicleSimulation(HalfCar(), SameRoadAtEveryWheel(Harmonic(f, 0.01), ("front", "rear")))
     ...         for f in (1.0, 2.0)]
     >>> [r.time.size for r in run_vehicles(sims, duration=0.2, workers=1)]
     [201, 201]
+    >>> sims = [VehicleSimulation(HalfCar(), SameRoadAtEveryWheel(Harmonic(f, 0.005), ("front", "rear")))
+    ...         for f in (5.0, 8.0)]
+    >>> rows = run_vehicles(sims, dt=2e-4, workers=1, reduce=MeasuresOf())  # each its own duration
+    >>> [round(r["T_as.front"], 3) for r in rows]
+    [0.26, 0.142]
     """
     from mrsuspension._pool import pool_map, worker_count
 
@@ -1105,7 +1247,7 @@ def _measure_vehicle(
 ) -> dict[str, Any] | SimulationDiverged:
     sim, plan, road_peak = args
     try:
-        return sim.run(settings=plan).measures(road_peak=road_peak)
+        return sim.run_measures(settings=plan, road_peak=road_peak)
     except SimulationDiverged as err:
         return err
 
@@ -1117,13 +1259,14 @@ def measure_vehicles(
     pool: Any = None,
     road_peak: str = "after-onset",
 ) -> list[dict[str, Any] | SimulationDiverged]:
-    """The measures of each vehicle run (its own settings), in order.
+    """The measures of each vehicle run (its own settings), reduced in the kernel, in order.
 
     The vehicle counterpart of :func:`~mrsuspension.engine.simulate.measure_many`: the
-    body's RMS accelerations and every corner's measures
-    (:meth:`VehicleResult.measures`); a diverged run gives its
-    :class:`SimulationDiverged` in its place. ``pool``: an open process pool (e.g.
-    :func:`mrsuspension._pool.process_pool`) to run on; None: this process.
+    body's RMS accelerations and every corner's measures, as
+    :meth:`VehicleResult.measures` gives them from a record
+    (:meth:`VehicleSimulation.run_measures`: no time history is kept); a diverged run
+    gives its :class:`SimulationDiverged` in its place. ``pool``: an open process pool
+    (e.g. :func:`mrsuspension._pool.process_pool`) to run on; None: this process.
 
     Examples
     --------

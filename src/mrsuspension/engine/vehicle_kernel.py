@@ -36,6 +36,12 @@ controller's arrays (padded to the longest); ``mem`` one row per corner with the
 car's layout (``engine.kernel.M_*``). State ``y``: ``[z, theta, phi, z', theta', phi']``
 then ``[z_u, z_u', z_0, z_0']`` per corner.
 
+:func:`run` is the one drive loop (start, step, limit checks, decimation), resumable so
+that a run takes its road a piece at a time: each output sample fills a row of the record
+or, reduced (``VehicleSimulation.run_measures``), goes to every corner's accumulators
+(the quarter car's :func:`~mrsuspension.engine.kernel.accumulate` on the corner's
+quarter-car view) and the body's sums of squared accelerations (:func:`output`).
+
 :mod:`mrsuspension.engine.vehicle` runs it (``VehicleSimulation``); the step is kept apart
 so that editing the Python side does not recompile it (about a minute).
 """
@@ -57,7 +63,7 @@ from mrsuspension.engine import kernel as EK
 from mrsuspension.vehicle import kernel as VK
 from mrsuspension.vehicle.kernel import V_KS
 
-__all__ = ["check_limits", "rates", "record", "run", "start", "step"]
+__all__ = ["check_limits", "output", "rates", "record", "run", "start", "step"]
 
 # the cached entry points inline the damper, shaping, controller, vehicle and engine kernels
 invalidate_if_changed(
@@ -444,9 +450,69 @@ def check_limits(
     return D_OK, 0, 0.0
 
 
+# body accumulators of a reduced run (the last row of ``acc``, beside the corners' rows
+# of engine.kernel.accumulate): output samples, sums of the squared body accelerations
+BA_N, BA_AZ2, BA_APITCH2, BA_AROLL2 = range(4)
+# a reduced run's per-corner reduction (rows of ``red``): first output row of the steady
+# window, F_T shift, v_m clamp threshold (engine.reduced.Reduction)
+RED_START, RED_SHIFT, RED_THRESHOLD = range(3)
+RED_SIZE = 3
+
+
+@njit(cache=True, inline="always")
+def output(
+    reduced: bool,
+    rec: np.ndarray,
+    acc: np.ndarray,
+    red: np.ndarray,
+    trace: np.ndarray,
+    row: int,
+    y: np.ndarray,
+    zr: np.ndarray,
+    zrd: np.ndarray,
+    j: int,
+    vp: np.ndarray,
+    mem: np.ndarray,
+    ss: np.ndarray,
+    dy: np.ndarray,
+    view: np.ndarray,
+) -> None:
+    """Output sample ``row`` (road at column ``j``, ``dy`` the rates at ``y``): a record row
+    (:func:`record`) or, with ``reduced``, every corner's quarter-car view (``view``: 6
+    values of work space) into its accumulators ``acc[c]``
+    (:func:`~mrsuspension.engine.kernel.accumulate`, with ``red[c]``: ``RED_*``), its
+    ``z_s''`` into ``trace[c, row]`` when ``trace`` has columns, and the body's squared
+    accelerations into ``acc[corners]`` (``BA_*``)."""
+    if not reduced:
+        if row < rec.shape[0]:
+            record(rec, row, y, zr, zrd, j, vp, mem, ss, dy)
+        return
+    nc = int(vp[B_NC])
+    keep = trace.shape[1] > 0
+    for c in range(nc):
+        o = B_SIZE + c * CORNER_SIZE
+        zs, vs = _corner_body(y, vp[o + C_X], vp[o + C_Y])
+        q = NB + NQ * c
+        view[0], view[1], view[2], view[3], view[4], view[5] = (
+            zs, vs, y[q], y[q + 1], y[q + 2], y[q + 3]
+        )  # fmt: skip
+        EK.accumulate(
+            acc[c], row >= red[c, RED_START], red[c, RED_SHIFT], red[c, RED_THRESHOLD], view,
+            zr[c, j], mem[c],
+        )  # fmt: skip
+        if keep:
+            trace[c, row] = mem[c, EK.M_AS]
+    body = acc[nc]
+    body[BA_N] += 1.0
+    body[BA_AZ2] += dy[3] * dy[3]
+    body[BA_APITCH2] += dy[4] * dy[4]
+    body[BA_AROLL2] += dy[5] * dy[5]
+
+
 @njit(cache=True, **NO_REFCOUNT)
 def run(
     y: np.ndarray,
+    first: int,
     n_steps: int,
     dt: float,
     zr: np.ndarray,
@@ -473,21 +539,33 @@ def run(
     mdist: np.ndarray,
     mbuf: np.ndarray,
     decimate: int,
-    rec: np.ndarray,
     limits: np.ndarray,
     scratch: np.ndarray,
     work: np.ndarray,
+    reduced: bool,
+    rec: np.ndarray,
+    acc: np.ndarray,
+    red: np.ndarray,
+    trace: np.ndarray,
 ) -> tuple[int, int, int, float]:
-    """``n_steps`` steps with every wheel's road sampled every dt/2 (``2 n + 1`` columns).
+    """Steps ``first`` to ``first + n_steps - 1`` of a run; every wheel's road sampled every
+    dt/2 from step ``first`` on (``2 n_steps + 1`` columns of ``zr``, ``zrd``).
 
-    Records row 0 (initial state) and every ``decimate`` steps. Returns ``(status, step,
-    index, value)`` as :func:`mrsuspension.engine.kernel.run`.
+    The vehicles' one drive loop, resumable: a run is driven in pieces of its road (the
+    caller keeps ``y`` and the arrays between the calls); the call with ``first == 0``
+    starts it. The output samples are the initial state and every ``decimate`` steps
+    (sample ``r`` after step ``r * decimate``); each is a row of the record ``rec`` or,
+    with ``reduced``, goes to the accumulators (:func:`output`; the unused arrays may be
+    empty). Returns ``(status, step, index, value)`` as
+    :func:`mrsuspension.engine.kernel.run` (``step`` counted from the run's start).
     """
-    start(y, zr, zrd, 0, vp, cvp, fk, dk, dp, ds, dek, dep, des, ck, cp, mem, scratch, work)
-    record(rec, 0, y, zr, zrd, 0, vp, mem, ss, scratch[1])
-    row = 1
-    for s in range(n_steps):
-        j = 2 * s
+    dy = scratch[1]  # the rates at y: start's, then every step's last
+    view = work[int(vp[B_NC])]
+    if first == 0:
+        start(y, zr, zrd, 0, vp, cvp, fk, dk, dp, ds, dek, dep, des, ck, cp, mem, scratch, work)
+        output(reduced, rec, acc, red, trace, 0, y, zr, zrd, 0, vp, mem, ss, dy, view)
+    for s in range(first, first + n_steps):
+        j = 2 * (s - first)
         step(
             y, dt, zr, zrd, j, vp, cvp, fk, dk, dp, ds, dek, dep, des, ck, cp, cek, cep, ces,
             mem, sk, sp, ss, noise, mdist, mbuf, scratch, work,
@@ -495,7 +573,7 @@ def run(
         status, q, value = check_limits(y, vp, mem, limits)
         if status != D_OK:
             return status, s + 1, q, value
-        if (s + 1) % decimate == 0 and row < rec.shape[0]:
-            record(rec, row, y, zr, zrd, j + 2, vp, mem, ss, scratch[1])  # the step's last rates
-            row += 1
-    return D_OK, n_steps, 0, 0.0
+        if (s + 1) % decimate == 0:
+            r = (s + 1) // decimate
+            output(reduced, rec, acc, red, trace, r, y, zr, zrd, j + 2, vp, mem, ss, dy, view)
+    return D_OK, first + n_steps, 0, 0.0

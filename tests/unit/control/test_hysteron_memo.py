@@ -45,7 +45,9 @@ def test_law_with_the_memo_is_the_law_without(ctl) -> None:  # type: ignore[no-u
 def _kernel_run(a, zr, zrd, n, dt):  # type: ignore[no-untyped-def]
     y = np.array([zr[0], 0.0, zr[0], 0.0, zr[0], 0.0])
     rec = np.zeros((n + 1, EK.N_REC))
-    status = EK.run(y, n, dt, zr, zrd, *a.args(), 1, rec, EK.LIMITS, np.zeros(EK.SCRATCH_SIZE))
+    status = EK.run(
+        y, n, dt, zr, zrd, *a.args(), 1, EK.LIMITS, np.zeros(EK.SCRATCH_SIZE), *EK.recording(rec)
+    )
     assert status[0] == EK.D_OK
     return rec
 

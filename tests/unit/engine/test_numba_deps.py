@@ -25,7 +25,6 @@ MODULES = [
     "mrsuspension.engine.kernel",
     "mrsuspension.engine.lanes",
     "mrsuspension.engine.vehicle_kernel",
-    "mrsuspension.engine.reduced",
     "mrsuspension.hil._kernels",
     "mrsuspension.hil._vehicle_kernel",
     "mrsuspension.identify.timedomain",
