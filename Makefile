@@ -51,7 +51,7 @@ test: $(VENV)/.stamp-install system-deps
 	  $(MAKE) --no-print-directory lint; lint=$$?; \
 	  wait $$warm; compiled=$$?; cat $$log; rm -f $$log; \
 	  [ $$lint = 0 ] && [ $$compiled = 0 ]
-	$(BIN)/python -m pytest -n $(JOBS) --dist loadscope -m "not realtime"
+	$(BIN)/python -m pytest -n $(JOBS) --dist loadscope -m "not realtime" --durations=25
 	$(BIN)/python -m pytest -m realtime tests/integration/test_hil.py \
 	  tests/integration/test_hil_udp.py tests/integration/test_monitor.py  # REALTIME_FILES
 

@@ -50,7 +50,8 @@ from typing import TYPE_CHECKING, Any
 
 from mrsuspension._inputs import read_toml
 from mrsuspension.control import CONTROLLERS, Controller, HiLo, make_controller
-from mrsuspension.control.modal import CornerSkyhook, ModalSkyhook
+from mrsuspension.control.modal import VehicleLaw
+from mrsuspension.control.registry import VEHICLE_LAWS as LAW_PLUGINS
 from mrsuspension.control.sensing import BandPassObserver, LeakyIntegrator, Sensing, StrokeSensor
 from mrsuspension.dampers import DAMPERS, ESTIMATORS, DamperModel, damper_options, make_damper
 from mrsuspension.dampers.wang import VEHICLE_VH_VARIANT
@@ -244,8 +245,7 @@ _SIMULATION_KEYS = {f.name: "number" for f in dataclasses.fields(RunSettings)}
 #: Laws over the whole vehicle (half and full car): ``[controller] law`` -> the keys it
 #: takes (:mod:`mrsuspension.control.modal`); every corner's current comes from it.
 VEHICLE_LAWS: dict[str, tuple[str, ...]] = {
-    "modal-skyhook": ("heave", "pitch", "roll", "low_current", "high_current"),
-    "corner-skyhook": ("damping", "low_current", "high_current"),
+    name: cls.options() for name, cls in LAW_PLUGINS.items()
 }
 for _law_name, _keys in VEHICLE_LAWS.items():
     for _key in _keys:
@@ -445,7 +445,7 @@ class Scenario:
     sensing: Sensing | None = None
     #: a half or full car: a law over the whole vehicle (``[controller] law =
     #: "modal-skyhook"`` or ``"corner-skyhook"``), else None
-    body_control: ModalSkyhook | CornerSkyhook | None = None
+    body_control: VehicleLaw | None = None
 
     # -- loading ------------------------------------------------------------------------
     @classmethod
@@ -835,8 +835,7 @@ class Scenario:
         }
         out["controller"] = {"law": self.controller.law, **out["controller"]}
         if self.body_control is not None:  # the vehicle's law, its gains resolved
-            out["controller"] = {"law": out["controller"]["law"],
-                                 **dataclasses.asdict(self.body_control)}  # fmt: skip
+            out["controller"] = self.body_control.describe()
         if self.sensing is not None and self.sensing.velocity is not None:
             out["sensing"].setdefault("fs", self.sensing.velocity.fs)
         out["simulation"] = self.settings.to_dict()
@@ -992,15 +991,13 @@ def _build_body_control(
     corner_tables: Mapping[str, Mapping[str, Any]],
     vehicle: Any,
     corners: tuple[str, ...],
-) -> ModalSkyhook | CornerSkyhook | None:
-    """``[controller] law = "modal-skyhook"`` or ``"corner-skyhook"``: the vehicle's law.
-
-    Modal skyhook's gains default to the corner equivalent of the spec's skyhook
-    reference (6750 N s/m at every corner: ``ModalSkyhook.corner_equivalent``); the
-    currents to 0 and 0.5 A.
+) -> VehicleLaw | None:
+    """``[controller] law`` = a whole-vehicle law (:data:`~mrsuspension.control.VEHICLE_LAWS`),
+    attached to the vehicle (e.g. modal skyhook's gains: the corner equivalent of the
+    skyhook reference's 6750 N s/m when none is given); else None.
     """
     law = table.get("law")
-    if law not in VEHICLE_LAWS:
+    if law not in LAW_PLUGINS:
         return None
     if not corners:
         raise ValidationError(
@@ -1014,7 +1011,7 @@ def _build_body_control(
             f"[controller.{given[0]}]: law {law!r} sets every corner's current; per-corner "
             "controller tables do not apply"
         )
-    keys = VEHICLE_LAWS[str(law)]
+    keys = LAW_PLUGINS[str(law)].options()
     options = {k: v for k, v in table.items() if k != "law"}
     for key in options:
         if key not in keys:
@@ -1023,21 +1020,7 @@ def _build_body_control(
                 f"{did_you_mean(key, keys)} Its keys: {', '.join(sorted(keys))}."
             )
     with _in_section("controller"):
-        if law == "corner-skyhook":
-            return CornerSkyhook(**options)
-        currents = {k: options.pop(k) for k in ("low_current", "high_current") if k in options}
-        if not options:
-            x, y = vehicle.corner_positions()
-            return ModalSkyhook.corner_equivalent(
-                x, y if "roll" in vehicle.body_dofs else None, **currents
-            )
-        missing = [k for k in ("heave", "pitch") if k not in options]
-        if missing:
-            raise ValidationError(
-                f"law 'modal-skyhook' needs {' and '.join(missing)} with the other gains "
-                "(or no gain at all: the corner equivalent of 6750 N s/m)"
-            )
-        return ModalSkyhook(**options, **currents)
+        return LAW_PLUGINS[str(law)](**options).for_vehicle(vehicle)
 
 
 def _build_sensing(

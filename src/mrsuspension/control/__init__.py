@@ -46,10 +46,11 @@ from mrsuspension.control.base import Controller, ControlOption
 from mrsuspension.control.hilo import POLICY_GAINS, HiLo
 from mrsuspension.control.ideal import IdealOnOff, IdealSkyhook
 from mrsuspension.control.inverse import InverseHiLo
-from mrsuspension.control.modal import ModalSkyhook
+from mrsuspension.control.modal import CornerSkyhook, ModalSkyhook, VehicleLaw
 from mrsuspension.control.passive import OnOffADFG, Passive
 from mrsuspension.control.registry import (
     CONTROLLERS,
+    VEHICLE_LAWS,
     controller_class,
     law_options,
     make_controller,
@@ -60,9 +61,11 @@ from mrsuspension.control.sliding import SlidingMode
 __all__ = [
     "CONTROLLERS",
     "POLICY_GAINS",
+    "VEHICLE_LAWS",
     "BandPassObserver",
     "ControlOption",
     "Controller",
+    "CornerSkyhook",
     "HiLo",
     "IdealOnOff",
     "IdealSkyhook",
@@ -73,6 +76,7 @@ __all__ = [
     "Passive",
     "SlidingMode",
     "StrokeSensor",
+    "VehicleLaw",
     "controller_class",
     "law_options",
     "make_controller",

@@ -50,7 +50,9 @@ Examples
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
+from typing import Any, ClassVar
 
 import numpy as np
 import numpy.typing as npt
@@ -61,9 +63,13 @@ from mrsuspension.errors import ValidationError, check_finite, check_range
 __all__ = [
     "CORNERS_FULL",
     "CORNERS_HALF",
+    "LAW_CORNERS",
+    "LAW_CORNER_SKYHOOK",
+    "LAW_MODAL",
     "MP_SIZE",
     "CornerSkyhook",
     "ModalSkyhook",
+    "VehicleLaw",
     "clipped_force",
     "corner_velocity",
     "distribution_matrix",
@@ -84,6 +90,8 @@ CORNERS_HALF = ("front", "rear")
 MP_CZ, MP_CTHETA, MP_CPHI, MP_ILOW, MP_IHIGH = range(5)
 #: length of :meth:`ModalSkyhook.params`
 MP_SIZE = 5
+#: the vehicle kernel's law codes (``VehicleLaw.kernel_code``; 0: the corners' own laws)
+LAW_CORNERS, LAW_MODAL, LAW_CORNER_SKYHOOK = 0, 1, 2
 
 
 # --- kernels ---------------------------------------------------------------------------
@@ -234,18 +242,74 @@ def distribution_matrix(x: npt.ArrayLike, y: npt.ArrayLike | None = None) -> Flo
     return dist
 
 
+class VehicleLaw:
+    """A law over the whole vehicle: every corner's current from the body's motion.
+
+    The plug-in contract of a whole-vehicle law (the corner laws' is
+    :class:`~mrsuspension.control.base.Controller`): its registry name ``law``, the
+    vehicle kernel's ``kernel_code``, whether it reads the body's heave, pitch and roll
+    rates (``uses_body_rates``: the engine then builds the distribution matrix), its hi-lo
+    currents, its kernel parameters (:meth:`params`, the ``MP_*`` layout) and
+    :meth:`for_vehicle`, where a law derives what it needs from the vehicle it is attached
+    to (gains from the geometry, a Riccati solve...). Registered once in
+    :data:`~mrsuspension.control.registry.VEHICLE_LAWS`; scenarios name it in
+    ``[controller] law`` with its fields as keys.
+    """
+
+    law: ClassVar[str]
+    kernel_code: ClassVar[int]
+    uses_body_rates: ClassVar[bool] = False
+
+    #: every law switches between two currents [A] (fields of the subclass, a dataclass)
+    low_current: float
+    high_current: float
+
+    @classmethod
+    def options(cls) -> tuple[str, ...]:
+        """The law's options (its fields): the scenario's ``[controller]`` keys.
+
+        Examples
+        --------
+        >>> CornerSkyhook.options()
+        ('damping', 'low_current', 'high_current')
+        """
+        return tuple(f.name for f in dataclasses.fields(cls))  # type: ignore[arg-type]
+
+    def for_vehicle(self, vehicle: Any) -> VehicleLaw:
+        """This law attached to ``vehicle`` (a half or full car): by default itself."""
+        return self
+
+    def params(self) -> FloatArray:
+        """The kernel parameter vector (``MP_*`` layout, :data:`MP_SIZE` values)."""
+        raise NotImplementedError
+
+    def describe(self) -> dict[str, Any]:
+        """Plain data: ``law`` and every option.
+
+        Examples
+        --------
+        >>> CornerSkyhook(1000.0).describe()
+        {'law': 'corner-skyhook', 'damping': 1000.0, 'low_current': 0.0, 'high_current': 0.5}
+        """
+        return {"law": self.law, **{k: getattr(self, k) for k in self.options()}}
+
+
 @dataclass(frozen=True)
-class ModalSkyhook:
+class ModalSkyhook(VehicleLaw):
     """Modal skyhook gains and hi-lo currents.
 
     Parameters
     ----------
-    heave : float
+    heave : float, optional
         Heave skyhook damping ``c_z`` [N s/m] (>= 0).
-    pitch : float
+    pitch : float, optional
         Pitch skyhook damping ``c_theta`` [N m s/rad] (>= 0).
-    roll : float
-        Roll skyhook damping ``c_phi`` [N m s/rad] (>= 0; unused by the half car).
+    roll : float, optional
+        Roll skyhook damping ``c_phi`` [N m s/rad] (>= 0; unused by the half car; 0 when
+        heave and pitch are given without it).
+        With no gain at all, :meth:`for_vehicle` derives them from the car it drives: the
+        corner equivalent of the skyhook reference's 6750 N s/m
+        (:meth:`corner_equivalent`).
     low_current : float
         Current when the desired force is not achievable [A] (default 0).
     high_current : float
@@ -260,20 +324,48 @@ class ModalSkyhook:
     Traceback (most recent call last):
     ...
     mrsuspension.errors.ValidationError: heave must be in [0, inf) N s/m; got -1 N s/m
+    >>> from mrsuspension.vehicle import HalfCar
+    >>> ModalSkyhook().for_vehicle(HalfCar()).heave  # the corner equivalent of 6750 N s/m
+    13500.0
     """
 
-    heave: float
-    pitch: float
-    roll: float = 0.0
+    law: ClassVar[str] = "modal-skyhook"
+    kernel_code: ClassVar[int] = LAW_MODAL
+    uses_body_rates: ClassVar[bool] = True
+
+    heave: float | None = None
+    pitch: float | None = None
+    roll: float | None = None
     low_current: float = 0.0
     high_current: float = 0.5
 
     def __post_init__(self) -> None:
-        check_range("heave", self.heave, 0.0, None, unit="N s/m")
-        check_range("pitch", self.pitch, 0.0, None, unit="N m s/rad")
-        check_range("roll", self.roll, 0.0, None, unit="N m s/rad")
+        given = [g for g in (self.heave, self.pitch, self.roll) if g is not None]
+        missing = [k for k in ("heave", "pitch") if getattr(self, k) is None]
+        if given and missing:
+            raise ValidationError(
+                f"law 'modal-skyhook' needs {' and '.join(missing)} with the other gains "
+                "(or no gain at all: the corner equivalent of 6750 N s/m)"
+            )
+        if given and self.roll is None:
+            object.__setattr__(self, "roll", 0.0)
+        if given:
+            check_range("heave", self.heave, 0.0, None, unit="N s/m")
+            check_range("pitch", self.pitch, 0.0, None, unit="N m s/rad")
+            check_range("roll", self.roll, 0.0, None, unit="N m s/rad")
         check_range("low_current", self.low_current, 0.0, None, unit="A")
         check_range("high_current", self.high_current, float(self.low_current), None, unit="A")
+
+    def for_vehicle(self, vehicle: Any) -> ModalSkyhook:
+        """The gains of ``vehicle`` when none is given (:meth:`corner_equivalent` of the
+        skyhook reference at its corners); given gains are kept."""
+        if self.heave is not None:
+            return self
+        x, y = vehicle.corner_positions()
+        roll = "roll" in getattr(vehicle, "body_dofs", ())
+        return ModalSkyhook.corner_equivalent(
+            x, y if roll else None, low_current=self.low_current, high_current=self.high_current
+        )
 
     @classmethod
     def corner_equivalent(
@@ -311,6 +403,11 @@ class ModalSkyhook:
         >>> ModalSkyhook(1.0, 2.0, 3.0).params().size
         5
         """
+        if self.heave is None or self.pitch is None or self.roll is None:
+            raise ValidationError(
+                "modal skyhook has no gains yet: give heave and pitch, or attach it to a car "
+                "(for_vehicle) for the corner equivalent"
+            )
         out = np.zeros(MP_SIZE)
         out[MP_CZ], out[MP_CTHETA], out[MP_CPHI] = self.heave, self.pitch, self.roll
         out[MP_ILOW], out[MP_IHIGH] = self.low_current, self.high_current
@@ -369,7 +466,7 @@ class ModalSkyhook:
 
 
 @dataclass(frozen=True)
-class CornerSkyhook:
+class CornerSkyhook(VehicleLaw):
     """Per-corner on-off skyhook: ``F_i = -c_s v_i`` at every corner, hi-lo by :func:`modal_hilo`.
 
     The classical skyhook on-off law (high current when ``v_i v_d,i < 0``) at every
@@ -389,6 +486,9 @@ class CornerSkyhook:
     >>> CornerSkyhook().params().tolist()
     [6750.0, 6750.0, 6750.0, 0.0, 0.5]
     """
+
+    law: ClassVar[str] = "corner-skyhook"
+    kernel_code: ClassVar[int] = LAW_CORNER_SKYHOOK
 
     damping: float = 6750.0
     low_current: float = 0.0

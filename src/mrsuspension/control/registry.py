@@ -10,11 +10,12 @@ from mrsuspension.control.base import Controller, ControlOption
 from mrsuspension.control.hilo import POLICY_LAWS, HiLo
 from mrsuspension.control.ideal import IdealOnOff, IdealSkyhook
 from mrsuspension.control.inverse import InverseHiLo
+from mrsuspension.control.modal import CornerSkyhook, ModalSkyhook, VehicleLaw
 from mrsuspension.control.passive import OnOffADFG, Passive
 from mrsuspension.control.sliding import SlidingMode
 from mrsuspension.errors import ValidationError, unknown_name
 
-__all__ = ["CONTROLLERS", "controller_class", "law_options", "make_controller"]
+__all__ = ["CONTROLLERS", "VEHICLE_LAWS", "controller_class", "law_options", "make_controller"]
 
 
 def _hilo(policy: int) -> Callable[..., HiLo]:
@@ -46,6 +47,12 @@ CONTROLLERS: dict[str, Any] = {
     "ideal-skyhook": IdealSkyhook,
     "ideal-onoff": IdealOnOff,
 }
+
+
+#: Whole-vehicle laws by name (:class:`~mrsuspension.control.modal.VehicleLaw`
+#: plug-ins: a half or full car's ``[controller] law``; their fields are its keys).
+#: Registering one here is all the scenarios, the engine and the monitor's form need.
+VEHICLE_LAWS: dict[str, type[VehicleLaw]] = {cls.law: cls for cls in (ModalSkyhook, CornerSkyhook)}
 
 
 def controller_class(law: str) -> type[Controller]:

@@ -31,7 +31,7 @@ import numpy.typing as npt
 from mrsuspension._numba_cache import announce_compile
 from mrsuspension.control import Controller, Passive
 from mrsuspension.control.kernel import F_EXTERNAL
-from mrsuspension.control.modal import CornerSkyhook, ModalSkyhook, distribution_matrix
+from mrsuspension.control.modal import VehicleLaw, distribution_matrix
 from mrsuspension.control.sensing import (
     BandPassObserver,
     LeakyIntegrator,
@@ -387,11 +387,15 @@ class VehicleSimulation:
         What the controllers measure (default: ideal, the true body velocity and
         stroke): :class:`~mrsuspension.control.sensing.Sensing` with a body-velocity
         estimator from each corner's accelerometer and a stroke sensor.
-    body_control : ModalSkyhook or CornerSkyhook, optional
+    body_control : VehicleLaw, optional
         A law over the whole vehicle instead of the corners' controllers (which must
-        then be left passive): modal skyhook from the body's heave, pitch and roll
-        velocities, or on-off skyhook at every corner; hi-lo currents per corner
-        (:mod:`mrsuspension.control.modal`), from the sensed velocities.
+        then be left passive), a plug-in of
+        :data:`~mrsuspension.control.registry.VEHICLE_LAWS`: e.g. modal skyhook from the
+        body's heave, pitch and roll velocities, or on-off skyhook at every corner; hi-lo
+        currents per corner (:mod:`mrsuspension.control.modal`), from the sensed
+        velocities. It is attached to the vehicle (:meth:`VehicleLaw.for_vehicle
+        <mrsuspension.control.modal.VehicleLaw.for_vehicle>`: e.g. modal skyhook's gains
+        from the car's geometry when none is given).
 
     Raises
     ------
@@ -424,7 +428,7 @@ class VehicleSimulation:
     controllers: Controller | Mapping[str, Controller] = field(default_factory=Passive)
     max_current: float = 0.5
     sensing: Sensing = field(default_factory=Sensing)
-    body_control: ModalSkyhook | CornerSkyhook | None = None
+    body_control: VehicleLaw | None = None
 
     def __post_init__(self) -> None:
         if not isinstance(self.vehicle, HalfCar | FullCar):
@@ -559,17 +563,8 @@ class VehicleSimulation:
         out: dict[str, Any] = {}
         if not self.sensing.is_ideal:
             out["sensing"] = self.sensing.describe()
-        law = self.body_control
-        if isinstance(law, ModalSkyhook):
-            out["body_control"] = {
-                "law": "modal-skyhook", "heave": law.heave, "pitch": law.pitch,
-                "roll": law.roll, "low_current": law.low_current, "high_current": law.high_current,
-            }  # fmt: skip
-        elif isinstance(law, CornerSkyhook):
-            out["body_control"] = {
-                "law": "corner-skyhook", "damping": law.damping,
-                "low_current": law.low_current, "high_current": law.high_current,
-            }  # fmt: skip
+        if self.body_control is not None:
+            out["body_control"] = self.body_control.describe()
         return out
 
     def arrays(self, dt: float, *, n_steps: int | None = None) -> VehicleArrays:
@@ -644,10 +639,13 @@ class VehicleSimulation:
         law = self.body_control
         if law is None:
             return
-        if not isinstance(law, ModalSkyhook | CornerSkyhook):
+        if not isinstance(law, VehicleLaw):
             raise ValidationError(
-                f"body_control must be a ModalSkyhook or CornerSkyhook object; got {law!r}"
+                "body_control must be a whole-vehicle law (mrsuspension.control.VEHICLE_LAWS: "
+                f"ModalSkyhook, CornerSkyhook); got {law!r}"
             )
+        law = law.for_vehicle(self.vehicle)  # e.g. gains from the car's geometry
+        object.__setattr__(self, "body_control", law)
         busy = [
             c for c, k in zip(self.corners, controllers, strict=True) if not isinstance(k, Passive)
         ]
@@ -702,11 +700,12 @@ class VehicleSimulation:
         dist = np.zeros((nc, 3))
         law = self.body_control
         if law is not None:
-            sk[VX.SK_LAW] = VX.LAW_MODAL if isinstance(law, ModalSkyhook) else VX.LAW_CORNER_SKYHOOK
+            sk[VX.SK_LAW] = law.kernel_code
             sp[VX.SP_MP :] = law.params()
-        if isinstance(law, ModalSkyhook) or est is not None:
+        if (law is not None and law.uses_body_rates) or est is not None:
             x, y = self.vehicle.corner_positions()
-            dist = distribution_matrix(x, y if isinstance(self.vehicle, FullCar) else None)
+            roll = "roll" in self.vehicle.body_dofs
+            dist = distribution_matrix(x, y if roll else None)
         return {
             "sensing_kind": sk,
             "sensing_params": sp,

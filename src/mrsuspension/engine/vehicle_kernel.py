@@ -57,6 +57,7 @@ from mrsuspension.control import kernel as CK
 from mrsuspension.control import modal as SM
 from mrsuspension.control import sensing as SN
 from mrsuspension.control.kernel import EST_SHARED, F_EXTERNAL, F_MODEL, P_C0, P_CS, P_MS0
+from mrsuspension.control.modal import LAW_CORNERS, LAW_MODAL
 from mrsuspension.dampers import kernels as DK
 from mrsuspension.dampers.kernels import NO_REFCOUNT
 from mrsuspension.engine import kernel as EK
@@ -95,7 +96,7 @@ REC_CORNER = 17
 SK_KIND, SK_ACC_EVERY, SK_STROKE_EVERY, SK_LAW = range(4)
 SK_SIZE = 4
 SENSE_IDEAL, SENSE_LEAKY, SENSE_BAND_PASS = 0, 1, 2
-LAW_CORNERS, LAW_MODAL, LAW_CORNER_SKYHOOK = 0, 1, 2
+# the law codes: one home, the laws' own (control/modal.py, VehicleLaw.kernel_code)
 # sp (float): estimator coefficients (leaky: decay, gain; band-pass: Phi, Gamma), the
 # stroke sensor's resolution [m] and rate [Hz], the law's ModalSkyhook.params()
 SP_COEF, SP_RES, SP_SFS, SP_MP = 0, 6, 7, 8
