@@ -4,9 +4,13 @@ Each law is written once as a scalar function and compiled twice by numba: as a 
 kernel (``*_kernel``, called by the simulation engine inside its compiled step) and as a
 broadcasting ufunc (the public array functions below).
 
-* ADFG multiplier (2.3): ``M_p = (1+p)/2 + (2/pi)(S - (1+p)/2)|atan(xi v_d / v_m)|`` with
-  ``S = p`` in compression (``v_d > 0``), else 1. It makes a symmetric damper act
-  asymmetrically (light compression, ``p = 0``) without switching transients.
+* ADFG multiplier (2.3): ``M_p = c + (2/pi)(S - c)|atan(xi v_d / v_m)|`` with ``S = p``
+  in compression (``v_d > 0``), else 1, and the value at ``v_d = 0``
+  ``c = p + centre (1 - p)``: ``centre = 0.5`` is (2.3) as printed (``c = (1+p)/2``),
+  ``centre = 0`` section 3.2's "p = 0 ... letting i_d = 0 when v_r = 0" (``c = p``); the
+  control laws use 0.1, identified from the dissertation's currents (``docs/errata.md``,
+  "Control unknowns identified"). It makes a symmetric damper
+  act asymmetrically (light compression, ``p = 0``) without switching transients.
 * On-off ADFG (2.1): ``i = p i_c`` in compression, ``i_c`` otherwise.
 * CM multiplier (3.8): ``M_c = (1+p_c)/2 + (2/pi)(S - (1+p_c)/2)|atan(xi_c z_c)|`` with
   ``S = p_c`` for ``z_c >= 0``, else 1 (high current when the switching condition is
@@ -38,6 +42,7 @@ from mrsuspension.errors import ValidationError, check_finite, check_range
 invalidate_if_changed(__file__)
 
 __all__ = [
+    "ADFG_CENTRE_PRINTED",
     "adfg_multiplier",
     "cm_multiplier",
     "drive_current",
@@ -45,11 +50,17 @@ __all__ = [
 ]
 
 _TWO_OVER_PI = 2.0 / math.pi
+#: ADFG ``centre`` (M_p at v_d = 0 as a share of the way from p to 1) of eq. (2.3) as
+#: printed, the default of these functions; the control laws default to the value
+#: identified from the dissertation's currents (``mrsuspension.control.shaped.ADFG_CENTRE``,
+#: ``docs/errata.md``, "Control unknowns identified")
+ADFG_CENTRE_PRINTED = 0.5
 
 
-def _mp(velocity: float, peak_velocity: float, p: float, xi: float) -> float:
+def _mp(velocity: float, peak_velocity: float, p: float, xi: float, centre: float) -> float:
     s = p if velocity > 0.0 else 1.0
-    mid = 0.5 * (1.0 + p)
+    # (2.3) as printed, bit for bit, at the default centre
+    mid = 0.5 * (1.0 + p) if centre == 0.5 else p + centre * (1.0 - p)
     return mid + _TWO_OVER_PI * (s - mid) * abs(math.atan(xi * velocity / peak_velocity))
 
 
@@ -79,11 +90,12 @@ def drive_current_kernel(
     p_c: float,
     xi_c: float,
     max_current: float,
+    centre: float,
 ) -> float:
-    """i_d = clip(M_p M_c i_z, 0, i_max), eqs. (3.9)/(3.16)."""
+    """i_d = clip(M_p M_c i_z, 0, i_max), eqs. (3.9)/(3.16); ``centre`` places M_p(v_d = 0)."""
     if i_z == 0.0:  # M_p, M_c in [0, 1]: no current whatever they are (saves two arctans)
         return 0.0
-    mp = 1.0 if p == 1.0 else adfg_kernel(velocity, peak_velocity, p, xi)  # SCM: M_p = 1
+    mp = 1.0 if p == 1.0 else adfg_kernel(velocity, peak_velocity, p, xi, centre)  # SCM: 1
     i = mp * cm_kernel(switching, p_c, xi_c) * i_z
     if i < 0.0:
         return 0.0
@@ -102,6 +114,10 @@ def _check_p(name: str, value: float, *, open_high: bool = False) -> float:
     return float(check_range(name, value, 0.0, 1.0, high_inclusive=not open_high))
 
 
+def _check_centre(value: float) -> float:
+    return float(check_range("centre", value, 0.0, 0.5))
+
+
 def _check_positive(name: str, value: float) -> float:
     return float(check_range(name, value, 0.0, None, low_inclusive=False))
 
@@ -111,7 +127,11 @@ def _check_peak_velocity(value: npt.ArrayLike) -> np.ndarray:
 
 
 def adfg_multiplier(
-    velocity: npt.ArrayLike, peak_velocity: npt.ArrayLike, p: float, xi: float
+    velocity: npt.ArrayLike,
+    peak_velocity: npt.ArrayLike,
+    p: float,
+    xi: float,
+    centre: float = ADFG_CENTRE_PRINTED,
 ) -> np.ndarray:
     """ADFG multiplier M_p of eq. (2.3).
 
@@ -125,16 +145,24 @@ def adfg_multiplier(
         Asymmetry factor in [0, 1] (1: symmetric, SCM; 0: no compression current, ACM).
     xi : float
         Smoothing factor > 0 (slope of the arctan).
+    centre : float, optional
+        Where M_p sits at ``v_d = 0``, as a share of the way from ``p`` to 1, in [0, 0.5]:
+        0.5 is (2.3) as printed (``(1+p)/2``), 0 makes it ``p`` (no current at rest in
+        ACM); default :data:`ADFG_CENTRE_PRINTED`.
 
     Examples
     --------
     >>> import numpy as np
     >>> adfg_multiplier(np.array([-1e6, 1e6]), 1.0, p=0.2, xi=2.0).round(6)
     array([1. , 0.2])
+    >>> float(adfg_multiplier(0.0, 1.0, p=0.0, xi=2.0, centre=0.5))
+    0.5
     """
     v = check_finite("velocity", velocity)
     vm = _check_peak_velocity(peak_velocity)
-    return np.asarray(_adfg_ufunc(v, vm, _check_p("p", p), _check_positive("xi", xi)))
+    return np.asarray(
+        _adfg_ufunc(v, vm, _check_p("p", p), _check_positive("xi", xi), _check_centre(centre))
+    )
 
 
 def cm_multiplier(switching: npt.ArrayLike, p_c: float, xi_c: float) -> np.ndarray:
@@ -181,11 +209,13 @@ def drive_current(
     p_c: float = 0.0,
     xi_c: float = 10.0,
     max_current: float = 0.5,
+    centre: float = ADFG_CENTRE_PRINTED,
 ) -> np.ndarray:
     """Drive current ``clip(M_p M_c i_z, 0, i_max)`` of eqs. (3.9)/(3.16).
 
     Defaults are the Chapter 4 policy defaults (model reference, section 6): SCM (``p = 1``),
-    ``xi = 4.5``, ``p_c = 0``, ``xi_c = 10``, ``i_max = 0.5 A``.
+    ``xi = 4.5``, ``p_c = 0``, ``xi_c = 10``, ``i_max = 0.5 A``; ``centre`` as in
+    :func:`adfg_multiplier`.
     """
     iz = check_finite("i_z", i_z)
     if np.any(iz < 0):
@@ -203,5 +233,6 @@ def drive_current(
             float(
                 check_range("max_current", max_current, 0.0, 10.0, unit="A", low_inclusive=False)
             ),
+            _check_centre(centre),
         )
     )

@@ -10,7 +10,7 @@ import numpy.typing as npt
 
 from mrsuspension.control import kernel as CK
 from mrsuspension.control.base import ControlOption, option
-from mrsuspension.control.shaped import Shaped
+from mrsuspension.control.shaped import ADFG_CENTRE, Shaped
 from mrsuspension.errors import ValidationError
 
 __all__ = ["POLICY_GAINS", "POLICY_LAWS", "HiLo"]
@@ -35,7 +35,8 @@ class HiLo(Shaped):
     ==========  =====================  ===============
 
     Defaults (Chapter 4): n = 2, k_c = 3, 10, 10, 300 for policies I-IV, p_c = 0,
-    xi_c = 10, xi = 4.5; ``mode="SCM"`` (p = 1, default) or ``"ACM"`` (p = 0).
+    xi_c = 10, xi = 4.5, ADFG centre 0.1; ``mode="SCM"`` (p = 1, default) or ``"ACM"``
+    (p = 0).
 
     Examples
     --------
@@ -59,13 +60,14 @@ class HiLo(Shaped):
         xi: float = 4.5,
         p_c: float = 0.0,
         xi_c: float = 10.0,
+        adfg_centre: float = ADFG_CENTRE,
     ) -> None:
         if policy not in POLICY_LAWS:
             raise ValidationError(f"policy must be 1, 2, 3 or 4; got {policy!r}")
         object.__setattr__(self, "policy", int(policy))
         object.__setattr__(self, "gain", POLICY_GAINS[policy] if gain is None else gain)
         object.__setattr__(self, "order", order)
-        self._set_shaping(mode, p, xi, p_c, xi_c)
+        self._set_shaping(mode, p, xi, p_c, xi_c, adfg_centre)
         self._validate()
 
     @property
@@ -88,7 +90,7 @@ class HiLo(Shaped):
     def __repr__(self) -> str:
         return (
             f"HiLo(policy={self.policy}, gain={self.gain}, order={self.order}, p={self.p}, "
-            f"xi={self.xi}, p_c={self.p_c}, xi_c={self.xi_c})"
+            f"xi={self.xi}, p_c={self.p_c}, xi_c={self.xi_c}, adfg_centre={self.adfg_centre})"
         )
 
     def _fill(self, p: npt.NDArray[np.float64]) -> None:

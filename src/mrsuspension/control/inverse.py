@@ -10,7 +10,7 @@ import numpy.typing as npt
 
 from mrsuspension.control import kernel as CK
 from mrsuspension.control.base import option
-from mrsuspension.control.shaped import INVERSE_KINDS, Shaped
+from mrsuspension.control.shaped import ADFG_CENTRE, INVERSE_KINDS, Shaped
 
 __all__ = ["InverseHiLo"]
 
@@ -20,7 +20,7 @@ class InverseHiLo(Shaped):
     """Inverse-model hi-lo (3.17): track ``F* = k_s x_d`` when it opposes the spring force.
 
     ``i_z`` = inverse(F*), ``z_c = F_h k_s x_d``. Chapter 5 defaults: p_c = 0, xi_c = 50,
-    xi = 10 (and the damper's force gain k_d = 2.5). Needs the dissertation's symmetric
+    xi = 10, ADFG centre 0.1 (and the damper's force gain k_d = 2.5). Needs the dissertation's symmetric
     damper model (its inverse: model reference, section 2.3). ``inverse="mean"`` inverts the mean
     model (``v_h = 0``) whatever the damper, as in Figs 5.2 and 5.5 (hysteretic damper,
     mean inverse); the default ``"hysteretic"`` inverts the damper's own model.
@@ -44,9 +44,10 @@ class InverseHiLo(Shaped):
         xi: float = 10.0,
         p_c: float = 0.0,
         xi_c: float = 50.0,
+        adfg_centre: float = ADFG_CENTRE,
         inverse: str = "hysteretic",
     ) -> None:
-        self._set_shaping(mode, p, xi, p_c, xi_c)
+        self._set_shaping(mode, p, xi, p_c, xi_c, adfg_centre)
         object.__setattr__(self, "inverse", inverse)
         self._validate()
 

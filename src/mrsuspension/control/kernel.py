@@ -49,6 +49,7 @@ __all__ = [
     "F_MODEL",
     "F_ONOFF",
     "F_SKYHOOK",
+    "P_ADFG_CENTRE",
     "P_BETA",
     "P_C0",
     "P_CS",
@@ -99,8 +100,9 @@ C_IDEAL_ONOFF = 6
     P_CS,  # skyhook damping c_s [N s/m]
     P_C0,  # passive damping c_0 [N s/m]
     P_INV_HYST,  # inverse controllers: 1 = hysteretic inverse model, 0 = mean (v_h = 0)
-) = range(17)
-CP_SIZE = 17
+    P_ADFG_CENTRE,  # ADFG M_p at v_d = 0, share of the way from p to 1 (0.5: (2.3))
+) = range(18)
+CP_SIZE = 18
 
 # force source of the engine's rates (Controller.force_source)
 F_MODEL = 0  # the damper model at the held current
@@ -265,5 +267,7 @@ def control(
         iz = DK.wang_inverse_from(dp, target, fh, imax)
         zc = -fh * target  # (3.35)
     # drive current (3.9)/(3.16)
-    i = drive_current_kernel(iz, vd, vm, zc, cp[P_P], cp[P_XI], cp[P_PC], cp[P_XIC], imax)
+    i = drive_current_kernel(
+        iz, vd, vm, zc, cp[P_P], cp[P_XI], cp[P_PC], cp[P_XIC], imax, cp[P_ADFG_CENTRE]
+    )
     return i, iz, zc, target

@@ -18,6 +18,7 @@ from typing import Any
 
 import numpy as np
 
+from mrsuspension.control.sliding import BETA
 from mrsuspension.engine.result import SimulationResult
 from mrsuspension.engine.simulate import run_many
 from mrsuspension.report.families import (
@@ -198,7 +199,7 @@ _R = (
     "(512 Hz, Welch/Hann)"
 )
 _C = (
-    "Sliding mode ACM (k_d = 2.5, lambda = 0.5, eps = 0.05, phi = 1.6, beta = 1.25, "
+    f"Sliding mode ACM (k_d = 2.5, lambda = 0.5, eps = 0.05, phi = 1.6, beta = {BETA:g}, "
     "c_s = 6750, c_0 = 2500, p_c = 0, xi_c = 150, xi = 30)"
 )
 #: What the caption fragments above state, as ``FigureSpec.settings`` (checked against the
@@ -304,7 +305,7 @@ FIGURES: tuple[FigureSpec, ...] = (
     ),
     _spec(
         "6.11", "time", "Sprung-mass variation: harmonic responses",
-        f"m_s = 422, 563, 703 kg (controller's nominal m_s0 = 563 kg, beta = 1.25); {_C}; {_H}.",
+        f"m_s = 422, 563, 703 kg (controller's nominal m_s0 = 563 kg, beta = {BETA:g}); {_C}; {_H}.",
         MASSES,
         settings={**_C_S, **MASSES_STATED, **_H_S},
     ),

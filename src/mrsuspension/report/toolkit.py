@@ -511,7 +511,9 @@ def spread_labels(fig: Any, offsets: Sequence[tuple[float, float]] = LABEL_OFFSE
                 label.xyann = (dx, dy)
                 label.set_horizontalalignment("left" if dx >= 0 else "right")
                 box = label.get_window_extent(renderer)
-                if k == len(offsets) or not any(overlap(box, b) for b in placed):
+                # a 2 px margin: the saved figure is drawn again (at its DPI, with its
+                # title), which moves the labels by a pixel or so
+                if k == len(offsets) or not any(overlap(box.padded(2), b) for b in placed):
                     break
             moved += k > 0
             placed.append(box)

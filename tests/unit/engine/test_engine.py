@@ -116,18 +116,22 @@ def test_ideal_references_are_dissipative() -> None:
         assert np.any(res.F_d != 0.0)
 
 
-def _gamma(mode: str) -> float:
-    res = Simulation(HARMONIC, controller=HiLo(1, mode=mode)).run()
+def _gamma(mode: str, **kw: float) -> float:
+    res = Simulation(HARMONIC, controller=HiLo(1, mode=mode, **kw)).run()
     m = res.measures()
     return float(m["gamma"])
 
 
 def test_policy_one_asymmetry_ratio_acm_and_scm() -> None:
-    """gamma ~ 2.6 in ACM (dissertation ~2.4), ~1 in SCM at 1.5 Hz, 2.5 cm.
+    """gamma ~ 2.8 in ACM with (2.3) as printed (dissertation ~2.4), ~1 in SCM at 1.5 Hz,
+    2.5 cm; the identified ADFG centre 0.1 gives less compression current, so a larger
+    gamma (docs/errata.md, "Control unknowns identified").
 
     Model reference, section 2.4.
     """
-    assert 2.0 <= _gamma("ACM") <= 3.5
+    printed = _gamma("ACM", adfg_centre=0.5)
+    assert 2.0 <= printed <= 3.5
+    assert printed < _gamma("ACM") <= 4.5
     assert _gamma("SCM") == pytest.approx(1.0, abs=0.05)
 
 

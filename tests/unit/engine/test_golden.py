@@ -27,6 +27,10 @@ LAWS = sorted(CONTROLLERS)
 #: numpy's ``exp`` and ``sin`` take CPU-specific SIMD paths (AVX-512 or AVX2), which
 #: differ by an ulp, so these are held to 4 ulp; every signal of the step stays bit-exact
 NUMPY_ONLY = {"z_r_ddot"}
+#: options pinned to the defaults the record was made with (a default changed since by
+#: evidence: docs/errata.md, "Control unknowns identified"), so the record still checks
+#: the engine bit for bit
+PINNED: dict[str, dict[str, float]] = {"sliding-mode": {"beta": 1.25}}
 CASES = {
     "harmonic": (lambda: Harmonic(2.0, 0.02), 1.5),
     "pulse": (lambda: RoundedPulse(0.05, 2.0, delay=0.2), 1.0),
@@ -35,7 +39,7 @@ CASES = {
 
 def _signals(law: str, case: str) -> dict[str, np.ndarray]:
     excitation, duration = CASES[case]
-    sim = Simulation(excitation(), controller=make_controller(law))
+    sim = Simulation(excitation(), controller=make_controller(law, **PINNED.get(law, {})))
     result = sim.run(duration=duration, dt=2e-4, output_rate=250.0)
     out = {f"{law}/{case}/time": result.time}
     out.update({f"{law}/{case}/{k}": np.asarray(v) for k, v in result.signals.items()})

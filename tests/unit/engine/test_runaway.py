@@ -77,7 +77,9 @@ def test_constant_3_5_cm_stays_bounded_and_reports_the_clamp(mode, frequency):
 
 
 def test_a_run_at_the_clamp_warns_and_counts_its_time():
-    sim = Simulation(Harmonic(2.3, 0.035), controller=HiLo(1, mode="ACM", gain=3.0))
+    sim = Simulation(
+        Harmonic(2.3, 0.035), controller=HiLo(1, mode="ACM", gain=3.0, adfg_centre=0.5)
+    )
     with pytest.warns(VelocityClampWarning, match=r"upper clamp \(0.75 m/s\) for \d+\.\d %"):
         r = sim.run(dt=2e-4)
     share = float(np.mean(r.v_m >= 0.75))

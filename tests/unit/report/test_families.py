@@ -167,7 +167,9 @@ def test_run_render_and_table_on_two_pulse_runs(tmp_path: Path) -> None:
     for row in out["rows"]:
         for k in ("SDR_s", "SAR_s", "SDR_u", "SAR_u", "RDR"):
             ratio = row[f"{k} model"] / row[f"{k} dissertation"]
-            assert row[f"{k} ratio"] == pytest.approx(ratio, abs=2e-3)
+            # the ratio and the model value are each rounded to 3 decimals
+            slack = 1e-3 + 5e-4 / row[f"{k} dissertation"]
+            assert row[f"{k} ratio"] == pytest.approx(ratio, abs=slack)
             assert row[f"{k} agreement"] in ("green", "amber", "red")
         assert row["DTR difference"] == pytest.approx(
             row["DTR model"] - row["DTR dissertation"], abs=1e-3
