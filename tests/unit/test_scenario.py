@@ -239,7 +239,7 @@ def test_run_harmonic_and_sweep() -> None:
     )
     (result,) = s.run()
     m = result.measures()
-    assert 2.0 < m["gamma"] < 4.5  # 3.76 (ADFG centre 0.1; 2.76 with (2.3) as printed)
+    assert 2.0 < m["gamma"] < 3.5
     assert m["T_as"] > 0
     sweep = Scenario.from_dict(
         {"damper": {"model": "linear"},

@@ -12,12 +12,16 @@ from mrsuspension.control import kernel as CK
 from mrsuspension.control.base import option
 from mrsuspension.control.shaped import ADFG_CENTRE, INVERSE_KINDS, Shaped
 
-__all__ = ["BETA", "SlidingMode"]
+__all__ = ["BETA", "BETA_COVERING", "SlidingMode"]
 
-#: Default mass-uncertainty bound beta of (3.26)/(3.33), not given in the seed: the smallest
-#: that covers the studied sprung masses 422-703 kg about m_s0 = 563 kg (563/422 = 1.3341,
-#: 703/563 = 1.249); the scorecard's count is highest there (``docs/errata.md``)
-BETA = 1.335
+#: Default mass-uncertainty bound beta of (3.26)/(3.33), not given in the seed: 1.25, the
+#: model reference's (spec section 6: "the studied +-25 % load range"). The smallest beta
+#: that covers the studied sprung masses 422-703 kg about m_s0 = 563 kg is
+#: :data:`BETA_COVERING` (563/422 = 1.3341), a stated reading of the findings scorecard
+#: until the reference changes (``docs/errata.md``)
+BETA = 1.25
+#: the smallest beta covering the studied 422-703 kg (not the default)
+BETA_COVERING = 1.335
 
 
 @dataclass(frozen=True, init=False)
