@@ -398,14 +398,23 @@ def _vehicle_law_defaults(
     law: str, model: str, set_name: str | None
 ) -> tuple[tuple[str, Any], ...]:
     """What the scenario builds for a whole-vehicle law's keys without options, on
-    ``model`` (its published set ``set_name``, or its default parameters)."""
+    ``model`` (its published set ``set_name``, or its default parameters); None for a
+    key of a law that cannot be built without options (the scenario then asks for it)."""
     vehicle: dict[str, Any] = {"model": model}
     if set_name is not None:
         vehicle["set"] = set_name
-    built = Scenario.from_dict(
-        {"vehicle": vehicle, "controller": {"law": law}, "excitation": _ZERO_PLACEHOLDER}
-    ).body_control
-    return tuple((key, getattr(built, key)) for key in VEHICLE_LAWS[law])
+    tables = {"vehicle": vehicle, "controller": {"law": law}, "excitation": _ZERO_PLACEHOLDER}
+    try:
+        built = Scenario.from_dict(tables).body_control
+    except ValidationError:
+        built = None
+    out = []
+    for key in VEHICLE_LAWS[law]:
+        value = getattr(built, key, None)
+        if isinstance(value, float):  # 37304.28, not 37304.280000000006, on the page
+            value = float(f"{value:.12g}")
+        out.append((key, value))
+    return tuple(out)
 
 
 def vehicle_law_options(law: str, model: str, set_name: str | None = None) -> list[ControlOption]:
@@ -449,7 +458,8 @@ def vehicle_law_table(
     for opt in vehicle_law_options(law, model, set_name):
         raw = _given(settings, dataclasses.replace(opt, symbol=""))  # by name only
         if raw is None:
-            table[opt.name] = opt.default
+            if opt.default is not None:
+                table[opt.name] = opt.default
         else:
             table[opt.name] = opt.check(_as_number(raw, opt.name))
     return table
