@@ -265,7 +265,12 @@ _SENSING_KEYS: dict[str, str] = {
     "stroke_noise": "number",  # m, noise standard deviation
     "stroke_seed": "integer",
 }
-_VELOCITY_ESTIMATORS = ("ideal", "leaky-integrator", "band-pass")
+#: ``[sensing] velocity`` -> the keys of that estimator (given with another, refused)
+_VELOCITY_ESTIMATORS: dict[str, tuple[str, ...]] = {
+    "ideal": (),
+    "leaky-integrator": ("tau", "fs"),
+    "band-pass": ("corner", "zeta", "fs"),
+}
 
 #: Every section of a scenario file and the keys it accepts (with their value kind).
 SCENARIO_KEYS: dict[str, Mapping[str, str]] = {
@@ -1034,9 +1039,8 @@ def _build_sensing(
             "[sensing] applies to half and full cars ([vehicle] model = 'half-car' or "
             "'full-car'); the quarter car's controllers measure ideally"
         )
-    kind = _choice("sensing", "velocity", table.get("velocity", "ideal"), dict.fromkeys(
-        _VELOCITY_ESTIMATORS))  # fmt: skip
-    own = {"ideal": (), "leaky-integrator": ("tau",), "band-pass": ("corner", "zeta")}
+    kind = _choice("sensing", "velocity", table.get("velocity", "ideal"), _VELOCITY_ESTIMATORS)
+    own = _VELOCITY_ESTIMATORS
     for key in ("tau", "corner", "zeta"):
         if key in table and key not in own[kind]:
             raise ValidationError(

@@ -289,6 +289,7 @@ def test_the_token_page_loads_its_script_and_styles_and_starts_a_run(
     assert statuses["/static/monitor.js"] == 200
     assert statuses["/static/monitor.css"] == 200
     assert statuses["/api/controllers"] == 200
+    assert statuses["/api/vehicles"] == 200
     assert page.evaluate("() => getComputedStyle(document.body).fontFamily") != ""
     cookie = next(c for c in context.cookies() if c["name"] == f"mrsus_monitor_{served.port}")
     assert cookie["httpOnly"] is True

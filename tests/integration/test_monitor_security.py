@@ -472,7 +472,7 @@ def test_token_page_sets_a_cookie_that_its_script_styles_and_socket_carry(
     tokened: Served,
 ) -> None:
     # without the token: the page, its static files, the API and the socket are refused
-    for path in ("/", "/static/monitor.js", "/static/monitor.css", "/api/status"):
+    for path in ("/", "/static/monitor.js", "/static/monitor.css", "/api/status", "/api/vehicles"):
         assert tokened.raw("GET", path)[0] == 403, path
         assert tokened.raw("GET", path + "?token=" + "x" * len(TOKEN))[0] == 403, path
     # the first load with the token: a cookie (HttpOnly, SameSite=Strict), the clean URL
@@ -490,7 +490,7 @@ def test_token_page_sets_a_cookie_that_its_script_styles_and_socket_carry(
     assert code == 303
     assert headers["set-cookie"].split(";", 1)[0] == jar["Cookie"]
     assert tokened.raw("GET", "/?login=one-time-code-0123456789")[0] == 403  # used up
-    for path in ("/", "/static/monitor.js", "/static/monitor.css", "/api/status"):
+    for path in ("/", "/static/monitor.js", "/static/monitor.css", "/api/status", "/api/vehicles"):
         assert tokened.raw("GET", path, jar)[0] == 200, path
     # a state change with the cookie still needs the monitor's own origin
     head = {**jar, "Content-Type": "application/json"}

@@ -7,7 +7,9 @@ running loop, applied between ticks), ``POST /api/stop`` (STOP), ``POST /api/rec
 (record start/stop), ``POST /api/acquisition`` (period, trigger, display rate),
 ``GET /api/controllers`` (the controller laws the page offers and their options,
 derived from the controller registry: :func:`~mrsuspension.monitor.settings.controller_forms`),
-``GET /api/status``, ``GET /api/recording`` (CSV of the acquired rows of the HiL
+``GET /api/vehicles`` (the vehicle models, their sets and corners, and the sensing
+fields, derived from the plant registry and the scenario:
+:func:`~mrsuspension.monitor.settings.vehicle_forms`), ``GET /api/status``, ``GET /api/recording`` (CSV of the acquired rows of the HiL
 recording) and ``WS /ws`` (JSON frames at 25 Hz: new samples at the display rate, loop
 status, live measures).
 
@@ -58,6 +60,7 @@ from mrsuspension.monitor.settings import (
     controller_forms,
     page_fields,
     scenario_from_settings,
+    vehicle_forms,
 )
 
 __all__ = [
@@ -259,8 +262,9 @@ class MonitorState:
         self.lock = threading.Lock()
 
     # -- runs ------------------------------------------------------------------------------
-    def validate(self, raw: dict[str, Any]) -> tuple[MonitorSettings, Simulation]:
-        """Validate page settings; the simulation they describe (on the attached base)."""
+    def validate(self, raw: dict[str, Any]) -> tuple[MonitorSettings, Any]:
+        """Validate page settings; the run they describe (a quarter car on the attached
+        base, or a half or full car: :meth:`MonitorSettings.simulation`)."""
         settings = scenario_from_settings(raw, self.road_dir)  # raises ValidationError
         return settings, settings.simulation(self.base)
 
@@ -280,7 +284,11 @@ class MonitorState:
         try:
             settings, sim = self.validate(raw)
             self._check_idle()
-            return self._launch(sim, settings.rate, settings.duration, settings.ramp_time, settings)
+            # a car: its rig corner's damper on the rig, the rest simulated in the loop
+            return self._launch(
+                sim, settings.rate, settings.duration, settings.ramp_time, settings,
+                corner=settings.corner,
+            )  # fmt: skip
         finally:
             self.lock.release()
 
@@ -348,7 +356,7 @@ class MonitorState:
 
     def _launch(
         self,
-        sim: Simulation,
+        sim: Any,
         rate: float,
         duration: float,
         ramp_time: float,
@@ -387,6 +395,7 @@ class MonitorState:
         self.status = {
             "state": "starting", "reason": "", "run": self.run_id, "rig": self.rig,
             "applied": 0, "safe": False, "fields": page_fields(sim), "corner": corner,
+            "model": getattr(run_sim, "model_name", "quarter-car"),
         }  # fmt: skip
         self.handle = LoopHandle(
             run_sim, self.rig, rate, duration, out, ramp_time=ramp_time, realtime=self.realtime,
@@ -400,7 +409,7 @@ class MonitorState:
         with self.lock:
             return self._apply(settings, sim)
 
-    def _apply(self, settings: MonitorSettings, sim: Simulation) -> dict[str, Any]:
+    def _apply(self, settings: MonitorSettings, sim: Any) -> dict[str, Any]:
         h = self.handle
         if (
             h is None
@@ -412,6 +421,12 @@ class MonitorState:
             raise ValidationError(
                 "live changes apply to quarter-car runs; this run is a half or full car "
                 f"(corner {self.corner!r} on the rig): stop it and start a new run"
+            )
+        if settings.corner is not None:
+            model = settings.tables["vehicle"].get("model", "car")
+            raise ValidationError(
+                f"live changes apply to quarter-car runs; the form describes a {model} "
+                "(a new run): press STOP, wait for the end, then Start"
             )
         old = self.simulation if self.simulation is not None else sim
         # prepared here: the loop only swaps arrays
@@ -690,7 +705,10 @@ def create_app(
         return JSONResponse({"state": state.status.get("state")})
 
     async def controllers(request: Request) -> JSONResponse:
-        return JSONResponse(controller_forms())
+        return JSONResponse(await asyncio.to_thread(controller_forms))
+
+    async def vehicles(request: Request) -> JSONResponse:
+        return JSONResponse(vehicle_forms())
 
     async def status(request: Request) -> JSONResponse:
         state.poll()
@@ -775,6 +793,7 @@ def create_app(
             Route("/api/record", _call(record), methods=["POST"]),
             Route("/api/acquisition", _call(state.set_acquisition), methods=["POST"]),
             Route("/api/controllers", controllers),
+            Route("/api/vehicles", vehicles),
             Route("/api/status", status),
             Route("/api/recording", recording),
             WebSocketRoute("/ws", ws),

@@ -22,7 +22,7 @@ import threading
 import time
 import urllib.request
 from pathlib import Path
-from typing import Any
+from typing import Any, cast
 
 __all__ = ["browser_run", "measure", "monitored_run", "unmonitored_run"]
 
@@ -50,11 +50,12 @@ def unmonitored_run(
     isolate: bool = False,
 ) -> dict[str, Any]:
     """The scenario through ``run_hil`` in its own process; its deadline figures."""
+    from mrsuspension.engine.simulate import Simulation
     from mrsuspension.hil.loop import run_hil
     from mrsuspension.hil.rigs import make_rig
     from mrsuspension.monitor.settings import scenario_from_settings
 
-    sim = scenario_from_settings({**_SETTINGS, "rate": rate}).simulation()
+    sim = cast(Simulation, scenario_from_settings({**_SETTINGS, "rate": rate}).simulation())
     out = Path(tempfile.mkdtemp(prefix="plain-", dir=workdir))
     result = run_hil(
         sim, make_rig(rig, sim.damper), duration=duration, rate=rate, out=out, process=True,

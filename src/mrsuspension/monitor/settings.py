@@ -9,40 +9,62 @@ The controller part of the form is derived from the controller registry
 (:data:`~mrsuspension.control.CONTROLLERS`): :func:`monitor_laws` are the registered laws
 that drive the MR damper, :func:`controller_forms` their options as the page builds its
 fields (``GET /api/controllers``), so a new law needs no edit here.
+
+The vehicle part is derived from the scenario's declarations in the same way: the models
+are the plant registry's (:data:`~mrsuspension.engine.plants.PLANTS`: the quarter car,
+and the half and full car with their published sets and corners), the whole-vehicle laws
+and their keys :data:`~mrsuspension.scenario.VEHICLE_LAWS` (offered for a car beside the
+corner laws, their defaults what the scenario builds), and the sensing group the
+``[sensing]`` keys (:data:`~mrsuspension.scenario.SCENARIO_KEYS`, the velocity
+estimators and their keys). :func:`vehicle_forms` gives the page the models and the
+sensing fields (``GET /api/vehicles``). A car runs with one corner's damper on the rig
+(``rig_corner``) and the rest of the car simulated in the loop (docs/hil.md).
 """
 
 from __future__ import annotations
 
 import dataclasses
+import functools
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, ClassVar
+from typing import TYPE_CHECKING, Any, ClassVar
 
 import numpy as np
 import numpy.typing as npt
 
 from mrsuspension.control import CONTROLLERS, ControlOption, law_options, make_controller
+from mrsuspension.engine.plants import PLANTS
 from mrsuspension.engine.simulate import Simulation
 from mrsuspension.errors import ValidationError
 from mrsuspension.excitation import PRESET_ROADS, Excitation
 from mrsuspension.excitation.base import grid_args
-from mrsuspension.scenario import Scenario
+from mrsuspension.scenario import _VELOCITY_ESTIMATORS, SCENARIO_KEYS, VEHICLE_LAWS, Scenario
 from mrsuspension.vehicle import QuarterCar
+
+if TYPE_CHECKING:
+    from mrsuspension.engine.vehicle import VehicleSimulation
 
 __all__ = [
     "DEFAULT_LAW",
+    "DEFAULT_MODEL",
     "EXCITATIONS",
+    "FIELD_SYMBOLS",
     "VEHICLE_FIELDS",
     "MonitorSettings",
     "ZeroRoad",
     "controller_forms",
     "controller_table",
     "monitor_laws",
+    "monitor_models",
     "page_fields",
     "page_options",
     "scenario_from_settings",
+    "sensing_table",
+    "vehicle_forms",
+    "vehicle_law_options",
+    "vehicle_law_table",
 ]
 
 #: law the page starts with (the skyhook hi-lo of the HiL demonstration, docs/monitor.md)
@@ -65,6 +87,29 @@ VEHICLE_FIELDS: dict[str, str] = {
     "suspension_stiffness": "k_s [N/m]",
     "tire_stiffness": "k_t [N/m]",
     "tire_damping": "c_t [N s/m]",
+}
+#: vehicle model the page starts with
+DEFAULT_MODEL = "quarter-car"
+#: how the page labels the keys of a whole-vehicle law and of ``[sensing]``: key ->
+#: (model-reference symbol, unit). Only the labels: the keys themselves come from the
+#: scenario (:data:`~mrsuspension.scenario.VEHICLE_LAWS`, ``SCENARIO_KEYS["sensing"]``),
+#: and a key not named here is offered under its own name. A unit ``A`` is a drive
+#: current, capped at :data:`MAX_CURRENT` like a corner law's.
+FIELD_SYMBOLS: dict[str, tuple[str, str]] = {
+    "heave": ("c_z", "N s/m"),
+    "pitch": ("c_theta", "N m s/rad"),
+    "roll": ("c_phi", "N m s/rad"),
+    "damping": ("c_s", "N s/m"),
+    "low_current": ("i_low", "A"),
+    "high_current": ("i_high", "A"),
+    "tau": ("tau", "s"),
+    "corner": ("f_c", "Hz"),
+    "zeta": ("zeta", ""),
+    "fs": ("f_s", "Hz"),
+    "stroke_fs": ("stroke f_s", "Hz"),
+    "stroke_resolution": ("stroke resolution", "m"),
+    "stroke_noise": ("stroke noise sd", "m"),
+    "stroke_seed": ("noise seed", ""),
 }
 
 
@@ -129,6 +174,9 @@ class MonitorSettings:
         Longest run [s] (STOP ends it earlier).
     ramp_time : float
         Ramp of the drive current after a live controller change [s].
+    corner : str, optional
+        A half or full car's rig corner (the corner whose damper is on the rig); None for
+        a quarter car.
     """
 
     tables: dict[str, dict[str, Any]]
@@ -136,23 +184,30 @@ class MonitorSettings:
     rate: float
     duration: float
     ramp_time: float = 0.2
+    corner: str | None = None
 
     def scenario(self) -> Scenario:
         """The scenario of these settings."""
         return Scenario.from_dict(self.tables)
 
-    def simulation(self, base: Simulation | None = None) -> Simulation:
-        """The simulation of these settings (validated).
+    def simulation(self, base: Simulation | None = None) -> Simulation | VehicleSimulation:
+        """The run of these settings (validated): a quarter car's
+        :class:`~mrsuspension.engine.simulate.Simulation`, or a half or full car's
+        :class:`~mrsuspension.engine.vehicle.VehicleSimulation` (every wheel on the road).
 
         Parameters
         ----------
         base : Simulation, optional
-            A running configuration (e.g. a scenario file's) whose damper and estimator
-            are kept; its controller, excitation and vehicle are replaced by these.
+            A running quarter-car configuration (e.g. a scenario file's) whose damper and
+            estimator are kept; its controller, excitation and vehicle are replaced by
+            these. Not used for a car: the form gives the whole car.
         """
-        sim = self.scenario().simulations()[0]
-        if self.zero_input:
-            sim = dataclasses.replace(sim, excitation=ZeroRoad())
+        # a zero road replaces the placeholder (under every wheel of a car)
+        run = self.scenario().runs([ZeroRoad()] if self.zero_input else None)[0]
+        if self.corner is not None:
+            car: VehicleSimulation = run  # type: ignore[assignment]
+            return car
+        sim: Simulation = run  # type: ignore[assignment]
         if base is not None:
             sim = dataclasses.replace(
                 base,
@@ -171,6 +226,7 @@ class MonitorSettings:
             "rate": self.rate,
             "duration": self.duration,
             "ramp_time": self.ramp_time,
+            "corner": self.corner,
         }
 
 
@@ -191,8 +247,16 @@ def _as_number(raw: Any, label: str) -> float:
     return value
 
 
+def _text(settings: Mapping[str, Any], key: str) -> str | None:
+    """The page's text of ``key``, None when missing or blank."""
+    raw = settings.get(key)
+    if raw is None or str(raw).strip() == "":
+        return None
+    return str(raw).strip()
+
+
 def _choice(settings: Mapping[str, Any], key: str, choices: tuple[str, ...], default: str) -> str:
-    value = str(settings.get(key, default))
+    value = _text(settings, key) or default  # blank: the default
     if value not in choices:
         raise ValidationError(f"unknown {key} {value!r}; valid: {', '.join(choices)}")
     return value
@@ -227,19 +291,22 @@ def page_options(law: str) -> list[ControlOption]:
     >>> [o.default for o in page_options("skyhook-hilo") if o.name == "mode"]
     ['ACM']
     """
-    out = []
-    for opt in law_options(law):
-        if opt.unit == "A" and (opt.high is None or opt.high >= MAX_CURRENT):
-            default = opt.default
-            if isinstance(default, int | float) and default > MAX_CURRENT:
-                default = MAX_CURRENT
-            opt = dataclasses.replace(opt, high=MAX_CURRENT, high_open=False, default=default)
-        if opt.name in PAGE_DEFAULTS:
-            page = PAGE_DEFAULTS[opt.name]
-            if opt.choices is None or page in opt.choices:
-                opt = dataclasses.replace(opt, default=page)
-        out.append(opt)
-    return out
+    return [_page_option(opt) for opt in law_options(law)]
+
+
+def _page_option(opt: ControlOption) -> ControlOption:
+    """``opt`` as the page offers it: a current capped at :data:`MAX_CURRENT`, the page's
+    defaults."""
+    if opt.unit == "A" and (opt.high is None or opt.high >= MAX_CURRENT):
+        default = opt.default
+        if isinstance(default, int | float) and default > MAX_CURRENT:
+            default = MAX_CURRENT
+        opt = dataclasses.replace(opt, high=MAX_CURRENT, high_open=False, default=default)
+    if opt.name in PAGE_DEFAULTS:
+        page = PAGE_DEFAULTS[opt.name]
+        if opt.choices is None or page in opt.choices:
+            opt = dataclasses.replace(opt, default=page)
+    return opt
 
 
 def _form_field(opt: ControlOption) -> dict[str, Any]:
@@ -268,23 +335,221 @@ def controller_forms() -> dict[str, Any]:
     -------
     dict
         ``default`` (the law the page starts with) and ``controllers``: for each of
-        :func:`monitor_laws`, ``law`` and ``options`` (each with ``name``, ``label``,
-        ``symbol``, ``unit``, ``default``, ``min``, ``max``, ``min_open``, ``max_open``
-        and, for a text option, ``choices``), as :func:`page_options` gives them.
+        :func:`monitor_laws`, ``law``, ``vehicle`` (False: a corner law, for every model)
+        and ``options`` (each with ``name``, ``label``, ``symbol``, ``unit``,
+        ``default``, ``min``, ``max``, ``min_open``, ``max_open`` and, for a text option,
+        ``choices``), as :func:`page_options` gives them; then each whole-vehicle law of
+        :data:`~mrsuspension.scenario.VEHICLE_LAWS` (``vehicle``: True, a half or full
+        car only) with its options (:func:`vehicle_law_options`, defaults of the first
+        car model) and ``defaults``: model -> option -> the default on that model.
 
     Examples
     --------
     >>> forms = controller_forms()
     >>> forms["default"], [o["label"] for o in forms["controllers"][0]["options"]]
     ('skyhook-hilo', ['i [A]'])
+    >>> modal = next(c for c in forms["controllers"] if c["law"] == "modal-skyhook")
+    >>> modal["vehicle"], modal["defaults"]["full-car"]["heave"]  # 4 corners x 6750 N s/m
+    (True, 27000.0)
     """
     laws = monitor_laws()
-    return {
-        "default": _default_law(laws),
-        "controllers": [
-            {"law": law, "options": [_form_field(o) for o in page_options(law)]} for law in laws
-        ],
-    }
+    out: list[dict[str, Any]] = [
+        {"law": law, "vehicle": False, "options": [_form_field(o) for o in page_options(law)]}
+        for law in laws
+    ]
+    cars = _car_models()
+    for law in VEHICLE_LAWS if cars else ():
+        out.append(
+            {
+                "law": law,
+                "vehicle": True,
+                "options": [_form_field(o) for o in vehicle_law_options(law, cars[0])],
+                "defaults": {
+                    m: {o.name: o.default for o in vehicle_law_options(law, m)} for m in cars
+                },
+            }
+        )
+    return {"default": _default_law(laws), "controllers": out}
+
+
+def monitor_models() -> tuple[str, ...]:
+    """The vehicle models the page offers: every registered plant
+    (:data:`~mrsuspension.engine.plants.PLANTS`).
+
+    Examples
+    --------
+    >>> monitor_models()
+    ('quarter-car', 'half-car', 'full-car')
+    """
+    return tuple(PLANTS)
+
+
+def _car_models() -> tuple[str, ...]:
+    """The models with corners (a damper per corner: the rig takes one of them)."""
+    return tuple(m for m in PLANTS if PLANTS[m].corners)
+
+
+def _symbol_unit(key: str) -> tuple[str, str]:
+    return FIELD_SYMBOLS.get(key, ("", ""))
+
+
+@functools.lru_cache(maxsize=64)
+def _vehicle_law_defaults(
+    law: str, model: str, set_name: str | None
+) -> tuple[tuple[str, Any], ...]:
+    """What the scenario builds for a whole-vehicle law's keys without options, on
+    ``model`` (its published set ``set_name``, or its default parameters); None for a
+    key of a law that cannot be built without options (the scenario then asks for it)."""
+    vehicle: dict[str, Any] = {"model": model}
+    if set_name is not None:
+        vehicle["set"] = set_name
+    tables = {"vehicle": vehicle, "controller": {"law": law}, "excitation": _ZERO_PLACEHOLDER}
+    try:
+        built = Scenario.from_dict(tables).body_control
+    except ValidationError:
+        built = None
+    out = []
+    for key in VEHICLE_LAWS[law]:
+        value = getattr(built, key, None)
+        if isinstance(value, float):  # 37304.28, not 37304.280000000006, on the page
+            value = float(f"{value:.12g}")
+        out.append((key, value))
+    return tuple(out)
+
+
+def vehicle_law_options(law: str, model: str, set_name: str | None = None) -> list[ControlOption]:
+    """The options of the whole-vehicle ``law`` on a car ``model``, as the page offers them.
+
+    The keys are the scenario's (:data:`~mrsuspension.scenario.VEHICLE_LAWS`), their
+    defaults what the scenario builds for that car (modal skyhook: the corner equivalent
+    of 6750 N s/m), labelled from :data:`FIELD_SYMBOLS`; a drive current is capped at
+    :data:`MAX_CURRENT`. The ranges of the gains are the law's to check (through the
+    scenario).
+
+    Examples
+    --------
+    >>> [(o.name, o.default, o.high) for o in vehicle_law_options("corner-skyhook", "half-car")]
+    [('damping', 6750.0, None), ('low_current', 0.0, 0.3), ('high_current', 0.3, 0.3)]
+    """
+    out = []
+    for key, default in _vehicle_law_defaults(law, model, set_name):
+        symbol, unit = _symbol_unit(key)
+        low = 0.0 if unit == "A" else None  # a drive current; the gains: the law checks
+        out.append(_page_option(ControlOption(key, default, unit, low=low, symbol=symbol)))
+    return out
+
+
+def vehicle_law_table(
+    law: str, model: str, settings: Mapping[str, Any], set_name: str | None = None
+) -> dict[str, Any]:
+    """The ``[controller]`` table of the whole-vehicle ``law`` from the page's fields.
+
+    Each key of :func:`vehicle_law_options` is read by name; a blank or missing one
+    takes the default the page shows (so a modal skyhook with only ``heave`` given keeps
+    the corner-equivalent pitch and roll). Numbers are checked here for the current cap,
+    by the scenario for the rest.
+
+    Examples
+    --------
+    >>> vehicle_law_table("modal-skyhook", "half-car", {"heave": "9000"})
+    {'law': 'modal-skyhook', 'heave': 9000.0, 'pitch': 18652.14, 'roll': 0.0, 'low_current': 0.0, 'high_current': 0.3}
+    """
+    table: dict[str, Any] = {"law": law}
+    for opt in vehicle_law_options(law, model, set_name):
+        raw = _given(settings, dataclasses.replace(opt, symbol=""))  # by name only
+        if raw is None:
+            if opt.default is not None:
+                table[opt.name] = opt.default
+        else:
+            table[opt.name] = opt.check(_as_number(raw, opt.name))
+    return table
+
+
+def sensing_table(settings: Mapping[str, Any]) -> dict[str, Any]:
+    """The ``[sensing]`` table of a car from the page's fields (``{}``: ideal sensing).
+
+    ``velocity`` is one of the scenario's estimators (blank: ``ideal``); then each other
+    ``[sensing]`` key is read by name, a blank one left to the scenario's default. A key
+    of another estimator (``tau`` with ``band-pass``) is not read, as the page hides it;
+    the stroke sensor's keys belong to every estimator. The scenario checks the values.
+
+    Examples
+    --------
+    >>> sensing_table({"velocity": "band-pass", "corner": "0.1", "tau": "2"})
+    {'velocity': 'band-pass', 'corner': 0.1}
+    >>> sensing_table({"velocity": "ideal", "corner": "0.1"})
+    {}
+    """
+    kind = _choice(settings, "velocity", tuple(_VELOCITY_ESTIMATORS), "ideal")
+    table: dict[str, Any] = {"velocity": kind}
+    for key, value_kind in SCENARIO_KEYS["sensing"].items():
+        if key == "velocity":
+            continue
+        owners = _estimators_of(key)
+        raw = _text(settings, key)
+        if raw is None or (owners and kind not in owners):
+            continue
+        label = f"[sensing] {key}"
+        value = _as_number(raw, label)
+        if value_kind == "integer":
+            if not value.is_integer():
+                raise ValidationError(f"{label} must be a whole number; got {raw!r}")
+            table[key] = int(value)
+        else:
+            table[key] = value
+    return {} if table == {"velocity": "ideal"} else table
+
+
+def _estimators_of(key: str) -> tuple[str, ...]:
+    """The velocity estimators a ``[sensing]`` key belongs to (none: every one)."""
+    return tuple(kind for kind, keys in _VELOCITY_ESTIMATORS.items() if key in keys)
+
+
+def vehicle_forms() -> dict[str, Any]:
+    """The page's vehicle models and sensing fields (``GET /api/vehicles``).
+
+    Returns
+    -------
+    dict
+        ``default`` (the model the page starts with); ``models``: for each of
+        :func:`monitor_models`, ``model``, ``corners`` (the rig corner's choices; empty
+        for the quarter car, which has only its own damper) and ``sets`` (the published
+        parameter sets; blank: the model's defaults); ``sensing`` (a car's):
+        ``velocity`` (the estimators), ``default`` and ``fields`` (the other
+        ``[sensing]`` keys: ``name``, ``label``, ``unit``, ``kind`` and ``velocity``, the
+        estimators it belongs to, or None for every one).
+
+    Examples
+    --------
+    >>> forms = vehicle_forms()
+    >>> [(m["model"], len(m["corners"])) for m in forms["models"]]
+    [('quarter-car', 0), ('half-car', 2), ('full-car', 4)]
+    >>> forms["sensing"]["velocity"]
+    ['ideal', 'leaky-integrator', 'band-pass']
+    >>> next(f for f in forms["sensing"]["fields"] if f["name"] == "corner")["velocity"]
+    ['band-pass']
+    """
+    models = []
+    for name, model in PLANTS.items():
+        sets = list(model.sets()) if model.sets is not None else []
+        models.append({"model": name, "corners": list(model.corners), "sets": sets})
+    fields = []
+    for key, value_kind in SCENARIO_KEYS["sensing"].items():
+        if key == "velocity":
+            continue
+        symbol, unit = _symbol_unit(key)
+        owners = _estimators_of(key)
+        fields.append(
+            {
+                "name": key,
+                "label": (symbol or key) + (f" [{unit}]" if unit else ""),
+                "unit": unit,
+                "kind": value_kind,
+                "velocity": list(owners) or None,
+            }
+        )
+    sensing = {"velocity": list(_VELOCITY_ESTIMATORS), "default": "ideal", "fields": fields}
+    return {"default": DEFAULT_MODEL, "models": models, "sensing": sensing}
 
 
 def _default_law(laws: tuple[str, ...]) -> str:
@@ -344,13 +609,19 @@ def scenario_from_settings(
     Parameters
     ----------
     settings : mapping
-        Form fields: ``controller`` (one of :func:`monitor_laws`), the law's options
-        (:func:`controller_table`: by name or model-reference symbol, blank for the default; an
-        explicit ``p`` overrides ``mode``), ``excitation``
-        (one of :data:`EXCITATIONS`), ``frequency``, ``amplitude``, ``height``,
-        ``severity``, ``speed``, ``profile`` (a preset, or ``file`` with ``road_file``),
-        ``road_speed``, ``scale``, the vehicle parameters of :data:`VEHICLE_FIELDS`,
-        ``rate``, ``duration``, ``ramp_time``.
+        Form fields: ``model`` (one of :func:`monitor_models`, blank: the quarter car),
+        ``controller`` (one of :func:`monitor_laws`, or for a half or full car a
+        whole-vehicle law of :data:`~mrsuspension.scenario.VEHICLE_LAWS`), the law's
+        options (:func:`controller_table`: by name or model-reference symbol, blank for
+        the default; an explicit ``p`` overrides ``mode``; :func:`vehicle_law_table`),
+        ``excitation`` (one of :data:`EXCITATIONS`), ``frequency``, ``amplitude``,
+        ``height``, ``severity``, ``speed``, ``profile`` (a preset, or ``file`` with
+        ``road_file``), ``road_speed``, ``scale``, ``rate``, ``duration``,
+        ``ramp_time``; for the quarter car the vehicle parameters of
+        :data:`VEHICLE_FIELDS`; for a half or full car ``set`` (a published set, blank:
+        the model's defaults), ``rig_corner`` (the corner whose damper is on the rig,
+        blank: the first) and the sensing fields (:func:`sensing_table`). A field of
+        another model, law or velocity estimator is not read (the page hides it).
     road_dir : path, optional
         Directory that road files (``road_file``) may be taken from; None: road files are
         refused (the page cannot name arbitrary server paths).
@@ -365,9 +636,47 @@ def scenario_from_settings(
     ValidationError
         For an unknown choice, a non-number or a value the scenario layer refuses.
     """
+    model_name = _choice(settings, "model", monitor_models(), DEFAULT_MODEL)
+    model = PLANTS[model_name]
     laws = monitor_laws()
-    law = _choice(settings, "controller", laws, _default_law(laws))
-    controller = controller_table(law, settings)
+    law = _choice(settings, "controller", laws + tuple(VEHICLE_LAWS), _default_law(laws))
+    vehicle: dict[str, Any]
+    sensing: dict[str, Any] = {}
+    corner: str | None = None
+    if model.corners:
+        vehicle = {"model": model_name}
+        set_name = _text(settings, "set")
+        if set_name is not None:
+            sets = tuple(model.sets()) if model.sets is not None else ()
+            if set_name not in sets:
+                raise ValidationError(
+                    f"unknown set {set_name!r} of the {model_name}; valid: "
+                    f"{', '.join(sets) or 'none'} (blank: the model's defaults)"
+                )
+            vehicle["set"] = set_name
+        corner = _text(settings, "rig_corner") or model.corners[0]
+        if corner not in model.corners:
+            raise ValidationError(
+                f"rig corner {corner!r} is not a corner of the {model_name}; valid: "
+                f"{', '.join(model.corners)}"
+            )
+        if law in VEHICLE_LAWS:
+            controller = vehicle_law_table(law, model_name, settings, set_name)
+        else:
+            controller = controller_table(law, settings)
+        sensing = sensing_table(settings)
+    else:
+        if law in VEHICLE_LAWS:
+            raise ValidationError(
+                f"controller {law!r} drives a whole vehicle: choose model "
+                f"{' or '.join(_car_models()) or 'half-car or full-car'} (for the "
+                f"{model_name}: {', '.join(laws)})"
+            )
+        controller = controller_table(law, settings)
+        nominal = QuarterCar()
+        vehicle = {
+            key: _number(settings, key, getattr(nominal, key), key) for key in VEHICLE_FIELDS
+        }
 
     kind = _choice(settings, "excitation", EXCITATIONS, "harmonic")
     excitation: dict[str, Any]
@@ -400,14 +709,14 @@ def scenario_from_settings(
             "speed": _number(settings, "road_speed", 50.0, "road speed"),
             "scale": _number(settings, "scale", 1.0, "scale"),
         }
-    nominal = QuarterCar()
-    vehicle = {key: _number(settings, key, getattr(nominal, key), key) for key in VEHICLE_FIELDS}
     tables: dict[str, dict[str, Any]] = {
         "vehicle": vehicle,
         "damper": {"max_current": MAX_CURRENT},
         "controller": controller,
         "excitation": excitation,
     }
+    if sensing:
+        tables["sensing"] = sensing
     rate = _number(settings, "rate", 1000.0, "loop rate")
     if not 50.0 <= rate <= 5000.0:
         raise ValidationError(f"loop rate must be in [50, 5000] Hz; got {rate:g} Hz")
@@ -418,13 +727,14 @@ def scenario_from_settings(
     if not 0.0 < ramp_time <= 5.0:
         raise ValidationError(f"ramp time must be in (0, 5] s; got {ramp_time:g} s")
     scenario = Scenario.from_dict(tables)
-    scenario.simulations()  # builds the simulation: refuses e.g. a current above i_max
+    scenario.runs()  # builds the run: refuses e.g. a current above i_max
     return MonitorSettings(
         tables=tables,
         zero_input=kind == "zero",
         rate=rate,
         duration=duration,
         ramp_time=ramp_time,
+        corner=corner,
     )
 
 

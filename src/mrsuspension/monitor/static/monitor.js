@@ -61,7 +61,10 @@
   // one field per option name (laws sharing an option share its field); blank: the
   // selected law's default (its placeholder)
   const laws = {}; // law -> its options (name, label, unit, default, min, max, choices)
+  const lawInfo = {}; // law -> { vehicle: a whole-vehicle law, defaults: model -> option -> value }
   const lawFields = {}; // option name -> { label, text, field }
+  const models = {}; // vehicle model -> { corners, sets } (GET api/vehicles)
+  const sensingFields = []; // { label, field, kind, velocity: the estimators it belongs to }
   function rangeText(o) {
     const lo = o.min === null ? "-inf" : o.min;
     const hi = o.max === null ? "inf" : o.max;
@@ -76,8 +79,10 @@
     const box = $("controller_options");
     for (const c of forms.controllers) {
       laws[c.law] = c.options;
+      lawInfo[c.law] = { vehicle: !!c.vehicle, defaults: c.defaults || {} };
       const item = document.createElement("option");
-      item.value = c.law; item.textContent = c.law;
+      item.value = c.law; item.textContent = c.law + (c.vehicle ? " (whole vehicle)" : "");
+      item.dataset.vehicle = c.vehicle ? "1" : "0";
       sel.appendChild(item);
       for (const o of c.options) {
         let f = lawFields[o.name];
@@ -109,30 +114,103 @@
     lawDefaults();
     showFields();
   }
-  // the selected law's labels and defaults (fields typed into since the last start/apply kept)
+  // the selected law's labels and defaults (fields typed into since the last start/apply kept);
+  // a whole-vehicle law's defaults are those of the chosen model
   function lawDefaults() {
-    for (const o of laws[$("controller").value] || []) {
+    const law = $("controller").value;
+    const onModel = (lawInfo[law] && lawInfo[law].defaults[$("model").value]) || {};
+    for (const o of laws[law] || []) {
       const f = lawFields[o.name];
+      const dflt = o.name in onModel ? onModel[o.name] : o.default;
       f.text.textContent = o.label + " ";
       f.label.title = o.name + (o.choices ? ": " + o.choices.join(", ") : " " + rangeText(o));
       if (edited.has(o.name)) continue;
-      if (o.choices) f.field.value = o.default === null ? "" : o.default;
-      else { f.field.value = ""; f.field.placeholder = o.default === null ? "law default" : String(o.default); }
+      if (o.choices) f.field.value = dflt === null ? "" : dflt;
+      else { f.field.value = ""; f.field.placeholder = dflt === null ? "law default" : String(dflt); }
     }
   }
+
+  // -- vehicle model, its set and rig corner, sensing (GET api/vehicles) -----------------
+  function isCar() {
+    const m = models[$("model").value];
+    return !!(m && m.corners.length);
+  }
+  function fillSelect(sel, values, blank) {
+    const keep = sel.value;
+    sel.innerHTML = "";
+    for (const v of (blank === undefined ? [] : [""]).concat(values)) {
+      const x = document.createElement("option");
+      x.value = v; x.textContent = v || blank;
+      sel.appendChild(x);
+    }
+    if (values.includes(keep)) sel.value = keep;
+  }
+  function modelChoices() {  // the chosen model's sets and corners
+    const m = models[$("model").value] || { corners: [], sets: [] };
+    fillSelect($("set"), m.sets, "(model defaults)");
+    fillSelect($("rig_corner"), m.corners);
+  }
+  function buildVehicles(forms) {
+    for (const m of forms.models) {
+      models[m.model] = m;
+      const x = document.createElement("option");
+      x.value = m.model; x.textContent = m.model;
+      $("model").appendChild(x);
+    }
+    $("model").value = forms.default;
+    for (const v of forms.sensing.velocity) {
+      const x = document.createElement("option");
+      x.value = v; x.textContent = v;
+      $("velocity").appendChild(x);
+    }
+    $("velocity").value = forms.sensing.default;
+    for (const f of forms.sensing.fields) {
+      const label = document.createElement("label");
+      const field = document.createElement("input");
+      field.name = f.name; field.id = f.name;
+      field.placeholder = f.name === "stroke_fs" ? "none: true stroke" : "default";
+      label.title = f.name + (f.velocity ? " (" + f.velocity.join(", ") + ")" : "");
+      label.appendChild(document.createTextNode(f.label + " "));
+      label.appendChild(field);
+      $("sensing_options").appendChild(label);
+      sensingFields.push({ label: label, field: field, kind: f.kind, velocity: f.velocity, text: f.label });
+    }
+    monitor.vehicles = forms;
+    modelChoices();
+  }
+  // hidden fields are disabled too: the form sends only what the chosen model, law and
+  // estimator take
+  function show(el, on) {
+    el.style.display = on ? "" : "none";
+    if (el.tagName === "FIELDSET") el.disabled = !on;
+    else el.querySelectorAll("input, select").forEach((x) => { x.disabled = !on; });
+  }
   function showFields() {
-    const law = $("controller").value;
+    const car = isCar();
+    const sel = $("controller");
+    for (const o of sel.options) o.hidden = !car && o.dataset.vehicle === "1";
+    if (!car && lawInfo[sel.value] && lawInfo[sel.value].vehicle) {  // a car's law: back to the default
+      sel.value = monitor.controllers.default;
+      lawDefaults();
+    }
+    const law = sel.value;
     for (const f of Object.values(lawFields)) f.label.style.display = f.laws.includes(law) ? "" : "none";
+    document.querySelectorAll("[data-car]").forEach((el) => show(el, (el.dataset.car === "1") === car));
+    const vel = $("velocity").value;
+    for (const f of sensingFields) show(f.label, !f.velocity || f.velocity.includes(vel));
     const exc = $("excitation").value;
     document.querySelectorAll("label[data-for]").forEach((l) => {
       l.style.display = l.dataset.for === exc ? "" : "none";
     });
   }
   function applySwitch() {  // switches apply at once while a run goes; the rest on Apply
+    if (isCar()) return;  // a car is a new run (live changes are a quarter car's)
     if (["running", "startup"].includes(monitor.status.state)) send("api/apply", "change sent: applied between ticks");
   }
   $("controller").addEventListener("change", () => { lawDefaults(); showFields(); applySwitch(); });
   $("excitation").addEventListener("change", showFields);
+  $("model").addEventListener("change", () => { modelChoices(); lawDefaults(); showFields(); });
+  $("velocity").addEventListener("change", showFields);
   showFields();
 
   function setError(text) { $("error").textContent = text || ""; }
@@ -154,16 +232,23 @@
   }
   const pos = (v) => v > 0;
   function validate(s) {
-    const checks = [
+    const checks = isCar() ? [] : [  // a car's parameters: its model and set
       ["sprung_mass", "m_s [kg]", pos, "> 0"],
       ["unsprung_mass", "m_u [kg]", pos, "> 0"],
       ["suspension_stiffness", "k_s [N/m]", pos, "> 0"],
       ["tire_stiffness", "k_t [N/m]", pos, "> 0"],
       ["tire_damping", "c_t [N s/m]", (v) => v >= 0, ">= 0"],
+    ];
+    checks.push(
       ["rate", "loop rate [Hz]", (v) => v >= 50 && v <= 5000, "in [50, 5000] Hz"],
       ["duration", "run [s]", (v) => v > 0 && v <= 3600, "in (0, 3600] s"],
       ["ramp_time", "ramp [s]", (v) => v > 0 && v <= 5, "in (0, 5] s"],
-    ];
+    );
+    for (const f of sensingFields) {  // numbers; their ranges: the server's (the scenario's)
+      if (!f.field.disabled && String(f.field.value).trim() !== "") {
+        checks.push([f.field.name, f.text, () => true, "a number"]);
+      }
+    }
     for (const o of laws[s.controller] || []) {  // blank: the law's default
       if (!o.choices && String(s[o.name] === undefined ? "" : s[o.name]).trim() !== "") {
         checks.push([o.name, o.label, inRange(o), rangeText(o)]);
@@ -304,7 +389,7 @@
     const safety = s.safe ? "SAFE: current 0" + (s.state === "ended" ? ", at mid-stroke" : ", returning to mid-stroke")
       : (s.tripped ? "TRIPPED: " + s.reason : (s.state === "running" ? "limits armed" : ""));
     $("safety").textContent = safety;
-    $("rig").textContent = s.rig ? "rig: " + s.rig : "";
+    $("rig").textContent = s.rig ? "rig: " + s.rig + (s.corner ? ", corner " + s.corner + " of the " + (s.model || "car") : "") : "";
     const h = healthCells;
     h.state.textContent = s.state || "-";
     h.safety.textContent = safety || "-";
@@ -381,11 +466,16 @@
     ws.onclose = () => setTimeout(connect, 1000);
     monitor.socket = ws;
   }
+  async function getJSON(path) {
+    const r = await fetch(path + q);
+    if (!r.ok) throw new Error(path + ": HTTP " + r.status);
+    return r.json();
+  }
   async function loadControllers() {
     try {
-      const r = await fetch("api/controllers" + q);
-      if (!r.ok) throw new Error("HTTP " + r.status);
-      buildControllers(await r.json());
+      const [vehicles, forms] = await Promise.all([getJSON("api/vehicles"), getJSON("api/controllers")]);
+      buildVehicles(vehicles);
+      buildControllers(forms);
       $("start").disabled = false;
       $("apply").disabled = false;
     } catch (e) { setError("controller list not loaded: " + e.message); }
