@@ -37,7 +37,7 @@ skyhook for the half and full car, with hi-lo clipping per corner).
 Examples
 --------
 >>> make_controller("skyhook-hilo", mode="ACM")
-HiLo(policy=1, gain=3.0, order=2.0, p=0.0, xi=4.5, p_c=0.0, xi_c=10.0, adfg_centre=0.1)
+HiLo(policy=1, gain=3.0, order=2.0, p=0.0, xi=4.5, p_c=0.0, xi_c=10.0, adfg_centre=0.5)
 """
 
 from __future__ import annotations

@@ -17,8 +17,8 @@ __all__ = ["ADFG_CENTRE", "ADFG_CENTRE_IDENTIFIED", "INVERSE_KINDS", "MODES", "S
 #: ``mode`` -> ADFG asymmetry p: symmetric (SCM, p = 1) or asymmetric (ACM, p = 0)
 MODES = {"SCM": 1.0, "ACM": 0.0}
 #: Default ADFG centre of the control laws: ``M_p(v_d = 0) = (1 + p)/2``, (2.3) as the
-#: model reference (spec section 3) writes it. The value identified from the dissertation's
-#: ACM currents (Figs 4.6, 5.4, 5.8: mean ACM/SCM current about 0.5, compression current
+#: model reference writes it (model reference, section 3). The value identified from the
+#: dissertation's ACM currents (Figs 4.6, 5.4, 5.8: mean ACM/SCM current about 0.5, compression current
 #: small but not zero) is :data:`ADFG_CENTRE_IDENTIFIED`, a stated reading of the findings
 #: scorecard until the reference changes (``docs/errata.md``, "Control unknowns identified")
 ADFG_CENTRE = 0.5

@@ -15,8 +15,8 @@ from mrsuspension.control.shaped import ADFG_CENTRE, INVERSE_KINDS, Shaped
 __all__ = ["BETA", "BETA_COVERING", "SlidingMode"]
 
 #: Default mass-uncertainty bound beta of (3.26)/(3.33), not given in the seed: 1.25, the
-#: model reference's (spec section 6: "the studied +-25 % load range"). The smallest beta
-#: that covers the studied sprung masses 422-703 kg about m_s0 = 563 kg is
+#: model reference's (model reference, section 6: "the studied +-25 % load range"). The
+#: smallest beta that covers the studied sprung masses 422-703 kg about m_s0 = 563 kg is
 #: :data:`BETA_COVERING` (563/422 = 1.3341), a stated reading of the findings scorecard
 #: until the reference changes (``docs/errata.md``)
 BETA = 1.25

@@ -241,7 +241,7 @@ _ADFG_DEFAULT = HiLo(1, mode="ACM").adfg_centre
 _ADFG_READINGS: tuple[tuple[float, str], ...] = (
     (
         ADFG_CENTRE_IDENTIFIED,
-        "ADFG centre 0.1 (identified from the dissertation's ACM currents: docs/errata.md)",
+        "ADFG centre 0.1 (identified from the dissertation's ACM currents: the errata page)",
     ),
     (0.0, "ADFG centre 0 (section 3.2: p = 0 gives i_d = 0 at v_r = 0)"),
 )
@@ -3009,7 +3009,7 @@ _SM_GAIN = (
     "m/s, phi 0): the peak is the inverse model's saturation where the hysteron force F_h "
     "changes sign early in rebound (C = |F_c| / (k_d |F_h|) unbounded as F_h -> 0 while the "
     "skyhook reference still asks for about 1 kN), so i_d = i_max M_p M_c, not the switching "
-    "gain K (docs/errata.md)"
+    "gain K (the errata page)"
 )
 _DTR_STATIC = (
     "our DTR over the sprung mass is the static-load change alone (141 kg g / 6406 N = "
@@ -3038,7 +3038,7 @@ KNOWN: dict[str, str] = {
     "4.3.1-peak-current": "model: with k_c = 3, 10, 10, 300 the peak currents at 2.5 cm / "
     "1.5 Hz are 0.37, 0.36, 0.29, 0.22 A, not about 0.5 A; the stated rule needs k_c = 4.2, "
     "18, 26, 1100 in our model (about 0.5 A, 0.375 A or more, from 3.0, 11, 16, 710: "
-    "docs/errata.md); the other policy claims are checked at those gains too",
+    "the errata page); the other policy claims are checked at those gains too",
     "4.3.2-compression-peaks": "reading: ACM's compression peaks exceed SCM's as stated, but "
     "by 10-44 % (x_r 44 %), more than 'slightly' (25 %)",
     "4.3.2-acm-xs-ft": "model: ACM beats passive 0 A but not passive 0.1 A (x_s 56.9 against "
@@ -3149,28 +3149,28 @@ KNOWN: dict[str, str] = {
     "4.3.2-current": "model: ACM draws 0.72 times SCM's mean current, not about half: at "
     "v_d = 0 the ADFG multiplier is 0.5 and with xi = 4.5 it falls slowly, so compression "
     "keeps a sizeable current"
-    " (It holds with the unknowns identified from the dissertation's numbers, ADFG centre 0.1 or beta 1.335: docs/errata.md; the defaults stay the model reference's.)",
+    " (It holds with the unknowns identified from the dissertation's numbers, ADFG centre 0.1 or beta 1.335: the errata page; the defaults stay the model reference's.)",
     "4.5.2-order-peaks": "model: peak |x_r| grows with n by 27 % (35.6, 42.9, 46.9 mm), more "
     "than 'no significant influence' (25 %); x_s, a_s, F_T within 17 %"
-    " (It holds with the unknowns identified from the dissertation's numbers, ADFG centre 0.1 or beta 1.335: docs/errata.md; the defaults stay the model reference's.)",
+    " (It holds with the unknowns identified from the dissertation's numbers, ADFG centre 0.1 or beta 1.335: the errata page; the defaults stay the model reference's.)",
     "4.5.2-order-3-comparable": "reading: n = 3's peak T_as is 11 % above n = 2's, just past "
     "'comparable' (10 %); T_au, T_dr, DLC within 7 %"
-    " (It holds with the unknowns identified from the dissertation's numbers, ADFG centre 0.1 or beta 1.335: docs/errata.md; the defaults stay the model reference's.)",
+    " (It holds with the unknowns identified from the dissertation's numbers, ADFG centre 0.1 or beta 1.335: the errata page; the defaults stay the model reference's.)",
     "4.5.2-road-order": "reading: n = 1 raises the 2-20 Hz body-acceleration PSD by 11 % on "
     "the PSD-level presets (17 % on the old ones), just over 'negligible' (10 %)"
-    " (It holds with the unknowns identified from the dissertation's numbers, ADFG centre 0.1 or beta 1.335: docs/errata.md; the defaults stay the model reference's.)",
+    " (It holds with the unknowns identified from the dissertation's numbers, ADFG centre 0.1 or beta 1.335: the errata page; the defaults stay the model reference's.)",
     "4.6-cm-smooths": "model: CM and ADFG cut the current's rate 20-fold, but in ACM the "
     "share of a_u above 5 Hz is the same with xi = 4.5 and xi = 1000 (0.639 / 0.638)"
-    " (It holds with the unknowns identified from the dissertation's numbers, ADFG centre 0.1 or beta 1.335: docs/errata.md; the defaults stay the model reference's.)",
+    " (It holds with the unknowns identified from the dissertation's numbers, ADFG centre 0.1 or beta 1.335: the errata page; the defaults stay the model reference's.)",
     "5.2-acm-compression-current": "model: the peak compression current in ACM is 0.11 A, "
     "just above 0.1 A: the ADFG multiplier is 0.5 at v_d = 0 (xi = 10)"
-    " (It holds with the unknowns identified from the dissertation's numbers, ADFG centre 0.1 or beta 1.335: docs/errata.md; the defaults stay the model reference's.)",
+    " (It holds with the unknowns identified from the dissertation's numbers, ADFG centre 0.1 or beta 1.335: the errata page; the defaults stay the model reference's.)",
     "5.4-current-levels": "model: the compression current reaches 0.11 A (ADFG multiplier 0.5 "
     "at v_d = 0); the rebound current (0.43 A) is as stated"
-    " (It holds with the unknowns identified from the dissertation's numbers, ADFG centre 0.1 or beta 1.335: docs/errata.md; the defaults stay the model reference's.)",
+    " (It holds with the unknowns identified from the dissertation's numbers, ADFG centre 0.1 or beta 1.335: the errata page; the defaults stay the model reference's.)",
     "6.3-ride-rattle": "model: sliding mode's peak T_dr is 0.85 times passive 0.1 A's only "
     "narrowly missed (1.30 against 1.53 x 0.85 = 1.30)"
-    " (It holds with the unknowns identified from the dissertation's numbers, ADFG centre 0.1 or beta 1.335: docs/errata.md; the defaults stay the model reference's.)",
+    " (It holds with the unknowns identified from the dissertation's numbers, ADFG centre 0.1 or beta 1.335: the errata page; the defaults stay the model reference's.)",
 }
 
 _unknown = sorted(set(KNOWN) - {c.id for c in _CLAIMS})
