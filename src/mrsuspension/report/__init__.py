@@ -122,7 +122,7 @@ reading, not held, not held for any admissible value, dissertation inconsistent,
   and says which reading is tested); *error* (a check that could not be evaluated).
 - **Known failures.** `claims.KNOWN` maps the claims that do not hold in our model to their
   suspected cause (prefixed *model*, *reading* when the result sits near our reading's
-  threshold, *road presets*). `tests/integration/test_findings.py` runs one test per claim:
+  threshold, *road presets*). `tests/integration/test_report.py` runs one test per claim:
   a claim that holds must hold, a known failure is a strict xfail (XPASS when a fix makes it
   hold: take it out of `KNOWN`).
 - **Depends on.** `road`: the claim uses the preset random roads (stand-ins defined by

@@ -333,7 +333,7 @@ _CSS = {
 }
 #: Claims whose verdict in quick mode (coarse grids, shorter runs) differs from the full
 #: report's: claim id -> the full report's status. Found by evaluating both (2026-11-27:
-#: exactly these two of 163); ``tests/integration/test_findings.py`` holds the quick side
+#: exactly these two of 163); ``tests/integration/test_report.py`` holds the quick side
 #: and evaluates these claims in full mode.
 QUICK_DIFFERS: dict[str, str] = {
     "6.4.1-more-robust-than-hilo": "held",
