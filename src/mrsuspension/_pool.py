@@ -113,6 +113,42 @@ def _in_main_thread() -> bool:
     return threading.current_thread() is threading.main_thread()
 
 
+#: code where an exception raised by a signal handler is printed and dropped instead of
+#: delivered: finalizers, and numba's LLVM callbacks (ctypes: raising there can crash)
+_NO_RAISE_NAMES = frozenset({"__del__"})
+_NO_RAISE_PATHS = tuple(f"{os.sep}{pkg}{os.sep}" for pkg in ("llvmlite", "numba"))
+
+
+def raise_is_lost(frame: FrameType | None) -> bool:
+    """Whether an exception raised by a signal handler at ``frame`` would be lost.
+
+    Python runs a handler at the next bytecode of the main thread, which may be inside a
+    finalizer (``__del__``: the exception is printed as "Exception ignored" and dropped)
+    or inside numba's LLVM callbacks through ctypes (the process may crash). The
+    handlers then deliver the signal again a moment later (:func:`deliver_later`).
+
+    Examples
+    --------
+    >>> import sys
+    >>> raise_is_lost(sys._getframe())
+    False
+    """
+    f = frame
+    while f is not None:
+        code = f.f_code
+        if code.co_name in _NO_RAISE_NAMES or any(p in code.co_filename for p in _NO_RAISE_PATHS):
+            return True
+        f = f.f_back
+    return False
+
+
+def deliver_later(signum: int, delay: float = 0.005) -> None:
+    """Send ``signum`` to this process again after ``delay`` [s] (see :func:`raise_is_lost`)."""
+    timer = threading.Timer(delay, os.kill, (os.getpid(), signum))
+    timer.daemon = True
+    timer.start()
+
+
 @contextmanager
 def handle_signals() -> Iterator[InterruptState]:
     """Raise :class:`Interrupted` on the first SIGINT, SIGTERM or SIGHUP; ignore the ones
@@ -147,9 +183,12 @@ def handle_signals() -> Iterator[InterruptState]:
         yield state
         return
 
-    def on_signal(signum: int, _frame: FrameType | None) -> None:
+    def on_signal(signum: int, frame: FrameType | None) -> None:
         if state.signum is not None:
             return  # already stopping: cleanup is bounded, a second signal is not needed
+        if raise_is_lost(frame):  # a finalizer or numba's LLVM callback: raise it after
+            deliver_later(signum)
+            return
         state.signum = signum
         _RAISED[:] = [signum]
         raise Interrupted(signum)

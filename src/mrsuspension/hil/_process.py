@@ -154,9 +154,12 @@ def _stop_wait(limits: SafetyLimits | None) -> float:
     return lim.stroke / lim.return_rate + _SETTLE + STOP_TIMEOUT
 
 
-def _raise_interrupted(signum: int, _frame: Any) -> None:
-    from mrsuspension._pool import Interrupted
+def _raise_interrupted(signum: int, frame: Any) -> None:
+    from mrsuspension._pool import Interrupted, deliver_later, raise_is_lost
 
+    if raise_is_lost(frame):  # e.g. inside Popen.__del__: raised there it is only printed
+        deliver_later(signum)
+        return
     raise Interrupted(signum)
 
 
