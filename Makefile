@@ -42,8 +42,9 @@ system-deps:
 # compiled kernels instead of each compiling them. The suite runs on JOBS workers
 # (pytest-xdist; a test module stays on one worker, so its fixtures are built once),
 # then the tests that keep 1 kHz deadlines (marker `realtime`) run alone on a quiet machine
-# (the kernels compile, ~25 s on a fresh clone, beside the lint, whose mypy takes ~30 s:
-# one core each; the warm's lines are printed when both are done)
+# (the kernels compile beside the lint, whose mypy takes ~30 s: the warm's steps compile
+# separate kernels, ~75 s on one core, on one process per core, longest first; its lines
+# are printed when both are done)
 JOBS ?= 2
 test: $(VENV)/.stamp-install system-deps
 	@log=$$(mktemp); echo "$(BIN)/mrsus cache warm (beside the lint)"; \

@@ -59,7 +59,11 @@ def cache_clear() -> None:
 
 
 @app.command("warm")
-def cache_warm() -> None:
+def cache_warm(
+    jobs: int = typer.Option(
+        0, "--jobs", "-j", min=0, help="Processes compiling side by side (0: one per core)."
+    ),
+) -> None:
     """Compile every kernel into numba's cache now (the first run then starts at once).
 
     Prints each entry point as it compiles, with the time taken (a fraction of a second
@@ -71,7 +75,7 @@ def cache_warm() -> None:
     from mrsuspension.cli.compiling import warm_kernels
 
     t0 = time.perf_counter()
-    rows = warm_kernels(say=lambda m: typer.echo(m, err=True))
+    rows = warm_kernels(say=lambda m: typer.echo(m, err=True), workers=jobs or None)
     typer.echo(
         f"compiled kernels ready: {len(rows)} entry points in {time.perf_counter() - t0:.1f} s"
     )

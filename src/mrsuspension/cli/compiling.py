@@ -24,6 +24,7 @@ from mrsuspension._numba_cache import COMPILE_NOTICE, cache_cold, quiet_compiles
 
 __all__ = [
     "COMPILE_NOTICE",
+    "WARM_SECONDS",
     "WARM_STEPS",
     "engine_cache_cold",
     "notify_if_compiling",
@@ -164,12 +165,36 @@ WARM_STEPS: tuple[tuple[str, Callable[[], None]], ...] = (
 )
 
 
-def warm_kernels(say: Callable[[str], None] = lambda _m: None) -> list[dict[str, Any]]:
+#: typical compile time of each of :data:`WARM_STEPS` on one core [s] (a fresh clone on the
+#: CI machine): a pool starts the longest first, so two processes finish together
+WARM_SECONDS: tuple[float, ...] = (15.0, 0.1, 13.0, 20.0, 1.3, 1.1, 20.0)
+
+
+def _warm_step(k: int) -> float:
+    """Run :data:`WARM_STEPS` ``[k]``; its time [s] (a pool's task)."""
+    quiet_compiles()
+    t0 = time.perf_counter()
+    WARM_STEPS[k][1]()
+    return time.perf_counter() - t0
+
+
+def warm_kernels(
+    say: Callable[[str], None] = lambda _m: None, workers: int | None = 1
+) -> list[dict[str, Any]]:
     """Compile every entry point into numba's on-disk cache (loading it when warm).
 
     Each step calls public functions on a tiny input, so the signatures compiled are the
-    ones real runs use; ``say`` gets a line before and after each. Returns one row per
-    step: ``what`` and ``seconds``.
+    ones real runs use; ``say`` gets a line before and after each (on several processes,
+    one when each is done). Returns one row per step, in :data:`WARM_STEPS` order:
+    ``what`` and ``seconds``.
+
+    Parameters
+    ----------
+    say : callable, optional
+        Receives the progress lines.
+    workers : int, optional
+        Processes compiling side by side (None: one per core; 1: this process). The
+        steps compile separate kernels, so two processes take about half the time.
 
     Examples
     --------
@@ -177,13 +202,25 @@ def warm_kernels(say: Callable[[str], None] = lambda _m: None) -> list[dict[str,
     >>> [r["what"].split(" (")[0] for r in rows][:3]
     ['engine run loop', 'engine run loop reducing to measures', 'lane kernel, recording or reducing to measures']
     """
+    from mrsuspension._pool import process_pool, worker_count
+
     quiet_compiles()  # each step is reported here
-    rows = []
-    for i, (what, call) in enumerate(WARM_STEPS, 1):
-        say(f"[{i}/{len(WARM_STEPS)}] {what}...")
-        t0 = time.perf_counter()
-        call()
-        seconds = time.perf_counter() - t0
-        rows.append({"what": what, "seconds": seconds})
-        say(f"[{i}/{len(WARM_STEPS)}] {what}: {seconds:.1f} s")
-    return rows
+    n = len(WARM_STEPS)
+    seconds = [0.0] * n
+    with process_pool(workers, n) as pool:
+        if pool is None:
+            for k, (what, _call) in enumerate(WARM_STEPS):
+                say(f"[{k + 1}/{n}] {what}...")
+                seconds[k] = _warm_step(k)
+                say(f"[{k + 1}/{n}] {what}: {seconds[k]:.1f} s")
+        else:
+            from concurrent.futures import as_completed
+
+            say(f"compiling {n} entry points on {worker_count(workers, n)} processes...")
+            order = sorted(range(n), key=lambda k: -WARM_SECONDS[k])
+            futures = {pool.submit(_warm_step, k): k for k in order}
+            for future in as_completed(futures):
+                k = futures[future]
+                seconds[k] = future.result()
+                say(f"[{k + 1}/{n}] {WARM_STEPS[k][0]}: {seconds[k]:.1f} s")
+    return [{"what": what, "seconds": s} for (what, _), s in zip(WARM_STEPS, seconds, strict=True)]
