@@ -316,6 +316,15 @@ class ModalSkyhook(VehicleLaw):
         Current when it is [A] (default 0.5 A, the simulations' ``i_max``, spec
         section 3).
 
+    Notes
+    -----
+    Hi-lo reads the desired forces only for their signs: scaling all three gains changes
+    nothing, only their ratios matter, and the high current is what sets the strength.
+    On the published full car and the report's class C road this law rides worse than
+    the MR damper at 0 A for every high current from 0.05 to 0.5 A, because the damper's
+    0 A force is already more damping than that car wants (docs/vehicles.md, "Why modal
+    skyhook loses to passive 0 A on the class C road").
+
     Examples
     --------
     >>> ModalSkyhook(27000.0, 40000.0, 15000.0).params().tolist()
