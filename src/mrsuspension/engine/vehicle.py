@@ -565,9 +565,7 @@ class VehicleSimulation:
             sk[VX.SK_LAW] = law.kernel_code
             sp[VX.SP_MP :] = law.params()
         if (law is not None and law.uses_body_rates) or est is not None:
-            x, y = self.vehicle.corner_positions()
-            roll = "roll" in self.vehicle.body_dofs
-            dist = distribution_matrix(x, y if roll else None)
+            dist = distribution_matrix(*self.vehicle.modal_positions())
         return {
             "sensing_kind": sk,
             "sensing_params": sp,
