@@ -18,8 +18,8 @@ import time
 
 from mrsuspension.control import HiLo
 from mrsuspension.engine import Simulation
-from mrsuspension.engine.vehicle import SameRoadAtEveryWheel, VehicleSimulation
-from mrsuspension.excitation import Harmonic
+from mrsuspension.engine.vehicle import VehicleSimulation
+from mrsuspension.excitation import Harmonic, WheelRoads
 from mrsuspension.vehicle import FullCar
 
 #: the issue-19 target for a 10 s full-car run at dt = 1e-4 s [s]
@@ -40,7 +40,7 @@ def run_benchmark(duration: float = 10.0, dt: float = 1e-4, repeat: int = 5) -> 
     car = FullCar()
     controller = HiLo(1, mode="ACM")
     exc = Harmonic(1.5, 0.025)
-    road = SameRoadAtEveryWheel.at_speed(exc, car, speed=20.0)
+    road = WheelRoads.from_excitation(exc, car, speed_kmh=72.0)
     full = VehicleSimulation(car, road, controllers=controller)
     quarters = [
         Simulation(exc, vehicle=car.corner_quarter_car(c), controller=controller)

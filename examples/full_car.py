@@ -11,38 +11,29 @@ from __future__ import annotations
 import numpy as np
 
 from mrsuspension.control import HiLo, Passive
-from mrsuspension.engine.vehicle import SameRoadAtEveryWheel, VehicleSimulation
-from mrsuspension.excitation import RoundedPulse, iso8608
+from mrsuspension.engine.vehicle import VehicleSimulation
+from mrsuspension.excitation import RoundedPulse, WheelRoads, iso8608
 from mrsuspension.measures import dlc, rms
 from mrsuspension.vehicle import FullCar
 
-SPEED = 20.0  # m/s (72 km/h)
+SPEED_KMH = 72.0
 CONTROLLERS = {"passive 0 A": Passive(0.0), "skyhook hi-lo (ACM)": HiLo(1, mode="ACM")}
-
-
-class LeftSideOnly(SameRoadAtEveryWheel):
-    """The road under the left wheels; the right track stays flat."""
-
-    def sample_grid(self, n: int, step: float, start: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
-        z, v = super().sample_grid(n, step, start)
-        right = [self.corners.index("front_right"), self.corners.index("rear_right")]
-        z[right] = 0.0
-        v[right] = 0.0
-        return z, v
 
 
 def main() -> None:
     car = FullCar()
     print(f"{car.model_name}: m_s = {car.sprung_mass:g} kg, wheelbase {car.wheelbase:.3f} m, "
           f"natural frequencies {np.round(car.natural_frequencies(), 2).tolist()} Hz")  # fmt: skip
-    road = SameRoadAtEveryWheel.at_speed(iso8608("C", speed_kmh=3.6 * SPEED), car, SPEED)
-    print(f"\nISO 8608 class C road, rear wheels {road.delays[-1] * 1e3:.0f} ms late, 10 s:")
+    road = WheelRoads.from_excitation(iso8608("C", speed_kmh=SPEED_KMH), car)
+    print(f"\nISO 8608 class C road, rear wheels {road.rear_delay * 1e3:.0f} ms late, 10 s:")
     for name, controller in CONTROLLERS.items():
         res = VehicleSimulation(car, road, controllers=controller).run(10.0)
         wheels = ", ".join(f"{c} {dlc(res[f'F_T.{c}']):.3f}" for c in car.corners)
         print(f"  {name:<20} rms heave acc {rms(res.heave_ddot):.3f} m/s^2, "
               f"pitch acc {rms(res.pitch_ddot):.3f} rad/s^2; DLC {wheels}")  # fmt: skip
-    bump = LeftSideOnly.at_speed(RoundedPulse(0.035, 3.0), car, SPEED)
+    # the left wheel track only (the rear wheel L/V later); the right one stays flat
+    pulse = RoundedPulse(0.035, 3.0)  # the pulse of eq. (3.38), its w0 as at 50 km/h
+    bump = WheelRoads(pulse, None, car.wheelbase, SPEED_KMH, car.track, source="left bump")
     print("\n35 mm bump under the left wheels only, 3 s:")
     for name, controller in CONTROLLERS.items():
         res = VehicleSimulation(car, bump, controllers=controller).run(3.0)

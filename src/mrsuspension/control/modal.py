@@ -370,10 +370,9 @@ class ModalSkyhook(VehicleLaw):
         skyhook reference at its corners); given gains are kept."""
         if self.heave is not None:
             return self
-        x, y = vehicle.corner_positions()
-        roll = "roll" in getattr(vehicle, "body_dofs", ())
+        x, y = vehicle.modal_positions()  # y None without roll (half car)
         return ModalSkyhook.corner_equivalent(
-            x, y if roll else None, low_current=self.low_current, high_current=self.high_current
+            x, y, low_current=self.low_current, high_current=self.high_current
         )
 
     @classmethod

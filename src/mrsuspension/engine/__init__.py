@@ -10,7 +10,7 @@ controller outputs, compiled with numba.
 * :class:`Measures` - a run's measures: a ``dict`` that carries their units
   (``result.measures().units``);
 * :class:`VehicleSimulation` - a half or full car with a damper and a controller at every
-  corner on a :class:`WheelInput` (e.g. :class:`SameRoadAtEveryWheel`), and
+  corner on a :class:`WheelInput` (e.g. :class:`~mrsuspension.excitation.WheelRoads`), and
   :func:`run_vehicles` for batches, loaded on first use (:mod:`mrsuspension.engine.vehicle`).
 
 The engine inlines the laws and layouts of :mod:`mrsuspension.control.kernel` and
@@ -37,7 +37,6 @@ from mrsuspension.engine.simulate import (
 
 if TYPE_CHECKING:
     from mrsuspension.engine.vehicle import (
-        SameRoadAtEveryWheel,
         VehicleSimulation,
         WheelInput,
         run_vehicles,
@@ -46,7 +45,6 @@ if TYPE_CHECKING:
 
 # the vehicle models compile their own step: load them on first use
 _VEHICLE = (
-    "SameRoadAtEveryWheel",
     "VehicleResult",
     "VehicleSimulation",
     "WheelInput",
@@ -69,7 +67,6 @@ __all__ = [
     "RoadInput",
     "RunPlan",
     "RunSettings",
-    "SameRoadAtEveryWheel",
     "Simulation",
     "SimulationDiverged",
     "SimulationResult",

@@ -739,9 +739,13 @@ def excitation_text(scenario: Mapping[str, Any]) -> str:
 
     Examples
     --------
-    >>> excitation_text({"excitation": {"kind": "same-road-at-every-wheel",
-    ...     "excitation": {"kind": "harmonic", "frequency": 2.0, "amplitude": 0.01}}})
-    'same-road-at-every-wheel: harmonic 2 Hz, 10 mm'
+    >>> harmonic = {"kind": "harmonic", "frequency": 2.0, "amplitude": 0.01}
+    >>> excitation_text({"excitation": {"kind": "wheel-roads", "speed_kmh": 72.0,
+    ...     "details": {"excitation": harmonic}}})
+    'wheel-roads at 72 km/h: harmonic 2 Hz, 10 mm'
+    >>> excitation_text({"excitation": {"kind": "wheel-roads", "speed_kmh": None,
+    ...     "details": {"excitation": harmonic}}})  # in phase: no speed
+    'wheel-roads: harmonic 2 Hz, 10 mm'
     """
     exc = scenario.get("excitation", {})
     if not exc:
@@ -749,9 +753,12 @@ def excitation_text(scenario: Mapping[str, Any]) -> str:
     kind = str(exc.get("kind", "excitation"))
     if kind == "harmonic" and "frequency" in exc:
         kind += f" {exc['frequency']:g} Hz, {1e3 * float(exc.get('amplitude', 0.0)):g} mm"
-    elif "speed_kmh" in exc:
+    elif exc.get("speed_kmh") is not None:
         kind += f" at {exc['speed_kmh']:g} km/h"
-    inner = exc.get("excitation")
+    details = exc.get("details")
+    inner = exc.get("excitation") or (
+        details.get("excitation") if isinstance(details, Mapping) else None
+    )
     if isinstance(inner, Mapping) and inner:
         kind += f": {excitation_text({'excitation': inner})}"
     return kind

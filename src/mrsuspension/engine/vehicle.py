@@ -2,17 +2,17 @@
 
 :class:`VehicleSimulation` runs a :class:`~mrsuspension.vehicle.HalfCar` or
 :class:`~mrsuspension.vehicle.FullCar` on a :class:`WheelInput` (a road per wheel, e.g.
-:class:`SameRoadAtEveryWheel`) with any damper model and controller at every corner; the
+:class:`~mrsuspension.excitation.WheelRoads`) with any damper model and controller at every corner; the
 compiled step is :mod:`mrsuspension.engine.vehicle_kernel` (the quarter car's damper
 kernels and control laws, corner by corner). Results are :class:`VehicleResult`: body
 heave, pitch and roll and every corner's quarter-car signals, with units.
 
 Examples
 --------
->>> from mrsuspension.excitation import Harmonic
+>>> from mrsuspension.excitation import Harmonic, WheelRoads
 >>> from mrsuspension.vehicle import FullCar
 >>> car = FullCar()
->>> road = SameRoadAtEveryWheel.at_speed(Harmonic(1.5, 0.01), car, speed=20.0)
+>>> road = WheelRoads.from_excitation(Harmonic(1.5, 0.01), car, speed_kmh=72.0)
 >>> res = VehicleSimulation(car, road).run(1.0, dt=2e-4)
 >>> float(res.time[-1]), res.corners[0]
 (1.0, 'front_left')
@@ -77,7 +77,6 @@ __all__ = [
     "CORNERS_FULL",
     "CORNERS_HALF",
     "ROAD_CHUNK",
-    "SameRoadAtEveryWheel",
     "VehicleArrays",
     "VehicleSimulation",
     "VehicleStepper",
@@ -105,144 +104,6 @@ class WheelInput(Protocol):
 
     @property
     def duration(self) -> float | None: ...
-
-
-@dataclass(frozen=True)
-class SameRoadAtEveryWheel:
-    """One quarter-car excitation at every wheel, each optionally delayed.
-
-    ``z_r,i(t) = z_r(t - tau_i)``: with equal delays on the left and right wheels this is
-    the "identical left/right input" case; :meth:`at_speed` delays the rear wheels by
-    wheelbase / speed.
-
-    Parameters
-    ----------
-    excitation : RoadInput
-        A quarter-car road input (:mod:`mrsuspension.excitation`: ``Harmonic``,
-        ``RoundedPulse``, ``IsoRoad``...).
-    corners : tuple of str
-        The wheels, in the vehicle's order (``CORNERS_FULL`` or ``CORNERS_HALF``).
-    delays : sequence of float, optional
-        Delay of every wheel [s], >= 0 (default: none).
-
-    Examples
-    --------
-    >>> from mrsuspension.excitation import Harmonic
-    >>> road = SameRoadAtEveryWheel(Harmonic(1.0, 0.01), ("front", "rear"), delays=(0.0, 0.25))
-    >>> np.round(road.displacement([0.25]), 12).ravel().tolist()
-    [0.01, 0.0]
-    """
-
-    excitation: Any
-    corners: tuple[str, ...]
-    delays: tuple[float, ...] | None = None
-
-    def __post_init__(self) -> None:
-        corners = tuple(self.corners)
-        if not corners or not all(isinstance(c, str) for c in corners):
-            raise ValidationError(f"corners must be a tuple of corner names; got {self.corners!r}")
-        object.__setattr__(self, "corners", corners)
-        if not all(hasattr(self.excitation, a) for a in ("displacement", "velocity")):
-            raise ValidationError(
-                "excitation must be a road input (e.g. Harmonic(1.5, 0.025) from "
-                f"mrsuspension.excitation); got {self.excitation!r}"
-            )
-        if self.delays is not None:
-            d = check_range("delays", self.delays, 0.0, 1e4, unit="s")
-            if d.shape != (len(corners),):
-                raise ValidationError(
-                    f"delays must have one value per corner ({len(corners)}); got {self.delays!r}"
-                )
-            object.__setattr__(self, "delays", tuple(float(v) for v in d))
-
-    @classmethod
-    def at_speed(cls, excitation: Any, vehicle: VehicleBody, speed: float) -> SameRoadAtEveryWheel:
-        """The road under a vehicle driving at ``speed`` [m/s]: rear wheels ``L / speed`` late.
-
-        Examples
-        --------
-        >>> from mrsuspension.excitation import Harmonic
-        >>> r = SameRoadAtEveryWheel.at_speed(Harmonic(1.0, 0.01), HalfCar(), speed=23.48)
-        >>> [round(d, 6) for d in r.delays]
-        [0.0, 0.1]
-        """
-        v = float(check_range("speed", speed, 0.0, 200.0, unit="m/s", low_inclusive=False))
-        x, _ = vehicle.corner_positions()
-        return cls(excitation, vehicle.corners, tuple(float(d) for d in (x.max() - x) / v))
-
-    def _times(self, t: npt.ArrayLike) -> np.ndarray:
-        t = np.atleast_1d(np.asarray(t, dtype=float))
-        d = np.zeros(len(self.corners)) if self.delays is None else np.asarray(self.delays)
-        return t[None, :] - d[:, None]
-
-    def displacement(self, t: npt.ArrayLike) -> np.ndarray:
-        """``z_r,i(t)`` [m], shape ``(corners, len(t))``."""
-        tt = self._times(t)
-        return np.stack([np.asarray(self.excitation.displacement(row), dtype=float) for row in tt])
-
-    def velocity(self, t: npt.ArrayLike) -> np.ndarray:
-        """``z_r,i'(t)`` [m/s], shape ``(corners, len(t))``."""
-        tt = self._times(t)
-        return np.stack([np.asarray(self.excitation.velocity(row), dtype=float) for row in tt])
-
-    def sample_grid(self, n: int, step: float, start: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
-        """``(z_r, z_r')`` of every wheel at ``start + k * step``, ``k < n``: shape
-        ``(corners, n)``; the excitation's fast grid where it has one, computed once per
-        distinct delay (left and right wheels of an axle share it).
-
-        Examples
-        --------
-        >>> from mrsuspension.excitation import Harmonic
-        >>> road = SameRoadAtEveryWheel(Harmonic(1.0, 0.01), ("front", "rear"), (0.0, 0.1))
-        >>> z, v = road.sample_grid(5, 0.05)
-        >>> bool(np.allclose(z, road.displacement(np.arange(5) * 0.05), rtol=0, atol=1e-15))
-        True
-        """
-        delays = self.delays or (0.0,) * len(self.corners)
-        grid = getattr(self.excitation, "sample_grid", None)
-        z = np.empty((len(self.corners), n))
-        v = np.empty((len(self.corners), n))
-        done: dict[float, int] = {}
-        for i, d in enumerate(delays):
-            if d in done:
-                z[i], v[i] = z[done[d]], v[done[d]]
-                continue
-            if grid is not None:
-                z[i], v[i] = grid(n, float(step), float(start) - d)
-            else:
-                t = float(start) - d + np.arange(n) * step
-                z[i], v[i] = self.excitation.displacement(t), self.excitation.velocity(t)
-            done[d] = i
-        return z, v
-
-    def acceleration(self, t: npt.ArrayLike) -> np.ndarray:
-        """``z_r,i''(t)`` [m/s^2], shape ``(corners, len(t))``."""
-        tt = self._times(t)
-        return np.stack([np.asarray(self.excitation.acceleration(row), dtype=float) for row in tt])
-
-    @property
-    def duration(self) -> float | None:
-        """The excitation's duration plus the largest delay [s] (None: unbounded)."""
-        base = getattr(self.excitation, "duration", None)
-        if base is None:
-            return None
-        return float(base) + (max(self.delays) if self.delays else 0.0)
-
-    def describe(self) -> dict[str, Any]:
-        """Plain data: the excitation's description, the corners and the delays.
-
-        Examples
-        --------
-        >>> from mrsuspension.excitation import Harmonic
-        >>> SameRoadAtEveryWheel(Harmonic(2.0, 0.01), ("front", "rear")).describe()["delays"]
-        [0.0, 0.0]
-        """
-        return {
-            "kind": "same-road-at-every-wheel",
-            "excitation": self.excitation.describe(),
-            "corners": list(self.corners),
-            "delays": list(self.delays) if self.delays else [0.0] * len(self.corners),
-        }
 
 
 @dataclass(frozen=True)
@@ -372,7 +233,7 @@ class VehicleSimulation:
     vehicle : HalfCar or FullCar
         The vehicle (its :attr:`~VehicleBody.corners` name the wheels).
     excitation : WheelInput
-        Road per wheel, e.g. :class:`SameRoadAtEveryWheel`; its ``corners`` must be the
+        Road per wheel, e.g. :class:`~mrsuspension.excitation.WheelRoads`; its ``corners`` must be the
         vehicle's, in order.
     dampers : DamperModel or mapping of corner to DamperModel, optional
         One model for every corner or ``{corner: model}`` (corners left out get the
@@ -406,10 +267,10 @@ class VehicleSimulation:
     Examples
     --------
     >>> from mrsuspension.control import HiLo
-    >>> from mrsuspension.excitation import Harmonic
+    >>> from mrsuspension.excitation import Harmonic, WheelRoads
     >>> from mrsuspension.vehicle import FullCar
     >>> car = FullCar()
-    >>> road = SameRoadAtEveryWheel.at_speed(Harmonic(1.5, 0.01), car, speed=15.0)
+    >>> road = WheelRoads.from_excitation(Harmonic(1.5, 0.01), car, speed_kmh=54.0)
     >>> sim = VehicleSimulation(car, road, controllers={"front_left": HiLo(1)})
     >>> res = sim.run(1.0, dt=2e-4)
     >>> bool(res["i_d.front_left"].max() > 0.0), float(res["i_d.rear_right"].max())
@@ -440,7 +301,8 @@ class VehicleSimulation:
         if not isinstance(self.excitation, WheelInput) or wheels is None:
             raise ValidationError(
                 "excitation must be a wheel input (corners, displacement(t), velocity(t), "
-                f"duration), e.g. SameRoadAtEveryWheel(Harmonic(1.5, 0.025), {corners}); "
+                "duration), e.g. WheelRoads.from_excitation(Harmonic(1.5, 0.025), vehicle, "
+                f"speed_kmh=50.0) or WheelRoads.in_phase(Harmonic(1.5, 0.025), {corners}); "
                 f"got {self.excitation!r}"
             )
         for w in wheels:
@@ -478,9 +340,9 @@ class VehicleSimulation:
 
         Examples
         --------
-        >>> from mrsuspension.excitation import Harmonic
+        >>> from mrsuspension.excitation import Harmonic, WheelRoads
         >>> from mrsuspension.vehicle import HalfCar
-        >>> sim = VehicleSimulation(HalfCar(), SameRoadAtEveryWheel(Harmonic(2.0, 0.01), ("front", "rear")))
+        >>> sim = VehicleSimulation(HalfCar(), WheelRoads.in_phase(Harmonic(2.0, 0.01), "half-car"))
         >>> sim.corner_simulation("rear").vehicle.unsprung_mass
         49.7
         """
@@ -492,9 +354,9 @@ class VehicleSimulation:
 
         Examples
         --------
-        >>> from mrsuspension.excitation import Harmonic
+        >>> from mrsuspension.excitation import Harmonic, WheelRoads
         >>> from mrsuspension.vehicle import FullCar
-        >>> sim = VehicleSimulation(FullCar(), SameRoadAtEveryWheel(Harmonic(2.0, 0.01), FullCar.corners))
+        >>> sim = VehicleSimulation(FullCar(), WheelRoads.in_phase(Harmonic(2.0, 0.01), "full-car"))
         >>> sim.max_stable_dt() > 1e-4
         True
         """
@@ -515,9 +377,9 @@ class VehicleSimulation:
 
         Examples
         --------
-        >>> from mrsuspension.excitation import Harmonic
+        >>> from mrsuspension.excitation import Harmonic, WheelRoads
         >>> from mrsuspension.vehicle import HalfCar
-        >>> sim = VehicleSimulation(HalfCar(), SameRoadAtEveryWheel(Harmonic(2.0, 0.01), ("front", "rear")))
+        >>> sim = VehicleSimulation(HalfCar(), WheelRoads.in_phase(Harmonic(2.0, 0.01), "half-car"))
         >>> sim.check_dt(1e-4)
         0.0001
         """
@@ -535,9 +397,9 @@ class VehicleSimulation:
 
         Examples
         --------
-        >>> from mrsuspension.excitation import Harmonic
+        >>> from mrsuspension.excitation import Harmonic, WheelRoads
         >>> from mrsuspension.vehicle import HalfCar
-        >>> sim = VehicleSimulation(HalfCar(), SameRoadAtEveryWheel(Harmonic(2.0, 0.01), ("front", "rear")))
+        >>> sim = VehicleSimulation(HalfCar(), WheelRoads.in_phase(Harmonic(2.0, 0.01), "half-car"))
         >>> d = sim.describe()
         >>> d["vehicle"]["model"], d["corners"]["rear"]["controller"]["law"]
         ('half-car', 'passive')
@@ -575,9 +437,9 @@ class VehicleSimulation:
 
         Examples
         --------
-        >>> from mrsuspension.excitation import Harmonic
+        >>> from mrsuspension.excitation import Harmonic, WheelRoads
         >>> from mrsuspension.vehicle import FullCar
-        >>> sim = VehicleSimulation(FullCar(), SameRoadAtEveryWheel(Harmonic(2.0, 0.01), FullCar.corners))
+        >>> sim = VehicleSimulation(FullCar(), WheelRoads.in_phase(Harmonic(2.0, 0.01), "full-car"))
         >>> a = sim.arrays(1e-4)
         >>> a.memory.shape, a.corner_vehicles.shape
         ((4, 16), (4, 8))
@@ -703,9 +565,7 @@ class VehicleSimulation:
             sk[VX.SK_LAW] = law.kernel_code
             sp[VX.SP_MP :] = law.params()
         if (law is not None and law.uses_body_rates) or est is not None:
-            x, y = self.vehicle.corner_positions()
-            roll = "roll" in self.vehicle.body_dofs
-            dist = distribution_matrix(x, y if roll else None)
+            dist = distribution_matrix(*self.vehicle.modal_positions())
         return {
             "sensing_kind": sk,
             "sensing_params": sp,
@@ -722,10 +582,10 @@ class VehicleSimulation:
 
         Examples
         --------
-        >>> from mrsuspension.excitation import Harmonic
+        >>> from mrsuspension.excitation import Harmonic, WheelRoads
         >>> from mrsuspension.vehicle import HalfCar
         >>> car = HalfCar(cg_to_front=1.0, cg_to_rear=1.0)
-        >>> sim = VehicleSimulation(car, SameRoadAtEveryWheel(Harmonic(2.0, 0.01), car.corners))
+        >>> sim = VehicleSimulation(car, WheelRoads.in_phase(Harmonic(2.0, 0.01), car))
         >>> sim.initial_state(np.array([0.0, 0.02]))[:2].tolist()  # heave, pitch
         [0.01, 0.01]
         """
@@ -753,9 +613,9 @@ class VehicleSimulation:
 
         Examples
         --------
-        >>> from mrsuspension.excitation import Harmonic
+        >>> from mrsuspension.excitation import Harmonic, WheelRoads
         >>> from mrsuspension.vehicle import HalfCar
-        >>> road = SameRoadAtEveryWheel(Harmonic(2.0, 0.01), ("front", "rear"))
+        >>> road = WheelRoads.in_phase(Harmonic(2.0, 0.01), "half-car")
         >>> st = VehicleSimulation(HalfCar(), road).stepper(1e-4, external="rear")
         >>> out = st.step([0.0, 0.0], [0.1, 0.1], damper_force=120.0)
         >>> out["F_d.rear"], sorted(out)[:3]
@@ -797,9 +657,9 @@ class VehicleSimulation:
 
         Examples
         --------
-        >>> from mrsuspension.excitation import Harmonic
+        >>> from mrsuspension.excitation import Harmonic, WheelRoads
         >>> from mrsuspension.vehicle import HalfCar
-        >>> sim = VehicleSimulation(HalfCar(), SameRoadAtEveryWheel(Harmonic(2.0, 0.01), ("front", "rear")))
+        >>> sim = VehicleSimulation(HalfCar(), WheelRoads.in_phase(Harmonic(2.0, 0.01), "half-car"))
         >>> res = sim.run(0.5, dt=2e-4, output_rate=100.0)
         >>> res.time.size, res.units["pitch"]
         (51, 'rad')
@@ -847,9 +707,9 @@ class VehicleSimulation:
 
         Examples
         --------
-        >>> from mrsuspension.excitation import Harmonic
+        >>> from mrsuspension.excitation import Harmonic, WheelRoads
         >>> from mrsuspension.vehicle import HalfCar
-        >>> sim = VehicleSimulation(HalfCar(), SameRoadAtEveryWheel(Harmonic(5.0, 0.005), ("front", "rear")))
+        >>> sim = VehicleSimulation(HalfCar(), WheelRoads.in_phase(Harmonic(5.0, 0.005), "half-car"))
         >>> fast = sim.run_measures(dt=2e-4)
         >>> slow = sim.run(dt=2e-4).measures()
         >>> bool(abs(fast["T_as.rear"] / slow["T_as.rear"] - 1.0) < 1e-12), list(fast)[:2]
@@ -907,9 +767,9 @@ class VehicleSimulation:
 
         Examples
         --------
-        >>> from mrsuspension.excitation import Harmonic
+        >>> from mrsuspension.excitation import Harmonic, WheelRoads
         >>> from mrsuspension.vehicle import HalfCar
-        >>> sim = VehicleSimulation(HalfCar(), SameRoadAtEveryWheel(Harmonic(2.0, 0.01), ("front", "rear")))
+        >>> sim = VehicleSimulation(HalfCar(), WheelRoads.in_phase(Harmonic(2.0, 0.01), "half-car"))
         >>> zr, zrd = sim.road_samples(10, 1e-3, first=5)  # t = 5 ms to 15 ms
         >>> zr.shape, bool(np.allclose(zr[0, 0], 0.01 * np.sin(2 * np.pi * 2.0 * 5e-3)))
         ((2, 21), True)
@@ -963,9 +823,9 @@ class VehicleSimulation:
 
         Examples
         --------
-        >>> from mrsuspension.excitation import Harmonic
+        >>> from mrsuspension.excitation import Harmonic, WheelRoads
         >>> from mrsuspension.vehicle import HalfCar
-        >>> sim = VehicleSimulation(HalfCar(), SameRoadAtEveryWheel(Harmonic(2.0, 0.01), ("front", "rear")))
+        >>> sim = VehicleSimulation(HalfCar(), WheelRoads.in_phase(Harmonic(2.0, 0.01), "half-car"))
         >>> sim.record_values(RunPlan(1e-4, 100, 10))
         1277.0
         """
@@ -1035,9 +895,9 @@ class VehicleStepper:
 
     Examples
     --------
-    >>> from mrsuspension.excitation import Harmonic
+    >>> from mrsuspension.excitation import Harmonic, WheelRoads
     >>> from mrsuspension.vehicle import FullCar
-    >>> road = SameRoadAtEveryWheel(Harmonic(2.0, 0.01), FullCar.corners)
+    >>> road = WheelRoads.in_phase(Harmonic(2.0, 0.01), "full-car")
     >>> st = VehicleSimulation(FullCar(), road).stepper(1e-4)
     >>> out = st.step([0.001] * 4, [0.0] * 4)
     >>> round(st.time, 6), out["heave"] > 0.0
@@ -1059,9 +919,9 @@ class VehicleStepper:
 
         Examples
         --------
-        >>> from mrsuspension.excitation import Harmonic
+        >>> from mrsuspension.excitation import Harmonic, WheelRoads
         >>> from mrsuspension.vehicle import HalfCar
-        >>> st = VehicleSimulation(HalfCar(), SameRoadAtEveryWheel(Harmonic(2.0, 0.01), ("front", "rear"))).stepper()
+        >>> st = VehicleSimulation(HalfCar(), WheelRoads.in_phase(Harmonic(2.0, 0.01), "half-car")).stepper()
         >>> st.reset([0.01, 0.01])
         >>> round(float(st.y[0]), 6), st.time
         (0.01, 0.0)
@@ -1199,13 +1059,13 @@ def run_vehicles(
     Examples
     --------
     >>> from mrsuspension.engine.simulate import MeasuresOf
-    >>> from mrsuspension.excitation import Harmonic
+    >>> from mrsuspension.excitation import Harmonic, WheelRoads
     >>> from mrsuspension.vehicle import HalfCar
-    >>> sims = [VehicleSimulation(HalfCar(), SameRoadAtEveryWheel(Harmonic(f, 0.01), ("front", "rear")))
+    >>> sims = [VehicleSimulation(HalfCar(), WheelRoads.in_phase(Harmonic(f, 0.01), "half-car"))
     ...         for f in (1.0, 2.0)]
     >>> [r.time.size for r in run_vehicles(sims, duration=0.2, workers=1)]
     [201, 201]
-    >>> sims = [VehicleSimulation(HalfCar(), SameRoadAtEveryWheel(Harmonic(f, 0.005), ("front", "rear")))
+    >>> sims = [VehicleSimulation(HalfCar(), WheelRoads.in_phase(Harmonic(f, 0.005), "half-car"))
     ...         for f in (5.0, 8.0)]
     >>> rows = run_vehicles(sims, dt=2e-4, workers=1, reduce=MeasuresOf())  # each its own duration
     >>> [round(r["T_as.front"], 3) for r in rows]
@@ -1269,9 +1129,9 @@ def measure_vehicles(
 
     Examples
     --------
-    >>> from mrsuspension.excitation import Harmonic
+    >>> from mrsuspension.excitation import Harmonic, WheelRoads
     >>> from mrsuspension.vehicle import HalfCar
-    >>> sims = [VehicleSimulation(HalfCar(), SameRoadAtEveryWheel(Harmonic(f, 0.005), ("front", "rear")))
+    >>> sims = [VehicleSimulation(HalfCar(), WheelRoads.in_phase(Harmonic(f, 0.005), "half-car"))
     ...         for f in (5.0, 8.0)]
     >>> rows = measure_vehicles(sims, [RunSettings(dt=2e-4)] * 2)  # 10 cycles settled
     >>> [list(r)[:2] for r in rows]

@@ -133,10 +133,10 @@ class VehicleResult(SimulationResult):
 
         Examples
         --------
-        >>> from mrsuspension.engine.vehicle import SameRoadAtEveryWheel, VehicleSimulation
-        >>> from mrsuspension.excitation import Harmonic
+        >>> from mrsuspension.engine.vehicle import VehicleSimulation
+        >>> from mrsuspension.excitation import Harmonic, WheelRoads
         >>> from mrsuspension.vehicle import HalfCar
-        >>> sim = VehicleSimulation(HalfCar(), SameRoadAtEveryWheel(Harmonic(2.0, 0.01), ("front", "rear")))
+        >>> sim = VehicleSimulation(HalfCar(), WheelRoads.in_phase(Harmonic(2.0, 0.01), "half-car"))
         >>> front = sim.run(0.5, dt=2e-4).corner("front")
         >>> float(front.time[-1]), "F_T" in front
         (0.5, True)
@@ -162,10 +162,10 @@ class VehicleResult(SimulationResult):
 
         Examples
         --------
-        >>> from mrsuspension.engine.vehicle import SameRoadAtEveryWheel, VehicleSimulation
-        >>> from mrsuspension.excitation import Harmonic
+        >>> from mrsuspension.engine.vehicle import VehicleSimulation
+        >>> from mrsuspension.excitation import Harmonic, WheelRoads
         >>> from mrsuspension.vehicle import HalfCar
-        >>> sim = VehicleSimulation(HalfCar(), SameRoadAtEveryWheel(Harmonic(2.0, 0.01), ("front", "rear")))
+        >>> sim = VehicleSimulation(HalfCar(), WheelRoads.in_phase(Harmonic(2.0, 0.01), "half-car"))
         >>> ds = sim.run(0.1).to_xarray()
         >>> ds["F_T"].dims, ds["F_T"].attrs["long_name"], ds["pitch"].attrs["units"]
         (('time', 'corner'), 'tire force (total, 0 when lifted off)', 'rad')
@@ -247,10 +247,10 @@ class VehicleResult(SimulationResult):
 
         Examples
         --------
-        >>> from mrsuspension.engine.vehicle import SameRoadAtEveryWheel, VehicleSimulation
-        >>> from mrsuspension.excitation import Harmonic
+        >>> from mrsuspension.engine.vehicle import VehicleSimulation
+        >>> from mrsuspension.excitation import Harmonic, WheelRoads
         >>> from mrsuspension.vehicle import HalfCar
-        >>> sim = VehicleSimulation(HalfCar(), SameRoadAtEveryWheel(Harmonic(5.0, 0.005), ("front", "rear")))
+        >>> sim = VehicleSimulation(HalfCar(), WheelRoads.in_phase(Harmonic(5.0, 0.005), "half-car"))
         >>> m = sim.run().measures()  # the harmonic's own duration (steady-state rule)
         >>> list(m)[:3], m.units["pitch_ddot_rms"], m.units["mean_current.rear"]
         (['heave_ddot_rms', 'pitch_ddot_rms', 'T_as.front'], 'rad/s^2', 'A')
@@ -296,7 +296,7 @@ class VehicleResult(SimulationResult):
 
         Examples
         --------
-        >>> from mrsuspension.engine.vehicle import SameRoadAtEveryWheel, VehicleSimulation
+        >>> from mrsuspension.engine.vehicle import VehicleSimulation
         >>> from mrsuspension.excitation.wheels import WheelRoads
         >>> from mrsuspension.vehicle import FullCar
         >>> car = FullCar()

@@ -21,6 +21,9 @@ profile its first elevation). The constructors:
                                          (:mod:`pyopencrg`)
 :meth:`WheelRoads.bump`                  a rounded bump on one side (excites roll)
 :meth:`WheelRoads.pothole`               a rounded pothole (:class:`Pothole`) on one side
+:meth:`WheelRoads.in_phase`              one excitation at every wheel at once (a
+                                         four-poster rig: no delay), or with given
+                                         per-wheel delays
 =======================================  ==============================================
 
 Corner names and order: :data:`FULL_CAR_CORNERS` and :data:`HALF_CAR_CORNERS` (their one
@@ -189,6 +192,22 @@ def _geometry(geometry: object, corners: tuple[str, ...]) -> tuple[float, float 
             )
         return wb, None
     return wb, positive("track", track, "m", high=_MAX_TRACK)
+
+
+def _delays(delays: object, corners: tuple[str, ...]) -> tuple[float, ...]:
+    """One delay [s] per corner, each in [0, 1e4]."""
+    if isinstance(delays, str) or not isinstance(delays, tuple | list | np.ndarray):
+        raise ValidationError(
+            f"delays must be a sequence of {len(corners)} delays [s], one per corner "
+            f"{corners}; got {delays!r}"
+        )
+    values = check_range("delays", delays, 0.0, 1e4, unit="s")
+    if values.shape != (len(corners),):
+        raise ValidationError(
+            f"delays must have one value per corner {corners} ({len(corners)}); "
+            f"got {[float(v) for v in np.ravel(values)]}"
+        )
+    return tuple(float(v) for v in values)
 
 
 def _side(side: object, corners: tuple[str, ...]) -> str:
@@ -400,19 +419,22 @@ class WheelRoads:
     """The road displacement under every wheel of a half or full car.
 
     Build it with one of the constructors (:meth:`from_excitation`, :meth:`two_track`,
-    :meth:`from_crg`, :meth:`bump`, :meth:`pothole`) rather than directly.
+    :meth:`from_crg`, :meth:`bump`, :meth:`pothole`, :meth:`in_phase`) rather than
+    directly.
 
     Parameters
     ----------
     left, right : Excitation or None
         The wheel tracks: the road under the front wheel on each side as a function of
         time. None is a flat track (exactly zero). A half car uses ``left`` only.
-    wheelbase : float
-        Distance between the axles ``L`` [m], > 0.
-    speed_kmh : float
+    wheelbase : float, optional
+        Distance between the axles ``L`` [m], > 0. Required unless ``delays`` is given.
+    speed_kmh : float, optional
         Vehicle speed ``V`` [km/h]; the rear wheels see their track ``L/V`` later.
+        Required unless ``delays`` is given, and then not allowed (no vehicle speed).
     track : float, optional
-        Distance between the left and right wheels [m] (None for a half car).
+        Distance between the left and right wheels [m] (None for a half car, or with
+        ``delays``).
     corners : str or tuple of str, optional
         ``"full-car"`` (:data:`FULL_CAR_CORNERS`, the default) or ``"half-car"``
         (:data:`HALF_CAR_CORNERS`), or the tuple itself.
@@ -420,13 +442,17 @@ class WheelRoads:
         What the road is (shown in :meth:`describe`).
     details : dict, optional
         Plain data about how it was built (shown in :meth:`describe`).
+    delays : sequence of float, optional
+        Delay ``d_c`` of every corner [s], >= 0, one per corner in the order of
+        ``corners``, instead of the geometry's ``0`` (front) and ``L/V`` (rear): a rig's
+        actuators rather than a car driving along the road (:meth:`in_phase`).
 
     Notes
     -----
     Corner ``c`` on side ``s`` sees ``z_r[c](t) = z_s(t - d_c)`` with ``d_c = 0`` on the
-    front axle and ``L/V`` on the rear, for ``t >= d_c``, and ``z_s(0)`` with zero
-    velocity before. Velocity and acceleration are the track's exact derivatives, shifted
-    the same way.
+    front axle and ``L/V`` on the rear (or the given ``delays``), for ``t >= d_c``, and
+    ``z_s(0)`` with zero velocity before. Velocity and acceleration are the track's exact
+    derivatives, shifted the same way.
 
     Examples
     --------
@@ -441,12 +467,13 @@ class WheelRoads:
 
     left: Excitation | None
     right: Excitation | None
-    wheelbase: float
-    speed_kmh: float
+    wheelbase: float | None = None
+    speed_kmh: float | None = None
     track: float | None = None
     corners: tuple[str, ...] = FULL_CAR_CORNERS
     source: str = "user tracks"
     details: Mapping[str, Any] = field(default_factory=dict)
+    delays: tuple[float, ...] | None = None
     #: (track, delay [s]) of every corner
     _places: tuple[tuple[Excitation | None, float], ...] = field(
         init=False, repr=False, compare=False
@@ -455,10 +482,34 @@ class WheelRoads:
     def __post_init__(self) -> None:
         corners = _corners(self.corners)
         object.__setattr__(self, "corners", corners)
-        wheelbase, track = _geometry((self.wheelbase, self.track), corners)
+        if self.delays is None:
+            if self.wheelbase is None or self.speed_kmh is None:
+                raise ValidationError(
+                    "wheelbase [m] and speed_kmh [km/h] are needed (the rear wheels see the "
+                    "road wheelbase/speed later), or delays [s] per corner; got wheelbase="
+                    f"{self.wheelbase!r}, speed_kmh={self.speed_kmh!r}"
+                )
+            wheelbase_m, track = _geometry((self.wheelbase, self.track), corners)
+            speed = _speed(self.speed_kmh)
+            object.__setattr__(self, "speed_kmh", speed)
+            wheelbase: float | None = wheelbase_m
+            rear = wheelbase_m / (speed / 3.6)  # as rear_delay was, to the bit
+        else:
+            object.__setattr__(self, "delays", _delays(self.delays, corners))
+            if self.speed_kmh is not None:
+                raise ValidationError(
+                    "give either speed_kmh (the rear wheels trail by wheelbase/speed) or "
+                    f"delays per corner, not both; got speed_kmh={self.speed_kmh!r} and "
+                    f"delays={list(self.delays)}"
+                )
+            # the geometry, if given, is recorded (describe) but sets no delay
+            wheelbase, track = self.wheelbase, self.track
+            if wheelbase is not None:
+                wheelbase = positive("wheelbase", wheelbase, "m", high=_MAX_WHEELBASE)
+            if track is not None:
+                track = positive("track", track, "m", high=_MAX_TRACK)
         object.__setattr__(self, "wheelbase", wheelbase)
         object.__setattr__(self, "track", track)
-        object.__setattr__(self, "speed_kmh", _speed(self.speed_kmh))
         for side in ("left", "right"):
             value = getattr(self, side)
             if value is not None and not isinstance(value, Excitation):
@@ -469,11 +520,12 @@ class WheelRoads:
         if not isinstance(self.source, str):
             raise ValidationError(f"source must be a string; got {self.source!r}")
         object.__setattr__(self, "details", dict(self.details))
-        delay = self.rear_delay
         places = []
-        for corner in corners:
-            side, rear = _CORNER_PLACES[corner]
-            places.append((getattr(self, side), delay if rear else 0.0))
+        for row, corner in enumerate(corners):
+            side, on_rear = _CORNER_PLACES[corner]
+            given = self.delays
+            delay = (rear if on_rear else 0.0) if given is None else given[row]
+            places.append((getattr(self, side), delay))
         object.__setattr__(self, "_places", tuple(places))
 
     # -- constructors ------------------------------------------------------------------
@@ -940,6 +992,68 @@ class WheelRoads:
         )
 
     @classmethod
+    def in_phase(
+        cls,
+        excitation: Excitation,
+        corners: object = "full-car",
+        *,
+        delays: npt.ArrayLike | None = None,
+    ) -> WheelRoads:
+        """One single-track excitation under every wheel at once (or with given delays).
+
+        Every corner ``c`` sees ``z_r[c](t) = z(t - d_c)``: with no ``delays`` all wheels
+        move together, as on a four-poster rig driven in phase (no vehicle speed, so no
+        wheelbase delay: :meth:`from_excitation` is the car driving along the road).
+        With ``delays``, each wheel holds ``z(0)`` with zero velocity until its delay, as
+        a rear wheel before the road reaches it. The corners measure as the quarter car
+        on ``excitation`` (:attr:`excitation`).
+
+        Parameters
+        ----------
+        excitation : Excitation
+            A single-track excitation (:class:`~mrsuspension.excitation.Harmonic`,
+            :class:`~mrsuspension.excitation.RoundedPulse`, a road profile...).
+        corners : str, tuple of str or object, optional
+            ``"full-car"`` (the default) or ``"half-car"``, the tuple of corner names, or a
+            vehicle (its ``corners``).
+        delays : sequence of float, optional
+            Delay of every corner [s], >= 0 and at most 1e4, one per corner in the order
+            of ``corners`` (default: all 0).
+
+        Raises
+        ------
+        ValidationError
+            Not an excitation, an unknown layout, or delays of the wrong length or range.
+
+        Examples
+        --------
+        >>> from mrsuspension.excitation import Harmonic
+        >>> roads = WheelRoads.in_phase(Harmonic(1.0, 0.01), "half-car")
+        >>> roads.displacement([0.25]).round(12).ravel().tolist()  # in phase: all equal
+        [0.01, 0.01]
+        >>> roads = WheelRoads.in_phase(Harmonic(1.0, 0.01), "half-car", delays=(0.0, 0.25))
+        >>> roads.displacement([0.25, 0.5]).round(12).tolist()  # the rear 0.25 s late
+        [[0.01, 0.0], [0.0, 0.01]]
+        >>> roads.rear_delay, roads.duration == Harmonic(1.0, 0.01).duration + 0.25
+        (0.25, True)
+        """
+        if not isinstance(excitation, Excitation):
+            raise ValidationError(
+                "excitation must be a single-track Excitation (harmonic, pulse, road); "
+                f"got {excitation!r}"
+            )
+        layout = _corners(getattr(corners, "corners", corners))
+        given = delays is not None
+        return cls(
+            excitation,
+            excitation if layout == FULL_CAR_CORNERS else None,
+            corners=layout,
+            source=f"{excitation.name} at every wheel" + (", delayed" if given else " in phase"),
+            details={"excitation": excitation.describe(), "single_track": True},
+            delays=_delays(delays, layout) if given else (0.0,) * len(layout),
+        )
+
+    @classmethod
     def _one_sided(
         cls,
         shape: Excitation,
@@ -985,14 +1099,29 @@ class WheelRoads:
         return self.left if self.details.get("single_track") else None
 
     @property
-    def speed(self) -> float:
-        """Vehicle speed ``V`` [m/s]."""
-        return self.speed_kmh / 3.6
+    def speed(self) -> float | None:
+        """Vehicle speed ``V`` [m/s] (None for a road of given ``delays``)."""
+        return None if self.speed_kmh is None else self.speed_kmh / 3.6
 
     @property
     def rear_delay(self) -> float:
-        """Time ``L/V`` [s] the rear wheels trail the front ones."""
-        return self.wheelbase / self.speed
+        """Time ``L/V`` [s] the rear wheels trail the front ones; with given ``delays``
+        the largest of them (0 in phase)."""
+        return max(delay for _, delay in self._places)
+
+    @property
+    def corner_delays(self) -> tuple[float, ...]:
+        """Delay of every corner [s], in the order of :attr:`corners`.
+
+        Examples
+        --------
+        >>> from mrsuspension.excitation import Harmonic
+        >>> WheelRoads.from_excitation(Harmonic(1.0, 0.01), (2.5, 1.5), 36.0).corner_delays
+        (0.0, 0.0, 0.25, 0.25)
+        >>> WheelRoads.in_phase(Harmonic(1.0, 0.01), "half-car").corner_delays
+        (0.0, 0.0)
+        """
+        return tuple(delay for _, delay in self._places)
 
     @property
     def duration(self) -> float:
@@ -1088,7 +1217,7 @@ class WheelRoads:
         >>> d["kind"], d["rear_delay"], d["tracks"]["right"]["kind"]
         ('wheel-roads', 0.25, 'harmonic')
         """
-        return {
+        out: dict[str, Any] = {
             "kind": "wheel-roads",
             "source": self.source,
             "corners": list(self.corners),
@@ -1103,12 +1232,17 @@ class WheelRoads:
             },
             "details": dict(self.details),
         }
+        if self.delays is not None:  # only then: the other roads' records stay as they were
+            out["delays"] = list(self.delays)
+        return out
 
     def __repr__(self) -> str:
-        return (
-            f"WheelRoads(source={self.source!r}, corners={self.corners}, "
-            f"wheelbase={self.wheelbase:g} m, track={self.track}, speed_kmh={self.speed_kmh:g})"
+        timing = (
+            f"delays={list(self.delays)} s"
+            if self.delays is not None
+            else f"wheelbase={self.wheelbase:g} m, track={self.track}, speed_kmh={self.speed_kmh:g}"
         )
+        return f"WheelRoads(source={self.source!r}, corners={self.corners}, {timing})"
 
 
 # -- helpers --------------------------------------------------------------------------------

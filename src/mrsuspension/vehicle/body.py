@@ -237,6 +237,27 @@ class VehicleBody:
                       for c in range(len(self.corners))])  # fmt: skip
         return x, self._lateral()
 
+    def modal_positions(self) -> tuple[np.ndarray, np.ndarray | None]:
+        """``(x, y)`` of every corner [m] over the body's motions: ``y`` is None for a body
+        that does not roll (a half car).
+
+        What a law over the body's modes takes
+        (:func:`~mrsuspension.control.modal.distribution_matrix`,
+        :meth:`ModalSkyhook.corner_equivalent
+        <mrsuspension.control.modal.ModalSkyhook.corner_equivalent>`): the roll column
+        only where there is a roll.
+
+        Examples
+        --------
+        >>> HalfCar(cg_to_front=1.0, cg_to_rear=1.5).modal_positions()
+        (array([ 1. , -1.5]), None)
+        >>> x, y = FullCar().modal_positions()
+        >>> y.tolist()
+        [0.621, -0.621, 0.621, -0.621]
+        """
+        x, y = self.corner_positions()
+        return x, (y if "roll" in self.body_dofs else None)
+
     def _lateral(self) -> np.ndarray:
         return np.zeros(len(self.corners))
 

@@ -34,10 +34,11 @@ def quarter() -> SimulationResult:
 
 @pytest.fixture(scope="module")
 def half() -> Any:
-    from mrsuspension.engine.vehicle import SameRoadAtEveryWheel, VehicleSimulation
+    from mrsuspension.engine.vehicle import VehicleSimulation
+    from mrsuspension.excitation import WheelRoads
     from mrsuspension.vehicle import HalfCar
 
-    road = SameRoadAtEveryWheel(HARMONIC, ("front", "rear"))
+    road = WheelRoads.in_phase(HARMONIC, "half-car")
     return VehicleSimulation(HalfCar(), road).run(dt=2e-4)
 
 

@@ -8,8 +8,8 @@ import pytest
 from mrsuspension.control import Passive
 from mrsuspension.dampers import DAMPERS, make_damper
 from mrsuspension.engine import Simulation
-from mrsuspension.engine.vehicle import SameRoadAtEveryWheel, VehicleSimulation
-from mrsuspension.excitation import Harmonic
+from mrsuspension.engine.vehicle import VehicleSimulation
+from mrsuspension.excitation import Harmonic, WheelRoads
 from mrsuspension.vehicle import FullCar, HalfCar, QuarterCar
 
 
@@ -20,7 +20,7 @@ def test_each_damper_model_at_decoupled_corners_is_the_quarter_car(model: str) -
     exc = Harmonic(2.0, 0.02)
     damper = make_damper(model)
     controller = Passive(0.2)
-    road = SameRoadAtEveryWheel.at_speed(exc, car, speed=20.0)
+    road = WheelRoads.from_excitation(exc, car, speed_kmh=72.0)
     res = VehicleSimulation(car, road, dampers=damper, controllers=controller).run(road.duration)
     ref = Simulation(exc, vehicle=qc, damper=damper, controller=controller).run().measures()
     for c in car.corners:
@@ -37,7 +37,7 @@ def test_mixed_damper_models_run_side_by_side() -> None:
         "rear_left": make_damper("spencer"),
         "rear_right": make_damper("bingham"),
     }
-    road = SameRoadAtEveryWheel.at_speed(Harmonic(1.5, 0.02), car, speed=20.0)
+    road = WheelRoads.from_excitation(Harmonic(1.5, 0.02), car, speed_kmh=72.0)
     res = VehicleSimulation(car, road, dampers=dampers, controllers=Passive(0.2)).run(2.0)
     forces = [res[f"F_d.{c}"] for c in car.corners]
     assert all(np.all(np.isfinite(f)) for f in forces)

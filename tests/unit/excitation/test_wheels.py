@@ -111,6 +111,104 @@ class TestRearDelay:
         np.testing.assert_allclose(v, roads.velocity(t), rtol=0, atol=1e-11)
 
 
+# -- one excitation at every wheel: in phase, or with given delays ----------------------------
+class TestInPhase:
+    @pytest.mark.parametrize(
+        "excitation",
+        [Harmonic(1.0, 0.01), RoundedPulse(amplitude=0.035, severity=2.0), preset_road("rough")],
+        ids=["harmonic", "pulse", "road"],
+    )
+    def test_every_wheel_sees_the_excitation_at_once(self, excitation):
+        roads = WheelRoads.in_phase(excitation)
+        assert roads.corners == FULL_CAR_CORNERS
+        assert roads.corner_delays == (0.0,) * 4
+        assert roads.rear_delay == 0.0
+        assert roads.duration == excitation.duration
+        assert roads.excitation is excitation  # the corners measure as the quarter car
+        t = 0.01 + np.arange(2000) * 1e-3
+        for method in ("displacement", "velocity", "acceleration"):
+            own = getattr(excitation, method)(t)
+            for row in getattr(roads, method)(t):
+                np.testing.assert_array_equal(row, own)
+        z, v = roads.sample_grid(2000, 1e-3, start=0.01)  # the grid a run reads
+        own_z, own_v = excitation.sample_grid(2000, 1e-3, start=0.01)
+        for row in range(4):
+            np.testing.assert_array_equal(z[row], own_z)
+            np.testing.assert_array_equal(v[row], own_v)
+
+    def test_hand_values_with_delays(self):
+        # z = 0.01 sin(2 pi t); delays 0, 0.1, 0.25, 0.5 s; at t = 0.5 s and 0.3 s
+        roads = WheelRoads.in_phase(Harmonic(1.0, 0.01), delays=[0.0, 0.1, 0.25, 0.5])
+        z = roads.displacement([0.5, 0.3])
+        expected = [
+            [0.0, 0.01 * math.sin(0.6 * math.pi)],
+            [0.01 * math.sin(0.8 * math.pi), 0.01 * math.sin(0.4 * math.pi)],
+            [0.01, 0.01 * math.sin(0.1 * math.pi)],
+            [0.0, 0.0],  # not reached yet at 0.3 s; sin(0) at 0.5 s
+        ]
+        np.testing.assert_allclose(z, expected, rtol=0, atol=1e-15)
+        v = roads.velocity([0.3])[:, 0]
+        assert v[3] == 0.0  # held, with zero velocity, until the delay
+        assert v[2] == pytest.approx(0.02 * math.pi * math.cos(0.1 * math.pi), rel=1e-14)
+        assert roads.rear_delay == 0.5
+        assert roads.duration == Harmonic(1.0, 0.01).duration + 0.5
+
+    def test_wheelbase_delays_are_from_excitation_to_the_bit(self):
+        # the rear wheel sees the front's road wheelbase/speed later: 2.7 m at 54 km/h
+        road = preset_road("rough", speed_kmh=54.0)
+        driven = WheelRoads.from_excitation(road, GEOMETRY)
+        assert driven.corner_delays == pytest.approx((0.0, 0.0, 0.18, 0.18), rel=1e-15, abs=0)
+        rig = WheelRoads.in_phase(road, delays=driven.corner_delays)
+        t = np.arange(3001) * 1e-3
+        np.testing.assert_array_equal(rig.displacement(t), driven.displacement(t))
+        for a, b in zip(rig.sample_grid(3001, 1e-3), driven.sample_grid(3001, 1e-3), strict=True):
+            np.testing.assert_array_equal(a, b)
+
+    def test_layouts_and_describe(self):
+        import json
+
+        from mrsuspension.vehicle import HalfCar
+
+        half = WheelRoads.in_phase(Harmonic(2.0, 0.01), HalfCar(), delays=(0.0, 0.2))
+        assert half.corners == HALF_CAR_CORNERS
+        assert half.right is None
+        assert (half.speed_kmh, half.speed, half.wheelbase) == (None, None, None)
+        d = half.describe()
+        json.dumps(d)
+        assert (d["delays"], d["rear_delay"], d["speed_kmh"]) == ([0.0, 0.2], 0.2, None)
+        assert "delays=[0.0, 0.2] s" in repr(half)
+        assert WheelRoads.in_phase(Harmonic(2.0, 0.01), "half-car").corners == HALF_CAR_CORNERS
+        assert (
+            "delays"
+            not in WheelRoads.from_excitation(road := preset_road("smooth"), GEOMETRY).describe()
+        )
+        assert WheelRoads.in_phase(road, FULL_CAR_CORNERS).describe()["delays"] == [0.0] * 4
+
+    def test_bad_input(self):
+        h = Harmonic(1.0, 0.01)
+        _raises(
+            lambda: WheelRoads.in_phase(h, delays=(0.0, 0.1)),
+            "delays must have one value per corner",
+            "(4); got [0.0, 0.1]",
+        )
+        _raises(
+            lambda: WheelRoads.in_phase(h, delays=(0.0, 0.0, -0.1, 0.0)),
+            "delays must be in [0, 10000] s; got -0.1 s at index 2",
+        )
+        _raises(
+            lambda: WheelRoads.in_phase(h, delays="0.1"),
+            "delays must be a sequence of 4 delays [s]",
+        )
+        _raises(
+            lambda: WheelRoads.in_phase(h, "half_car"),
+            "unknown corner layout",
+            "Did you mean 'half-car'?",
+        )
+        _raises(lambda: WheelRoads.in_phase("harmonic"), "must be a single-track Excitation")
+        _raises(lambda: WheelRoads(h, h), "wheelbase [m] and speed_kmh [km/h] are needed")
+        _raises(lambda: WheelRoads(h, h, speed_kmh=50.0, delays=(0.0,) * 4), "not both")
+
+
 # -- (b) and (c) the two-track random road ----------------------------------------------------
 class TestTwoTrack:
     @pytest.mark.parametrize("road", ["C", "rough"])

@@ -12,8 +12,8 @@ import numpy as np
 import pytest
 
 from mrsuspension.control import HiLo
-from mrsuspension.engine.vehicle import SameRoadAtEveryWheel, VehicleSimulation
-from mrsuspension.excitation import preset_road
+from mrsuspension.engine.vehicle import VehicleSimulation
+from mrsuspension.excitation import WheelRoads, preset_road
 from mrsuspension.report import vehicles as V
 from mrsuspension.report.chapters import SECTIONS
 from mrsuspension.vehicle import FullCar
@@ -59,7 +59,7 @@ def test_per_corner_skyhook_reduces_heave_on_the_rough_road(data: dict[str, Any]
 
 def test_roll_is_zero_with_symmetric_input_and_excited_by_the_bump(data: dict[str, Any]) -> None:
     car = FullCar(cg_to_front=1.3, cg_to_rear=1.3, front_track=1.5, rear_track=1.5)
-    road = SameRoadAtEveryWheel.at_speed(preset_road("rough"), car, speed=50.0 / 3.6)
+    road = WheelRoads.from_excitation(preset_road("rough"), car, speed_kmh=50.0)
     res = VehicleSimulation(car, road, controllers=HiLo(1, mode="ACM")).run(2.0, dt=2e-4)
     assert np.max(np.abs(res["roll"])) < 1e-15
     assert np.max(np.abs(res["roll_ddot"])) < 1e-12
