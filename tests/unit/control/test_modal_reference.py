@@ -34,7 +34,7 @@ from mrsuspension.control.kernel import F_EXTERNAL
 from mrsuspension.control.modal import ModalSkyhook, distribution_matrix, modal_forces
 from mrsuspension.engine import kernel as EK
 from mrsuspension.engine import vehicle_kernel as VX
-from mrsuspension.engine.vehicle import SameRoadAtEveryWheel, VehicleSimulation
+from mrsuspension.engine.vehicle import VehicleSimulation
 from mrsuspension.engine.vehicle_result import VehicleResult
 from mrsuspension.excitation import Harmonic
 from mrsuspension.excitation.wheels import WheelRoads
@@ -193,7 +193,7 @@ def engine_ideal_modal_phasors(car: FullCar, f: float, road: np.ndarray) -> np.n
     x, y = car.corner_positions()
     dist = np.ascontiguousarray(distribution_matrix(x, y))
     mp = sky.params()
-    sim = VehicleSimulation(car, SameRoadAtEveryWheel(Harmonic(f, AMPLITUDE), car.corners))
+    sim = VehicleSimulation(car, WheelRoads.in_phase(Harmonic(f, AMPLITUDE), car.corners))
     arrays = sim.arrays(DT)
     arrays.force_source[:] = F_EXTERNAL
     args = arrays.args()
