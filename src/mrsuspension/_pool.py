@@ -168,11 +168,12 @@ def handle_signals() -> Iterator[InterruptState]:
 
     Examples
     --------
-    >>> import os, signal
+    >>> import os, signal, time
     >>> try:
     ...     with handle_signals() as state:
     ...         os.kill(os.getpid(), signal.SIGTERM)
-    ...         for _ in range(10**6):  # the handler runs at the next bytecode
+    ...         end = time.monotonic() + 10.0  # the handler runs at a next bytecode
+    ...         while time.monotonic() < end:
     ...             pass
     ... except Interrupted as exc:
     ...     print(exc.exit_code, state.signum == signal.SIGTERM)
@@ -222,11 +223,12 @@ def raise_if_interrupted() -> None:
 
     Examples
     --------
-    >>> import os, signal
+    >>> import os, signal, time
     >>> with handle_signals():
     ...     try:
     ...         os.kill(os.getpid(), signal.SIGINT)
-    ...         for _ in range(10**6):  # the handler runs at the next bytecode
+    ...         end = time.monotonic() + 10.0  # the handler runs at a next bytecode
+    ...         while time.monotonic() < end:
     ...             pass
     ...     except KeyboardInterrupt:
     ...         pass  # lost, as in a ctypes callback

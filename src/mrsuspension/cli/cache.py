@@ -60,8 +60,8 @@ def cache_clear() -> None:
 
 @app.command("warm")
 def cache_warm(
-    jobs: int = typer.Option(
-        0, "--jobs", "-j", min=0, help="Processes compiling side by side (0: one per core)."
+    workers: int | None = typer.Option(
+        None, "--workers", "-j", help="processes compiling side by side (default: one per core)"
     ),
 ) -> None:
     """Compile every kernel into numba's cache now (the first run then starts at once).
@@ -73,9 +73,14 @@ def cache_warm(
     import time
 
     from mrsuspension.cli.compiling import warm_kernels
+    from mrsuspension.cli.errors import user_errors
+    from mrsuspension.errors import check_count
 
+    with user_errors():
+        if workers is not None:
+            check_count("--workers", workers)
     t0 = time.perf_counter()
-    rows = warm_kernels(say=lambda m: typer.echo(m, err=True), workers=jobs or None)
+    rows = warm_kernels(say=lambda m: typer.echo(m, err=True), workers=workers)
     typer.echo(
         f"compiled kernels ready: {len(rows)} entry points in {time.perf_counter() - t0:.1f} s"
     )
