@@ -229,6 +229,59 @@ def _orphaned_recording(out: Path, recover: Path | None) -> None:
     )
 
 
+def _new_process(
+    run: Callable[..., Any],
+    target: Any,
+    rig: Rig | None,
+    duration: float,
+    rate: float,
+    out: Path,
+    recover: str | Path | None,
+    kw: dict[str, Any],
+) -> multiprocessing.process.BaseProcess:
+    """The loop's process (spawn), not started yet."""
+    main = threading.current_thread() is threading.main_thread()
+    return multiprocessing.get_context("spawn").Process(
+        target=_child,
+        args=(run, target, rig, duration, rate, str(out), kw, os.getpid(), main,
+              None if recover is None else str(recover)),
+        name="mrsus-hil-loop",
+    )  # fmt: skip
+
+
+def _start(proc: multiprocessing.process.BaseProcess) -> None:
+    """Start ``proc`` with the loop's signals held back; a held SIGTERM or SIGHUP is
+    raised again once it has started, so the caller stops it the safe way.
+
+    The process starts with SIGINT ignored (kept through exec), so that a Ctrl-C while
+    it imports prints no traceback; :func:`_child` handles it again before the loop
+    starts. SIGINT, SIGTERM and SIGHUP are blocked meanwhile (the child inherits the
+    mask), and SIGTERM's and SIGHUP's handlers here only record them: a signal taken by
+    another thread of this process would otherwise run the handler in the middle of
+    ``start()`` and cut the child's start-up data short (it then printed an ``EOFError``
+    traceback). The resource tracker, which unblocks them when it starts, is started first.
+    """
+    ensure_resource_tracker()
+    if threading.current_thread() is not threading.main_thread():
+        proc.start()
+        return
+    held: list[int] = []
+    previous = {s: signal.getsignal(s) for s in LOOP_SIGNALS}
+    for s in (signal.SIGTERM, signal.SIGHUP):
+        if previous[s] != signal.SIG_IGN:
+            signal.signal(s, lambda signum, _frame: held.append(signum))
+    mask = signal.pthread_sigmask(signal.SIG_BLOCK, {*LOOP_SIGNALS, DEATH_SIGNAL})
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    try:
+        proc.start()
+    finally:
+        signal.pthread_sigmask(signal.SIG_SETMASK, mask)
+        for s, handler in previous.items():
+            signal.signal(s, handler if handler is not None else signal.SIG_DFL)
+    if held:
+        signal.raise_signal(held[0])
+
+
 def start_process(
     run: Callable[..., Any],
     target: Any,
@@ -246,30 +299,8 @@ def start_process(
     loop stops the safe way and keeps its recording (moved to ``recover``'s
     ``NAME.recovered`` when given).
     """
-    ctx = multiprocessing.get_context("spawn")
-    main = threading.current_thread() is threading.main_thread()
-    proc = ctx.Process(
-        target=_child,
-        args=(run, target, rig, duration, rate, str(out), kw, os.getpid(), main,
-              None if recover is None else str(recover)),
-        name="mrsus-hil-loop",
-    )  # fmt: skip
-    # the process starts with SIGINT ignored (kept through exec), so that a Ctrl-C while it
-    # imports prints no traceback; _child handles it again before the loop starts. Here
-    # SIGINT, SIGTERM and SIGHUP are blocked meanwhile, so one arriving during start()
-    # waits for the handler instead of cutting the child's start-up data short (the
-    # resource tracker, which unblocks them when it starts, is started first).
-    ensure_resource_tracker()
-    if not main:
-        proc.start()
-        return proc
-    mask = signal.pthread_sigmask(signal.SIG_BLOCK, {*LOOP_SIGNALS, DEATH_SIGNAL})
-    previous = signal.signal(signal.SIGINT, signal.SIG_IGN)
-    try:
-        proc.start()
-    finally:
-        signal.signal(signal.SIGINT, previous if previous is not None else signal.SIG_DFL)
-        signal.pthread_sigmask(signal.SIG_SETMASK, mask)
+    proc = _new_process(run, target, rig, duration, rate, out, recover, kw)
+    _start(proc)
     return proc
 
 
@@ -283,8 +314,9 @@ def _run_in_process(
     recover: str | Path | None = None,
     **kw: Any,
 ) -> HilResult:
-    proc = start_process(run, target, rig, duration, rate, out, recover=recover, **kw)
+    proc = _new_process(run, target, rig, duration, rate, out, recover, kw)
     try:
+        _start(proc)  # a signal held back while it starts is raised here
         proc.join()
     except BaseException as exc:  # Ctrl-C, SIGTERM, SIGHUP here: stop the loop the safe way
         signum = int(getattr(exc, "signum", signal.SIGINT))
