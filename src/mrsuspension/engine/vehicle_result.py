@@ -280,7 +280,8 @@ class VehicleResult(SimulationResult):
         vibration total value of ``purpose``) and ``seat_<axis>`` per axis
         (``seat_z`` is the Wk-weighted vertical RMS); per corner ``"<name>.<corner>"``:
         ``DLC``, ``lift_off_time`` [s], ``rms_travel`` and ``peak_to_peak_travel`` [m],
-        ``coil_energy`` [J]; and ``coil_energy`` summed over the corners.
+        ``coil_energy`` [J] (a corner whose damper takes no current, e.g. a linear one,
+        has none); and ``coil_energy`` summed over the corners.
 
         Parameters
         ----------
@@ -305,6 +306,7 @@ class VehicleResult(SimulationResult):
         >>> m["roll_ddot_rms"] > 0.0, m.units["lift_off_time.front_left"]
         (True, 's')
         """
+        from mrsuspension.dampers import takes_current
         from mrsuspension.measures import vehicle as MV
 
         place = dict(DRIVER_SEAT)
@@ -338,13 +340,17 @@ class VehicleResult(SimulationResult):
         lift = MV.wheel_lift_off_time({c: sig(f"F_T.{c}") for c in corners}, fs)
         travel = MV.wheel_suspension_travel({c: sig(f"x_d.{c}") for c in corners})
         r = MV.COIL_RESISTANCE if resistance is None else resistance
-        energy = MV.wheel_coil_energy({c: sig(f"i_d.{c}") for c in corners}, fs, r)
+        driven = [c for c in corners if takes_current(self.corner_scenarios[c].get("damper"))]
+        energy = (
+            MV.wheel_coil_energy({c: sig(f"i_d.{c}") for c in driven}, fs, r) if driven else {}
+        )
         for c in corners:
             out[f"DLC.{c}"] = dlc[c]
             out[f"lift_off_time.{c}"] = lift[c]
             out[f"rms_travel.{c}"] = travel[c].rms
             out[f"peak_to_peak_travel.{c}"] = travel[c].peak_to_peak
-            out[f"coil_energy.{c}"] = energy[c]
+            if c in energy:  # a damper that takes no current has no coil
+                out[f"coil_energy.{c}"] = energy[c]
         out["coil_energy"] = float(sum(energy.values()))
         return Measures(out, units=VEHICLE_MEASURE_UNITS)
 
