@@ -401,10 +401,11 @@ def _signal_name(name: str) -> str:
 
 
 #: The seat's ISO 2631-1 measures of a half or full car (:meth:`VehicleResult.vehicle_measures`
-#: at :data:`DRIVER_SEAT`, purpose "comfort"): name -> (unit, description). Studies
-#: (``[study] measures``) and the optimiser (``[objective] weights``) report them when asked,
-#: not by default: a run that reports them keeps its body's time history (the weighting
-#: filters need it), where the other measures are reduced in the kernel.
+#: at :data:`DRIVER_SEAT`, purpose "comfort", over the whole record): name -> (unit,
+#: description). Studies (``[study] measures``) and the optimiser (``[objective] weights``)
+#: report them when asked, not by default: a run that reports them keeps its body's time
+#: history (the weighting filters need it), where the other measures are reduced in the
+#: kernel.
 SEAT_MEASURES: dict[str, tuple[str, str]] = {
     "seat_total": ("m/s^2", "vibration total value at the seat (ISO 2631-1, comfort)"),
     "seat_x": ("m/s^2", "Wd-weighted rms fore-aft seat acceleration (ISO 2631-1)"),
