@@ -23,7 +23,10 @@ An optimisation problem is a scenario file (the ``[vehicle]``, ``[damper]``,
 ``[objective]``
     ``weights``: measure -> weight over the road measures of
     :meth:`~mrsuspension.engine.result.SimulationResult.measures`
-    (``wk_rms_body_acceleration``, ``DLC``, ``rms_stroke``, ...);
+    (``wk_rms_body_acceleration``, ``DLC``, ``rms_stroke``, ...; a half or full car:
+    its body's ``heave_ddot_rms``, ..., every corner's ``"<measure>.<corner>"`` and the
+    seat's ISO 2631-1 ``seat_total``, ``seat_z``, ...,
+    :data:`~mrsuspension.engine.vehicle_result.SEAT_MEASURES`);
     ``reference``: tables that replace those of the base for the reference controller
     (default ``{controller = {law = "passive", current = 0.0}}``).
 
@@ -79,6 +82,7 @@ from mrsuspension._batch import job_of, process_pool, run_jobs
 from mrsuspension._docs import doc
 from mrsuspension._inputs import read_toml
 from mrsuspension.engine.plants import PLANTS
+from mrsuspension.engine.vehicle_result import SEAT_MEASURES
 from mrsuspension.errors import (
     ValidationError,
     check_keys,
@@ -190,10 +194,13 @@ def _objective_measures(base: Mapping[str, Any]) -> tuple[str, ...]:
     """Measures an objective may weight for the base's vehicle model.
 
     The quarter car's :data:`OBJECTIVE_MEASURES`; a half or full car's body RMS
-    accelerations and every corner's ``"<measure>.<corner>"``.
+    accelerations, every corner's ``"<measure>.<corner>"`` and the seat's measures
+    (its plant's ``on_request``).
     """
     model = PLANTS.get(base.get("vehicle", {}).get("model", "quarter-car"))
-    return OBJECTIVE_MEASURES if model is None else model.measure_names(OBJECTIVE_MEASURES)
+    if model is None:
+        return OBJECTIVE_MEASURES
+    return (*model.measure_names(OBJECTIVE_MEASURES), *model.on_request)
 
 
 # -- the parts of a problem ---------------------------------------------------------------
@@ -943,8 +950,9 @@ def optimize(
     cache: dict[tuple[float, ...], tuple[float, list[dict[str, Any]] | None]] = {}
     generation = 0
 
+    seat = bool(set(problem.weights) & set(SEAT_MEASURES))  # from the time history
     with process_pool(n_workers, problem.population * len(roads)) as pool:
-        ref_rows = _measure_runs([problem.scenario(None, r) for r in roads], pool)
+        ref_rows = _measure_runs([problem.scenario(None, r) for r in roads], pool, seat)
         if any(row is None for row in ref_rows):
             raise ValidationError("the reference controller's run diverged; check the problem")
         reference = [dict(row or {}) for row in ref_rows]
@@ -968,7 +976,7 @@ def optimize(
                     continue
                 batch.extend(scenarios)
                 owners.extend([key] * len(roads))
-            rows = _measure_runs(batch, pool)
+            rows = _measure_runs(batch, pool, seat)
             by_key: dict[tuple[float, ...], list[dict[str, Any] | None]] = {}
             for key, row in zip(owners, rows, strict=True):
                 by_key.setdefault(key, []).append(row)
@@ -1035,11 +1043,14 @@ def optimize(
     )
 
 
-def _measure_runs(scenarios: Sequence[Scenario], pool: Any) -> list[dict[str, Any] | None]:
+def _measure_runs(
+    scenarios: Sequence[Scenario], pool: Any, seat: bool = False
+) -> list[dict[str, Any] | None]:
     """Measures of each single-run scenario of any model, in order (None for a diverged
     run): :func:`~mrsuspension._batch.run_jobs` (the engine's
-    :func:`~mrsuspension.engine.batch.measure_batch`) on the open pool."""
-    return run_jobs([job_of(s) for s in scenarios], pool)
+    :func:`~mrsuspension.engine.batch.measure_batch`) on the open pool; ``seat``: with
+    the seat's ISO 2631-1 measures (each run keeps its time history)."""
+    return run_jobs([job_of(s) for s in scenarios], pool, seat=seat)
 
 
 def _floats(row: Mapping[str, Any]) -> dict[str, float]:

@@ -85,7 +85,9 @@ def study(
     if as_json:
         typer.echo(df.to_json(orient="records"))
         return
-    typer.echo(df.to_string(index=False))
+    from mrsuspension._notebook import with_unit_headers
+
+    typer.echo(with_unit_headers(df).to_string(index=False))  # "seat_z [m/s^2]"
     if saved is not None:
         typer.echo(f"wrote {saved}")
 

@@ -18,6 +18,7 @@ Examples
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from typing import Any
 
 from mrsuspension.dampers.base import DamperKernel, DamperModel, DamperResponse, ParameterSpec
@@ -55,6 +56,7 @@ __all__ = [
     "damper_options",
     "make_damper",
     "make_estimator",
+    "takes_current",
 ]
 
 #: Damper models by registry name.
@@ -118,3 +120,22 @@ def make_damper(model: str, parameters: ParameterSpec = None, **options: Any) ->
         return DAMPERS[model](parameters, **options)
     except TypeError as exc:
         raise ValidationError(f"damper model {model!r}: {exc}") from None
+
+
+def takes_current(damper: Mapping[str, Any] | None) -> bool:
+    """Whether the damper a run describes takes a drive current (``describe()["damper"]``).
+
+    False for a model whose force does not depend on the current
+    (:attr:`DamperModel.takes_current`, e.g. ``"linear"``): the measures of its runs
+    report no ``mean_current``. A description without a registered model counts as
+    taking one.
+
+    Examples
+    --------
+    >>> takes_current({"model": "linear"}), takes_current({"model": "wang-symmetric"})
+    (False, True)
+    >>> takes_current(None)
+    True
+    """
+    model = DAMPERS.get(str((damper or {}).get("model")))
+    return True if model is None else bool(model.takes_current)

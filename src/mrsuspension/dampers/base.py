@@ -167,6 +167,9 @@ class DamperModel(ABC):
     default_parameters: ClassVar[str]
     #: parameter-set families this model accepts
     accepts: ClassVar[tuple[str, ...]]
+    #: whether the drive current changes the force (False: a passive model such as the
+    #: linear damper; the measures of its runs then report no current)
+    takes_current: ClassVar[bool] = True
 
     def __init__(self, parameters: ParameterSpec = None, *, max_current: float | None = None):
         pset = _parameters.resolve(

@@ -37,6 +37,7 @@ class LinearViscous(DamperModel):
     parameter_rules: ClassVar[dict[str, str]] = {"c": "nonnegative"}
     default_parameters: ClassVar[str] = "linear-2500"
     accepts: ClassVar[tuple[str, ...]] = ("linear",)
+    takes_current: ClassVar[bool] = False
     #: options a scenario's ``[damper]`` table may set, with their value kind
     scenario_options: ClassVar[dict[str, str]] = {"damping": "number"}
 

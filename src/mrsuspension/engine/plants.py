@@ -22,6 +22,8 @@ Examples
 ('DLC', 'mean_current')
 >>> plant("half-car").measure_names(("DLC",))
 ('heave_ddot_rms', 'pitch_ddot_rms', 'DLC.front', 'DLC.rear')
+>>> plant("full-car").on_request[:4]  # the seat's ISO 2631-1 measures, when asked
+('seat_total', 'seat_x', 'seat_y', 'seat_z')
 >>> plant("quarter-cart")
 Traceback (most recent call last):
 ...
@@ -103,6 +105,11 @@ class Plant:
     units : mapping, optional
         Units of the model's own measures (name -> unit), where the quarter car's
         (:data:`~mrsuspension.engine.result.MEASURE_UNITS`) do not name them.
+    on_request : tuple of str
+        Measures a run reports only when asked (a study's ``[study] measures``, an
+        objective's weights), not in :attr:`measure_names`' defaults: they need the run's
+        time history (a half or full car's seat measures,
+        :data:`~mrsuspension.engine.vehicle_result.SEAT_MEASURES`).
     """
 
     name: str
@@ -115,6 +122,7 @@ class Plant:
     sets: Callable[[], Sequence[str]] | None = None
     wheel_roads: bool = False
     units: Mapping[str, str] = field(default_factory=dict)
+    on_request: tuple[str, ...] = ()
 
     @property
     def corners(self) -> tuple[str, ...]:
@@ -223,6 +231,7 @@ def _vehicle_params(cls: Any) -> Callable[[dict[str, Any], str | None], Any]:
 
 
 def _register_builtins() -> None:
+    from mrsuspension.engine.vehicle_result import SEAT_MEASURES
     from mrsuspension.vehicle import FullCar, HalfCar, QuarterCar
     from mrsuspension.vehicle.body import available_sets
 
@@ -249,6 +258,8 @@ def _register_builtins() -> None:
                 make_params=_vehicle_params(cls),
                 sets=available_sets,
                 wheel_roads=True,
+                units={k: unit for k, (unit, _) in SEAT_MEASURES.items()},
+                on_request=tuple(SEAT_MEASURES),
             )
         )
 

@@ -42,6 +42,7 @@ from mrsuspension.engine.kernel import N_ACC, accumulate
 from mrsuspension.engine.result import (
     SimulationDiverged,
     SimulationResult,
+    drop_unused_currents,
     measures_context,
     pulse_measures,
     road_measures,
@@ -245,6 +246,7 @@ def finish(
             stroke_variance=float(max(acc[EK.A_XD2] / n - mean_x * mean_x, 0.0)),
             mean_current=float(acc[EK.A_I1] / n),
         )
+    drop_unused_currents(out, r.scenario)
     out["vm_clamp_fraction"] = float(acc[EK.A_CLAMP] / acc[EK.A_N])
     return out
 

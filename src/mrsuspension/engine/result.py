@@ -23,6 +23,7 @@ if TYPE_CHECKING:
 
 __all__ = [
     "CLAMP_WARN_FRACTION",
+    "CURRENT_MEASURES",
     "MEASURES_BY_KIND",
     "MEASURE_NAMES",
     "MEASURE_NOTES",
@@ -35,6 +36,7 @@ __all__ = [
     "VelocityClampWarning",
     "controller_text",
     "describe_run",
+    "drop_unused_currents",
     "excitation_text",
     "measure_label",
     "measures_context",
@@ -70,6 +72,9 @@ MEASURES_BY_KIND: dict[str, tuple[str, ...]] = {
         "mean_current", "vm_clamp_fraction",
     ),
 }  # fmt: skip
+#: The measures of the drive current: reported only for a damper that takes one
+#: (:func:`~mrsuspension.dampers.takes_current`; a linear damper's runs leave them out).
+CURRENT_MEASURES: tuple[str, ...] = ("mean_current", "mean_square_current")
 #: Non-numeric entries of :meth:`SimulationResult.measures` by measures kind (how a
 #: measure was computed, not a measure).
 MEASURE_NOTES: dict[str, tuple[str, ...]] = {"pulse": ("road_peak",)}
@@ -315,7 +320,9 @@ class SimulationResult(Mapping[str, np.ndarray]):
           ``mean_current``;
 
         and, for every kind, ``vm_clamp_fraction``: the share of the record with the
-        peak-velocity estimate at its upper clamp (:attr:`velocity_clamp_fraction`).
+        peak-velocity estimate at its upper clamp (:attr:`velocity_clamp_fraction`). A
+        damper that takes no current (the linear one) reports no ``mean_current`` or
+        ``mean_square_current`` (:func:`drop_unused_currents`).
 
         Parameters
         ----------
@@ -342,6 +349,7 @@ class SimulationResult(Mapping[str, np.ndarray]):
         how = check_road_peak(road_peak)
         kind, exc, static_load = measures_context(self.scenario)
         out: dict[str, Any] = self._kind_measures(kind, exc, static_load, how)
+        drop_unused_currents(out, self.scenario)
         out["vm_clamp_fraction"] = self.velocity_clamp_fraction
         return Measures(out, units=MEASURE_UNITS)
 
@@ -638,6 +646,27 @@ def measures_context(scenario: Mapping[str, Any]) -> tuple[Any, Mapping[str, Any
     exc = scenario.get("excitation", {})
     static_load = QuarterCar(**scenario.get("vehicle", {})).static_load
     return _measures_kind(exc.get("kind")), exc, static_load
+
+
+def drop_unused_currents(out: dict[str, Any], scenario: Mapping[str, Any]) -> dict[str, Any]:
+    """``out`` without :data:`CURRENT_MEASURES` when the run's damper takes no current.
+
+    A linear damper ignores the current its controller commands, so a mean current
+    would report a drive that does nothing (:func:`~mrsuspension.dampers.takes_current`).
+
+    Examples
+    --------
+    >>> drop_unused_currents({"DLC": 0.1, "mean_current": 0.2}, {"damper": {"model": "linear"}})
+    {'DLC': 0.1}
+    >>> drop_unused_currents({"mean_current": 0.2}, {"damper": {"model": "bingham"}})
+    {'mean_current': 0.2}
+    """
+    from mrsuspension.dampers import takes_current
+
+    if not takes_current(scenario.get("damper")):
+        for name in CURRENT_MEASURES:
+            out.pop(name, None)
+    return out
 
 
 def pulse_measures(ratios: Mapping[str, float], peak_tire_force: float, how: str) -> dict[str, Any]:

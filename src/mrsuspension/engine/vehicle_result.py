@@ -25,13 +25,17 @@ if TYPE_CHECKING:
     import xarray as xr
     from matplotlib.figure import Figure
 
+    from mrsuspension.measures import RoadPeak
+
 __all__ = [
     "BODY_MEASURES",
     "BODY_SIGNALS",
     "DRIVER_SEAT",
+    "SEAT_MEASURES",
     "VEHICLE_CORNER_SIGNALS",
     "VEHICLE_MEASURE_UNITS",
     "VehicleResult",
+    "WithSeatMeasures",
 ]
 
 _A = TypeVar("_A")  # the Axes a plot(..., ax=...) draws into and returns
@@ -280,7 +284,8 @@ class VehicleResult(SimulationResult):
         vibration total value of ``purpose``) and ``seat_<axis>`` per axis
         (``seat_z`` is the Wk-weighted vertical RMS); per corner ``"<name>.<corner>"``:
         ``DLC``, ``lift_off_time`` [s], ``rms_travel`` and ``peak_to_peak_travel`` [m],
-        ``coil_energy`` [J]; and ``coil_energy`` summed over the corners.
+        ``coil_energy`` [J] (a corner whose damper takes no current, e.g. a linear one,
+        has none); and ``coil_energy`` summed over the corners.
 
         Parameters
         ----------
@@ -305,6 +310,7 @@ class VehicleResult(SimulationResult):
         >>> m["roll_ddot_rms"] > 0.0, m.units["lift_off_time.front_left"]
         (True, 's')
         """
+        from mrsuspension.dampers import takes_current
         from mrsuspension.measures import vehicle as MV
 
         place = dict(DRIVER_SEAT)
@@ -338,13 +344,15 @@ class VehicleResult(SimulationResult):
         lift = MV.wheel_lift_off_time({c: sig(f"F_T.{c}") for c in corners}, fs)
         travel = MV.wheel_suspension_travel({c: sig(f"x_d.{c}") for c in corners})
         r = MV.COIL_RESISTANCE if resistance is None else resistance
-        energy = MV.wheel_coil_energy({c: sig(f"i_d.{c}") for c in corners}, fs, r)
+        driven = [c for c in corners if takes_current(self.corner_scenarios[c].get("damper"))]
+        energy = MV.wheel_coil_energy({c: sig(f"i_d.{c}") for c in driven}, fs, r) if driven else {}
         for c in corners:
             out[f"DLC.{c}"] = dlc[c]
             out[f"lift_off_time.{c}"] = lift[c]
             out[f"rms_travel.{c}"] = travel[c].rms
             out[f"peak_to_peak_travel.{c}"] = travel[c].peak_to_peak
-            out[f"coil_energy.{c}"] = energy[c]
+            if c in energy:  # a damper that takes no current has no coil
+                out[f"coil_energy.{c}"] = energy[c]
         out["coil_energy"] = float(sum(energy.values()))
         return Measures(out, units=VEHICLE_MEASURE_UNITS)
 
@@ -390,3 +398,53 @@ def _signal_name(name: str) -> str:
         if name in table:
             return table[name][1]
     return name
+
+
+#: The seat's ISO 2631-1 measures of a half or full car (:meth:`VehicleResult.vehicle_measures`
+#: at :data:`DRIVER_SEAT`, purpose "comfort", over the whole record): name -> (unit,
+#: description). Studies (``[study] measures``) and the optimiser (``[objective] weights``)
+#: report them when asked, not by default: a run that reports them keeps its body's time
+#: history (the weighting filters need it), where the other measures are reduced in the
+#: kernel.
+SEAT_MEASURES: dict[str, tuple[str, str]] = {
+    "seat_total": ("m/s^2", "vibration total value at the seat (ISO 2631-1, comfort)"),
+    "seat_x": ("m/s^2", "Wd-weighted rms fore-aft seat acceleration (ISO 2631-1)"),
+    "seat_y": ("m/s^2", "Wd-weighted rms lateral seat acceleration (ISO 2631-1)"),
+    "seat_z": ("m/s^2", "Wk-weighted rms vertical seat acceleration (ISO 2631-1)"),
+    "seat_rx": ("rad/s^2", "We-weighted rms seat roll acceleration (ISO 2631-1)"),
+    "seat_ry": ("rad/s^2", "We-weighted rms seat pitch acceleration (ISO 2631-1)"),
+}
+
+
+@dataclass(frozen=True)
+class WithSeatMeasures:
+    """A batch reducer (picklable): a run's measures and its seat's (:data:`SEAT_MEASURES`).
+
+    ``result.measures(road_peak=...)`` plus, for a half or full car, the seat measures of
+    :meth:`VehicleResult.vehicle_measures` (the driver's seat, comfort), with their units;
+    a run without a seat (the quarter car) gives its measures alone. Given to
+    :func:`~mrsuspension.engine.batch.run_batch`, each run keeps its time history.
+
+    Examples
+    --------
+    >>> from mrsuspension.excitation import RoadProfile, WheelRoads
+    >>> from mrsuspension.engine.vehicle import VehicleSimulation
+    >>> from mrsuspension.vehicle import HalfCar
+    >>> road = RoadProfile.from_options({"iso_class": "C", "length": 12.0})
+    >>> res = VehicleSimulation(HalfCar(), WheelRoads.from_excitation(road, HalfCar(), 50.0)).run(0.5)
+    >>> m = WithSeatMeasures()(res)
+    >>> m["seat_z"] == res.vehicle_measures()["seat_z"], m.units["seat_z"], "DLC.rear" in m
+    (True, 'm/s^2', True)
+    """
+
+    road_peak: RoadPeak = "after-onset"
+
+    def __call__(self, result: SimulationResult) -> Measures:
+        out = result.measures(road_peak=self.road_peak)
+        if not isinstance(result, VehicleResult):
+            return out
+        seat = result.vehicle_measures()
+        values = {**out, **{k: seat[k] for k in SEAT_MEASURES}}
+        return Measures(
+            values, units={**out.units, **{k: u for k, (u, _) in SEAT_MEASURES.items()}}
+        )

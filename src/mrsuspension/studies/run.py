@@ -31,6 +31,7 @@ from mrsuspension._progress import progress_bar as _bar
 from mrsuspension.engine.batch import run_batch
 from mrsuspension.engine.result import SimulationResult
 from mrsuspension.engine.simulate import MeasuresOf, run_quietly
+from mrsuspension.engine.vehicle_result import SEAT_MEASURES, WithSeatMeasures
 from mrsuspension.errors import ValidationError
 from mrsuspension.measures.shock import DEFAULT_ROAD_PEAK, RoadPeak
 from mrsuspension.studies.study import PROGRESS_POINTS, SCHEDULER_TIMEOUT, Study
@@ -45,6 +46,7 @@ __all__ = [
     "cache_key",
     "code_fingerprint",
     "default_cache_dir",
+    "reducer_of",
     "run_study",
 ]
 
@@ -294,9 +296,36 @@ def _measures(result: SimulationResult, road_peak: RoadPeak) -> dict[str, Any]:
     return result.measures(road_peak=road_peak)
 
 
-def _run_point(job: Job, road_peak: RoadPeak = DEFAULT_ROAD_PEAK) -> dict[str, Any]:
+def reducer_of(study: Study) -> MeasuresOf | WithSeatMeasures:
+    """What each run of ``study`` is reduced to: its measures, in the kernel where the
+    model can (:class:`~mrsuspension.engine.simulate.MeasuresOf`), or with the seat's
+    ISO 2631-1 measures when the study asks for one
+    (:class:`~mrsuspension.engine.vehicle_result.WithSeatMeasures`: from the time history).
+
+    Examples
+    --------
+    >>> from mrsuspension.studies import Study
+    >>> base = {"vehicle": {"model": "half-car"},
+    ...         "excitation": {"kind": "road", "iso_class": "C", "length": 20.0},
+    ...         "grid": {"controller.current": [0.0, 0.2]}}
+    >>> type(reducer_of(Study.from_dict(base))).__name__
+    'MeasuresOf'
+    >>> type(reducer_of(Study.from_dict({**base, "study": {"measures": ["seat_z"]}}))).__name__
+    'WithSeatMeasures'
+    """
+    if set(study.measures) & set(SEAT_MEASURES):
+        return WithSeatMeasures(study.road_peak)
+    return MeasuresOf(study.road_peak)
+
+
+def _run_point(
+    job: Job,
+    road_peak: RoadPeak = DEFAULT_ROAD_PEAK,
+    reduce: Callable[[SimulationResult], dict[str, Any]] | None = None,
+) -> dict[str, Any]:
     """One run reduced to its measures (module level, so workers can unpickle it)."""
-    return _measures(run_quietly(job.simulation, job.settings), road_peak)
+    result = run_quietly(job.simulation, job.settings)
+    return _measures(result, road_peak) if reduce is None else reduce(result)
 
 
 def _run_local(
@@ -304,15 +333,17 @@ def _run_local(
     workers: int | None,
     progress: Progress | None,
     road_peak: RoadPeak = DEFAULT_ROAD_PEAK,
+    reduce: Callable[[SimulationResult], dict[str, Any]] | None = None,
 ) -> list[dict[str, Any]]:
     """The engine's batch front door (:func:`~mrsuspension.engine.batch.run_batch`), any
-    model: runs reduced to their measures inside the kernels where the model can."""
+    model: runs reduced to their measures inside the kernels where the model can
+    (``reduce``: another reducer, e.g. :class:`WithSeatMeasures`)."""
     return run_batch(
         [job.simulation for job in jobs],
         settings=[job.settings for job in jobs],
         workers=workers,
         progress=progress,
-        reduce=MeasuresOf(road_peak),
+        reduce=MeasuresOf(road_peak) if reduce is None else reduce,
     )
 
 
@@ -322,6 +353,7 @@ def _run_dask(
     progress: Progress | None,
     road_peak: RoadPeak = DEFAULT_ROAD_PEAK,
     scheduler_timeout: float = SCHEDULER_TIMEOUT,
+    reduce: Callable[[SimulationResult], dict[str, Any]] | None = None,
 ) -> list[dict[str, Any]]:
     """The same reducer on a Dask cluster (an address or a ``distributed.Client``)."""
     from mrsuspension.errors import require_extra
@@ -338,7 +370,9 @@ def _run_dask(
     futures: list[Any] = []
     try:
         futures = client.map(
-            functools.partial(_run_point, road_peak=road_peak), list(jobs), pure=False
+            functools.partial(_run_point, road_peak=road_peak, reduce=reduce),
+            list(jobs),
+            pure=False,
         )
         index = {f.key: k for k, f in enumerate(futures)}
         out: list[dict[str, Any]] = [{} for _ in jobs]
@@ -472,10 +506,11 @@ def run_study(
             for sim, settings in zip(study.simulations(), study.run_settings(), strict=True)
         ]
         start = time.perf_counter()
+        reduce = reducer_of(study)
         if (isinstance(executor, str) and executor == "local") or executor is None:
-            rows = _run_local(jobs, workers, tick, study.road_peak)
+            rows = _run_local(jobs, workers, tick, study.road_peak, reduce)
         else:
-            rows = _run_dask(jobs, executor, tick, study.road_peak, scheduler_timeout)
+            rows = _run_dask(jobs, executor, tick, study.road_peak, scheduler_timeout, reduce)
     elapsed = time.perf_counter() - start
     ds = _dataset(study, rows, elapsed)
     if cache_file is not None:

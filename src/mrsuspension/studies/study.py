@@ -5,7 +5,9 @@ A study file is a scenario file (the same ``[vehicle]``, ``[damper]``, ``[contro
 
 ``[study]``
     ``name``, ``description``, ``measures`` (list of measure names; default: all of the
-    excitation kind's), optionally ``scenario`` (a scenario file used as the base; the
+    excitation kind's; a half or full car also reports its seat's ISO 2631-1 measures
+    ``seat_total``, ``seat_z``, ... when they are listed, see
+    :data:`~mrsuspension.engine.vehicle_result.SEAT_MEASURES`), optionally ``scenario`` (a scenario file used as the base; the
     study's own tables override it key by key) and ``road_peak``, the road acceleration
     peak that divides ``SAR_s`` and ``SAR_u`` of pulse runs: ``"after-onset"`` (default,
     it matches the dissertation's SAR_s) or ``"onset"`` (see
@@ -625,7 +627,8 @@ class Study:
         frequencies = next(iter(sweeps)) if sweeps else None
 
         available = tuple(dict.fromkeys(m for s in scenarios for m in scenario_measures(s)))
-        valid = sorted(available)
+        on_request = tuple(dict.fromkeys(m for s in scenarios for m in s.plant.on_request))
+        valid = sorted({*available, *on_request})
         requested = meta.get("measures")
         if requested is None:
             measures = tuple(m for m in dict.fromkeys(available) if m in valid)

@@ -104,6 +104,7 @@ def add_units(ds: xr.Dataset) -> xr.Dataset:
     ('-', 'kg')
     """
     from mrsuspension.engine.result import MEASURE_UNITS
+    from mrsuspension.engine.vehicle_result import SEAT_MEASURES
     from mrsuspension.scenario import BODY_MEASURES
 
     for name in ds.data_vars:
@@ -112,6 +113,8 @@ def add_units(ds: xr.Dataset) -> xr.Dataset:
         unit = MEASURE_UNITS.get(key, MEASURE_UNITS.get(key.split(".", 1)[0]))
         if key in BODY_MEASURES:
             unit = BODY_MEASURES[key][1]
+        if key in SEAT_MEASURES:
+            unit = SEAT_MEASURES[key][0]
         if unit is not None:
             ds[name].attrs["units"] = unit
     for name in ds.coords:
@@ -159,10 +162,12 @@ def dimension_name(field: str) -> str:
 def _measure_name(measure: str) -> str:
     """The ``long_name`` of a measure (a body RMS: of its signal)."""
     from mrsuspension.engine.result import MEASURE_NAMES
-    from mrsuspension.engine.vehicle_result import BODY_MEASURES, BODY_SIGNALS
+    from mrsuspension.engine.vehicle_result import BODY_MEASURES, BODY_SIGNALS, SEAT_MEASURES
 
     if measure in BODY_MEASURES:
         return f"rms {BODY_SIGNALS[BODY_MEASURES[measure][0]][1]}"
+    if measure in SEAT_MEASURES:
+        return SEAT_MEASURES[measure][1]
     return MEASURE_NAMES.get(measure, measure)
 
 

@@ -126,7 +126,7 @@ def run_unit(unit: Unit) -> dict[str, Any]:
         out["std F_T [N]"] = float(np.std(np.asarray(r.F_T)))
         out[STATIC_LOAD] = _static_load(unit.scenario)
         out["rms a_s [m/s^2]"] = float(m["rms_body_acceleration"])
-        out["mean current [A]"] = float(m["mean_current"])
+        out["mean current [A]"] = float(m.get("mean_current", np.nan))  # n/a: linear damper
     elif unit.kind == "freq":
         from mrsuspension.studies import Study, run_study
 
