@@ -54,6 +54,7 @@ from numba import njit
 from mrsuspension import shaping as _shaping
 from mrsuspension._numba_cache import announce_compile, invalidate_if_changed
 from mrsuspension.control import kernel as CK
+from mrsuspension.control import signals as SG
 from mrsuspension.control.kernel import EST_SHARED, F_MODEL, P_C0, P_CS, P_MS0, P_P
 from mrsuspension.dampers import kernels as DK
 from mrsuspension.dampers.kernels import NO_REFCOUNT
@@ -69,8 +70,9 @@ if TYPE_CHECKING:
 
 # the cached kernels below inline the damper, shaping, controller, vehicle and step kernels
 invalidate_if_changed(
-    __file__, DK.__file__, EK.__file__, RD.__file__, _shaping.__file__, CK.__file__, VK.__file__
-)
+    __file__, DK.__file__, EK.__file__, RD.__file__, _shaping.__file__, CK.__file__, VK.__file__,
+    SG.__file__,
+)  # fmt: skip
 
 __all__ = [
     "LANES",

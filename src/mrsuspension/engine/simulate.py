@@ -259,7 +259,7 @@ class Simulation:
         >>> from mrsuspension.excitation import Harmonic
         >>> a = Simulation(Harmonic(1.0, 0.01)).kernel_arrays(1e-4)
         >>> a.controller_params.size, a.memory.size
-        (18, 16)
+        (18, 41)
         """
         dt = self.check_dt(dt) if check_stability else check_step(dt)
         kern = self.damper.kernel(dt)

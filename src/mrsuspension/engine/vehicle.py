@@ -581,7 +581,7 @@ class VehicleSimulation:
         >>> sim = VehicleSimulation(FullCar(), SameRoadAtEveryWheel(Harmonic(2.0, 0.01), FullCar.corners))
         >>> a = sim.arrays(1e-4)
         >>> a.memory.shape, a.corner_vehicles.shape
-        ((4, 16), (4, 8))
+        ((4, 41), (4, 8))
         """
         car = self.vehicle
         n = len(car.corners)
