@@ -1001,14 +1001,14 @@ def _build_controller(
 ) -> Controller:
     spec = table.get("law", "passive")
     if is_law_spec(spec):  # a user-defined law: its options as keyword arguments
-        options = {k: v for k, v in table.items() if k != "law"}
+        given = {k: v for k, v in table.items() if k != "law"}
         with _in_section(section):
             cls = load_law(str(spec), base=base)
             try:
-                return cls(**options)
+                return cls(**given)
             except TypeError:
                 names = cls.option_names()
-                bad = [k for k in options if k not in names]
+                bad = [k for k in given if k not in names]
                 raise ValidationError(
                     f"law {spec!r} has no option {bad[0]!r}.{did_you_mean(bad[0], names)} "
                     f"Its options: {', '.join(names) or 'none'}."

@@ -341,7 +341,7 @@ def user_control(
     addr = cp[P_USER_FN]
     if addr == 0.0:  # no entry (never written by the Python side): no current
         return 0.0, 0.0, nan, nan
-    out = call_law(np.int64(addr), sig, cp[P_USER_FN + 1 :])
+    out: float = call_law(np.int64(addr), sig, cp[P_USER_FN + 1 :])  # type: ignore[call-arg]
     if not math.isfinite(out):
         return nan, nan, nan, nan
     imax = cp[P_IMAX]

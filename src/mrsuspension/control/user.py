@@ -463,7 +463,7 @@ def _numba_entry(cls: type[UserLaw]) -> tuple[Any, int]:
     }
     exec(compile(src, f"<control law {cls.law}>", "exec"), space)
     entry = cfunc(_CFUNC_SIG, error_model="numpy")(space["_entry"])
-    return entry, int(entry.address)
+    return entry, int(entry.address or 0)
 
 
 def _python_entry(cls: type[UserLaw]) -> tuple[Any, int]:
@@ -516,7 +516,7 @@ def _bench(addr: int, sig: np.ndarray, opt: np.ndarray, n: int) -> float:
     acc = 0.0
     for k in range(n):
         sig[S_T] = k * 1e-4
-        acc += CK.call_law(addr, sig, opt)
+        acc += CK.call_law(addr, sig, opt)  # type: ignore[call-arg]
     return acc
 
 
