@@ -45,6 +45,7 @@ __all__ = [
     "C_ONOFF_ADFG",
     "C_PASSIVE",
     "C_POLICY",
+    "C_SIGNALS",
     "C_SLIDING",
     "C_USER_CURRENT",
     "C_USER_FORCE",
@@ -87,6 +88,10 @@ C_INVERSE_HILO = 3
 C_SLIDING = 4
 C_IDEAL_SKYHOOK = 5
 C_IDEAL_ONOFF = 6
+#: the first code of the laws that read every measured signal (:mod:`~mrsuspension.control.signals`,
+#: filled for them only: the laws above read the quarter-car view, its first six slots, and
+#: the quarter car's step does not pay for the rest); a new law takes a code from here on
+C_SIGNALS = 7
 #: a user-defined law (:mod:`mrsuspension.control.user`) returning the drive current [A]
 C_USER_CURRENT = 7
 #: a user-defined law returning a target force [N], tracked through the inverse model

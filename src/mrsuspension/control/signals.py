@@ -1,7 +1,9 @@
 """The named measured signals a control law reads: one vector, one layout, one table.
 
 At every control sample (the start of every engine step) both kernels fill a vector of
-:data:`NS` values per corner, the **signals** (``S_*`` slots below), with what the
+:data:`NS` values per corner (the quarter car's step for the laws that read them only,
+codes from :data:`~mrsuspension.control.kernel.C_SIGNALS` on: the dissertation's laws read
+the state's view and their step costs what it cost before), the **signals** (``S_*`` slots below), with what the
 controller sees: the ideal value, or the ``[sensing]`` estimate where sensing is
 configured (half and full car: the body velocity from the accelerometer's estimator, the
 stroke and its rate from the stroke sensor, the body acceleration from the accelerometer's

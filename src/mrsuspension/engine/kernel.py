@@ -199,7 +199,7 @@ def apply_control(
     keeps the law's memo at ``M_PH`` (emptied by :func:`start`).
     """
     memo = mem[M_PH : M_PH + DK.PH_SIZE]
-    if ck >= CK.C_USER_CURRENT:
+    if ck >= CK.C_USER_CURRENT:  # (reads every signal: C_SIGNALS and up)
         i_d, i_z, z_c, target = CK.user_control(ck, cp, dp, y, ad, vm, memo)
     else:
         i_d, i_z, z_c, target = CK.control(ck, cp, vp, dp, y, ad, vm, memo)
@@ -243,18 +243,21 @@ def step(
     # EST_SHARED: the damper's own estimate (same estimator, same samples)
     vm = ds[DK.WS_VM] if cek == EST_SHARED else DK.estimator_update(cek, cep, ces, xd, vd, ad)
     mem[M_VM] = vm
-    # the signals at this control sample (the previous step's rates, force and current)
     count = mem[M_STEP]
     mem[M_STEP] = count + 1.0
-    sig = mem[M_SIG : M_SIG + SG.NS]
-    SG.fill_corner(
-        sig, y[0], y[1], y[2], y[3], y[4], y[5], mem[M_AS], mem[M_AU], mem[M_FD], mem[M_ID],
-        vm, count * dt,
-    )  # fmt: skip
-    sig[SG.S_HEAVE] = y[0]
-    sig[SG.S_VHEAVE] = y[1]
-    sig[SG.S_AHEAVE] = mem[M_AS]
-    apply_control(ck, cp, vp, dp, sig, ad, vm, mem)
+    if ck >= CK.C_SIGNALS:  # the signals at this control sample (the previous step's
+        # rates, force and current); the laws below C_SIGNALS read the state's view
+        sig = mem[M_SIG : M_SIG + SG.NS]
+        SG.fill_corner(
+            sig, y[0], y[1], y[2], y[3], y[4], y[5], mem[M_AS], mem[M_AU], mem[M_FD],
+            mem[M_ID], vm, count * dt,
+        )  # fmt: skip
+        sig[SG.S_HEAVE] = y[0]
+        sig[SG.S_VHEAVE] = y[1]
+        sig[SG.S_AHEAVE] = mem[M_AS]
+        apply_control(ck, cp, vp, dp, sig, ad, vm, mem)
+    else:
+        apply_control(ck, cp, vp, dp, y, ad, vm, mem)
     reference = CK.needs_reference(ck)
     # classical RK4 in scalars; the four stages and the evaluation at the new state share
     # one call site of accelerations() (small inlined code, short compile). k_j is

@@ -16,7 +16,6 @@ import pytest
 
 from mrsuspension.control import CONTROLLERS, make_controller
 from mrsuspension.control import kernel as CK
-from mrsuspension.control import signals as SG
 from mrsuspension.dampers import WangSymmetric
 from mrsuspension.dampers import kernels as DK
 from mrsuspension.engine import KernelArrays, Simulation
@@ -44,19 +43,11 @@ def reference_step(y: np.ndarray, road: list[tuple[float, float]], a: KernelArra
             a.controller_estimator_state, xd, vd, ad,
         )  # fmt: skip
     mem[EK.M_VM] = vm
-    # the signals of this control sample (control/signals.py), as the step fills them
+    # the step count; the signals (control/signals.py) are filled for the laws from
+    # C_SIGNALS on only (user laws: tests/unit/control/test_signals.py)
     count = mem[EK.M_STEP]
     mem[EK.M_STEP] = count + 1.0
-    sig = mem[EK.M_SIG : EK.M_SIG + SG.NS]
-    sig[: VK.NY] = y
-    sig[SG.S_AS], sig[SG.S_AU], sig[SG.S_XD], sig[SG.S_VD] = mem[EK.M_AS], mem[EK.M_AU], xd, vd
-    sig[SG.S_FD], sig[SG.S_ID], sig[SG.S_VM], sig[SG.S_T] = (
-        mem[EK.M_FD],
-        mem[EK.M_ID],
-        vm,
-        count * DT,
-    )
-    sig[SG.S_HEAVE], sig[SG.S_VHEAVE], sig[SG.S_AHEAVE] = y[0], y[1], mem[EK.M_AS]
+    assert a.controller_kind < CK.C_SIGNALS
     i_d, i_z, z_c, target = CK.control(
         a.controller_kind, a.controller_params, a.vehicle, a.damper_params, y, ad, vm,
         mem[EK.M_PH : EK.M_PH + DK.PH_SIZE],
