@@ -53,6 +53,7 @@ from mrsuspension.control import CONTROLLERS, Controller, HiLo, make_controller
 from mrsuspension.control.modal import VehicleLaw
 from mrsuspension.control.registry import VEHICLE_LAWS as LAW_PLUGINS
 from mrsuspension.control.sensing import BandPassObserver, LeakyIntegrator, Sensing, StrokeSensor
+from mrsuspension.control.user import is_law_spec, load_law
 from mrsuspension.dampers import DAMPERS, ESTIMATORS, DamperModel, damper_options, make_damper
 from mrsuspension.dampers.wang import VEHICLE_VH_VARIANT
 from mrsuspension.engine.batch import run_batch
@@ -352,18 +353,42 @@ def _typed(section: str, key: str, value: object, kind: str) -> Any:
 _CORNER_SECTIONS = ("damper", "controller")
 
 
+def _user_value(section: str, key: str, value: object) -> Any:
+    """A user law's option (``[controller] law = "module:function"``): a string (``law``),
+    a number, or a vector or matrix of numbers (TOML arrays), checked by the law."""
+    if key == "law":
+        return _typed(section, key, value, "string")
+    if _is_number(value):
+        return float(value)  # type: ignore[arg-type]
+    flat = value if isinstance(value, list) else None
+    if flat is not None and all(isinstance(v, list) for v in flat) and flat:
+        flat = [v for row in flat for v in row]
+    if flat is None or not all(_is_number(v) for v in flat):
+        raise ValidationError(
+            f"{_where(section, key)} must be a number or an array of numbers (a vector, or "
+            f"a matrix as an array of rows); got {value!r}"
+        )
+    return value
+
+
 def _table(data: Mapping[str, Any], section: str) -> dict[str, Any]:
-    """The section's table, typed and with known keys only."""
+    """The section's table, typed and with known keys only (a user law's ``[controller]``
+    keys are its options: numbers and arrays, checked by the law)."""
     raw = data.get(section, {})
     if not isinstance(raw, Mapping):
         raise ValidationError(f"[{section}] must be a table; got {raw!r}")
     keys = SCENARIO_KEYS[section]
+    user = section == "controller" and is_law_spec(raw.get("law"))
     out: dict[str, Any] = {}
     for key, value in raw.items():
         if section in _CORNER_SECTIONS and isinstance(value, Mapping):
             # a per-corner table [damper.front_left]: its keys are the section's
             corner = {}
+            corner_user = user or (section == "controller" and is_law_spec(value.get("law")))
             for sub, item in value.items():
+                if corner_user and not isinstance(item, Mapping):
+                    corner[sub] = _user_value(f"{section}.{key}", str(sub), item)
+                    continue
                 if sub not in keys:
                     raise _unknown_key(f"{section}.{key}", str(sub), keys)
                 if isinstance(item, Mapping):
@@ -372,6 +397,9 @@ def _table(data: Mapping[str, Any], section: str) -> dict[str, Any]:
                     )
                 corner[sub] = _typed(f"{section}.{key}", sub, item, keys[sub])
             out[key] = corner
+            continue
+        if user:
+            out[key] = _user_value(section, str(key), value)
             continue
         if key not in keys:
             if section in ("excitation", "vehicle"):  # reported for the kind or model
@@ -504,7 +532,7 @@ class Scenario:
         body_control = _build_body_control(controller_table, law_corners, vehicle, corners)
         if body_control is not None:  # the corners run passive at 0 A: the law sets them
             controller_table = {"law": "passive"}
-        controller = _build_controller(controller_table)
+        controller = _build_controller(controller_table, base=base)
         corner_dampers: dict[str, DamperModel] = {}
         corner_controllers: dict[str, Controller] = {}
         for corner in corners:
@@ -517,7 +545,7 @@ class Scenario:
             merged = _corner_table(damper_table, damper_corners[corner], "model", "wang-symmetric")
             corner_dampers[corner] = _build_damper(merged, base, section)[0]
             merged = _corner_table(controller_table, law_corners[corner], "law", "passive")
-            corner_controllers[corner] = _build_controller(merged, f"controller.{corner}")
+            corner_controllers[corner] = _build_controller(merged, f"controller.{corner}", base)
         excitation, road_speed = _build_any_excitation(tables["excitation"], base, model,
                                                        vehicle)  # fmt: skip
 
@@ -968,8 +996,24 @@ def _parameter_spec(text: str, base: Path, section: str = "damper") -> str | Pat
     return text
 
 
-def _build_controller(table: dict[str, Any], section: str = "controller") -> Controller:
-    law = _choice(section, "law", table.get("law", "passive"), CONTROLLERS)
+def _build_controller(
+    table: dict[str, Any], section: str = "controller", base: Path | None = None
+) -> Controller:
+    spec = table.get("law", "passive")
+    if is_law_spec(spec):  # a user-defined law: its options as keyword arguments
+        given = {k: v for k, v in table.items() if k != "law"}
+        with _in_section(section):
+            cls = load_law(str(spec), base=base)
+            try:
+                return cls(**given)
+            except TypeError:
+                names = cls.option_names()
+                bad = [k for k in given if k not in names]
+                raise ValidationError(
+                    f"law {spec!r} has no option {bad[0]!r}.{did_you_mean(bad[0], names)} "
+                    f"Its options: {', '.join(names) or 'none'}."
+                ) from None
+    law = _choice(section, "law", spec, CONTROLLERS)
     keys = _law_keys(law)
     options: dict[str, Any] = {}
     for key, value in table.items():

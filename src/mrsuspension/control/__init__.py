@@ -19,6 +19,10 @@ law                   class                                             seed
 ``ideal-onoff``       :class:`IdealOnOff` (3.13), ideal damper          (3.13)
 ====================  ================================================  ==============
 
+Laws of your own: :func:`law` makes a plain Python function of the measured signals
+(:mod:`~mrsuspension.control.signals`) a controller (:mod:`~mrsuspension.control.user`;
+``docs/control-laws.md``); a scenario names it ``law = "my_module:my_law"``.
+
 Drive current (3.9)/(3.16): ``i_d = clip(M_p(p, xi, v_d) M_c(p_c, xi_c, z_c) i_z, 0, i_max)``;
 ``mode="SCM"`` sets ``p = 1`` (symmetric), ``mode="ACM"`` sets ``p = 0`` (asymmetric).
 
@@ -57,6 +61,7 @@ from mrsuspension.control.registry import (
 )
 from mrsuspension.control.sensing import BandPassObserver, LeakyIntegrator, StrokeSensor
 from mrsuspension.control.sliding import SlidingMode
+from mrsuspension.control.user import UserLaw, law, load_law
 
 __all__ = [
     "CONTROLLERS",
@@ -76,8 +81,11 @@ __all__ = [
     "Passive",
     "SlidingMode",
     "StrokeSensor",
+    "UserLaw",
     "VehicleLaw",
     "controller_class",
+    "law",
     "law_options",
+    "load_law",
     "make_controller",
 ]

@@ -46,11 +46,23 @@ class ControlOption:
         The model reference's symbol (``k_c``, ``lambda``, ...).
     label : str
         Name in error messages (default: ``name``).
+    shape : tuple of int or None, optional
+        A vector or matrix option's shape (None: a number or a text); a ``None`` in it
+        takes any length on that axis (e.g. ``(1, None)``: a gain row of the plant's
+        states). Its value is held as nested tuples of floats, packed row by row into the
+        law's parameter vector after the fixed slots (:meth:`Controller.params`); every
+        element is checked against ``low``/``high``.
 
     Examples
     --------
     >>> ControlOption("gain", 3.0, low=0.0, high=1e9, label="gain k_c").check(5)
     5.0
+    >>> ControlOption("K", None, unit="N/m", shape=(1, 2)).check([[1, 2]])
+    ((1.0, 2.0),)
+    >>> ControlOption("K", None, unit="N/m", shape=(1, 2)).check([1, 2])
+    Traceback (most recent call last):
+    ...
+    mrsuspension.errors.ValidationError: K must be an array of shape (1, 2) [N/m]; got shape (2,)
     """
 
     name: str
@@ -63,6 +75,7 @@ class ControlOption:
     choices: tuple[str, ...] | None = None
     symbol: str = ""
     label: str = ""
+    shape: tuple[int | None, ...] | None = None
 
     def check(self, value: Any) -> Any:
         """``value`` validated (numbers as float); raises :class:`ValidationError`.
@@ -75,6 +88,8 @@ class ControlOption:
         mrsuspension.errors.ValidationError: p must be in [0, 1]; got 2
         """
         label = self.label or self.name
+        if self.shape is not None:
+            return self._check_array(label, value)
         if self.choices is not None:
             if value not in self.choices:
                 raise unknown_name(label, str(value), self.choices)
@@ -95,6 +110,35 @@ class ControlOption:
             raise ValidationError(f"{label} must be in {lb}{lo:g}, {hi:g}{rb}; got {value:g}")
         return float(value)
 
+    def _check_array(self, label: str, value: Any) -> Any:
+        """A vector or matrix option's value as nested tuples of floats (checked)."""
+        assert self.shape is not None
+        want = "(" + ", ".join("n" if d is None else str(d) for d in self.shape)
+        want += ",)" if len(self.shape) == 1 else ")"
+        unit = f" [{self.unit}]" if self.unit else ""
+        try:
+            arr = np.asarray(value, dtype=float)
+        except (TypeError, ValueError):
+            raise ValidationError(
+                f"{label} must be an array of shape {want}{unit} of numbers; got {value!r}"
+            ) from None
+        fits = arr.ndim == len(self.shape) and all(
+            d is None or d == n for d, n in zip(self.shape, arr.shape, strict=True)
+        )
+        if not fits:
+            raise ValidationError(
+                f"{label} must be an array of shape {want}{unit}; got shape {arr.shape}"
+            )
+        if not np.all(np.isfinite(arr)):
+            raise ValidationError(f"{label} must hold finite numbers; got {arr.tolist()!r}")
+        lo = -math.inf if self.low is None else self.low
+        hi = math.inf if self.high is None else self.high
+        if arr.size and (arr.min() < lo or arr.max() > hi):
+            raise ValidationError(
+                f"{label} elements must be in [{lo:g}, {hi:g}]{unit}; got {arr.tolist()!r}"
+            )
+        return _nested(arr)
+
     def describe(self) -> dict[str, Any]:
         """Plain data (for the monitor page).
 
@@ -104,6 +148,13 @@ class ControlOption:
         'A'
         """
         return dataclasses.asdict(self)
+
+
+def _nested(arr: npt.NDArray[np.float64]) -> Any:
+    """An array as nested tuples of floats (hashable, immutable: a frozen field's value)."""
+    if arr.ndim == 0:
+        return float(arr)
+    return tuple(_nested(a) for a in arr)
 
 
 def option(
@@ -117,8 +168,12 @@ def option(
     choices: tuple[str, ...] | None = None,
     symbol: str = "",
     label: str = "",
+    shape: tuple[int | None, ...] | None = None,
 ) -> Any:
     """A dataclass field declaring a controller option (see :class:`ControlOption`).
+
+    ``shape`` declares a vector or matrix option (its default as nested tuples, e.g.
+    ``((0.0, 0.0),)`` for a 1 x 2 gain).
 
     Examples
     --------
@@ -131,7 +186,9 @@ def option(
     >>> Demo().current, Demo.describe_options()[0].unit
     (0.1, 'A')
     """
-    spec = ControlOption("", default, unit, low, high, low_open, high_open, choices, symbol, label)
+    spec = ControlOption(
+        "", default, unit, low, high, low_open, high_open, choices, symbol, label, shape
+    )
     return dataclasses.field(default=default, metadata={"option": spec})
 
 
@@ -219,7 +276,49 @@ class Controller(ABC):
         p[CK.P_INV_HYST] = 1.0
         p[CK.P_IMAX] = max_current
         self._fill(p)
-        return p
+        tail = self._tail()
+        return np.concatenate([p, tail]) if tail.size else p
+
+    def _tail(self) -> npt.NDArray[np.float64]:
+        """The parameters after the fixed slots: the vector and matrix options, row by row,
+        in declaration order (:meth:`option_slots` says where each starts)."""
+        parts = [
+            np.asarray(getattr(self, name), dtype=float).ravel()
+            for name, spec in _declared(type(self)).items()
+            if spec.shape is not None
+        ]
+        return np.concatenate(parts) if parts else np.zeros(0)
+
+    def option_slots(self) -> dict[str, slice]:
+        """Where each vector or matrix option lies in :meth:`params` (slices).
+
+        Examples
+        --------
+        >>> from mrsuspension.control import Passive
+        >>> Passive().option_slots()
+        {}
+        """
+        out: dict[str, slice] = {}
+        at = CK.CP_SIZE
+        for name, spec in _declared(type(self)).items():
+            if spec.shape is not None:
+                n = int(np.asarray(getattr(self, name), dtype=float).size)
+                out[name] = slice(at, at + n)
+                at += n
+        return out
+
+    def for_plant(self, plant: Any) -> Controller:
+        """This law attached to ``plant``, the quarter car it drives (a half or full car's
+        corner: the corner's :meth:`~mrsuspension.vehicle.VehicleBody.corner_quarter_car`).
+
+        Called by :class:`~mrsuspension.engine.Simulation` (and so at every corner of a
+        :class:`~mrsuspension.engine.vehicle.VehicleSimulation`) when it is built: a law
+        may derive gains from the plant's masses and stiffnesses (a Riccati solve...) and
+        return a copy holding them. By default the law itself. It may be called again on
+        the attached law (e.g. ``dataclasses.replace`` of a simulation): return the same
+        gains for the same plant.
+        """
+        return self
 
     def _fill(self, p: npt.NDArray[np.float64]) -> None:  # noqa: B027 - optional hook
         """Write this controller's fields into the parameter vector (default: nothing)."""

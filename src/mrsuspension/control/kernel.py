@@ -22,7 +22,9 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
+from llvmlite import ir
+from numba import njit, types
+from numba.extending import intrinsic
 
 from mrsuspension import shaping as _shaping
 from mrsuspension._numba_cache import INLINED, invalidate_if_changed
@@ -43,7 +45,10 @@ __all__ = [
     "C_ONOFF_ADFG",
     "C_PASSIVE",
     "C_POLICY",
+    "C_SIGNALS",
     "C_SLIDING",
+    "C_USER_CURRENT",
+    "C_USER_FORCE",
     "EST_SHARED",
     "F_EXTERNAL",
     "F_MODEL",
@@ -65,11 +70,14 @@ __all__ = [
     "P_PC",
     "P_PHI",
     "P_POLICY",
+    "P_USER_FN",
     "P_XI",
     "P_XIC",
+    "call_law",
     "control",
     "ideal_force",
     "needs_reference",
+    "user_control",
 ]
 
 # controller codes (Controller.code)
@@ -80,6 +88,14 @@ C_INVERSE_HILO = 3
 C_SLIDING = 4
 C_IDEAL_SKYHOOK = 5
 C_IDEAL_ONOFF = 6
+#: the first code of the laws that read every measured signal (:mod:`~mrsuspension.control.signals`,
+#: filled for them only: the laws above read the quarter-car view, its first six slots, and
+#: the quarter car's step does not pay for the rest); a new law takes a code from here on
+C_SIGNALS = 7
+#: a user-defined law (:mod:`mrsuspension.control.user`) returning the drive current [A]
+C_USER_CURRENT = 7
+#: a user-defined law returning a target force [N], tracked through the inverse model
+C_USER_FORCE = 8
 
 # controller parameters (Controller.params)
 (
@@ -103,6 +119,11 @@ C_IDEAL_ONOFF = 6
     P_ADFG_CENTRE,  # ADFG M_p at v_d = 0, share of the way from p to 1 (0.5: (2.3))
 ) = range(18)
 CP_SIZE = 18
+#: a user law's first slot after the fixed ones: the address of its compiled entry
+#: ``double law(double *signals, double *options, int64 n_options)`` (a numba ``cfunc``,
+#: or a ctypes callback into Python), exact in a float64 (user-space addresses are below
+#: 2^48; checked where it is written); the law's options follow it
+P_USER_FN = CP_SIZE
 
 # force source of the engine's rates (Controller.force_source)
 F_MODEL = 0  # the damper model at the held current
@@ -271,3 +292,67 @@ def control(
         iz, vd, vm, zc, cp[P_P], cp[P_XI], cp[P_PC], cp[P_XIC], imax, cp[P_ADFG_CENTRE]
     )
     return i, iz, zc, target
+
+
+@intrinsic
+def call_law(typingctx, addr, sig, opt):  # type: ignore[no-untyped-def]
+    """Call the C entry at ``addr`` (int64) as ``double f(double *sig, double *opt, int64 n)``
+    with the data of the 1-D float arrays ``sig`` and ``opt`` (``n = opt.size``).
+
+    The kernels are compiled once for every user law: the law is an address, not a type
+    (a numba first-class function argument costs 40-50 us per call of the entry point
+    from Python, measured: too slow for a stepper ticking from Python).
+    """
+    if not (
+        isinstance(addr, types.Integer)
+        and isinstance(sig, types.Array)
+        and isinstance(opt, types.Array)
+    ):
+        return None
+
+    def codegen(context, builder, signature, args):  # type: ignore[no-untyped-def]
+        a, s, o = args
+        sarr = context.make_array(signature.args[1])(context, builder, s)
+        oarr = context.make_array(signature.args[2])(context, builder, o)
+        dbl = ir.DoubleType()
+        fnty = ir.FunctionType(dbl, [dbl.as_pointer(), dbl.as_pointer(), ir.IntType(64)])
+        fn = builder.inttoptr(a, fnty.as_pointer())
+        n = builder.extract_value(oarr.shape, 0)
+        return builder.call(fn, [sarr.data, oarr.data, n])
+
+    return types.float64(addr, sig, opt), codegen
+
+
+@njit(cache=True, **INLINED)
+def user_control(
+    ck: int,
+    cp: np.ndarray,
+    dp: np.ndarray,
+    sig: np.ndarray,
+    ad: float,
+    vm: float,
+    memo: np.ndarray,
+) -> tuple[float, float, float, float]:
+    """A user-defined law (``C_USER_*``) at the signals ``sig``: as :func:`control` returns.
+
+    Calls the law's compiled entry (its address at ``cp[P_USER_FN]``, its options after
+    it) with the signals (:mod:`mrsuspension.control.signals`). ``C_USER_CURRENT``: the
+    value is the current, clipped to ``[0, i_max]``; ``C_USER_FORCE``: a target force
+    tracked through the damper's inverse model (as the inverse-model laws, ``z_c = F_h
+    F*``). A value that is not finite (a Python law that raised) makes the current NaN:
+    the run then stops at the limit check and the caller reports the law's error.
+    """
+    nan = math.nan
+    addr = cp[P_USER_FN]
+    if addr == 0.0:  # no entry (never written by the Python side): no current
+        return 0.0, 0.0, nan, nan
+    out: float = call_law(np.int64(addr), sig, cp[P_USER_FN + 1 :])  # type: ignore[call-arg]
+    if not math.isfinite(out):
+        return nan, nan, nan, nan
+    imax = cp[P_IMAX]
+    if ck == C_USER_CURRENT:
+        return min(max(out, 0.0), imax), out, nan, nan
+    sa = DK.sign(ad) * cp[P_INV_HYST]
+    fh = DK.passive_hysteron_memo(dp, memo, sig[3] - sig[1], sa, vm)
+    iz = DK.wang_inverse_from(dp, out, fh, imax)
+    return min(max(iz, 0.0), imax), iz, fh * out, out

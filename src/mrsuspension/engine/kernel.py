@@ -62,6 +62,7 @@ from numba import njit
 from mrsuspension import shaping as _shaping
 from mrsuspension._numba_cache import INLINED, invalidate_if_changed
 from mrsuspension.control import kernel as CK
+from mrsuspension.control import signals as SG
 from mrsuspension.control.kernel import EST_SHARED, F_EXTERNAL, F_MODEL, P_C0, P_CS, P_MS0
 from mrsuspension.dampers import kernels as DK
 from mrsuspension.dampers.kernels import NO_REFCOUNT
@@ -80,7 +81,9 @@ from mrsuspension.vehicle.kernel import (
 )
 
 # the cached entry points below inline the damper, shaping, controller and vehicle kernels
-invalidate_if_changed(__file__, DK.__file__, _shaping.__file__, CK.__file__, VK.__file__)
+invalidate_if_changed(
+    __file__, DK.__file__, _shaping.__file__, CK.__file__, VK.__file__, SG.__file__
+)
 
 # mem: carried between steps and outputs of the last step
 (
@@ -96,9 +99,13 @@ invalidate_if_changed(__file__, DK.__file__, _shaping.__file__, CK.__file__, VK.
     M_FD,  # F_d at the end of the step
     M_FT,  # F_T at the end of the step
     M_A0,  # z_s0'' (reference) at the end of the step
-) = range(12)
-M_PH = 12  # first of DK.PH_SIZE slots: the control laws' memo of the damper's v_m terms
-MEM_SIZE = M_PH + DK.PH_SIZE
+    M_STEP,  # steps done since start() (the control sample's time: M_STEP dt)
+) = range(13)
+M_PH = 13  # first of DK.PH_SIZE slots: the control laws' memo of the damper's v_m terms
+#: first of SG.NS slots: the signals the law saw at the last control sample
+#: (:mod:`mrsuspension.control.signals`)
+M_SIG = M_PH + DK.PH_SIZE
+MEM_SIZE = M_SIG + SG.NS
 
 SCRATCH_SIZE = 6 * NY  # work space of the callers (rates of start())
 
@@ -185,10 +192,17 @@ def apply_control(
 ) -> None:
     """Run the control law (:func:`mrsuspension.control.kernel.control`) into ``mem``.
 
+    ``y``: the signals the law sees (:mod:`mrsuspension.control.signals`; the built-in
+    laws read the first six, the quarter-car view). A user law (``C_USER_*``) runs
+    through :func:`~mrsuspension.control.kernel.user_control` and needs every signal.
     Sets ``mem[M_ID]`` (held over the step), ``M_IZ``, ``M_ZC`` and ``M_TARGET``, and
     keeps the law's memo at ``M_PH`` (emptied by :func:`start`).
     """
-    i_d, i_z, z_c, target = CK.control(ck, cp, vp, dp, y, ad, vm, mem[M_PH : M_PH + DK.PH_SIZE])
+    memo = mem[M_PH : M_PH + DK.PH_SIZE]
+    if ck >= CK.C_USER_CURRENT:  # (reads every signal: C_SIGNALS and up)
+        i_d, i_z, z_c, target = CK.user_control(ck, cp, dp, y, ad, vm, memo)
+    else:
+        i_d, i_z, z_c, target = CK.control(ck, cp, vp, dp, y, ad, vm, memo)
     mem[M_ID] = i_d
     mem[M_IZ] = i_z
     mem[M_ZC] = z_c
@@ -229,7 +243,21 @@ def step(
     # EST_SHARED: the damper's own estimate (same estimator, same samples)
     vm = ds[DK.WS_VM] if cek == EST_SHARED else DK.estimator_update(cek, cep, ces, xd, vd, ad)
     mem[M_VM] = vm
-    apply_control(ck, cp, vp, dp, y, ad, vm, mem)
+    count = mem[M_STEP]
+    mem[M_STEP] = count + 1.0
+    if ck >= CK.C_SIGNALS:  # the signals at this control sample (the previous step's
+        # rates, force and current); the laws below C_SIGNALS read the state's view
+        sig = mem[M_SIG : M_SIG + SG.NS]
+        SG.fill_corner(
+            sig, y[0], y[1], y[2], y[3], y[4], y[5], mem[M_AS], mem[M_AU], mem[M_FD],
+            mem[M_ID], vm, count * dt,
+        )  # fmt: skip
+        sig[SG.S_HEAVE] = y[0]
+        sig[SG.S_VHEAVE] = y[1]
+        sig[SG.S_AHEAVE] = mem[M_AS]
+        apply_control(ck, cp, vp, dp, sig, ad, vm, mem)
+    else:
+        apply_control(ck, cp, vp, dp, y, ad, vm, mem)
     reference = CK.needs_reference(ck)
     # classical RK4 in scalars; the four stages and the evaluation at the new state share
     # one call site of accelerations() (small inlined code, short compile). k_j is
@@ -353,6 +381,9 @@ def start(
     Empties the control law's memo (a new run, perhaps of another damper).
     """
     mem[M_PH + DK.PH_FT] = 0.0
+    mem[M_STEP] = 0.0
+    for q in range(SG.NS):  # the quarter car's pitch, roll and corner stay 0
+        mem[M_SIG + q] = 0.0
     DK.damper_sample(dk, dp, ds, dek, dep, des, y[2] - y[0], y[3] - y[1], 0.0, mem[M_ID])
     fd, ft = rates(y, zr, zrd, vp, fk, dk, dp, ds, cp, mem, CK.needs_reference(ck), scratch[0:NY])
     mem[M_AS] = scratch[1]

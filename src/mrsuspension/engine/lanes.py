@@ -54,6 +54,7 @@ from numba import njit
 from mrsuspension import shaping as _shaping
 from mrsuspension._numba_cache import announce_compile, invalidate_if_changed
 from mrsuspension.control import kernel as CK
+from mrsuspension.control import signals as SG
 from mrsuspension.control.kernel import EST_SHARED, F_MODEL, P_C0, P_CS, P_MS0, P_P
 from mrsuspension.dampers import kernels as DK
 from mrsuspension.dampers.kernels import NO_REFCOUNT
@@ -69,8 +70,9 @@ if TYPE_CHECKING:
 
 # the cached kernels below inline the damper, shaping, controller, vehicle and step kernels
 invalidate_if_changed(
-    __file__, DK.__file__, EK.__file__, RD.__file__, _shaping.__file__, CK.__file__, VK.__file__
-)
+    __file__, DK.__file__, EK.__file__, RD.__file__, _shaping.__file__, CK.__file__, VK.__file__,
+    SG.__file__,
+)  # fmt: skip
 
 __all__ = [
     "LANES",
@@ -543,13 +545,16 @@ def _constants(vp: np.ndarray, cp: np.ndarray) -> np.ndarray:
 def lane_key(simulation: LaneRun, dt: float) -> tuple[Any, ...] | None:
     """What runs must share to step in one lane group; None when the run is not eligible.
 
-    Eligible: the damper is the dissertation's model and the controller acts through it
-    (not an ideal reference force). The key holds every kernel array except the road and
+    Eligible: the damper is the dissertation's model and the controller is a built-in
+    law acting through it (not an ideal reference force, not a user-defined law: the
+    lanes do not fill the signals it reads). The key holds every kernel array except the road and
     the controller's parameters (each run's own: a sweep of gains or currents shares
     lanes), of which it keeps those the lanes' stages share (:func:`_constants`).
     """
     a = simulation.kernel_arrays(dt, check_stability=False)
     if a.force_source != F_MODEL or a.damper_kind != DK.WANG:
+        return None
+    if a.controller_kind >= CK.C_USER_CURRENT:
         return None
     arrays = tuple(
         np.asarray(v, dtype=float).tobytes()

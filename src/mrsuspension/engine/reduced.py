@@ -36,6 +36,7 @@ from typing import TYPE_CHECKING, Any, Protocol
 import numpy as np
 
 from mrsuspension._numba_cache import announce_compile
+from mrsuspension.control.user import raise_failure
 from mrsuspension.engine import kernel as EK
 from mrsuspension.engine.arrays import KernelArrays
 from mrsuspension.engine.kernel import N_ACC, accumulate
@@ -301,6 +302,7 @@ def run_measures(
         y, n, dt, zr, zrd, *a.args(), decimate, EK.LIMITS, np.zeros(EK.SCRATCH_SIZE),
         *EK.reducing(acc[0], red.window_start, red.shift, red.threshold, trace),
     )  # fmt: skip
+    raise_failure()  # a Python control law that raised (its run stopped there)
     if status != EK.D_OK:
         raise simulation.divergence(status, k * dt, idx, value, dt)
     return finish(red, acc[0], trace, simulation.excitation.acceleration, how)

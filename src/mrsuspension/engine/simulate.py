@@ -15,7 +15,8 @@ import numpy.typing as npt
 
 from mrsuspension._numba_cache import announce_compile
 from mrsuspension.control import Controller, Passive
-from mrsuspension.control.kernel import EST_SHARED, F_EXTERNAL, F_MODEL, P_CS
+from mrsuspension.control.kernel import EST_SHARED, F_EXTERNAL, F_MODEL, P_CS, P_USER_FN
+from mrsuspension.control.user import UserLaw, raise_failure
 from mrsuspension.dampers import CycleRms, DamperModel, PeakVelocityEstimator, WangSymmetric
 from mrsuspension.dampers import kernels as DK
 from mrsuspension.dampers.wang import VEHICLE_VH_VARIANT
@@ -132,6 +133,14 @@ class Simulation:
 
     def __post_init__(self) -> None:
         self._check_types()
+        # the law attached to this plant (e.g. gains from its masses and stiffnesses)
+        attached = self.controller.for_plant(self.vehicle)
+        if not isinstance(attached, Controller):
+            raise ValidationError(
+                f"controller {self.controller.law!r}: for_plant must return a Controller; "
+                f"got {attached!r}"
+            )
+        object.__setattr__(self, "controller", attached)
         check_range("max_current", self.max_current, 0.0, self.damper.max_current, unit="A")
         symmetric_wang = isinstance(self.damper, WangSymmetric) and (
             self.damper.values.get("k5", 0.0) == 0.0 and self.damper.values.get("k6", 0.0) == 0.0
@@ -250,7 +259,7 @@ class Simulation:
         >>> from mrsuspension.excitation import Harmonic
         >>> a = Simulation(Harmonic(1.0, 0.01)).kernel_arrays(1e-4)
         >>> a.controller_params.size, a.memory.size
-        (18, 16)
+        (18, 41)
         """
         dt = self.check_dt(dt) if check_stability else check_step(dt)
         kern = self.damper.kernel(dt)
@@ -330,6 +339,7 @@ class Simulation:
             y, n, dt, zr, zrd, *a.args(), decimate, EK.LIMITS, np.zeros(EK.SCRATCH_SIZE),
             *EK.recording(rec),
         )  # fmt: skip
+        raise_failure()  # a Python control law that raised (its run stopped there)
         if status != EK.D_OK:
             raise self.divergence(status, k * dt, idx, value, dt)
         result = self.result_from_record(plan.time(), rec, dt)
@@ -518,6 +528,10 @@ class Stepper:
         700.0
         """
         new = arrays if arrays is not None else simulation.kernel_arrays(self.dt)
+        if isinstance(simulation.controller, UserLaw):  # its entry in this process
+            params = new.controller_params.copy()
+            params[P_USER_FN] = float(type(simulation.controller).entry().address)
+            new = new.replace(controller_params=params)
         a = self._a
         old = self.simulation
         changes: dict[str, Any] = {
@@ -571,6 +585,7 @@ class Stepper:
         EK.step(
             self.y, self.dt, road, road_velocity, zr1, zrd1, zr2, zrd2, *self._args, self._scratch
         )
+        raise_failure()  # a Python control law that raised in this step
         self.time += self.dt
         y, mem = self.y, self._a.memory
         out = {

@@ -40,6 +40,7 @@ from mrsuspension.control.sensing import (
     band_pass_coefficients,
     leaky_integrator_coefficients,
 )
+from mrsuspension.control.user import raise_failure
 from mrsuspension.dampers import DamperModel, WangSymmetric
 from mrsuspension.dampers.wang import VEHICLE_VH_VARIANT
 from mrsuspension.engine import kernel as EK
@@ -442,7 +443,7 @@ class VehicleSimulation:
         >>> sim = VehicleSimulation(FullCar(), WheelRoads.in_phase(Harmonic(2.0, 0.01), "full-car"))
         >>> a = sim.arrays(1e-4)
         >>> a.memory.shape, a.corner_vehicles.shape
-        ((4, 16), (4, 8))
+        ((4, 41), (4, 8))
         """
         car = self.vehicle
         n = len(car.corners)
@@ -813,6 +814,7 @@ class VehicleSimulation:
             status, k, idx, value = VX.run(
                 y, first, steps, dt, zr, zrd, *args, decimate, VX.LIMITS, scratch, work, *out
             )
+            raise_failure()  # a Python control law that raised (the run stopped there)
             if status != VX.D_OK:
                 raise self._divergence(status, k * dt, idx, value, dt)
             first += steps
@@ -995,6 +997,7 @@ class VehicleStepper:
         end = road_end if road_end is not None else (zr[:, 1], zrd[:, 1])
         zr[:, 2], zrd[:, 2] = self._wheels("road", end[0]), self._wheels("road_velocity", end[1])
         VX.step(self.y, self.dt, zr, zrd, 0, *self._args, self._scratch, self._work)
+        raise_failure()  # a Python control law that raised in this step
         self.time += self.dt
         y = self.y
         if not np.all(np.isfinite(y)):

@@ -56,6 +56,7 @@ from mrsuspension._numba_cache import invalidate_if_changed
 from mrsuspension.control import kernel as CK
 from mrsuspension.control import modal as SM
 from mrsuspension.control import sensing as SN
+from mrsuspension.control import signals as SG
 from mrsuspension.control.kernel import EST_SHARED, F_EXTERNAL, F_MODEL, P_C0, P_CS, P_MS0
 from mrsuspension.control.modal import LAW_CORNERS, LAW_MODAL
 from mrsuspension.dampers import kernels as DK
@@ -69,7 +70,7 @@ __all__ = ["check_limits", "output", "rates", "record", "run", "start", "step"]
 # the cached entry points inline the damper, shaping, controller, vehicle and engine kernels
 invalidate_if_changed(
     __file__, DK.__file__, _shaping.__file__, CK.__file__, VK.__file__, EK.__file__,
-    SM.__file__, SN.__file__,
+    SM.__file__, SN.__file__, SG.__file__,
 )  # fmt: skip
 
 # vp: body then corners; reciprocal masses and inertias (they leave the divisions off the
@@ -105,6 +106,7 @@ SP_SIZE = SP_MP + SM.MP_SIZE
 # controller saw), row nc + c the stroke sensor's (control.sensing.STROKE_SIZE), last row
 # the step count
 SS_VSENSE = 2
+SS_ASENSE = 3  # the accelerometer's held sample (the z_s'' signal with sensing)
 SS_WIDTH = 4
 
 #: Divergence limits: |z| [m] (and |angle| [rad]), |rate| [m/s, rad/s], |F_d| [N], F_T [N].
@@ -247,13 +249,13 @@ def step(
     corners``): sensing and the vehicle-level law (``SK_*``, ``SP_*``, ``SS_*``)."""
     nc = int(vp[B_NC])
     n = y.size
-    view = work[nc]  # the corner's quarter-car view (6 values)
     kind = sk[SK_KIND]
     count = int(ss[2 * nc, 0])
     ss[2 * nc, 0] = count + 1
     sample_acc = kind != SENSE_IDEAL and count % sk[SK_ACC_EVERY] == 0
     stroke_every = sk[SK_STROKE_EVERY]
     sample_stroke = stroke_every > 0 and count % stroke_every == 0
+    t = count * dt
     for c in range(nc):
         o = B_SIZE + c * CORNER_SIZE
         zs, vs = _corner_body(y, vp[o + C_X], vp[o + C_Y])
@@ -273,6 +275,7 @@ def step(
         est = ss[c]
         if kind == SENSE_IDEAL:
             est[SS_VSENSE] = vs
+            est[SS_ASENSE] = mem[c, EK.M_AS]
         elif sample_acc:
             if kind == SENSE_LEAKY:
                 v_hat = SN.leaky_integrator_update(
@@ -281,36 +284,55 @@ def step(
             else:
                 v_hat = SN.band_pass_update(est, mem[c, EK.M_AS], sp[SP_COEF:SP_RES])
             est[SS_VSENSE] = v_hat
+            est[SS_ASENSE] = mem[c, EK.M_AS]
         v_sense = est[SS_VSENSE]
-        view[0], view[1], view[4], view[5] = zs, v_sense, y[q + 2], y[q + 3]
         if stroke_every > 0:  # the stroke sensor's held reading and rate
             stroke = ss[nc + c]
             if sample_stroke:
                 e = noise[c, (count // stroke_every) % noise.shape[1]]
                 SN.stroke_sensor_update(stroke, xd, e, sp[SP_RES], sp[SP_SFS])
-            view[2] = zs + stroke[0]
-            view[3] = v_sense + stroke[1]
+            zu_seen = zs + stroke[0]
+            vu_seen = v_sense + stroke[1]
         else:
-            view[2] = y[q]
-            view[3] = y[q + 1] if kind == SENSE_IDEAL else v_sense + vd
-        EK.apply_control(ck[c], cp[c], cvp[c], dp[c], view, ad, vm, mem[c])
+            zu_seen = y[q]
+            vu_seen = y[q + 1] if kind == SENSE_IDEAL else v_sense + vd
+        # the corner's signals (its first six: the quarter-car view of the built-in laws)
+        SG.fill_corner(
+            mem[c, EK.M_SIG : EK.M_SIG + SG.NS], zs, v_sense, zu_seen, vu_seen, y[q + 2],
+            y[q + 3], est[SS_ASENSE], mem[c, EK.M_AU], mem[c, EK.M_FD], mem[c, EK.M_ID], vm, t,
+        )  # fmt: skip
         work[c, 3] = xd
         work[c, 4] = vd
         work[c, 5] = v_sense
-        work[c, 6] = view[3] - view[1]  # the damper velocity the controller sees
+        work[c, 6] = vu_seen - v_sense  # the damper velocity the controller sees
+    # the body's rates as seen: true, or from the corners' estimates, D^T v = (J J^T)^-1 J v
+    if kind == SENSE_IDEAL:
+        vz, pq, pp = y[3], y[4], y[5]
+    else:
+        vz = pq = pp = 0.0
+        for c in range(nc):
+            vz += mdist[c, 0] * work[c, 5]
+            pq += mdist[c, 1] * work[c, 5]
+            pp += mdist[c, 2] * work[c, 5]
+    dy0 = scratch[1]  # the rates at y (start's, or the previous step's last)
+    for c in range(nc):
+        sig = mem[c, EK.M_SIG : EK.M_SIG + SG.NS]
+        sig[SG.S_HEAVE] = y[0]
+        sig[SG.S_PITCH] = y[1]
+        sig[SG.S_ROLL] = y[2]
+        sig[SG.S_VHEAVE] = vz
+        sig[SG.S_VPITCH] = pq
+        sig[SG.S_VROLL] = pp
+        sig[SG.S_AHEAVE] = dy0[3]
+        sig[SG.S_APITCH] = dy0[4]
+        sig[SG.S_AROLL] = dy0[5]
+        sig[SG.S_CORNER] = c
+        EK.apply_control(ck[c], cp[c], cvp[c], dp[c], sig, mem[c, EK.M_AD], mem[c, EK.M_VM], mem[c])
     law = sk[SK_LAW]
     if law != LAW_CORNERS:  # hi-lo from the desired corner forces (control.modal)
         forces, vds, current, zc = mbuf[0], mbuf[1], mbuf[2], mbuf[3]
         mp = sp[SP_MP:]
         if law == LAW_MODAL:
-            if kind == SENSE_IDEAL:
-                vz, pq, pp = y[3], y[4], y[5]
-            else:  # body rates from the corners' estimates: D^T v = (J J^T)^-1 J v
-                vz = pq = pp = 0.0
-                for c in range(nc):
-                    vz += mdist[c, 0] * work[c, 5]
-                    pq += mdist[c, 1] * work[c, 5]
-                    pp += mdist[c, 2] * work[c, 5]
             SM.modal_forces(forces, mdist, mp, vz, pq, pp)
         else:  # per-corner skyhook F_i = -c_s v_i
             for c in range(nc):

@@ -64,6 +64,7 @@ from typing import Any
 
 import numpy as np
 
+from mrsuspension.control.user import check_loop_budget
 from mrsuspension.engine.settings import MAX_DURATION, RunSettings
 from mrsuspension.engine.simulate import DEFAULT_DT, Simulation
 from mrsuspension.errors import MRSuspensionError, ValidationError, check_range
@@ -328,6 +329,7 @@ def run_hil(
     dt = tick_step(rate, model_dt)
     n_sub = round(period / dt)
     n_ticks = max(1, round(duration * rate))
+    check_loop_budget(sim, n_sub, period)  # a Python control law must keep the rate
     plant: CornerPlant | None = None
     if vehicle:  # the whole car, one corner outside; every wheel's road for the whole run
         assert corner is not None

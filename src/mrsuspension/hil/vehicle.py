@@ -29,6 +29,7 @@ from typing import Any
 
 import numpy as np
 
+from mrsuspension.control.user import raise_failure
 from mrsuspension.engine.result import SimulationDiverged
 from mrsuspension.engine.settings import check_memory
 from mrsuspension.errors import ValidationError
@@ -163,6 +164,7 @@ class CornerPlant:
         self.y = st.y
         self.args = st.arrays.args()
         self._scratch = np.zeros((5, self.y.size))
+        self._scratch[1] = st._scratch[1]  # the rates at y (the body's acceleration signals)
         self._work = np.zeros((len(self.simulation.corners) + 1, 8))
 
     def road_at(self, k: int) -> tuple[float, float]:
@@ -192,6 +194,7 @@ class CornerPlant:
             self.y, self.dt, self.n_sub, self.zr, self.zrd, 2 * self.n_sub * k, self.index,
             force, damping, self.args, self._scratch, self._work, self._out,
         )  # fmt: skip
+        raise_failure()  # a Python control law that raised during the tick
         if status:
             t = (k * self.n_sub + steps) * self.dt
             named = getattr(self.simulation, "_divergence", None)  # names the state or force

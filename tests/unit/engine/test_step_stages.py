@@ -43,6 +43,11 @@ def reference_step(y: np.ndarray, road: list[tuple[float, float]], a: KernelArra
             a.controller_estimator_state, xd, vd, ad,
         )  # fmt: skip
     mem[EK.M_VM] = vm
+    # the step count; the signals (control/signals.py) are filled for the laws from
+    # C_SIGNALS on only (user laws: tests/unit/control/test_signals.py)
+    count = mem[EK.M_STEP]
+    mem[EK.M_STEP] = count + 1.0
+    assert a.controller_kind < CK.C_SIGNALS
     i_d, i_z, z_c, target = CK.control(
         a.controller_kind, a.controller_params, a.vehicle, a.damper_params, y, ad, vm,
         mem[EK.M_PH : EK.M_PH + DK.PH_SIZE],
