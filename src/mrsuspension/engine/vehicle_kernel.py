@@ -256,6 +256,10 @@ def step(
     stroke_every = sk[SK_STROKE_EVERY]
     sample_stroke = stroke_every > 0 and count % stroke_every == 0
     t = count * dt
+    full = False  # a corner's law reads every signal (C_SIGNALS and up): else the view only
+    for c in range(nc):
+        if ck[c] >= CK.C_SIGNALS:
+            full = True
     for c in range(nc):
         o = B_SIZE + c * CORNER_SIZE
         zs, vs = _corner_body(y, vp[o + C_X], vp[o + C_Y])
@@ -297,16 +301,26 @@ def step(
             zu_seen = y[q]
             vu_seen = y[q + 1] if kind == SENSE_IDEAL else v_sense + vd
         # the corner's signals (its first six: the quarter-car view of the built-in laws)
-        SG.fill_corner(
-            mem[c, EK.M_SIG : EK.M_SIG + SG.NS], zs, v_sense, zu_seen, vu_seen, y[q + 2],
-            y[q + 3], est[SS_ASENSE], mem[c, EK.M_AU], mem[c, EK.M_FD], mem[c, EK.M_ID], vm, t,
-        )  # fmt: skip
+        sig = mem[c, EK.M_SIG : EK.M_SIG + SG.NS]
+        if full:
+            SG.fill_corner(
+                sig, zs, v_sense, zu_seen, vu_seen, y[q + 2], y[q + 3], est[SS_ASENSE],
+                mem[c, EK.M_AU], mem[c, EK.M_FD], mem[c, EK.M_ID], vm, t,
+            )  # fmt: skip
+        else:
+            sig[SG.S_ZS] = zs
+            sig[SG.S_VS] = v_sense
+            sig[SG.S_ZU] = zu_seen
+            sig[SG.S_VU] = vu_seen
+            sig[SG.S_Z0] = y[q + 2]
+            sig[SG.S_V0] = y[q + 3]
         work[c, 3] = xd
         work[c, 4] = vd
         work[c, 5] = v_sense
         work[c, 6] = vu_seen - v_sense  # the damper velocity the controller sees
+    law = sk[SK_LAW]
     # the body's rates as seen: true, or from the corners' estimates, D^T v = (J J^T)^-1 J v
-    if kind == SENSE_IDEAL:
+    if kind == SENSE_IDEAL or not (full or law == LAW_MODAL):
         vz, pq, pp = y[3], y[4], y[5]
     else:
         vz = pq = pp = 0.0
@@ -317,6 +331,11 @@ def step(
     dy0 = scratch[1]  # the rates at y (start's, or the previous step's last)
     for c in range(nc):
         sig = mem[c, EK.M_SIG : EK.M_SIG + SG.NS]
+        if not full:
+            EK.apply_control(
+                ck[c], cp[c], cvp[c], dp[c], sig, mem[c, EK.M_AD], mem[c, EK.M_VM], mem[c]
+            )
+            continue
         sig[SG.S_HEAVE] = y[0]
         sig[SG.S_PITCH] = y[1]
         sig[SG.S_ROLL] = y[2]
@@ -328,7 +347,6 @@ def step(
         sig[SG.S_AROLL] = dy0[5]
         sig[SG.S_CORNER] = c
         EK.apply_control(ck[c], cp[c], cvp[c], dp[c], sig, mem[c, EK.M_AD], mem[c, EK.M_VM], mem[c])
-    law = sk[SK_LAW]
     if law != LAW_CORNERS:  # hi-lo from the desired corner forces (control.modal)
         forces, vds, current, zc = mbuf[0], mbuf[1], mbuf[2], mbuf[3]
         mp = sp[SP_MP:]
