@@ -1,7 +1,7 @@
 """The semi-active optimum: the best any damper inside a force band can do on a known road.
 
-For a road record known in advance, the optimal control problem (model reference of the
-benchmark: ``docs/benchmark.md``)::
+For a road record known in advance, the optimal control problem (``docs/benchmark.md``
+states it in full)::
 
     minimise    J = w_c <a_w^2> / S_c^2 + w_r <F_T,dyn^2> / S_r^2 + w_s <x_d^2> / S_s^2
     over        the damper force F(t), for t in [0, T]
