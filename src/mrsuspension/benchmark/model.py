@@ -44,6 +44,7 @@ True
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 
@@ -70,6 +71,8 @@ OUTPUTS = ("a_w", "F_T_dynamic", "x_d")
 def wk_state_space() -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """``(A, B, C, D)`` of the analogue Wk weighting (8 states), balanced realisation.
 
+    Computed once per process (copies are returned).
+
     The same transfer function as :func:`mrsuspension.measures.wk_weighting`'s magnitude
     (ISO 2631-1 Annex A): band-limiting high-pass (0.4 Hz) and low-pass (100 Hz),
     acceleration-velocity transition and upward step. Strictly proper (``D = 0``).
@@ -82,6 +85,11 @@ def wk_state_space() -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     >>> round(abs(h), 3)  # |Wk(6.3 Hz)|
     1.054
     """
+    return tuple(m.copy() for m in _wk_state_space())  # type: ignore[return-value]
+
+
+@functools.cache
+def _wk_state_space() -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     from scipy.linalg import cholesky, solve_continuous_lyapunov, svd
     from scipy.signal import tf2ss
 

@@ -14,6 +14,7 @@ import pytest
 from mrsuspension.benchmark import (
     ActiveBand,
     BenchmarkProblem,
+    LinearBand,
     MRBand,
     OptimumResult,
     Weights,
@@ -101,6 +102,19 @@ def test_wide_band_gives_the_linear_quadratic_optimum(road) -> None:  # type: ig
     assert best.cost == pytest.approx(cost, rel=1e-4)
     # the cost of the LQ force on the optimum's own model is the least-squares cost
     assert lq.evaluate(force).cost == pytest.approx(cost, rel=1e-9)
+
+
+def test_a_band_of_one_damper_gives_that_damper(road) -> None:  # type: ignore[no-untyped-def]
+    """``c_min = c_max``: the only feasible law is the linear damper; the optimum is it."""
+    one = BenchmarkProblem(
+        road, band=LinearBand(2500.0, 2500.0), dt=DT, duration=0.4, scales=(1.0, 600.0, 0.01)
+    )
+    best = one.solve()
+    assert best.success, best.status
+    passive = one.passive()
+    assert np.allclose(best.force, passive.force, rtol=0, atol=1e-6 * np.max(np.abs(passive.force)))
+    assert np.allclose(best.force, 2500.0 * best.interval_velocity, rtol=1e-9, atol=1e-6)
+    assert best.cost == pytest.approx(passive.cost, rel=1e-8)
 
 
 def test_the_optimal_force_stays_inside_the_band(
