@@ -30,7 +30,11 @@ def main() -> None:
     parser.add_argument("--speed", type=float, default=50.0, help="vehicle speed [km/h]")
     parser.add_argument("--json", action="store_true", help="print one JSON object (quiet)")
     parser.add_argument("--quiet", action="store_true", help="no IPOPT iteration lines")
+    parser.add_argument("--half-car", action="store_true", help="the half car (quiet)")
     args = parser.parse_args()
+    if args.half_car:
+        half_car(args)
+        return
 
     length = args.speed / 3.6 * args.duration + 5.0
     road = iso8608("C", length=length, seed=args.seed, speed_kmh=args.speed)
@@ -93,6 +97,40 @@ def main() -> None:
         "engine_replay_over_model", "references_s", "replay_s",
     ):  # fmt: skip
         print(f"{key}: {out[key]}")
+
+
+def half_car(args: argparse.Namespace) -> None:
+    """The half car's optimum on the same road (rear wheel wheelbase / V later)."""
+    from mrsuspension.benchmark import HalfCarProblem
+
+    length = args.speed / 3.6 * args.duration + 10.0
+    road = iso8608("C", length=length, seed=args.seed, speed_kmh=args.speed)
+    cpu = time.process_time()
+    problem = HalfCarProblem(road, dt=args.dt, duration=args.duration)
+    passive = problem.passive()
+    best = problem.solve()
+    cpu = time.process_time() - cpu
+    out = {
+        "road": road.source,
+        "duration_s": args.duration,
+        "dt_s": args.dt,
+        "intervals": problem.n,
+        "delay_s": problem.delay,
+        "status": best.status,
+        "converged": best.success,
+        "iterations": best.iterations,
+        "passive_iterations": passive.iterations,
+        "solve_s": round(best.wall_time, 2),
+        "cpu_s": round(cpu, 2),
+        "cost": {"optimum": best.cost, "passive_0A": passive.cost},
+        "max_band_violation_N": best.band_violation(problem.band),
+        "ratios_to_passive_terms": best.ratios(passive),
+        "ratios_to_passive_measures": {
+            m: best.measures[m] / passive.measures[m] for m in best.measures
+        },
+        "passive_measures": passive.measures,
+    }
+    print(json.dumps(out, indent=1, default=float))
 
 
 if __name__ == "__main__":

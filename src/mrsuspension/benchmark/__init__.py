@@ -11,6 +11,8 @@ numbers of a 10 s ISO 8608 class C record at 50 km/h.
   discretised model for reference laws (passive, skyhook through the band);
 * :func:`pareto_front` - the optimum over a sweep of the comfort weight;
 * :func:`replay` - the optimal force re-simulated with the toolkit's engine;
+* :class:`HalfCarProblem` - the same on the half car (a damper per axle, the rear wheel
+  on the front wheel's road later);
 * :class:`MRBand`, :class:`LinearBand`, :class:`ActiveBand` - force bands;
 * :func:`~mrsuspension.benchmark.model.wk_state_space` - the Wk weighting as a state-space
   system.
@@ -23,6 +25,7 @@ measures.
 from __future__ import annotations
 
 from mrsuspension.benchmark.band import ActiveBand, ForceBand, LinearBand, MRBand
+from mrsuspension.benchmark.halfcar import HalfCarOptimum, HalfCarProblem
 from mrsuspension.benchmark.model import wk_state_space
 from mrsuspension.benchmark.optimum import (
     TERMS,
@@ -41,6 +44,8 @@ __all__ = [
     "ActiveBand",
     "BenchmarkProblem",
     "ForceBand",
+    "HalfCarOptimum",
+    "HalfCarProblem",
     "LinearBand",
     "MRBand",
     "OptimumResult",

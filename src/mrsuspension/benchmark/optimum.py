@@ -769,7 +769,7 @@ def pareto_front(
     Examples
     --------
     >>> from mrsuspension.excitation import iso8608
-    >>> front = pareto_front(iso8608("C", length=20.0, seed=1), (0.2, 0.8), duration=0.3,
+    >>> front = pareto_front(iso8608("C", length=20.0, seed=1), (0.2, 0.8), duration=0.2,
     ...                      dt=2e-3)
     >>> bool(front.comfort[1] <= front.comfort[0] and front.road_holding[1] >= front.road_holding[0])
     True
