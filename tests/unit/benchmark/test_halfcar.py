@@ -20,9 +20,9 @@ def test_decoupled_half_car_on_one_road_is_the_quarter_car(road) -> None:  # typ
     """Corners of the quarter car, I_y = m_s a b, no delay: each axle is the quarter car,
     the heave acceleration its body acceleration, so the optimum is the quarter car's."""
     half = HalfCarProblem(
-        road, vehicle=HalfCar.from_quarter_car(QuarterCar()), delay=0.0, dt=2e-3, duration=0.4
+        road, vehicle=HalfCar.from_quarter_car(QuarterCar()), delay=0.0, dt=2e-3, duration=0.3
     )
-    quarter = BenchmarkProblem(road, dt=2e-3, duration=0.4)
+    quarter = BenchmarkProblem(road, dt=2e-3, duration=0.3)
     hp, qp = half.passive(), quarter.passive()
     assert np.allclose(hp.force, qp.force[None, :], rtol=0, atol=1e-6 * np.max(np.abs(qp.force)))
     assert hp.measures["DLC.rear"] == pytest.approx(qp.measures["DLC"], rel=1e-6)
@@ -37,7 +37,7 @@ def test_decoupled_half_car_on_one_road_is_the_quarter_car(road) -> None:  # typ
 
 
 def test_half_car_optimum_stays_in_the_band_and_beats_passive(road) -> None:  # type: ignore[no-untyped-def]
-    problem = HalfCarProblem(road, dt=2e-3, duration=0.6)
+    problem = HalfCarProblem(road, dt=2e-3, duration=0.4)
     assert problem.delay == pytest.approx(HalfCar().wheelbase / (50.0 / 3.6))
     passive = problem.passive()
     best = problem.solve()

@@ -1,6 +1,6 @@
 """The semi-active optimum: a known answer, the band, the bound on other laws, the front.
 
-One short road (0.8 s of ISO 8608 class C at 50 km/h, 2 ms grid) serves every test; the
+One short road (0.6 s of ISO 8608 class C at 50 km/h, 2 ms grid) serves every test; the
 MR-band problem is built once (its NLP too: the weights are parameters).
 """
 
@@ -29,7 +29,7 @@ from mrsuspension.errors import ValidationError
 from mrsuspension.excitation import iso8608
 from mrsuspension.vehicle import QuarterCar
 
-DURATION = 0.8
+DURATION = 0.6
 DT = 2e-3
 
 
