@@ -18,8 +18,8 @@ $(BIN)/python:
 # scipy, ... from source, measured +20 % CPU on the suite with PYTHONDONTWRITEBYTECODE)
 $(VENV)/.stamp-install: pyproject.toml | $(BIN)/python
 	$(BIN)/python -m pip install --quiet uv
-	$(BIN)/uv pip install --quiet --compile-bytecode --python $(BIN)/python -e ".[dev,plot]" \
-	  || $(BIN)/python -m pip install --quiet -e ".[dev,plot]"
+	$(BIN)/uv pip install --quiet --compile-bytecode --python $(BIN)/python -e ".[dev,plot,optimal]" \
+	  || $(BIN)/python -m pip install --quiet -e ".[dev,plot,optimal]"
 	touch $@
 
 report: $(VENV)/.stamp-install

@@ -41,6 +41,7 @@ EXTRAS: dict[str, tuple[str, ...]] = {
     "web": ("starlette", "uvicorn", "websockets"),
     "data": ("pyarrow",),
     "distributed": ("distributed",),
+    "optimal": ("casadi",),  # the semi-active optimum (mrsuspension.benchmark)
 }
 
 

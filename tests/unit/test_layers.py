@@ -47,6 +47,7 @@ LAYERS: dict[str, int] = {
     "engine": 5,
     "characterisation": 6,
     "scenario": 6,
+    "benchmark": 6,  # the semi-active optimum: imported only by studies, report, cli
     "_batch": 7,
     "studies": 7,
     "identify": 7,

@@ -1,0 +1,326 @@
+"""Force bands of the semi-active optimum: the forces a damper can give at a velocity.
+
+A band maps the damper velocity ``v_d`` [m/s] (compression positive, ``v_d = z_u' - z_s'``)
+and a *band coordinate* ``u`` (the decision variable of the optimal control problem) to
+the damper force ``F`` [N] (positive pushes the body up). For a semi-active band ``u`` runs
+over ``[0, 1]`` from the soft edge ``F_min(v_d)`` (the damper at ``i_min``) to the hard
+edge ``F_max(v_d)`` (at ``i_max``)::
+
+    F = F_min(v_d) + u (F_max(v_d) - F_min(v_d)),    0 <= u <= 1
+
+Both edges are odd in ``v_d`` with the sign of ``v_d``, so every ``u`` gives a dissipative
+force (``F v_d >= 0``) between the edges, and every such force has one ``u``. This is the
+"damping coefficient as a variable" way of writing the nonconvex set ``{F : F v_d >= 0,
+F_min(|v_d|) <= |F| <= F_max(|v_d|)}`` (a cone with a hole, not convex): the coordinate
+``u`` lives in a box, the nonconvexity moves into the smooth equality ``F = ...`` (a
+bilinear term), and no complementarity constraint or smoothing of ``sign(v_d)`` is needed.
+At ``v_d = 0`` the band is the single force 0 whatever ``u``.
+
+* :class:`MRBand` - the dissertation's MR damper (the mean model of eq. (2.15) at a fixed
+  peak velocity) between two currents;
+* :class:`LinearBand` - ``c_min v_d <= F <= c_max v_d`` (an ideal variable damper);
+* :class:`ActiveBand` - any force of magnitude up to ``max_force`` (not dissipative: an
+  active actuator, the linear-quadratic reference).
+
+Examples
+--------
+>>> band = MRBand()
+>>> lo, hi = band.edges(np.array([-0.2, 0.0, 0.2]))
+>>> np.round(lo), np.round(hi)
+(array([-2020., 0., 481.]), array([-481., 0., 2020.]))
+>>> float(band.force(0.2, 1.0)) == float(hi[2])
+True
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any, ClassVar, Protocol
+
+import numpy as np
+import numpy.typing as npt
+
+from mrsuspension.dampers import WangSymmetric
+from mrsuspension.errors import ValidationError, check_range
+
+__all__ = ["DEFAULT_PEAK_VELOCITY", "ActiveBand", "ForceBand", "LinearBand", "MRBand"]
+
+#: Peak velocity [m/s] of the default :class:`MRBand`: about sqrt(2) times the rms damper
+#: velocity of the passive car (0 A) on an ISO 8608 class C road at 50 km/h (0.23 m/s
+#: rms in the engine), the peak of a harmonic test of the same rms velocity.
+DEFAULT_PEAK_VELOCITY = 0.3
+
+
+class ForceBand(Protocol):
+    """What the optimum needs of a band (see the module docstring)."""
+
+    #: True when every force of the band is dissipative (``F v_d >= 0``)
+    semi_active: ClassVar[bool]
+
+    @property
+    def bounds(self) -> tuple[float, float]:
+        """Bounds of the band coordinate ``u`` (``-inf``/``inf`` for none)."""
+        ...
+
+    @property
+    def passive(self) -> float:
+        """The coordinate of the passive setting (the reference the costs are scaled by)."""
+        ...
+
+    def force(self, v: Any, u: Any, ops: Any = np) -> Any:
+        """``F(v_d, u)`` [N] with ``ops`` giving ``tanh`` and ``fabs`` (numpy or casadi)."""
+        ...
+
+    def edges(self, v: npt.ArrayLike) -> tuple[np.ndarray, np.ndarray]:
+        """``(lowest, highest)`` force [N] of the band at ``v`` [m/s]."""
+        ...
+
+    def describe(self) -> dict[str, Any]:
+        """Plain-data description."""
+        ...
+
+
+def _abs(ops: Any, x: Any) -> Any:
+    return ops.fabs(x) if hasattr(ops, "fabs") else np.abs(x)
+
+
+def _sorted_edges(band: Any, v: npt.ArrayLike) -> tuple[np.ndarray, np.ndarray]:
+    vv = np.asarray(v, dtype=float)
+    a = np.asarray(band.force(vv, 0.0), dtype=float)
+    b = np.asarray(band.force(vv, 1.0), dtype=float)
+    return np.minimum(a, b), np.maximum(a, b)
+
+
+@dataclass(frozen=True)
+class MRBand:
+    """The MR damper's band: the mean model (2.15) at a fixed peak velocity, i_min to i_max.
+
+    The edges are the quasi-static force-velocity curves of the dissertation's symmetric
+    model without hysteresis (``hysteresis=False``: ``k4 = 0``, so ``v_h = 0``, the mean
+    branch) at the peak velocity ``v_m``::
+
+        F(v_d, i) = k_d C_i(i) F_t(v_m) tanh(alpha(v_m) v_d / 2) (1 + k_1 |v_d| e^(-a_4 v_m))
+
+    Why this form: the model's ``v_m`` comes from a peak-velocity estimator over the last
+    cycle (model reference, section 2.4), a function of the record's history rather than
+    of the state, and its hysteresis ``v_h`` switches with the sign of the acceleration.
+    Fixing ``v_m`` and taking the mean branch makes each edge a smooth, odd, static
+    function of ``v_d`` (what a characterisation test at that peak velocity draws), which
+    a direct transcription can differentiate. The current enters only through the gain
+    ``C_i(i)`` (2.9), so the band is also ``F = C F_min(v_d) / C_i(i_min)`` with
+    ``C_i(i_min) <= C <= C_i(i_max)``: the coordinate ``u`` maps one to one to a current
+    (:meth:`current`).
+
+    Parameters
+    ----------
+    damper : WangSymmetric, optional
+        The damper whose parameter set and force gain ``k_d`` give the band (default: the
+        dissertation's, ``wang-symmetric-low``); its hysteresis setting is not used.
+    peak_velocity : float
+        ``v_m`` [m/s] (:data:`DEFAULT_PEAK_VELOCITY`).
+    min_current, max_current : float
+        ``i_min`` and ``i_max`` [A] (0 and 0.5 A, the simulations' drive range).
+
+    Examples
+    --------
+    >>> band = MRBand(peak_velocity=0.3)
+    >>> round(band.gain_ratio, 3)  # C_i(0.5 A) / C_i(0 A)
+    4.196
+    >>> round(float(band.current(band.force(0.1, 0.5), 0.1)), 3)
+    0.123
+    """
+
+    damper: WangSymmetric = field(default_factory=lambda: WangSymmetric(hysteresis=False))
+    peak_velocity: float = DEFAULT_PEAK_VELOCITY
+    min_current: float = 0.0
+    max_current: float = 0.5
+    semi_active: ClassVar[bool] = True
+    #: ``(k_d F_t(v_m), alpha(v_m) / 2, k_1 e^(-a_4 v_m))`` (set from the damper)
+    _shape: tuple[float, float, float] = field(init=False, repr=False, compare=False)
+    _gains: tuple[float, float] = field(init=False, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.damper, WangSymmetric) or type(self.damper).__name__ != (
+            "WangSymmetric"
+        ):
+            raise ValidationError(
+                f"MRBand needs a WangSymmetric damper (the symmetric model (2.15)); got "
+                f"{type(self.damper).__name__}"
+            )
+        vm = float(check_range("peak_velocity", self.peak_velocity, 1e-3, 0.75, unit="m/s"))
+        object.__setattr__(self, "peak_velocity", vm)
+        i_top = self.damper.max_current
+        i0 = float(check_range("min_current", self.min_current, 0.0, i_top, unit="A"))
+        i1 = float(check_range("max_current", self.max_current, 0.0, i_top, unit="A"))
+        if i1 <= i0:
+            raise ValidationError(f"max_current must be > min_current ({i0:g} A); got {i1:g} A")
+        object.__setattr__(self, "min_current", i0)
+        object.__setattr__(self, "max_current", i1)
+        # the model's constants at v_m, computed once
+        p = self.damper.values
+        ft = p["F0"] * (1.0 + math.exp(p["a1"] * vm))  # (2.7)
+        alpha = p["a0"] / (1.0 + p["k0"] * vm)  # (2.11)
+        k1 = p["k1"] * math.exp(-p["a4"] * vm)  # (2.10)
+        object.__setattr__(self, "_shape", (self.damper.force_gain * ft, 0.5 * alpha, k1))
+        c = self.damper.current_gain(np.array([i0, i1]))
+        object.__setattr__(self, "_gains", (float(c[0]), float(c[1])))
+
+    @property
+    def gains(self) -> tuple[float, float]:
+        """``(C_i(i_min), C_i(i_max))`` of eq. (2.9)."""
+        return self._gains
+
+    @property
+    def gain_ratio(self) -> float:
+        """``C_i(i_max) / C_i(i_min)``: the hard edge over the soft one at any velocity."""
+        lo, hi = self.gains
+        return hi / lo
+
+    @property
+    def bounds(self) -> tuple[float, float]:
+        """``(0, 1)``: from ``i_min`` to ``i_max``."""
+        return 0.0, 1.0
+
+    @property
+    def passive(self) -> float:
+        """0: the damper at ``i_min``."""
+        return 0.0
+
+    def force(self, v: Any, u: Any, ops: Any = np) -> Any:
+        """``F(v_d, u)`` [N] (numpy arrays, or casadi expressions with ``ops=casadi``)."""
+        scale, half_alpha, k1 = self._shape
+        c_lo, c_hi = self.gains
+        base = scale * ops.tanh(half_alpha * v) * (1.0 + k1 * _abs(ops, v))
+        return base * (c_lo + u * (c_hi - c_lo))
+
+    def edges(self, v: npt.ArrayLike) -> tuple[np.ndarray, np.ndarray]:
+        """``(lowest, highest)`` force [N] at ``v`` [m/s]."""
+        return _sorted_edges(self, v)
+
+    def current(self, force: npt.ArrayLike, v: npt.ArrayLike) -> np.ndarray:
+        """The drive current [A] that gives ``force`` [N] at ``v`` [m/s] (inverse of (2.9)).
+
+        ``nan`` where ``v`` is 0 (any current gives 0 N there).
+        """
+        scale, half_alpha, k1 = self._shape
+        vv = np.asarray(v, dtype=float)
+        base = scale * np.tanh(half_alpha * vv) * (1.0 + k1 * np.abs(vv))
+        with np.errstate(divide="ignore", invalid="ignore"):
+            c = np.where(base != 0.0, np.asarray(force, dtype=float) / base, np.nan)
+        p = self.damper.values
+        from scipy.special import expit, logit
+
+        sa2 = float(expit(p["a2"] * p["I0"]))
+        lo, hi = self.gains
+        y = (np.clip(c, lo, hi) - 1.0) / p["k2"] + sa2
+        with np.errstate(divide="ignore", invalid="ignore"):
+            i = logit(np.clip(y, 1e-300, 1.0 - 1e-16)) / p["a2"] - p["I0"]
+        i = np.where(np.isnan(c), np.nan, np.clip(i, self.min_current, self.max_current))
+        return np.asarray(i, dtype=float)
+
+    def describe(self) -> dict[str, Any]:
+        """Plain-data description."""
+        return {
+            "band": "mr",
+            "damper": self.damper.describe(),
+            "peak_velocity": self.peak_velocity,
+            "min_current": self.min_current,
+            "max_current": self.max_current,
+        }
+
+
+@dataclass(frozen=True)
+class LinearBand:
+    """An ideal variable damper: ``F = c v_d`` with ``c_min <= c <= c_max`` [N s/m].
+
+    With ``c_min = c_max`` the band is one passive linear damper.
+
+    Examples
+    --------
+    >>> LinearBand(1000.0, 4000.0).edges([0.1])
+    (array([100.]), array([400.]))
+    """
+
+    min_damping: float = 500.0
+    max_damping: float = 5000.0
+    semi_active: ClassVar[bool] = True
+
+    def __post_init__(self) -> None:
+        lo = float(check_range("min_damping", self.min_damping, 0.0, 1e7, unit="N s/m"))
+        hi = float(check_range("max_damping", self.max_damping, 0.0, 1e7, unit="N s/m"))
+        if hi < lo:
+            raise ValidationError(
+                f"max_damping must be >= min_damping ({lo:g} N s/m); got {hi:g} N s/m"
+            )
+        object.__setattr__(self, "min_damping", lo)
+        object.__setattr__(self, "max_damping", hi)
+
+    @property
+    def bounds(self) -> tuple[float, float]:
+        """``(0, 1)``."""
+        return 0.0, 1.0
+
+    @property
+    def passive(self) -> float:
+        """0: ``c_min``."""
+        return 0.0
+
+    def force(self, v: Any, u: Any, ops: Any = np) -> Any:
+        """``(c_min + u (c_max - c_min)) v_d`` [N]."""
+        return (self.min_damping + u * (self.max_damping - self.min_damping)) * v
+
+    def edges(self, v: npt.ArrayLike) -> tuple[np.ndarray, np.ndarray]:
+        """``(lowest, highest)`` force [N] at ``v`` [m/s]."""
+        return _sorted_edges(self, v)
+
+    def describe(self) -> dict[str, Any]:
+        """Plain-data description."""
+        return {"band": "linear", "min_damping": self.min_damping, "max_damping": self.max_damping}
+
+
+@dataclass(frozen=True)
+class ActiveBand:
+    """Any force ``|F| <= max_force`` [N] (``inf``: unbounded): an active actuator.
+
+    Not dissipative: the reference for which the optimum with a wide enough band is the
+    linear-quadratic one. The coordinate ``u`` is the force itself; its passive setting is
+    0 N.
+
+    Examples
+    --------
+    >>> ActiveBand(1000.0).edges([0.0, 1.0])
+    (array([-1000., -1000.]), array([1000., 1000.]))
+    """
+
+    max_force: float = math.inf
+    semi_active: ClassVar[bool] = False
+
+    def __post_init__(self) -> None:
+        f = float(self.max_force)
+        if math.isnan(f) or f <= 0.0:
+            raise ValidationError(f"max_force must be > 0 N (inf: no limit); got {f:g} N")
+        object.__setattr__(self, "max_force", f)
+
+    @property
+    def bounds(self) -> tuple[float, float]:
+        """``(-max_force, max_force)`` [N]."""
+        return -self.max_force, self.max_force
+
+    @property
+    def passive(self) -> float:
+        """0 N."""
+        return 0.0
+
+    def force(self, v: Any, u: Any, ops: Any = np) -> Any:
+        """``u`` itself [N]."""
+        return u + 0.0 * v
+
+    def edges(self, v: npt.ArrayLike) -> tuple[np.ndarray, np.ndarray]:
+        """``(-max_force, max_force)`` at every ``v``."""
+        vv = np.asarray(v, dtype=float)
+        return np.full(vv.shape, -self.max_force), np.full(vv.shape, self.max_force)
+
+    def describe(self) -> dict[str, Any]:
+        """Plain-data description."""
+        return {"band": "active", "max_force": self.max_force}

@@ -1,0 +1,110 @@
+"""The optimum's linear model and bands against the toolkit's own models."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from mrsuspension.benchmark import ActiveBand, LinearBand, MRBand, wk_state_space
+from mrsuspension.benchmark.model import linear_quarter_car, trapezoidal
+from mrsuspension.dampers import WangSymmetric
+from mrsuspension.errors import ValidationError
+from mrsuspension.measures import wk_weighting
+from mrsuspension.vehicle import QuarterCar, linear_frequency_response
+
+
+def _response(a: np.ndarray, b: np.ndarray, c: np.ndarray, s: np.ndarray) -> np.ndarray:
+    n = a.shape[0]
+    return np.array([(c @ np.linalg.solve(sk * np.eye(n) - a, b)).item() for sk in s])
+
+
+def test_wk_state_space_matches_the_toolkits_weighting() -> None:
+    a, b, c, d = wk_state_space()
+    assert d.item() == 0.0  # strictly proper
+    f = np.logspace(-1, math.log10(250.0), 300)
+    h = _response(a, b, c, 2j * np.pi * f)
+    assert np.max(np.abs(np.abs(h) / wk_weighting(f) - 1.0)) < 0.01
+    # balanced: equal diagonal Gramians (its states are of one size)
+    from scipy.linalg import solve_continuous_lyapunov
+
+    wc = solve_continuous_lyapunov(a, -b @ b.T)
+    wo = solve_continuous_lyapunov(a.T, -c.T @ c)
+    assert np.allclose(wc, wo, rtol=1e-6, atol=1e-9 * np.max(wc))
+
+
+def test_trapezoidal_wk_is_the_bilinear_filter_within_one_percent_to_40_hz() -> None:
+    """The transcription's Wk (trapezoidal at 1 ms) against |Wk| over the body band."""
+    a, b, c, _ = wk_state_space()
+    h = 1e-3
+    m = np.eye(8) - 0.5 * h * a
+    ad = np.linalg.solve(m, np.eye(8) + 0.5 * h * a)
+    bd = np.linalg.solve(m, h * b)  # input held over the interval (its mean)
+    f = np.linspace(0.5, 40.0, 80)
+    z = np.exp(2j * np.pi * f * h)
+    # a sine's interval means are its middle values times sinc(f h); the response from the
+    # sine to a_w at the nodes is then the bilinear Wk times 2 / (z + 1) times sinc(f h)
+    hd = np.array([(c @ np.linalg.solve(zk * np.eye(8) - ad, bd)).item() for zk in z])
+    hd = hd * np.sinc(f * h)
+    assert np.max(np.abs(np.abs(hd) / wk_weighting(f) - 1.0)) < 0.01
+
+
+@pytest.mark.parametrize("damping", [500.0, 2500.0])
+def test_linear_car_matches_the_vehicles_frequency_response(damping: float) -> None:
+    car = QuarterCar(sprung_mass=500.0, tire_damping=150.0)
+    lin = linear_quarter_car(car)
+    a = lin.a + np.outer(lin.b, damping * (np.eye(12)[3] - np.eye(12)[1]))  # F = c v_d
+    f = np.array([0.5, 1.4, 4.0, 10.0, 20.0])
+    s = 2j * np.pi * f
+    # road input z_r = e^{st}: r = [1, s]
+    zs = np.array([np.linalg.solve(sk * np.eye(12) - a, lin.e @ [1.0, sk])[0] for sk in s])
+    zu = np.array([np.linalg.solve(sk * np.eye(12) - a, lin.e @ [1.0, sk])[2] for sk in s])
+    ref = linear_frequency_response(car, damping, f)
+    assert np.allclose(np.abs(zs), ref["T_as"], rtol=1e-9)
+    assert np.allclose(np.abs(zu - zs), ref["T_dr"], rtol=1e-9)
+    # and the Wk output is Wk of the body acceleration
+    aw = np.array(
+        [(lin.c[0] @ np.linalg.solve(sk * np.eye(12) - a, lin.e @ [1.0, sk])) for sk in s]
+    )
+    assert np.allclose(np.abs(aw), wk_weighting(f) * np.abs(s**2 * zs), rtol=1e-8)
+
+
+def test_trapezoidal_step_is_stable_and_consistent() -> None:
+    d = trapezoidal(linear_quarter_car(QuarterCar()), 2e-3)
+    assert np.max(np.abs(np.linalg.eigvals(d.p))) < 1.0
+    # a constant road offset is an equilibrium with everything lifted by it
+    x = np.zeros(12)
+    x[0] = x[2] = 0.01
+    nxt = d.p @ x + d.r @ [0.01, 0.0] + d.s @ [0.01, 0.0]
+    assert np.allclose(nxt, x, atol=1e-15)
+
+
+def test_mr_band_is_the_damper_models_mean_curve() -> None:
+    vm = 0.25
+    band = MRBand(peak_velocity=vm, min_current=0.05, max_current=0.4)
+    damper = WangSymmetric(hysteresis=False)
+    v = np.linspace(-0.6, 0.6, 61)
+    lo = damper.force(0.0, v, 0.0, 0.05, peak_velocity=vm)
+    hi = damper.force(0.0, v, 0.0, 0.4, peak_velocity=vm)
+    assert np.allclose(band.force(v, 0.0), lo, rtol=1e-12, atol=1e-9)
+    assert np.allclose(band.force(v, 1.0), hi, rtol=1e-12, atol=1e-9)
+    # every coordinate is dissipative and maps to the current that gives its force
+    for u in (0.0, 0.3, 1.0):
+        f = band.force(v, u)
+        assert np.all(f * v >= 0.0)
+        i = band.current(f[v != 0], v[v != 0])
+        back = damper.force(0.0, v[v != 0], 0.0, i, peak_velocity=vm)
+        assert np.allclose(back, f[v != 0], rtol=1e-9)
+    assert np.isnan(band.current([0.0], [0.0])[0])
+
+
+def test_bands_refuse_bad_inputs() -> None:
+    with pytest.raises(ValidationError, match="max_current must be > min_current"):
+        MRBand(min_current=0.3, max_current=0.2)
+    with pytest.raises(ValidationError, match="peak_velocity"):
+        MRBand(peak_velocity=2.0)
+    with pytest.raises(ValidationError, match="max_damping must be >= min_damping"):
+        LinearBand(3000.0, 1000.0)
+    with pytest.raises(ValidationError, match="max_force must be > 0 N"):
+        ActiveBand(0.0)
