@@ -37,8 +37,8 @@ from mrsuspension.report.findings.checks import (
     within,
 )
 from mrsuspension.report.findings.claims.common import (
-    _ROAD_SPEED,
     _SM_GAIN,
+    _SWEPT_OFFLINE,
     A5_F,
     A5_P,
     A5_T,
@@ -79,7 +79,9 @@ from mrsuspension.report.findings.claims.common import (
     _one,
     _peaks_lower,
     _road_levels,
+    _road_sensitivity,
     _sub,
+    _swept,
     _tracking_by_speed,
 )
 
@@ -116,16 +118,18 @@ CLAIMS: tuple[Claim, ...] = (
         "m/s attained with hysteretic models.",
         "Figs 5.1/5.3: peak |v_r| 0.6 m/s (mean models) and 0.75 m/s (hysteretic), each "
         "within 25 %, the mean one at most 0.85 times the hysteretic one.",
-        all_of(
-            about(peak("v_r"), _sub(INV_SCM1, "mean damper + mean inverse"), 0.6),
-            about(peak("v_r"), _sub(INV_SCM1, "hysteretic damper + hysteretic inverse"), 0.75),
-            compare(
-                peak("v_r"),
-                _sub(INV_SCM1, "mean damper + mean inverse"),
-                _sub(INV_SCM1, "hysteretic damper + hysteretic inverse"),
-                "<",
-                CONSIDERABLY,
-            ),
+        _swept(
+            all_of(
+                about(peak("v_r"), _sub(INV_SCM1, "mean damper + mean inverse"), 0.6),
+                about(peak("v_r"), _sub(INV_SCM1, "hysteretic damper + hysteretic inverse"), 0.75),
+                compare(
+                    peak("v_r"),
+                    _sub(INV_SCM1, "mean damper + mean inverse"),
+                    _sub(INV_SCM1, "hysteretic damper + hysteretic inverse"),
+                    "<",
+                    CONSIDERABLY,
+                ),
+            )
         ),
     ),
     Claim(
@@ -136,7 +140,7 @@ CLAIMS: tuple[Claim, ...] = (
         "limited",
         "Fig 5.3 (hysteretic, SCM, k_d = 1): the relative tracking error while z_c < 0 at "
         "|v_r| < 0.1 m/s is over twice that at |v_r| >= 0.3 m/s.",
-        _tracking_by_speed(("inverse hi-lo SCM k_d = 1", INV_H1)),
+        _swept(_tracking_by_speed(("inverse hi-lo SCM k_d = 1", INV_H1))),
         also=("5.6", "8.2"),
     ),
     Claim(
@@ -170,9 +174,13 @@ CLAIMS: tuple[Claim, ...] = (
         "The peak magnitudes of the unsprung mass oscillations, however, are considerably "
         "lower with asymmetric damping.",
         "Fig 5.4: ACM's peak |a_u| is at most 0.85 times SCM's; its peak |a_s| is higher.",
-        all_of(
-            compare(peak("a_u"), _sub(INV_MODES, "ACM"), _sub(INV_MODES, "SCM"), "<", CONSIDERABLY),
-            compare(peak("a_s"), _sub(INV_MODES, "ACM"), _sub(INV_MODES, "SCM"), ">"),
+        _swept(
+            all_of(
+                compare(
+                    peak("a_u"), _sub(INV_MODES, "ACM"), _sub(INV_MODES, "SCM"), "<", CONSIDERABLY
+                ),
+                compare(peak("a_s"), _sub(INV_MODES, "ACM"), _sub(INV_MODES, "SCM"), ">"),
+            )
         ),
     ),
     Claim(
@@ -183,20 +191,24 @@ CLAIMS: tuple[Claim, ...] = (
         "models are comparable.",
         "Fig 5.5 (ACM, k_d = 1): peak rebound current of the hysteretic pair over 1/0.85 "
         "times the mean pair's; peak |a_s| within 10 %.",
-        all_of(
-            compare(
-                phase_peak("i_d", "rebound"),
-                _sub(INV_MIX, "mean damper + mean inverse"),
-                _sub(INV_MIX, "hysteretic damper + hysteretic inverse"),
-                "<",
-                CONSIDERABLY,
-            ),
-            spread(
-                peak("a_s"),
-                _sub(
-                    INV_MIX, "mean damper + mean inverse", "hysteretic damper + hysteretic inverse"
+        _swept(
+            all_of(
+                compare(
+                    phase_peak("i_d", "rebound"),
+                    _sub(INV_MIX, "mean damper + mean inverse"),
+                    _sub(INV_MIX, "hysteretic damper + hysteretic inverse"),
+                    "<",
+                    CONSIDERABLY,
                 ),
-            ),
+                spread(
+                    peak("a_s"),
+                    _sub(
+                        INV_MIX,
+                        "mean damper + mean inverse",
+                        "hysteretic damper + hysteretic inverse",
+                    ),
+                ),
+            )
         ),
     ),
     Claim(
@@ -207,21 +219,23 @@ CLAIMS: tuple[Claim, ...] = (
         "significantly from the practically realizable responses.",
         "Fig 5.5 (ACM, k_d = 1): the mean pair's share of i_d above 5 Hz is at most 0.85 times the hysteretic "
         "pair's, and its peak |v_r| differs from theirs by more than 15 %.",
-        all_of(
-            compare(
-                hf_fraction("i_d"),
-                _sub(INV_MIX, "mean damper + mean inverse"),
-                _sub(INV_MIX, "hysteretic damper + hysteretic inverse"),
-                "<",
-                CONSIDERABLY,
-            ),
-            compare(
-                peak("v_r"),
-                _sub(INV_MIX, "mean damper + mean inverse"),
-                _sub(INV_MIX, "hysteretic damper + hysteretic inverse"),
-                "<",
-                CONSIDERABLY,
-            ),
+        _swept(
+            all_of(
+                compare(
+                    hf_fraction("i_d"),
+                    _sub(INV_MIX, "mean damper + mean inverse"),
+                    _sub(INV_MIX, "hysteretic damper + hysteretic inverse"),
+                    "<",
+                    CONSIDERABLY,
+                ),
+                compare(
+                    peak("v_r"),
+                    _sub(INV_MIX, "mean damper + mean inverse"),
+                    _sub(INV_MIX, "hysteretic damper + hysteretic inverse"),
+                    "<",
+                    CONSIDERABLY,
+                ),
+            )
         ),
         also=("8.2",),
     ),
@@ -665,22 +679,24 @@ CLAIMS: tuple[Claim, ...] = (
         "at 50 km/h.",
         "Figs 5.17 / 6.16 (rough road): DLC at 100 km/h is 0.97-1.1 times that at 50 km/h, "
         "with inverse hi-lo and with sliding mode.",
-        all_of(
-            ratio(
-                ROAD_DLC,
-                ("inverse 100 km/h", V5_R["V = 100 km/h"]),
-                ("inverse 50 km/h", V5_R["V = 50 km/h"]),
-                0.97,
-                1.1,
-                0.114 / 0.113,
-            ),
-            ratio(
-                ROAD_DLC,
-                ("sliding 100 km/h", V6_R["V = 100 km/h"]),
-                ("sliding 50 km/h", V6_R["V = 50 km/h"]),
-                0.97,
-                1.1,
-                0.114 / 0.112,
+        _road_sensitivity(
+            all_of(
+                ratio(
+                    ROAD_DLC,
+                    ("inverse 100 km/h", V5_R["V = 100 km/h"]),
+                    ("inverse 50 km/h", V5_R["V = 50 km/h"]),
+                    0.97,
+                    1.1,
+                    0.114 / 0.113,
+                ),
+                ratio(
+                    ROAD_DLC,
+                    ("sliding 100 km/h", V6_R["V = 100 km/h"]),
+                    ("sliding 50 km/h", V6_R["V = 50 km/h"]),
+                    0.97,
+                    1.1,
+                    0.114 / 0.112,
+                ),
             ),
         ),
         depends_on=(ROAD,),
@@ -736,13 +752,15 @@ CLAIMS: tuple[Claim, ...] = (
         "0.9% and 0.9%, 0.8% and 0.8%, and 2.3% and 2.3%.",
         "Table 5.3: SDR_s rises with the pulse height (0.88, 0.91, 0.96); SDR_u, SAR_u and "
         "RDR spread at most 10 %; DTR 0.29 at 2 and 5 cm within 30 %.",
-        all_of(
-            monotone(SHOCK["SDR_s"], T53),
-            _insensitive_shock(T53, ("SDR_u", "SAR_u", "RDR"), INSENSITIVE),
-            dtr_values(
-                _one(T53, "a_m = 3.5"),
-                {"a_m = 2": (T53["a_m = 2"], 0.29), "a_m = 5": (T53["a_m = 5"], 0.29)},
-            ),
+        _swept(
+            all_of(
+                monotone(SHOCK["SDR_s"], T53),
+                _insensitive_shock(T53, ("SDR_u", "SAR_u", "RDR"), INSENSITIVE),
+                dtr_values(
+                    _one(T53, "a_m = 3.5"),
+                    {"a_m = 2": (T53["a_m = 2"], 0.29), "a_m = 5": (T53["a_m = 5"], 0.29)},
+                ),
+            )
         ),
     ),
     Claim(
@@ -812,10 +830,9 @@ KNOWN: dict[str, str] = {
     "5.4-pulse-current": _SM_GAIN + " (sliding mode spends 0.61 s above 0.1 A)",
     "5.5.1-frequency-mass": "model: the body-resonance DLC falls with m_s (0.52, 0.44, 0.37; "
     "DLC divides by the weight) where the dissertation sees a slight rise; T_au rises as "
-    "stated",
-    "5.5.2-road-dlc": _ROAD_SPEED,
+    "stated" + _SWEPT_OFFLINE,
     "5.5.3-frequency-amplitude": "model: peak T_au grows 23 % with the amplitude (not "
-    "unaltered) and peak T_as is flat (1.90, 2.00, 1.98) rather than rising",
+    "unaltered) and peak T_as is flat (1.90, 2.00, 1.98) rather than rising" + _SWEPT_OFFLINE,
     "5.5.3-table": "model: SDR_s falls with the pulse height (0.86, 0.80, 0.69) where Table "
     "5.3 has it rising, and SAR_u / RDR vary by 28 % / 16 %, not under 3 %",
 }
