@@ -522,7 +522,7 @@ def _dtr_at_most(runs: Mapping[str, Run], nominal: str, limit: float) -> Check:
 
 
 #: The sensitivity check of the claims on frequency responses and roads, whose sweep costs
-#: too much for the scorecard (84 runs, 54 s of CPU at quick settings): run offline
+#: too much for the scorecard (77 runs, about 50 s of CPU at quick settings): run offline
 _SWEPT_OFFLINE = (
     "; the sweep (python -m mrsuspension.report.findings --sweep) finds it not held for any "
     "ADFG centre in 0-0.5 nor beta in 1-2 (quick settings; the errata page)"
