@@ -1356,7 +1356,7 @@ def _road_from_options(options: Mapping[str, Any], base_dir: str | Path | None) 
             preset = _preset(profile, options.get("spectrum", "reference"))
             changes: dict[str, Any] = {k: options[k] for k in ("level", "waviness") if k in options}
             if "band" in options:
-                changes["band"] = _band(tuple(options["band"]))
+                changes["band"] = _band(options["band"])
             if changes:
                 preset = replace(preset, **changes)
                 preset.spectrum  # noqa: B018 - checks the changed spectrum at once

@@ -90,6 +90,8 @@ def test_scenario_options_choose_and_change_a_preset_spectrum() -> None:
         make_excitation("road", iso_class="C", waviness=0.8)
     with pytest.raises(ValidationError, match="valid: reference, identified"):
         preset_road("rough", spectrum="measured")
+    with pytest.raises(ValidationError, match="band must be a pair"):
+        make_excitation("road", profile="rough", band=1.0)
     with pytest.raises(ValidationError, match="n_max > n_min"):
         make_excitation("road", profile="rough", band=[1.0, 0.5])
 
