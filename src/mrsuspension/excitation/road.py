@@ -44,7 +44,9 @@ __all__ = [
     "ISO8608_CLASSES",
     "ISO8608_N0",
     "PRESET_BAND",
+    "PRESET_IDENTIFIED",
     "PRESET_ROADS",
+    "PRESET_SPECTRA",
     "PRESET_WAVINESS",
     "PresetRoad",
     "RoadBandWarning",
@@ -75,6 +77,10 @@ ISO8608_CLASSES: dict[str, float] = {
 ISO8608_BAND = (0.011, 2.83)
 #: fewest profile points a spline road accepts
 MIN_POINTS = 4
+#: A preset's spectrum (the ``spectrum`` option of a road): the model reference's
+#: (:data:`PRESET_ROADS`, the default) or the one identified from the dissertation's road
+#: numbers (:data:`PRESET_IDENTIFIED`, ``tools/identify_roads.py``)
+PRESET_SPECTRA = ("reference", "identified")
 #: By default a synthesised road's band ends at most at this fraction of the Nyquist
 #: frequency ``1/(2 spacing)``: the cubic spline the wheel rides then keeps 98.6 % of the
 #: amplitude at the band's top (0.5 of Nyquist) and more below (issue 27).
@@ -256,6 +262,18 @@ class RoadProfile(Excitation):
                low=0.0, high=1e3, low_inclusive=False),
         Option("fade_in", "number", "m",
                "length [m] over which the profile fades in from zero, 0 by default", low=0.0),
+        Option("spectrum", "string", "",
+               "a preset's spectrum: 'reference' (the model reference's n^-1 presets, by "
+               "default) or 'identified' (fitted to the dissertation's road numbers, "
+               "PRESET_IDENTIFIED)", choices=PRESET_SPECTRA),
+        Option("level", "number", "m^3",
+               "a preset's Gd(n0) [m^3] at n0 = 0.1 cycle/m, replacing its own",
+               low=0.0, high=1.0, low_inclusive=False),
+        Option("waviness", "number", "",
+               "a preset's PSD slope w of Gd(n) ~ n^-w, replacing its own (1)",
+               low=0.0, high=5.0),
+        Option("band", "numbers", "cycle/m",
+               "a preset's spatial-frequency band [n_min, n_max] [cycle/m], replacing its own"),
         Option("distance_unit", "string", "", "unit of the CSV distance column, m or mm",
                choices=("m", "mm")),
         Option("elevation_unit", "string", "", "unit of the CSV elevation column, m or mm",
@@ -1170,8 +1188,14 @@ class PresetRoad:
         """The preset's road (see :func:`preset_road`)."""
         s = self.seed if seed is None else seed
 
+        reference = PRESET_ROADS.get(self.name)
+        own = reference is not None and reference.spectrum == self.spectrum
+        shape = "" if own else f", spectrum {self.spectrum.label()}"
+
         def label(held: RoadSpectrum, seed: int, dx: float) -> str:
-            return f"preset {self.name!r} (stand-in for the dissertation's road), seed {seed}"
+            return (
+                f"preset {self.name!r} (stand-in for the dissertation's road), seed {seed}{shape}"
+            )
 
         return _synthesise(
             self.spectrum, self.length, self.spacing, s, speed_kmh, fade_in, label, what=""
@@ -1220,6 +1244,20 @@ PRESET_ROADS: dict[str, PresetRoad] = {
         PresetRoad("rough", 2.7e-5, 86083, "stand-in for the rough Canadian road"),
     )
 }  # fmt: skip
+#: The presets with the spectra identified from the dissertation's road numbers (its DLCs
+#: at 50 and 100 km/h per controller, the rough/medium-rough PSD comparisons, the peak
+#: elevations; ``tools/identify_roads.py``, docs/errata.md "Road spectra identified"): the
+#: ``spectrum = "identified"`` option of a road, a stated reading of the findings
+#: scorecard. The model reference fixes the presets' n^-1 shape (section 8(c)), so these
+#: are not the default.
+#: ``smooth`` has no road number to fit and keeps the reference's.
+PRESET_IDENTIFIED: dict[str, PresetRoad] = {
+    "smooth": PRESET_ROADS["smooth"],
+    "medium-rough": replace(
+        PRESET_ROADS["medium-rough"], level=4.06e-6, waviness=0.5, band=(0.05, 0.7)
+    ),
+    "rough": replace(PRESET_ROADS["rough"], level=1.07e-5, waviness=0.5, band=(0.011, 1.4)),
+}
 
 
 def preset_road(
@@ -1228,6 +1266,7 @@ def preset_road(
     *,
     seed: int | None = None,
     fade_in: float = 0.0,
+    spectrum: str = "reference",
 ) -> RoadProfile:
     """One of the three preset roads, ``"smooth"``, ``"medium-rough"`` or ``"rough"``.
 
@@ -1252,6 +1291,9 @@ def preset_road(
         the same PSD level.
     fade_in : float, optional
         See :class:`RoadProfile`.
+    spectrum : {"reference", "identified"}, optional
+        The model reference's spectrum (:data:`PRESET_ROADS`, the default) or the one
+        identified from the dissertation's road numbers (:data:`PRESET_IDENTIFIED`).
 
     Examples
     --------
@@ -1267,7 +1309,18 @@ def preset_road(
     """
     if not isinstance(name, str) or name not in PRESET_ROADS:
         raise unknown_name("preset road", str(name), PRESET_ROADS)
-    return PRESET_ROADS[name].profile(speed_kmh, seed=seed, fade_in=fade_in)
+    return _preset(name, spectrum).profile(speed_kmh, seed=seed, fade_in=fade_in)
+
+
+def _preset(name: str, spectrum: object) -> PresetRoad:
+    """The preset ``name`` with the spectrum of :data:`PRESET_SPECTRA` ``spectrum``."""
+    if spectrum == "reference":
+        return PRESET_ROADS[name]
+    if spectrum == "identified":
+        return PRESET_IDENTIFIED[name]
+    raise ValidationError(
+        f"preset spectrum {spectrum!r} is not valid; valid: {', '.join(PRESET_SPECTRA)}"
+    )
 
 
 # -- scenario options ----------------------------------------------------------------------
@@ -1284,6 +1337,7 @@ def _road_from_options(options: Mapping[str, Any], base_dir: str | Path | None) 
         )
     iso_only = [k for k in ("length", "spacing") if k in options]
     csv_only = [k for k in ("distance_unit", "elevation_unit") if k in options]
+    preset_only = [k for k in ("spectrum", "level", "waviness", "band") if k in options]
     if has_profile:
         if iso_only:
             raise ValidationError(
@@ -1299,8 +1353,20 @@ def _road_from_options(options: Mapping[str, Any], base_dir: str | Path | None) 
                 raise ValidationError(
                     f"excitation 'road': {', '.join(map(repr, csv_only))} only applies to a CSV file"
                 )
-            road = preset_road(profile, speed, seed=options.get("seed"), fade_in=fade_in)
+            preset = _preset(profile, options.get("spectrum", "reference"))
+            changes: dict[str, Any] = {k: options[k] for k in ("level", "waviness") if k in options}
+            if "band" in options:
+                changes["band"] = _band(options["band"])
+            if changes:
+                preset = replace(preset, **changes)
+                preset.spectrum  # noqa: B018 - checks the changed spectrum at once
+            road = preset.profile(speed, seed=options.get("seed"), fade_in=fade_in)
         else:
+            if preset_only:
+                raise ValidationError(
+                    f"excitation 'road': {', '.join(map(repr, preset_only))} only applies to "
+                    f"a preset profile ({', '.join(PRESET_ROADS)})"
+                )
             if "seed" in options:
                 raise ValidationError(
                     "excitation 'road': 'seed' only applies with 'iso_class' or a preset profile"
@@ -1322,9 +1388,11 @@ def _road_from_options(options: Mapping[str, Any], base_dir: str | Path | None) 
                 fade_in=fade_in,
             )
     else:
-        if csv_only:
+        if csv_only or preset_only:
+            what = "a CSV file" if csv_only else f"a preset profile ({', '.join(PRESET_ROADS)})"
             raise ValidationError(
-                f"excitation 'road': {', '.join(map(repr, csv_only))} only applies to a CSV file"
+                f"excitation 'road': {', '.join(map(repr, csv_only or preset_only))} only "
+                f"applies to {what}"
             )
         iso_class = options["iso_class"]
         if not isinstance(iso_class, str) or iso_class.strip().upper() not in ISO8608_CLASSES:

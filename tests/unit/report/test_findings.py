@@ -304,3 +304,60 @@ def test_pulse_end_and_the_dlc_over_the_nominal_load() -> None:
     x = np.where(t < 0.8, 1.0, 0.0)
     assert window({"time": t, "x_s": x}) == 0.0
     assert F.residual("x_s", 0.5)({"time": t, "x_s": x}) > 0.0
+
+
+def test_failing_road_claims_are_checked_on_the_identified_spectra() -> None:
+    """Issue 30, group 4: the random-road claims that fail on the reference presets carry
+    the identified road spectra as a reading (and 4.4.3's the white rough road too)."""
+    from mrsuspension.report.findings.claims.common import ROAD_WHITE_ROUGH
+
+    for claim_id in ("4.4.2-road-current", "4.4.3-road-ride-comparable", "5.5.2-road-dlc"):
+        runs = [r for r in CLAIMS_BY_ID[claim_id].check.runs.values() if r.kind == "psd"]
+        spectra = [r.scenario.get("excitation", {}).get("spectrum") for r in runs]
+        assert spectra.count("identified") > 0, claim_id
+        assert len(spectra) == spectra.count("identified") * (3 if "comparable" in claim_id else 2)
+        assert claim_id not in KNOWN  # held under the stated reading
+    assert "6.3-road-dlc" in KNOWN
+    runs = CLAIMS_BY_ID["4.4.3-road-ride-comparable"].check.runs.values()
+    white = {
+        r.scenario["excitation"]["profile"]: r.scenario["excitation"]["waviness"]
+        for r in runs
+        if "waviness" in r.scenario.get("excitation", {})
+    }
+    assert white == {k: v["waviness"] for k, v in ROAD_WHITE_ROUGH.items()}
+
+
+def test_swept_reads_every_admissible_value_of_the_unknowns_involved() -> None:
+    """Issue 30, group 5: the ADFG centre where an ADFG law runs outside SCM, beta where
+    sliding mode runs, nothing else; a check with no unknown is its own only reading."""
+    from mrsuspension.report.findings.claims.common import _ADFG_SWEEP, _BETAS, _swept
+
+    acm = F.Run.of("pulse", {"controller": {"law": "skyhook-hilo", "mode": "ACM"}})
+    scm = F.Run.of("pulse", {"controller": {"law": "skyhook-hilo", "mode": "SCM"}})
+    sliding = F.Run.of("pulse", {"controller": {"law": "sliding-mode", "mode": "ACM"}})
+    passive = F.Run.of("pulse", {"controller": {"law": "passive"}})
+
+    def lower(run: F.Run) -> F.Check:
+        return F.compare(F.SHOCK["SDR_s"], {"x": run}, {"passive": passive}, "<")
+
+    swept = _swept(lower(acm))
+    centres = [r.scenario["controller"].get("adfg_centre") for r in swept.runs.values()]
+    assert sorted(c for c in centres if c is not None) == sorted(_ADFG_SWEEP)
+    assert {
+        r.scenario["controller"].get("beta") for r in _swept(lower(sliding)).runs.values()
+    } >= set(_BETAS)
+    only = _swept(lower(scm))
+    assert sorted(only.runs) == ["passive", "x"]
+    fails = {k: {"SDR_s": 0.9 if k.startswith("x") else 0.8} for k in swept.runs}
+    verdict = swept(fails)
+    assert not verdict.holds
+    assert verdict.exhausted
+    verdict = only({"x": {"SDR_s": 0.9}, "passive": {"SDR_s": 0.8}})
+    assert verdict.exhausted
+    assert "no unknown parameter involved" in verdict.numbers
+    held = {
+        k: {"SDR_s": 0.7 if k.startswith("x [adfg 0]") else fails[k]["SDR_s"]} for k in swept.runs
+    }
+    verdict = swept(held)
+    assert verdict.holds
+    assert verdict.reading == "ADFG centre 0"

@@ -3,15 +3,19 @@
 Options: ``--full`` (the full report's 0.1 ms step), ``--depends-on road|sar`` (only the
 claims that depend on the road presets or the SAR denominator), ``--id PREFIX`` (claims
 whose id starts with it), ``--csv PATH`` (write the rows), ``--not-held`` (print only the
-claims that do not hold).
+claims that do not hold), ``--sweep`` (check the chosen claims known not to hold over the
+admissible range of the control unknowns their runs involve, ``claims.common._swept``:
+the sensitivity check of the claims whose sweep costs too much for the scorecard).
 """
 
 from __future__ import annotations
 
 import argparse
+from dataclasses import replace
 from pathlib import Path
 
 from mrsuspension.report.findings import CLAIMS, evaluate, write_csv
+from mrsuspension.report.findings.claims.common import _swept
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -22,12 +26,19 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--id", default="", help="only claims whose id starts with this")
     parser.add_argument("--csv", type=Path, default=None, help="write the rows to this file")
     parser.add_argument("--not-held", action="store_true", help="print only failing claims")
+    parser.add_argument(
+        "--sweep",
+        action="store_true",
+        help="the claims known not to hold, over the ADFG centre and beta",
+    )
     args = parser.parse_args(argv)
     chosen = [
         c
         for c in CLAIMS
         if c.id.startswith(args.id) and (args.depends_on is None or args.depends_on in c.depends_on)
     ]
+    if args.sweep:
+        chosen = [replace(c, check=_swept(c.check)) for c in chosen if c.known]
     card = evaluate(quick=not args.full, claims=chosen, workers=None)
     if args.not_held:
         card.results = [r for r in card.results if not r.holds]

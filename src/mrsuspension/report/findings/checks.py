@@ -953,10 +953,13 @@ def all_of(*checks: Check) -> Check:
     return Check(runs, fn)
 
 
-def retabled(check: Check, tag: str, law: str | None = None, **overrides: Any) -> Check:
+def retabled(
+    check: Check, tag: str, law: str | None = None, *, kind: str | None = None, **overrides: Any
+) -> Check:
     """The same check on changed runs: each run's scenario updated by ``overrides`` (only
-    the runs of controller ``law``, if given), its label tagged ``[tag]`` so that it can sit
-    beside the original in :func:`readings` (a sensitivity to an unknown parameter).
+    the runs of controller ``law``, if given, and of run kind ``kind``, if given), its label
+    tagged ``[tag]`` so that it can sit beside the original in :func:`readings` (a
+    sensitivity to an unknown parameter).
 
     Examples
     --------
@@ -969,6 +972,8 @@ def retabled(check: Check, tag: str, law: str | None = None, **overrides: Any) -
 
     def changed(run: Run) -> Run:
         if law is not None and run.scenario.get("controller", {}).get("law") != law:
+            return run
+        if kind is not None and run.kind != kind:
             return run
         return Run.of(run.kind, merge_tables(run.scenario, overrides))
 
