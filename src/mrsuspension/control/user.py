@@ -77,7 +77,11 @@ __all__ = [
 ]
 
 #: what a law returns: the drive current [A] or a target force [N]
-OUTPUTS = {"current": CK.C_USER_CURRENT, "force": CK.C_USER_FORCE}
+OUTPUTS = {
+    "current": CK.C_USER_CURRENT,
+    "force": CK.C_USER_FORCE,
+    "active": CK.C_USER_ACTIVE,
+}
 #: a Python law's exceptions in this process, raised by the engine after the step
 #: (:func:`raise_failure`); empty while all is well
 FAILED: list[tuple[str, BaseException]] = []
@@ -154,6 +158,8 @@ class UserLaw(Controller):
     plant_hook: ClassVar[Callable[..., dict[str, Any]] | None] = None
     #: numba path (None: when it compiles; False: always Python)
     use_numba: ClassVar[bool | None] = None
+    #: the options' declarations given to :func:`law` (unit, range, symbol by option)
+    meta: ClassVar[dict[str, dict[str, Any]] | None] = None
 
     @classmethod
     def option_names(cls) -> tuple[str, ...]:
@@ -244,7 +250,7 @@ class UserLaw(Controller):
         module = sys.modules.get(cls.__module__)
         ref: Any = cls
         if module is None or getattr(module, cls.__qualname__, None) is not cls:
-            ref = (cls.function, cls.output, cls.use_numba, cls.plant_hook, cls.law)
+            ref = (cls.function, cls.output, cls.use_numba, cls.plant_hook, cls.law, cls.meta)
         return (_rebuild, (ref, {n: getattr(self, n) for n in self.option_names()}))
 
     def describe(self) -> dict[str, Any]:
@@ -270,8 +276,8 @@ def _rebuild(ref: Any, options: dict[str, Any]) -> UserLaw:
     if isinstance(ref, type):
         cls = ref
     else:
-        fn, output, numba, hook, name = ref
-        cls = law(fn, output=output, numba=numba, for_plant=hook)
+        fn, output, numba, hook, name, meta = ref
+        cls = law(fn, output=output, numba=numba, for_plant=hook, options=meta)
         cls.law = name
     made: UserLaw = cls(**options)
     return made
@@ -282,10 +288,21 @@ _CLASSES: dict[tuple[Any, ...], type[UserLaw]] = {}
 _RESERVED = frozenset(n for n in dir(UserLaw) if not n.startswith("__"))
 
 
-def _inputs(fn: Callable[..., Any], name: str) -> tuple[list[tuple[str, Any]], list[Any]]:
-    """The function's parameters as inputs, and its options' dataclass fields."""
+def _inputs(
+    fn: Callable[..., Any], name: str, meta: dict[str, dict[str, Any]] | None = None
+) -> tuple[list[tuple[str, Any]], list[Any]]:
+    """The function's parameters as inputs, and its options' dataclass fields (declared
+    with ``meta[option]``: :func:`~mrsuspension.control.base.option`'s keywords)."""
     inputs: list[tuple[str, Any]] = []
     fields: list[Any] = []
+    meta = dict(meta or {})
+    params = inspect.signature(fn).parameters
+    unknown = [k for k in meta if k not in params or params[k].default is params[k].empty]
+    if unknown:
+        raise ValidationError(
+            f"control law {name!r}: options={{{unknown[0]!r}: ...}} declares no option of "
+            "the function (an option is a parameter with a default)"
+        )
     for p in inspect.signature(fn).parameters.values():
         if p.kind in (p.VAR_POSITIONAL, p.VAR_KEYWORD):
             raise ValidationError(
@@ -322,8 +339,9 @@ def _inputs(fn: Callable[..., Any], name: str) -> tuple[list[tuple[str, Any]], l
                 f"control law {name!r}: option {p.name!r} must default to a number or to a "
                 f"vector or matrix of numbers (a list); got {default!r}"
             )
+        declared = meta.get(p.name, {})
         if isinstance(default, int | float):
-            spec = option(float(default))
+            spec = option(float(default), **declared)
         else:
             arr = np.asarray(default, dtype=float)
             if arr.ndim not in (1, 2) or arr.size == 0:
@@ -331,7 +349,8 @@ def _inputs(fn: Callable[..., Any], name: str) -> tuple[list[tuple[str, Any]], l
                     f"control law {name!r}: option {p.name!r} must be a non-empty vector or "
                     f"matrix; got shape {arr.shape}"
                 )
-            spec = option(ControlOption(p.name, None, shape=arr.shape).check(arr), shape=arr.shape)
+            checked = ControlOption(p.name, None, shape=arr.shape, **declared).check(arr)
+            spec = option(checked, shape=arr.shape, **declared)
         inputs.append(("option", p.name))
         fields.append((p.name, Any, spec))
     return inputs, fields
@@ -343,6 +362,7 @@ def law(
     output: str = "current",
     for_plant: Callable[..., dict[str, Any]] | None = None,
     numba: bool | None = None,
+    options: dict[str, dict[str, Any]] | None = None,
 ) -> Any:
     """Make a control law of a plain Python function (a :class:`UserLaw` class).
 
@@ -354,9 +374,11 @@ def law(
         named tuple), parameters with a default are the law's options (a number, or a
         list for a vector or a list of lists for a matrix: the default's shape is the
         option's).
-    output : {"current", "force"}
-        What ``fn`` returns: the drive current [A] (clipped to ``[0, max_current]``) or
-        a target force [N] through the damper's inverse model.
+    output : {"current", "force", "active"}
+        What ``fn`` returns: the drive current [A] (clipped to ``[0, max_current]``), a
+        target force [N] through the damper's inverse model, or (``"active"``) a force
+        [N] applied as it is by an ideal actuator in place of the damper (a reference
+        such as the active LQR; the damper model is not used).
     for_plant : callable, optional
         ``for_plant(plant, **options) -> {option: value}``: options derived from the
         quarter car (or the vehicle's corner) the law is attached to, e.g. gains from a
@@ -364,6 +386,11 @@ def law(
     numba : bool, optional
         None (default): the numba path when ``fn`` compiles with ``numba.njit``, else
         Python; False: always Python.
+    options : dict, optional
+        Declarations of the options by name: the keywords of
+        :func:`~mrsuspension.control.base.option` (``unit``, ``low``, ``high``,
+        ``symbol``, ``label``...), checked on construction and shown by
+        ``describe_options()``.
 
     Returns
     -------
@@ -377,17 +404,19 @@ def law(
         ``output``.
     """
     if output not in OUTPUTS:
-        raise ValidationError(f"law output must be 'current' or 'force'; got {output!r}")
+        raise ValidationError(
+            f"law output must be 'current', 'force' or 'active'; got {output!r}"
+        )
 
     def make(f: Callable[..., float]) -> type[UserLaw]:
         if not callable(f):
             raise ValidationError(f"law needs a function; got {f!r}")
-        key = (f, output, numba, for_plant)
+        key = (f, output, numba, for_plant, repr(sorted((options or {}).items())))
         known = _CLASSES.get(key)
         if known is not None:  # one class (one compiled entry) per function and arguments
             return known
         name = f"{f.__module__}:{f.__qualname__}"
-        inputs, fields = _inputs(f, name)
+        inputs, fields = _inputs(f, name, options)
         cls = dataclasses.make_dataclass(
             f.__name__,
             fields,
@@ -398,6 +427,8 @@ def law(
                 "code": OUTPUTS[output],
                 "output": output,
                 "needs_inverse": output == "force",
+                "force_source": CK.F_TARGET if output == "active" else CK.F_MODEL,
+                "meta": dict(options) if options else None,
                 "function": staticmethod(f),
                 "inputs": tuple(inputs),
                 "plant_hook": staticmethod(for_plant) if for_plant is not None else None,
