@@ -120,9 +120,7 @@ def groundhook(z_u_dot: float, v_d: float, i_min: float = 0.0, i_max: float = 0.
     output="force",
     options={"groundhook_damping": {"unit": "N s/m", "low": 0.0, "high": 1e7, "symbol": "c_g"}},
 )
-def groundhook_continuous(
-    z_u_dot: float, v_d: float, groundhook_damping: float = 6750.0
-) -> float:
+def groundhook_continuous(z_u_dot: float, v_d: float, groundhook_damping: float = 6750.0) -> float:
     """Continuous groundhook (Valasek et al. 1997): target ``F* = c_g z_u'`` where the
     damper can give it (``z_u' v_d > 0``), else 0; tracked through the inverse model.
 
@@ -305,9 +303,7 @@ def quarter_car_model(
     return a, b, e
 
 
-def lq_gain(
-    plant: Any, w_rattle: float, w_tire: float, w_force: float
-) -> npt.NDArray[np.float64]:
+def lq_gain(plant: Any, w_rattle: float, w_tire: float, w_force: float) -> npt.NDArray[np.float64]:
     """The LQR gain ``K`` (1 x 4) of :func:`quarter_car_model`: ``u = -K x`` minimises
     ``integral(z_s''^2 + w_rattle x_1^2 + w_tire x_3^2 + w_force u^2) dt``.
 

@@ -404,9 +404,7 @@ def law(
         ``output``.
     """
     if output not in OUTPUTS:
-        raise ValidationError(
-            f"law output must be 'current', 'force' or 'active'; got {output!r}"
-        )
+        raise ValidationError(f"law output must be 'current', 'force' or 'active'; got {output!r}")
 
     def make(f: Callable[..., float]) -> type[UserLaw]:
         if not callable(f):

@@ -34,7 +34,13 @@ C_MIN, C_MAX = 2043.0, 10613.0
 def ideal_damper() -> Bingham:
     """A damper linear in its current: ``F = (c_min + (c_max - c_min) i / 0.5 A) v_d``."""
     return Bingham(
-        parameters={"fc_a": 0.0, "fc_b": 0.0, "c0_a": C_MIN, "c0_b": (C_MAX - C_MIN) / HI, "f0": 0.0}
+        parameters={
+            "fc_a": 0.0,
+            "fc_b": 0.0,
+            "c0_a": C_MIN,
+            "c0_b": (C_MAX - C_MIN) / HI,
+            "f0": 0.0,
+        }
     )
 
 
@@ -253,7 +259,9 @@ def test_the_laws_run_at_every_corner_of_the_full_car() -> None:
         res = VehicleSimulation(car, road, controllers=make_controller(law)).run(0.3)
         currents = {c: np.asarray(res[f"i_d.{c}"]) for c in car.corners}
         for c, i in currents.items():
-            assert np.all(np.isfinite(i)) and i.max() == HI and i.min() == LO, (law, c)
+            assert np.all(np.isfinite(i)), (law, c)
+            assert i.max() == HI, (law, c)
+            assert i.min() == LO, (law, c)
     # each corner's LQ gain from its own quarter car (front and rear differ)
     ks = [
         np.asarray(make_controller("clipped-lq").for_plant(car.corner_quarter_car(c)).K)
