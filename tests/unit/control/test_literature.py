@@ -21,6 +21,7 @@ from mrsuspension.control import literature as L
 from mrsuspension.dampers.peers import Bingham, LinearViscous
 from mrsuspension.engine import Simulation
 from mrsuspension.engine.vehicle import VehicleSimulation
+from mrsuspension.errors import ValidationError
 from mrsuspension.excitation import Harmonic
 from mrsuspension.excitation.wheels import WheelRoads
 from mrsuspension.vehicle import FullCar, QuarterCar
@@ -268,3 +269,18 @@ def test_the_laws_run_at_every_corner_of_the_full_car() -> None:
         for c in car.corners
     ]
     assert not np.allclose(ks[0], ks[-1])
+
+
+def test_a_scenario_names_a_literature_law_with_its_gain_matrix() -> None:
+    from mrsuspension.scenario import Scenario
+
+    def controller(table: dict[str, Any]) -> Any:
+        data = {"excitation": {"kind": "harmonic", "frequency": 1.5, "amplitude": 0.02}}
+        return Scenario.from_dict({**data, "controller": table}).simulations()[0].controller
+
+    ctl = controller({"law": "clipped-lq", "K": [[1000.0, 2000.0, 0.0, 10.0]], "i_max": 0.4})
+    assert ctl.law == "clipped-lq"
+    assert ctl.K == ((1000.0, 2000.0, 0.0, 10.0),)  # given gains are kept
+    assert ctl.i_max == 0.4
+    with pytest.raises(ValidationError, match=r"K must be an array of shape \(1, 4\)"):
+        controller({"law": "clipped-lq", "K": [1.0, 2.0]})
