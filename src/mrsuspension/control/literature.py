@@ -32,6 +32,9 @@ law                      rule (this toolkit's signs)                        outp
                          (Dyke et al. 1996)
 ``lq-force``             ``F* = f_c`` through the inverse model             force
 ``lq-active``            ``f_c`` applied by an ideal actuator (a reference) active
+``clipped-lqg``          Dyke's rule with ``f_c = -K x_hat``, ``x_hat`` a    hi-lo
+                         Kalman estimate (the law's memory)
+``lqg-active``           ``-K x_hat`` by an ideal actuator                  active
 =======================  =================================================  ==========
 
 "hi-lo": ``i_max`` when the rule says high, else ``i_min``; "force": a target force
@@ -64,19 +67,24 @@ from typing import Any
 
 import numpy as np
 import numpy.typing as npt
+from numba import njit
 
 from mrsuspension.control.user import law
 
 __all__ = [
+    "LQG_NOISE",
     "LQ_WEIGHTS",
     "add",
     "clipped_lq",
+    "clipped_lqg",
     "groundhook",
     "groundhook_continuous",
     "hybrid_skyhook_groundhook",
+    "kalman_gain",
     "lq_active",
     "lq_force",
     "lq_gain",
+    "lqg_active",
     "pdd",
     "pdd_current",
     "quarter_car_model",
@@ -408,6 +416,190 @@ def lq_active(
     return -(K[0, 0] * (-x_d) + K[0, 1] * z_s_dot + K[0, 3] * z_u_dot)
 
 
+# -- LQG: the LQ gain on a Kalman estimate ----------------------------------------------
+#: default LQG noise intensities: the road's velocity 1e-3 m^2/s (ISO 8608 class C at 72
+#: km/h: one-sided velocity PSD (2 pi n0)^2 Gd(n0) V = 2.0e-3 m^2/s, n0 = 0.1 cycle/m,
+#: Gd(n0) = 256e-6 m^3, V = 20 m/s), the accelerometers 1e-2 (m/s^2)^2 s, the stroke
+#: sensor 1e-8 m^2 s (assumed sensor grades, not values from a paper)
+LQG_NOISE = {"road_intensity": 1e-3, "noise_acc": 1e-2, "noise_stroke": 1e-8}
+
+
+def _measurements(
+    plant: Any,
+) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]:
+    """``(C, D)`` of the measurements ``y = (z_s'', z_u'', z_s - z_u) = C x + D u``."""
+    a, b, _ = quarter_car_model(plant)
+    c = np.vstack([a[1], a[3], [1.0, 0.0, 0.0, 0.0]])
+    d = np.array([b[1, 0], b[3, 0], 0.0])
+    return c, d
+
+
+def kalman_gain(
+    plant: Any, road_intensity: float, noise_acc: float, noise_stroke: float
+) -> npt.NDArray[np.float64]:
+    """The steady Kalman-Bucy gain ``L`` (4 x 3) of :func:`quarter_car_model` measured by
+    the body and wheel accelerometers and the stroke sensor.
+
+    Process noise: the road's velocity (white, intensity ``road_intensity``) through
+    ``E``; measurement noise: ``diag(noise_acc, noise_acc, noise_stroke)``. The wheel
+    accelerometer also sees the road through the tire's damping (``c_t z_r' / m_u``);
+    that correlation is left out (``c_t`` is small). Solved by
+    :func:`scipy.linalg.solve_continuous_are` on the dual problem.
+
+    Examples
+    --------
+    >>> from mrsuspension.vehicle import QuarterCar
+    >>> kalman_gain(QuarterCar(), **LQG_NOISE).shape
+    (4, 3)
+    """
+    import scipy.linalg  # (not at import: the CLI starts without scipy)
+
+    a, _, e = quarter_car_model(plant)
+    c, _ = _measurements(plant)
+    v = np.diag([noise_acc, noise_acc, noise_stroke])
+    p = scipy.linalg.solve_continuous_are(a.T, c.T, road_intensity * (e @ e.T), v)
+    gain: npt.NDArray[np.float64] = p @ c.T @ np.linalg.inv(v)
+    return gain
+
+
+_LQG = {
+    "K": _LQ["K"],
+    "L": {"unit": "1/s, s, ...", "low": -1e12, "high": 1e12, "symbol": "L"},
+    "A": {"unit": "1/s, 1/s^2", "low": -1e12, "high": 1e12, "symbol": "A"},
+    "B": {"unit": "1/kg", "low": -1e6, "high": 1e6, "symbol": "B"},
+    "w_rattle": _LQ["w_rattle"],
+    "w_tire": _LQ["w_tire"],
+    "w_force": _LQ["w_force"],
+    "road_intensity": {"unit": "m^2/s", "low": 0.0, "high": 1.0, "low_open": True, "symbol": "W"},
+    "noise_acc": {"unit": "(m/s^2)^2 s", "low": 0.0, "high": 1e6, "low_open": True},
+    "noise_stroke": {"unit": "m^2 s", "low": 0.0, "high": 1.0, "low_open": True},
+}
+
+
+def _lqg_for_plant(plant: Any, **options: Any) -> dict[str, Any]:
+    """``K``, ``L``, ``A``, ``B`` from the plant where all of them are zeros (their
+    defaults); given ones are kept."""
+    given = [np.any(np.asarray(options[n]) != 0.0) for n in ("K", "L", "A", "B")]
+    if any(given):
+        return {}
+    a, b, _ = quarter_car_model(plant)
+    k = lq_gain(plant, options["w_rattle"], options["w_tire"], options["w_force"])
+    gain = kalman_gain(
+        plant, options["road_intensity"], options["noise_acc"], options["noise_stroke"]
+    )
+    return {"K": k, "L": gain, "A": a, "B": b[:, 0]}
+
+
+_Z44 = tuple((0.0, 0.0, 0.0, 0.0) for _ in range(4))
+_Z43 = tuple((0.0, 0.0, 0.0) for _ in range(4))
+
+
+@njit(error_model="numpy")  # (compiled on first use; the laws calling it compile with it)
+def _lqg_force(
+    z_s_ddot: float,
+    z_u_ddot: float,
+    x_d: float,
+    F_d: float,
+    time: float,
+    memory: Any,
+    K: Any,
+    L: Any,
+    A: Any,
+    B: Any,
+) -> float:
+    """Advance the estimate in ``memory`` (``x_hat``, then the last sample's time) to
+    ``time`` by an Euler step and return ``f_c = -K x_hat``."""
+    dt = time - memory[4]
+    memory[4] = time
+    u = F_d
+    # the innovation y - C x_hat - D u; C and D are rows of A and B (_measurements)
+    r0 = z_s_ddot - u * B[1]
+    r1 = z_u_ddot - u * B[3]
+    for j in range(4):
+        r0 -= A[1, j] * memory[j]
+        r1 -= A[3, j] * memory[j]
+    r2 = -x_d - memory[0]
+    d0 = d1 = d2 = d3 = 0.0
+    for i in range(4):
+        rate = B[i] * u + L[i, 0] * r0 + L[i, 1] * r1 + L[i, 2] * r2
+        for j in range(4):
+            rate += A[i, j] * memory[j]
+        if i == 0:
+            d0 = rate
+        elif i == 1:
+            d1 = rate
+        elif i == 2:
+            d2 = rate
+        else:
+            d3 = rate
+    memory[0] += dt * d0
+    memory[1] += dt * d1
+    memory[2] += dt * d2
+    memory[3] += dt * d3
+    return -(K[0, 0] * memory[0] + K[0, 1] * memory[1] + K[0, 2] * memory[2] + K[0, 3] * memory[3])
+
+
+@law(for_plant=_lqg_for_plant, options={**_LQG, **_HILO}, memory=5)
+def clipped_lqg(
+    z_s_ddot: float,
+    z_u_ddot: float,
+    x_d: float,
+    F_d: float,
+    time: float,
+    memory: Any,
+    K: Any = _K0,
+    L: Any = _Z43,
+    A: Any = _Z44,
+    B: Any = (0.0, 0.0, 0.0, 0.0),
+    w_rattle: float = LQ_WEIGHTS["w_rattle"],
+    w_tire: float = LQ_WEIGHTS["w_tire"],
+    w_force: float = LQ_WEIGHTS["w_force"],
+    road_intensity: float = LQG_NOISE["road_intensity"],
+    noise_acc: float = LQG_NOISE["noise_acc"],
+    noise_stroke: float = LQG_NOISE["noise_stroke"],
+    i_min: float = 0.0,
+    i_max: float = 0.5,
+) -> float:
+    """Clipped-optimal LQG (Dyke et al. 1996: LQG from acceleration feedback): Dyke's rule
+    (high when ``(f_c - F_d) F_d > 0``) with ``f_c = -K x_hat``, the full-state LQ gain
+    (:func:`lq_gain`, the tire deflection's gain too) on a Kalman-Bucy estimate
+    (:func:`kalman_gain`) from the body and wheel accelerometers (``z_s''``, ``z_u''``)
+    and the stroke sensor, with the load cell's ``F_d`` as the input.
+
+    The estimate is the law's memory (``law(memory=5)``: ``x_hat`` and the last sample's
+    time), integrated by Euler over the time since the last sample; ``A``, ``B`` (the
+    plant's model), ``K`` and ``L`` come from the plant (``for_plant``), each corner its
+    own, unless given.
+    """
+    fc = _lqg_force(z_s_ddot, z_u_ddot, x_d, F_d, time, memory, K, L, A, B)
+    return i_max if (fc - F_d) * F_d > 0.0 else i_min
+
+
+@law(output="active", for_plant=_lqg_for_plant, options=_LQG, memory=5)
+def lqg_active(
+    z_s_ddot: float,
+    z_u_ddot: float,
+    x_d: float,
+    F_d: float,
+    time: float,
+    memory: Any,
+    K: Any = _K0,
+    L: Any = _Z43,
+    A: Any = _Z44,
+    B: Any = (0.0, 0.0, 0.0, 0.0),
+    w_rattle: float = LQ_WEIGHTS["w_rattle"],
+    w_tire: float = LQ_WEIGHTS["w_tire"],
+    w_force: float = LQ_WEIGHTS["w_force"],
+    road_intensity: float = LQG_NOISE["road_intensity"],
+    noise_acc: float = LQG_NOISE["noise_acc"],
+    noise_stroke: float = LQG_NOISE["noise_stroke"],
+) -> float:
+    """The LQG force ``f_c = -K x_hat`` (as :func:`clipped_lqg`) by an ideal actuator: a
+    reference, and the check that the estimate converges (the recorded ``F_target``
+    against ``-K x`` of the true states)."""
+    return _lqg_force(z_s_ddot, z_u_ddot, x_d, F_d, time, memory, K, L, A, B)
+
+
 #: the laws by registry name
 LAWS = {
     "skyhook-onoff": skyhook_onoff,
@@ -421,6 +613,8 @@ LAWS = {
     "clipped-lq": clipped_lq,
     "lq-force": lq_force,
     "lq-active": lq_active,
+    "clipped-lqg": clipped_lqg,
+    "lqg-active": lqg_active,
 }
 for _name, _cls in LAWS.items():
     _cls.law = _name
