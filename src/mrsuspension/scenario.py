@@ -49,7 +49,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from mrsuspension._inputs import read_toml
-from mrsuspension.control import CONTROLLERS, Controller, HiLo, make_controller
+from mrsuspension.control import CONTROLLERS, Controller, HiLo, law_options, make_controller
 from mrsuspension.control.modal import VehicleLaw
 from mrsuspension.control.registry import VEHICLE_LAWS as LAW_PLUGINS
 from mrsuspension.control.sensing import BandPassObserver, LeakyIntegrator, Sensing, StrokeSensor
@@ -171,8 +171,12 @@ def _law_keys(law: str) -> dict[str, str]:
 
 _CONTROLLER_KEYS: dict[str, str] = {}
 for _law in CONTROLLERS:
+    #: vector and matrix options (e.g. the LQ laws' gain K): TOML arrays
+    _arrays = {o.name for o in law_options(_law) if o.shape is not None}
     for _key in _law_keys(_law):
-        _CONTROLLER_KEYS[_key] = _CONTROLLER_TEXT.get(_key, "number")
+        _CONTROLLER_KEYS[_key] = (
+            "array" if _key in _arrays else _CONTROLLER_TEXT.get(_key, "number")
+        )
 
 
 def _excitation_keys() -> dict[str, str]:
@@ -342,6 +346,8 @@ def _typed(section: str, key: str, value: object, kind: str) -> Any:
         if not isinstance(value, str):
             raise ValidationError(f"{where} must be a string; got {value!r}")
         return value
+    if kind == "array":  # a vector or matrix option: its shape is checked by the law
+        return _user_value(section, key, value)
     if kind == "numbers":
         if not isinstance(value, list) or not all(_is_number(v) for v in value):
             raise ValidationError(f"{where} must be a list of numbers; got {value!r}")

@@ -19,6 +19,10 @@ law                   class                                             seed
 ``ideal-onoff``       :class:`IdealOnOff` (3.13), ideal damper          (3.13)
 ====================  ================================================  ==============
 
+The literature's benchmark laws (groundhook, hybrid skyhook-groundhook, ADD, SH-ADD,
+PDD, clipped-optimal LQ: ``add``, ``sh-add``, ``clipped-lq``...) are registered too, written
+with :func:`law` in :mod:`~mrsuspension.control.literature`.
+
 Laws of your own: :func:`law` makes a plain Python function of the measured signals
 (:mod:`~mrsuspension.control.signals`) a controller (:mod:`~mrsuspension.control.user`;
 ``docs/control-laws.md``); a scenario names it ``law = "my_module:my_law"``.

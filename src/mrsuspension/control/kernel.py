@@ -47,6 +47,7 @@ __all__ = [
     "C_POLICY",
     "C_SIGNALS",
     "C_SLIDING",
+    "C_USER_ACTIVE",
     "C_USER_CURRENT",
     "C_USER_FORCE",
     "EST_SHARED",
@@ -54,6 +55,7 @@ __all__ = [
     "F_MODEL",
     "F_ONOFF",
     "F_SKYHOOK",
+    "F_TARGET",
     "P_ADFG_CENTRE",
     "P_BETA",
     "P_C0",
@@ -96,6 +98,9 @@ C_SIGNALS = 7
 C_USER_CURRENT = 7
 #: a user-defined law returning a target force [N], tracked through the inverse model
 C_USER_FORCE = 8
+#: a user-defined law returning a force [N] applied as it is by an ideal actuator
+#: (force source :data:`F_TARGET`: a reference, e.g. the active LQR, not a damper)
+C_USER_ACTIVE = 9
 
 # controller parameters (Controller.params)
 (
@@ -130,6 +135,7 @@ F_MODEL = 0  # the damper model at the held current
 F_SKYHOOK = 1  # ideal skyhook (3.12) through an ideal dissipative damper
 F_ONOFF = 2  # Rakheja displacement on-off (3.13) through an ideal dissipative damper
 F_EXTERNAL = 3  # a given force held over the step (hardware in the loop; set by the engine)
+F_TARGET = 4  # the law's target force F* held over the step: an ideal actuator (C_USER_ACTIVE)
 
 #: controller estimator code meaning "use the damper's latched v_m" (dissertation's model)
 EST_SHARED = -1
@@ -339,8 +345,10 @@ def user_control(
     it) with the signals (:mod:`mrsuspension.control.signals`). ``C_USER_CURRENT``: the
     value is the current, clipped to ``[0, i_max]``; ``C_USER_FORCE``: a target force
     tracked through the damper's inverse model (as the inverse-model laws, ``z_c = F_h
-    F*``). A value that is not finite (a Python law that raised) makes the current NaN:
-    the run then stops at the limit check and the caller reports the law's error.
+    F*``); ``C_USER_ACTIVE``: the value is the force of an ideal actuator (no current;
+    the engine applies the target, force source :data:`F_TARGET`). A value that is not
+    finite (a Python law that raised) makes the current NaN: the run then stops at the
+    limit check and the caller reports the law's error.
     """
     nan = math.nan
     addr = cp[P_USER_FN]
@@ -352,6 +360,8 @@ def user_control(
     imax = cp[P_IMAX]
     if ck == C_USER_CURRENT:
         return min(max(out, 0.0), imax), out, nan, nan
+    if ck == C_USER_ACTIVE:
+        return 0.0, 0.0, nan, out
     sa = DK.sign(ad) * cp[P_INV_HYST]
     fh = DK.passive_hysteron_memo(dp, memo, sig[3] - sig[1], sa, vm)
     iz = DK.wang_inverse_from(dp, out, fh, imax)

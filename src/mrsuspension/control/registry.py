@@ -10,6 +10,7 @@ from mrsuspension.control.base import Controller, ControlOption
 from mrsuspension.control.hilo import POLICY_LAWS, HiLo
 from mrsuspension.control.ideal import IdealOnOff, IdealSkyhook
 from mrsuspension.control.inverse import InverseHiLo
+from mrsuspension.control.literature import LAWS as LITERATURE_LAWS
 from mrsuspension.control.modal import CornerSkyhook, ModalSkyhook, VehicleLaw
 from mrsuspension.control.passive import OnOffADFG, Passive
 from mrsuspension.control.sliding import SlidingMode
@@ -46,6 +47,7 @@ CONTROLLERS: dict[str, Any] = {
     "sliding-mode": SlidingMode,
     "ideal-skyhook": IdealSkyhook,
     "ideal-onoff": IdealOnOff,
+    **LITERATURE_LAWS,  # the literature's benchmark laws (control/literature.py)
 }
 
 

@@ -77,7 +77,11 @@ __all__ = [
 ]
 
 #: what a law returns: the drive current [A] or a target force [N]
-OUTPUTS = {"current": CK.C_USER_CURRENT, "force": CK.C_USER_FORCE}
+OUTPUTS = {
+    "current": CK.C_USER_CURRENT,
+    "force": CK.C_USER_FORCE,
+    "active": CK.C_USER_ACTIVE,
+}
 #: a Python law's exceptions in this process, raised by the engine after the step
 #: (:func:`raise_failure`); empty while all is well
 FAILED: list[tuple[str, BaseException]] = []
@@ -154,6 +158,10 @@ class UserLaw(Controller):
     plant_hook: ClassVar[Callable[..., dict[str, Any]] | None] = None
     #: numba path (None: when it compiles; False: always Python)
     use_numba: ClassVar[bool | None] = None
+    #: the options' declarations given to :func:`law` (unit, range, symbol by option)
+    meta: ClassVar[dict[str, dict[str, Any]] | None] = None
+    #: values of the law's memory (its parameter ``memory``), after its options
+    memory_size: ClassVar[int] = 0
 
     @classmethod
     def option_names(cls) -> tuple[str, ...]:
@@ -206,6 +214,7 @@ class UserLaw(Controller):
         address = type(self).entry().address
         parts = [np.array([float(address)])]
         parts += [np.asarray(getattr(self, n), dtype=float).ravel() for n in self.option_names()]
+        parts.append(np.zeros(type(self).memory_size))  # the memory, zero at the start
         return np.concatenate(parts)
 
     def option_slots(self) -> dict[str, slice]:
@@ -244,7 +253,10 @@ class UserLaw(Controller):
         module = sys.modules.get(cls.__module__)
         ref: Any = cls
         if module is None or getattr(module, cls.__qualname__, None) is not cls:
-            ref = (cls.function, cls.output, cls.use_numba, cls.plant_hook, cls.law)
+            ref = (
+                cls.function, cls.output, cls.use_numba, cls.plant_hook, cls.law, cls.meta,
+                cls.memory_size,
+            )  # fmt: skip
         return (_rebuild, (ref, {n: getattr(self, n) for n in self.option_names()}))
 
     def describe(self) -> dict[str, Any]:
@@ -270,8 +282,8 @@ def _rebuild(ref: Any, options: dict[str, Any]) -> UserLaw:
     if isinstance(ref, type):
         cls = ref
     else:
-        fn, output, numba, hook, name = ref
-        cls = law(fn, output=output, numba=numba, for_plant=hook)
+        fn, output, numba, hook, name, meta, memory = ref
+        cls = law(fn, output=output, numba=numba, for_plant=hook, options=meta, memory=memory)
         cls.law = name
     made: UserLaw = cls(**options)
     return made
@@ -282,16 +294,38 @@ _CLASSES: dict[tuple[Any, ...], type[UserLaw]] = {}
 _RESERVED = frozenset(n for n in dir(UserLaw) if not n.startswith("__"))
 
 
-def _inputs(fn: Callable[..., Any], name: str) -> tuple[list[tuple[str, Any]], list[Any]]:
-    """The function's parameters as inputs, and its options' dataclass fields."""
+def _inputs(
+    fn: Callable[..., Any],
+    name: str,
+    meta: dict[str, dict[str, Any]] | None = None,
+    memory: int = 0,
+) -> tuple[list[tuple[str, Any]], list[Any]]:
+    """The function's parameters as inputs, and its options' dataclass fields (declared
+    with ``meta[option]``: :func:`~mrsuspension.control.base.option`'s keywords)."""
     inputs: list[tuple[str, Any]] = []
     fields: list[Any] = []
+    meta = dict(meta or {})
+    params = inspect.signature(fn).parameters
+    unknown = [k for k in meta if k not in params or params[k].default is params[k].empty]
+    if unknown:
+        raise ValidationError(
+            f"control law {name!r}: options={{{unknown[0]!r}: ...}} declares no option of "
+            "the function (an option is a parameter with a default)"
+        )
     for p in inspect.signature(fn).parameters.values():
         if p.kind in (p.VAR_POSITIONAL, p.VAR_KEYWORD):
             raise ValidationError(
                 f"control law {name!r}: parameter {p.name!r} must be a signal or an option "
                 "with a default, not *args or **kwargs"
             )
+        if p.name == "memory" and p.default is p.empty:
+            if memory <= 0:
+                raise ValidationError(
+                    f"control law {name!r}: parameter 'memory' needs law(memory=n), the "
+                    "number of values the law keeps between calls"
+                )
+            inputs.append(("memory", memory))
+            continue
         if p.default is p.empty:
             if p.name in SIGNALS:
                 inputs.append(("signal", SIGNALS[p.name].slot))
@@ -322,8 +356,9 @@ def _inputs(fn: Callable[..., Any], name: str) -> tuple[list[tuple[str, Any]], l
                 f"control law {name!r}: option {p.name!r} must default to a number or to a "
                 f"vector or matrix of numbers (a list); got {default!r}"
             )
+        declared = meta.get(p.name, {})
         if isinstance(default, int | float):
-            spec = option(float(default))
+            spec = option(float(default), **declared)
         else:
             arr = np.asarray(default, dtype=float)
             if arr.ndim not in (1, 2) or arr.size == 0:
@@ -331,7 +366,8 @@ def _inputs(fn: Callable[..., Any], name: str) -> tuple[list[tuple[str, Any]], l
                     f"control law {name!r}: option {p.name!r} must be a non-empty vector or "
                     f"matrix; got shape {arr.shape}"
                 )
-            spec = option(ControlOption(p.name, None, shape=arr.shape).check(arr), shape=arr.shape)
+            checked = ControlOption(p.name, None, shape=arr.shape, **declared).check(arr)
+            spec = option(checked, shape=arr.shape, **declared)
         inputs.append(("option", p.name))
         fields.append((p.name, Any, spec))
     return inputs, fields
@@ -343,6 +379,8 @@ def law(
     output: str = "current",
     for_plant: Callable[..., dict[str, Any]] | None = None,
     numba: bool | None = None,
+    options: dict[str, dict[str, Any]] | None = None,
+    memory: int = 0,
 ) -> Any:
     """Make a control law of a plain Python function (a :class:`UserLaw` class).
 
@@ -354,9 +392,11 @@ def law(
         named tuple), parameters with a default are the law's options (a number, or a
         list for a vector or a list of lists for a matrix: the default's shape is the
         option's).
-    output : {"current", "force"}
-        What ``fn`` returns: the drive current [A] (clipped to ``[0, max_current]``) or
-        a target force [N] through the damper's inverse model.
+    output : {"current", "force", "active"}
+        What ``fn`` returns: the drive current [A] (clipped to ``[0, max_current]``), a
+        target force [N] through the damper's inverse model, or (``"active"``) a force
+        [N] applied as it is by an ideal actuator in place of the damper (a reference
+        such as the active LQR; the damper model is not used).
     for_plant : callable, optional
         ``for_plant(plant, **options) -> {option: value}``: options derived from the
         quarter car (or the vehicle's corner) the law is attached to, e.g. gains from a
@@ -364,6 +404,16 @@ def law(
     numba : bool, optional
         None (default): the numba path when ``fn`` compiles with ``numba.njit``, else
         Python; False: always Python.
+    options : dict, optional
+        Declarations of the options by name: the keywords of
+        :func:`~mrsuspension.control.base.option` (``unit``, ``low``, ``high``,
+        ``symbol``, ``label``...), checked on construction and shown by
+        ``describe_options()``.
+    memory : int, optional
+        The number of values the law keeps between calls (an estimator's state): its
+        parameter ``memory`` is then a writable float array of that length, zero at the
+        first control sample of a run (``time`` = 0) and kept from call to call, one per
+        corner.
 
     Returns
     -------
@@ -377,17 +427,19 @@ def law(
         ``output``.
     """
     if output not in OUTPUTS:
-        raise ValidationError(f"law output must be 'current' or 'force'; got {output!r}")
+        raise ValidationError(f"law output must be 'current', 'force' or 'active'; got {output!r}")
 
     def make(f: Callable[..., float]) -> type[UserLaw]:
         if not callable(f):
             raise ValidationError(f"law needs a function; got {f!r}")
-        key = (f, output, numba, for_plant)
+        if not isinstance(memory, int) or isinstance(memory, bool) or memory < 0:
+            raise ValidationError(f"law memory must be a whole number >= 0; got {memory!r}")
+        key = (f, output, numba, for_plant, repr(sorted((options or {}).items())), memory)
         known = _CLASSES.get(key)
         if known is not None:  # one class (one compiled entry) per function and arguments
             return known
         name = f"{f.__module__}:{f.__qualname__}"
-        inputs, fields = _inputs(f, name)
+        inputs, fields = _inputs(f, name, options, memory)
         cls = dataclasses.make_dataclass(
             f.__name__,
             fields,
@@ -398,6 +450,9 @@ def law(
                 "code": OUTPUTS[output],
                 "output": output,
                 "needs_inverse": output == "force",
+                "force_source": CK.F_TARGET if output == "active" else CK.F_MODEL,
+                "meta": dict(options) if options else None,
+                "memory_size": memory,
                 "function": staticmethod(f),
                 "inputs": tuple(inputs),
                 "plant_hook": staticmethod(for_plant) if for_plant is not None else None,
@@ -414,12 +469,22 @@ def law(
 
 
 # -- the entries ---------------------------------------------------------------------------
+def _memory_at(cls: type[UserLaw]) -> int:
+    """Where the law's memory starts among its options' values (after them)."""
+    defaults = cls()
+    return sum(int(np.asarray(getattr(defaults, n), dtype=float).size) for n in cls.option_names())
+
+
 def _arguments(cls: type[UserLaw], sig: str, opt: str, python: bool) -> str:
     """The call's argument list, reading signals from ``sig`` and options from ``opt``."""
     args = []
     at = 0
     defaults = cls()
     for kind, value in cls.inputs:
+        if kind == "memory":
+            start = _memory_at(cls)
+            args.append(f"{opt}[{start}:{start + value}]")  # a writable view
+            continue
         if kind == "signal":
             args.append(f"{sig}[{value}]")
         elif kind == "signals":
@@ -450,10 +515,19 @@ def _numba_entry(cls: type[UserLaw]) -> tuple[Any, int]:
         _CFUNC_SIG = types.float64(
             types.CPointer(types.float64), types.CPointer(types.float64), types.int64
         )
+    reset = ""
+    if cls.memory_size:  # the memory is zero at the first control sample of a run
+        start = _memory_at(cls)
+        reset = (
+            f"    if sig[{S_T}] == 0.0:\n"
+            f"        for k in range({start}, {start + cls.memory_size}):\n"
+            "            opt[k] = 0.0\n"
+        )
     src = (
         "def _entry(s, o, n):\n"
         f"    sig = carray(s, ({NS},))\n"
         "    opt = carray(o, (n,))\n"
+        f"{reset}"
         f"    return float(_fn({_arguments(cls, 'sig', 'opt', python=False)}))\n"
     )
     space: dict[str, Any] = {
@@ -467,10 +541,21 @@ def _numba_entry(cls: type[UserLaw]) -> tuple[Any, int]:
 
 
 def _python_entry(cls: type[UserLaw]) -> tuple[Any, int]:
+    view = ""
+    opt = "o"
+    if cls.memory_size:  # the options as a writable view: the memory is kept in place
+        start = _memory_at(cls)
+        view = (
+            "        opt = _np.ctypeslib.as_array(o, (n,))\n"
+            f"        if s[{S_T}] == 0.0:\n"
+            f"            opt[{start}:{start + cls.memory_size}] = 0.0\n"
+        )
+        opt = "opt"
     src = (
         "def _entry(s, o, n):\n"
         "    try:\n"
-        f"        return float(_fn({_arguments(cls, 's', 'o', python=True)}))\n"
+        f"{view}"
+        f"        return float(_fn({_arguments(cls, 's', opt, python=True)}))\n"
         "    except BaseException as exc:\n"
         "        _FAILED.append((_name, exc))\n"
         "        return _nan\n"

@@ -63,7 +63,7 @@ from mrsuspension import shaping as _shaping
 from mrsuspension._numba_cache import INLINED, invalidate_if_changed
 from mrsuspension.control import kernel as CK
 from mrsuspension.control import signals as SG
-from mrsuspension.control.kernel import EST_SHARED, F_EXTERNAL, F_MODEL, P_C0, P_CS, P_MS0
+from mrsuspension.control.kernel import EST_SHARED, F_EXTERNAL, F_MODEL, F_TARGET, P_C0, P_CS, P_MS0
 from mrsuspension.dampers import kernels as DK
 from mrsuspension.dampers.kernels import NO_REFCOUNT
 from mrsuspension.vehicle import kernel as VK
@@ -139,6 +139,8 @@ def accelerations(
         fd = DK.damper_force(dk, dp, ds, xd, vd, mem[M_ID])
     elif fk == F_EXTERNAL:
         fd = mem[M_FEXT]
+    elif fk == F_TARGET:  # an ideal actuator: the law's force (C_USER_ACTIVE)
+        fd = mem[M_TARGET]
     else:  # an ideal dissipative damper (the ideal reference laws)
         fd = CK.ideal_force(fk, cp, vs, xd, vd)
     # multiply by the reciprocal masses: their divisions depend on parameters only, so
@@ -382,6 +384,8 @@ def start(
     """
     mem[M_PH + DK.PH_FT] = 0.0
     mem[M_STEP] = 0.0
+    if fk == F_TARGET:  # an ideal actuator starts with no force (the law acts from step 1)
+        mem[M_TARGET] = 0.0
     for q in range(SG.NS):  # the quarter car's pitch, roll and corner stay 0
         mem[M_SIG + q] = 0.0
     DK.damper_sample(dk, dp, ds, dek, dep, des, y[2] - y[0], y[3] - y[1], 0.0, mem[M_ID])

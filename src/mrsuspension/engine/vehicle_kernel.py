@@ -57,7 +57,7 @@ from mrsuspension.control import kernel as CK
 from mrsuspension.control import modal as SM
 from mrsuspension.control import sensing as SN
 from mrsuspension.control import signals as SG
-from mrsuspension.control.kernel import EST_SHARED, F_EXTERNAL, F_MODEL, P_C0, P_CS, P_MS0
+from mrsuspension.control.kernel import EST_SHARED, F_EXTERNAL, F_MODEL, F_TARGET, P_C0, P_CS, P_MS0
 from mrsuspension.control.modal import LAW_CORNERS, LAW_MODAL
 from mrsuspension.dampers import kernels as DK
 from mrsuspension.dampers.kernels import NO_REFCOUNT
@@ -161,6 +161,8 @@ def rates(
             fd = DK.damper_force(dk[c], dp[c], ds[c], xd, vd, mem[c, EK.M_ID])
         elif f == F_EXTERNAL:
             fd = mem[c, EK.M_FEXT]
+        elif f == F_TARGET:  # an ideal actuator: the corner law's force (C_USER_ACTIVE)
+            fd = mem[c, EK.M_TARGET]
         else:  # an ideal dissipative damper (the ideal reference laws)
             fd = CK.ideal_force(f, cp[c], vs, xd, vd)
         partner = int(vp[o + C_PARTNER])
@@ -416,6 +418,8 @@ def start(
     """
     for c in range(int(vp[B_NC])):
         mem[c, EK.M_PH + DK.PH_FT] = 0.0
+        if fk[c] == F_TARGET:  # an ideal actuator starts with no force
+            mem[c, EK.M_TARGET] = 0.0
         o = B_SIZE + c * CORNER_SIZE
         zs, vs = _corner_body(y, vp[o + C_X], vp[o + C_Y])
         q = NB + NQ * c

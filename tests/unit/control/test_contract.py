@@ -26,13 +26,20 @@ MAX_CURRENT = 0.3
 
 
 def _bad_value(option: ControlOption) -> Any:
-    """A value outside the option's valid set."""
+    """A value outside the option's valid set (a vector or matrix option: its default
+    with one element out of range)."""
     if option.choices is not None:
         return "no-such-choice"
     if option.high is not None:
-        return option.high * 10.0 + 1.0
-    assert option.low is not None
-    return option.low - 1.0
+        bad = option.high * 10.0 + 1.0
+    else:
+        assert option.low is not None
+        bad = option.low - 1.0
+    if option.shape is not None:
+        arr = np.array(option.default, dtype=float)
+        arr.flat[0] = bad
+        return arr.tolist()
+    return bad
 
 
 @pytest.mark.parametrize("law", LAWS)
@@ -60,12 +67,14 @@ def test_describe_round_trips_through_make_controller(law: str) -> None:
 def test_params_have_the_kernel_layout(law: str) -> None:
     ctl = make_controller(law)
     p = ctl.params(MAX_CURRENT)
-    assert p.shape == (CK.CP_SIZE,)
+    assert p.ndim == 1
+    assert p.shape[0] >= CK.CP_SIZE  # a user law's entry and options follow the fixed slots
     assert np.all(np.isfinite(p))
     assert p[CK.P_IMAX] == MAX_CURRENT
     assert ctl.code in {
         CK.C_PASSIVE, CK.C_ONOFF_ADFG, CK.C_POLICY, CK.C_INVERSE_HILO, CK.C_SLIDING,
-        CK.C_IDEAL_SKYHOOK, CK.C_IDEAL_ONOFF,
+        CK.C_IDEAL_SKYHOOK, CK.C_IDEAL_ONOFF, CK.C_USER_CURRENT, CK.C_USER_FORCE,
+        CK.C_USER_ACTIVE,
     }  # fmt: skip
 
 
@@ -89,7 +98,7 @@ def test_a_bad_option_value_is_refused_naming_it(law: str, option: ControlOption
     message = raises_validation(lambda: make_controller(law, **{option.name: bad}))
     label = option.label or option.name
     assert label in message or option.name in message, message
-    shown = bad if isinstance(bad, str) else f"{bad:g}"
+    shown = bad if isinstance(bad, str) else str(bad) if isinstance(bad, list) else f"{bad:g}"
     assert shown in message, message
 
 
