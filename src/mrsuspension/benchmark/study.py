@@ -698,6 +698,10 @@ def run_benchmark(
     spec = BenchmarkSpec() if spec is None else spec
     if workers is not None and (not isinstance(workers, int) or workers < 1):
         raise ValidationError(f"workers must be an integer >= 1; got {workers!r}")
+    if "quarter" in spec.vehicles:  # before any computing: the optimum needs CasADi
+        from mrsuspension.benchmark.optimum import _casadi
+
+        _casadi()
     start = time.perf_counter()
     client, own = None, False
     if scheduler is not None:
