@@ -1015,7 +1015,10 @@ class BenchmarkResult:
 
         road = self.spec.roads[0].name if road is None else road
         speed = self.spec.speeds[0] if speed is None else speed
+        from matplotlib.backends.backend_agg import FigureCanvasAgg
+
         fig = Figure(figsize=(6.0, 4.5))
+        FigureCanvasAgg(fig)
         ax = fig.subplots()
         for r in self.rows:
             if r["vehicle"] == vehicle and r["road"] == road and r["speed"] == speed:
