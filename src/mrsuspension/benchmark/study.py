@@ -75,6 +75,7 @@ __all__ = [
     "BenchmarkRoad",
     "BenchmarkSpec",
     "TunedOption",
+    "bound_violations",
     "default_laws",
     "run_benchmark",
 ]
@@ -82,6 +83,8 @@ __all__ = [
 VEHICLES = ("quarter", "full")
 #: the engine's step per vehicle [s] (the full car's stiffest corner needs <= 0.235 ms)
 ENGINE_DT = {"quarter": 5e-4, "full": 2e-4}
+#: ``(w_c, w_r, w_s)``: comfort, road holding, rattle space (the optimum's default weights)
+DEFAULT_WEIGHTS = (1.0, 1.0, 0.1)
 #: a cost this far below the optimum's (relative) is a violation of the bound
 BOUND_TOLERANCE = 1e-3
 
@@ -305,7 +308,7 @@ class BenchmarkSpec:
     roads: tuple[BenchmarkRoad, ...] = field(default_factory=_default_roads)
     speeds: tuple[float, ...] = (50.0, 100.0)
     vehicles: tuple[str, ...] = VEHICLES
-    weights: tuple[float, float, float] = (1.0, 1.0, 0.1)
+    weights: tuple[float, float, float] = DEFAULT_WEIGHTS
     duration: float = 4.0
     evaluations: int = 24
     population: int = 6
@@ -459,7 +462,7 @@ class BenchmarkSpec:
         if "weights" in table:
             w = dict(table["weights"])
             check_keys("[weights]", w, ("comfort", "road_holding", "rattle"))
-            d = cls().weights if "laws" in kw else (1.0, 1.0, 0.1)
+            d = DEFAULT_WEIGHTS
             kw["weights"] = (
                 float(w.get("comfort", d[0])),
                 float(w.get("road_holding", d[1])),
@@ -795,14 +798,7 @@ def _run(
     _say(progress, f"scoring {len(runs)} runs")
     scored = _map(_score_task, runs, workers, client)
     rows = _rows(spec, tuned, optima, keys, scored)
-    violations = [
-        f"{r['law']} on {r['road']} at {r['speed']:g} km/h costs {r['cost']:.4f}, below the "
-        f"optimum's {r['optimum_cost']:.4f}"
-        for r in rows
-        if r["bounded"]
-        and math.isfinite(r["optimum_cost"])
-        and r["cost"] < r["optimum_cost"] * (1.0 - BOUND_TOLERANCE)
-    ]
+    violations = bound_violations(rows)
     front = next((o["front"] for o in optima.values() if "front" in o), None)
     return BenchmarkResult(
         spec=spec,
@@ -813,6 +809,27 @@ def _run(
         violations=violations,
         run_time=time.perf_counter() - start,
     )
+
+
+def bound_violations(rows: Sequence[Mapping[str, Any]]) -> list[str]:
+    """The rows of a law that drives the MR damper costing less than the optimum.
+
+    Examples
+    --------
+    >>> row = {"law": "x", "road": "r", "speed": 50.0, "bounded": True, "cost": 1.0}
+    >>> bound_violations([{**row, "optimum_cost": 0.9}, {**row, "optimum_cost": math.nan}])
+    []
+    >>> bound_violations([{**row, "optimum_cost": 1.2}])
+    ["x on r at 50 km/h costs 1.0000, below the optimum's 1.2000"]
+    """
+    return [
+        f"{r['law']} on {r['road']} at {r['speed']:g} km/h costs {r['cost']:.4f}, below the "
+        f"optimum's {r['optimum_cost']:.4f}"
+        for r in rows
+        if r["bounded"]
+        and math.isfinite(r["optimum_cost"])
+        and r["cost"] < r["optimum_cost"] * (1.0 - BOUND_TOLERANCE)
+    ]
 
 
 def _rows(
