@@ -142,10 +142,10 @@ class TunedOption:
 LAW_TABLE: dict[str, TunedOption] = {
     "passive": TunedOption("current", 0.0, 0.5),
     "skyhook-hilo": TunedOption("gain", 0.3, 30.0, log=True),
-    "policy-ii": TunedOption("gain", 1.0, 100.0, log=True),
-    "policy-iii": TunedOption("gain", 1.0, 100.0, log=True),
+    "policy-ii": TunedOption("gain", 0.1, 100.0, log=True),
+    "policy-iii": TunedOption("gain", 0.1, 100.0, log=True),
     "policy-iv": TunedOption("gain", 30.0, 3000.0, log=True),
-    "onoff-adfg": TunedOption("current", 0.05, 0.5),
+    "onoff-adfg": TunedOption("current", 0.0, 0.5),
     "inverse-hilo": TunedOption("xi", 2.0, 100.0, log=True),
     "sliding-mode": TunedOption("skyhook_damping", 1000.0, 30000.0, log=True),
     "ideal-skyhook": TunedOption("skyhook_damping", 500.0, 30000.0, log=True),

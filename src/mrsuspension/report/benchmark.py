@@ -133,7 +133,8 @@ def _figure(result: Any, vehicle: str, number: str, folder: Path, formats: Seque
         "ideal dampers."
         + (
             " Dashed: the semi-active optimum's Pareto front on the same record (comfort "
-            "weight 0-1 against road holding); star: the optimum for the benchmark's weights."
+            f"weights {', '.join(f'{x:g}' for x in spec.pareto)}, road holding one less, no "
+            "rattle weight); star: the optimum for the benchmark's weights."
             if vehicle == "quarter" and result.front is not None
             else ""
         )
@@ -200,7 +201,7 @@ def build(
         {
             "vehicle": b["vehicle"],
             "road": b["road"],
-            "km/h": b["speed"],
+            "km/h": f"{b['speed']:g}",
             "best law": b["best"],
             "cost": b["cost"],
             "comfort / passive": b["comfort_ratio"],
@@ -222,7 +223,8 @@ def build(
         "of the ratios to the passive car at 0 A (comfort, DLC, rms stroke; the passive car "
         f"costs {sum(w):g}), the objective of the semi-active optimum "
         f"(<a href='{doc('benchmark')}'>benchmark</a>), which bounds it from below on the "
-        f"quarter car. Tuned: {html.escape(tuned)}.</p>"
+        f'quarter car. Tuned ("passive": the damper at the best constant current): '
+        f"{html.escape(tuned)}.</p>"
         + "<p>"
         + " ".join(html.escape(s) for s in text)
         + "</p>"
@@ -240,7 +242,7 @@ def build(
                     "law": r["law"],
                     "vehicle": r["vehicle"],
                     "road": r["road"],
-                    "km/h": r["speed"],
+                    "km/h": f"{r['speed']:g}",
                     "comfort": r["comfort_ratio"],
                     "DLC": r["road_holding_ratio"],
                     "stroke": r["rattle_ratio"],

@@ -88,7 +88,7 @@ def resolve(selection: Iterable[int | str] | None) -> tuple[list[int], set[str]]
     ([2, 4], {'beyond'})
     >>> numbers, sections = resolve(None)
     >>> numbers, sorted(sections)
-    ([2, 3, 4, 5, 6], ['beyond', 'benchmark', 'findings', 'vehicles'])
+    ([2, 3, 4, 5, 6], ['benchmark', 'beyond', 'findings', 'vehicles'])
     """
     if selection is None:
         return sorted(CHAPTERS), set(SECTIONS)
