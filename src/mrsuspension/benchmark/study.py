@@ -925,7 +925,11 @@ class BenchmarkResult:
         return pd.DataFrame(self.rows)
 
     def best(self) -> list[dict[str, Any]]:
-        """The best law (lowest cost; laws that drive the MR damper) per vehicle, road and speed."""
+        """The best law (lowest cost; laws that drive the MR damper) per vehicle, road and speed.
+
+        ``passive_cost`` is the passive car's at 0 A (``w_c + w_r + w_s``): the best law
+        may cost more (no law gains on that case).
+        """
         out: list[dict[str, Any]] = []
         groups: dict[tuple[str, str, float], list[dict[str, Any]]] = {}
         for r in self.rows:
@@ -941,6 +945,7 @@ class BenchmarkResult:
                     "speed": speed,
                     "best": b["law"],
                     "cost": b["cost"],
+                    "passive_cost": sum(self.spec.weights),
                     "comfort_ratio": b["comfort_ratio"],
                     "road_holding_ratio": b["road_holding_ratio"],
                     "distance": b["distance"],
@@ -958,6 +963,7 @@ class BenchmarkResult:
             "km/h",
             "best law",
             "cost",
+            "passive 0 A",
             "comfort",
             "road h.",
             "to optimum",
@@ -973,6 +979,7 @@ class BenchmarkResult:
                     f"{b['speed']:g}",
                     b["best"],
                     f"{b['cost']:.3f}",
+                    f"{b['passive_cost']:.3f}",
                     f"{b['comfort_ratio']:.3f}",
                     f"{b['road_holding_ratio']:.3f}",
                     f"+{100 * d:.1f} %" if math.isfinite(d) else "-",

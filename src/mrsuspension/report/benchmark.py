@@ -56,7 +56,8 @@ def sentences(result: Any) -> list[str]:
     ...     {"law": "b", "vehicle": "quarter", "road": "r", "speed": 50.0, "bounded": True,
     ...      "cost": 1.8, "distance": 0.5, "comfort_ratio": 1.0, "road_holding_ratio": 1.0},
     ... ]
-    >>> best = [{"vehicle": "quarter", "road": "r", "speed": 50.0, "best": "a"}]
+    >>> best = [{"vehicle": "quarter", "road": "r", "speed": 50.0, "best": "a", "cost": 1.5,
+    ...          "passive_cost": 2.1}]
     >>> r = SimpleNamespace(rows=rows, best=lambda: best, violations=[], optima=[{"cost": 1.2}])
     >>> print(sentences(r)[0])
     On the quarter car a is the best law on 1 of 1 road and speed cases.
@@ -73,13 +74,21 @@ def sentences(result: Any) -> list[str]:
         ranked = sorted(counts.items(), key=lambda kv: -kv[1])
         text = ", ".join(f"{law} on {n}" for law, n in ranked)
         lead = ranked[0][0]
+        worse = [b for b in cases if b["cost"] >= b["passive_cost"]]
+        tail = (
+            f" On {len(worse)} of them no law costs less than the passive car at 0 A."
+            if worse
+            else ""
+        )
         if len(ranked) == 1:
             out.append(
                 f"On the {name} {lead} is the best law on {ranked[0][1]} of {len(cases)} "
-                "road and speed cases."
+                "road and speed cases." + tail
             )
         else:
-            out.append(f"On the {name} the best law by case: {text} (of {len(cases)} cases).")
+            out.append(
+                f"On the {name} the best law by case: {text} (of {len(cases)} cases)." + tail
+            )
     quarter = [
         r
         for r in result.rows
@@ -204,6 +213,7 @@ def build(
             "km/h": f"{b['speed']:g}",
             "best law": b["best"],
             "cost": b["cost"],
+            "passive 0 A": b["passive_cost"],
             "comfort / passive": b["comfort_ratio"],
             "DLC / passive": b["road_holding_ratio"],
             "to the optimum": _pct(b["distance"]) if math.isfinite(b["distance"]) else "-",
