@@ -20,9 +20,10 @@ numbers of a 10 s ISO 8608 class C record at 50 km/h.
   tuned on a training road, scored on other roads, speeds and vehicles against the
   passive car and the optimum (``mrsus benchmark``).
 
-Only :mod:`mrsuspension.report`, :mod:`mrsuspension.studies` and the command line import
-this package; it imports the engine, the vehicle, the dampers, the excitations and the
-measures.
+Only :mod:`mrsuspension.report` and the command line import this package; it imports
+the engine, the vehicle, the dampers, the excitations and the measures, and the
+benchmark of laws the optimiser (:mod:`mrsuspension.optimize`) and a study's scheduler
+check (:mod:`mrsuspension.studies`).
 """
 
 from __future__ import annotations
