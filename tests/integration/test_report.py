@@ -319,6 +319,7 @@ def test_every_figure_is_legible(report: Path) -> None:
     manifest = json.loads((report / "manifest.json").read_text())
     records = [r for c in manifest["chapters"].values() for r in c["figures"]]
     records += manifest["beyond"]["figures"] + manifest["vehicles"]["figures"]
+    records += manifest["benchmark"]["figures"]
     assert len(records) >= 90
     issues = {r["number"]: r["layout issues"] for r in records if r["layout issues"]}
     assert not issues, issues
@@ -337,6 +338,8 @@ def test_progress_lines_and_chapter_times(report: Path) -> None:
         assert timing["figures"] == len(chapter["figures"]), number
         assert timing["last figure done at [s]"] > 0.0, number
     assert manifest["beyond"]["timing"]["wall time [s]"] > 0.0
+    assert manifest["benchmark"]["timing"]["wall time [s]"] > 0.0
+    assert manifest["benchmark"]["violations"] == []  # no law beats the optimum
     assert not list(report.rglob("*.svg"))
 
 

@@ -15,11 +15,15 @@ numbers of a 10 s ISO 8608 class C record at 50 km/h.
   on the front wheel's road later);
 * :class:`MRBand`, :class:`LinearBand`, :class:`ActiveBand` - force bands;
 * :func:`~mrsuspension.benchmark.model.wk_state_space` - the Wk weighting as a state-space
-  system.
+  system;
+* :func:`run_benchmark`, :class:`BenchmarkSpec` - the benchmark of semi-active laws: each
+  tuned on a training road, scored on other roads, speeds and vehicles against the
+  passive car and the optimum (``mrsus benchmark``).
 
-Only :mod:`mrsuspension.report`, :mod:`mrsuspension.studies` and the command line import
-this package; it imports the engine, the vehicle, the dampers, the excitations and the
-measures.
+Only :mod:`mrsuspension.report` and the command line import this package; it imports
+the engine, the vehicle, the dampers, the excitations and the measures, and the
+benchmark of laws the optimiser (:mod:`mrsuspension.optimize`) and a study's scheduler
+check (:mod:`mrsuspension.studies`).
 """
 
 from __future__ import annotations
@@ -38,11 +42,24 @@ from mrsuspension.benchmark.optimum import (
     replay,
     semi_active_optimum,
 )
+from mrsuspension.benchmark.study import (
+    LAW_TABLE,
+    BenchmarkResult,
+    BenchmarkRoad,
+    BenchmarkSpec,
+    TunedOption,
+    default_laws,
+    run_benchmark,
+)
 
 __all__ = [
+    "LAW_TABLE",
     "TERMS",
     "ActiveBand",
     "BenchmarkProblem",
+    "BenchmarkResult",
+    "BenchmarkRoad",
+    "BenchmarkSpec",
     "ForceBand",
     "HalfCarOptimum",
     "HalfCarProblem",
@@ -51,9 +68,12 @@ __all__ = [
     "OptimumResult",
     "ParetoFront",
     "Trajectory",
+    "TunedOption",
     "Weights",
+    "default_laws",
     "pareto_front",
     "replay",
+    "run_benchmark",
     "semi_active_optimum",
     "wk_state_space",
 ]

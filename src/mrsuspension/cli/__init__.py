@@ -2,7 +2,7 @@
 
 ``mrsus reproduce`` regenerates the dissertation's analyses into an HTML report (the
 main job); ``mrsus damper ...`` evaluates, characterises and plots damper models;
-``simulate``, ``sweep``, ``study``, ``optimize``, ``identify``, ``hil ...``,
+``simulate``, ``sweep``, ``study``, ``optimize``, ``benchmark``, ``identify``, ``hil ...``,
 ``rig-emulator``, ``monitor`` and ``bench`` run the rest. Every command imports its
 implementation inside the command function (``identify`` is loaded when it is called),
 so ``mrsus --help`` imports neither numpy nor numba, scipy or matplotlib. Every error in
@@ -22,6 +22,7 @@ import typer
 from typer.core import TyperGroup
 
 from mrsuspension.cli import bench as _bench
+from mrsuspension.cli import benchmark as _benchmark
 from mrsuspension.cli import cache as _cache
 from mrsuspension.cli import damper as _damper
 from mrsuspension.cli import examples as _examples
@@ -157,6 +158,7 @@ _register(app, "simulate", _simulate.simulate_command)
 _register(app, "sweep", _simulate.sweep_command)
 _register(app, "optimize", _optimize.optimize_command)
 _register(app, "study", _study.study)
+_register(app, "benchmark", _benchmark.benchmark_command)
 _plain_commands(_cache.app)
 app.add_typer(_cache.app, name="cache")
 _plain_commands(_examples.app)

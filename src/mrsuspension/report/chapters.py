@@ -5,7 +5,8 @@ A chapter is one module of :mod:`mrsuspension.report` exposing ``CHAPTER``, a
 pool, and how it writes its section). :data:`CHAPTERS` names the modules by chapter
 number; they are imported on first use, so importing the registry stays cheap. Adding a
 chapter is one module plus one line here. :data:`SECTIONS` are the report's other
-sections (the findings scorecard and "Beyond the dissertation"), and :func:`choices` /
+sections (the findings scorecard, "Beyond the dissertation", "Beyond the quarter car"
+and "Benchmark of semi-active laws"), and :func:`choices` /
 :func:`parse_chapters` give what ``mrsus reproduce --chapters`` accepts.
 
 Chapter 7 (:mod:`mrsuspension.report.ch7`, the HiL-against-offline comparisons of
@@ -31,7 +32,7 @@ CHAPTERS: dict[int, str] = {
     6: "ch6",
 }
 #: The report's sections that are not chapters (findings first, beyond last on the page)
-SECTIONS: tuple[str, ...] = ("findings", "beyond", "vehicles")
+SECTIONS: tuple[str, ...] = ("findings", "beyond", "vehicles", "benchmark")
 
 
 def chapter(number: int) -> Chapter:
@@ -68,7 +69,7 @@ def choices() -> tuple[str, ...]:
     Examples
     --------
     >>> choices()
-    ('2', '3', '4', '5', '6', 'findings', 'beyond', 'vehicles')
+    ('2', '3', '4', '5', '6', 'findings', 'beyond', 'vehicles', 'benchmark')
     """
     return (*(str(n) for n in sorted(CHAPTERS)), *SECTIONS)
 
@@ -87,7 +88,7 @@ def resolve(selection: Iterable[int | str] | None) -> tuple[list[int], set[str]]
     ([2, 4], {'beyond'})
     >>> numbers, sections = resolve(None)
     >>> numbers, sorted(sections)
-    ([2, 3, 4, 5, 6], ['beyond', 'findings', 'vehicles'])
+    ([2, 3, 4, 5, 6], ['benchmark', 'beyond', 'findings', 'vehicles'])
     """
     if selection is None:
         return sorted(CHAPTERS), set(SECTIONS)
@@ -126,7 +127,7 @@ def parse_chapters(text: str) -> list[int | str]:
     >>> parse_chapters("9")
     Traceback (most recent call last):
     ...
-    mrsuspension.errors.ValidationError: --chapters: unknown chapter '9'. Give chapter numbers (2, 3, 4, 5, 6), 'findings' and/or 'beyond' and/or 'vehicles', comma-separated.
+    mrsuspension.errors.ValidationError: --chapters: unknown chapter '9'. Give chapter numbers (2, 3, 4, 5, 6), 'findings' and/or 'beyond' and/or 'vehicles' and/or 'benchmark', comma-separated.
     """
     out: list[int | str] = []
     for item in (c.strip() for c in text.split(",")):

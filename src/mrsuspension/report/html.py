@@ -54,6 +54,7 @@ def _build(
     formats: Sequence[str] = ("png",),
     check: bool = False,
     vehicles: bool = False,
+    benchmark: bool = False,
 ) -> Any:
     """Run the jobs of ``chapters`` (and the findings scorecard's runs, and the "beyond"
     section) in one process pool (see families.build_all); the pool's results
@@ -93,6 +94,16 @@ def _build(
             ),
             **calls,
         }
+    if benchmark:  # the benchmark of semi-active laws: one task beside the chapters'
+        from mrsuspension.report import benchmark as section_b
+
+        calls = {
+            "benchmark": (
+                _build_beyond,
+                (section_b.build, out / "benchmark", quick, tuple(formats), check),
+            ),
+            **calls,
+        }
     # the findings scorecard's units join the pool's, listed once the pool has started
     # (its history runs are one more task)
     later = functools.partial(_findings_work, quick) if findings else None
@@ -126,7 +137,7 @@ def _build_beyond(
     formats: Sequence[str],
     check: bool,
 ) -> tuple[str, dict[str, Any]]:
-    """A section ("beyond", "vehicles") as a task of the report's pool (no progress)."""
+    """A section ("beyond", "vehicles", "benchmark") as a task of the report's pool (no progress)."""
     return build(folder, quick, lambda _msg: None, formats=formats, check=check)
 
 
@@ -193,6 +204,7 @@ def build_report(
     beyond = "beyond" in sections
     findings = "findings" in sections
     vehicles = "vehicles" in sections
+    benchmark = "benchmark" in sections
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     say = progress or (lambda _msg: None)
@@ -210,6 +222,7 @@ def build_report(
         formats=formats,
         check=check_layout,
         vehicles=vehicles,
+        benchmark=benchmark,
     )
     manifest["pool"] = built.timing
     if findings:
@@ -239,11 +252,18 @@ def build_report(
         info["timing"] = _chapter_timing(info["figures"], 0.0)
         info["timing"]["wall time [s]"] = round(built.call_times["vehicles"], 2)
         manifest["vehicles"] = info
+    if benchmark:
+        body, info = built.calls["benchmark"]
+        bodies.append(wrap_part("benchmark", body))
+        info["timing"] = _chapter_timing(info["figures"], 0.0)
+        info["timing"]["wall time [s]"] = round(built.call_times["benchmark"], 2)
+        manifest["benchmark"] = info
     elapsed = time.perf_counter() - start
     manifest["run_time_s"] = round(elapsed, 2)
     keys = [*(["findings"] if findings else []), *(f"ch{c}" for c in chosen)]
     keys += ["beyond"] if beyond else []
     keys += ["vehicles"] if vehicles else []
+    keys += ["benchmark"] if benchmark else []
     built_at = time.strftime("%Y-%m-%dT%H:%M:%S%z")
     manifest["parts"] = {
         k: {"built": built_at, "quick": quick, "version": __version__} for k in keys
@@ -276,6 +296,7 @@ _TITLES = {
     "findings": "Findings scorecard",
     "beyond": "Beyond the dissertation",
     "vehicles": "Beyond the quarter car",
+    "benchmark": "Benchmark of semi-active laws",
 }
 _TITLES.update({f"ch{n}": f"Chapter {n}" for n in range(1, 10)})
 

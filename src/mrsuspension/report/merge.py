@@ -32,13 +32,14 @@ PART_ORDER: tuple[str, ...] = (
     *(f"ch{n}" for n in range(1, 10)),
     "beyond",
     "vehicles",
+    "benchmark",
 )
 
 _MARKED = re.compile(
     r"<!-- mrsus-part:(?P<key>[\w-]+) -->(?P<body>.*?)<!-- /mrsus-part:(?P=key) -->", re.S
 )
 # reports written before the markers: each section starts with its <h2 id=...>
-_HEADING = re.compile(r"<h2 id='(?P<key>findings|ch\d+|beyond|vehicles)'>")
+_HEADING = re.compile(r"<h2 id='(?P<key>findings|ch\d+|beyond|vehicles|benchmark)'>")
 
 
 def wrap_part(key: str, body: str) -> str:

@@ -124,7 +124,13 @@ def test_every_registered_chapter_has_its_entry(number: int) -> None:
 
 
 def test_chapter_choices_come_from_the_registry() -> None:
-    assert choices() == (*(str(n) for n in sorted(CHAPTERS)), "findings", "beyond", "vehicles")
+    assert choices() == (
+        *(str(n) for n in sorted(CHAPTERS)),
+        "findings",
+        "beyond",
+        "vehicles",
+        "benchmark",
+    )
     assert parse_chapters(" 4,findings, 2") == [4, "findings", 2]
     assert resolve(["beyond", 3]) == ([3], {"beyond"})
     raises_validation(lambda: parse_chapters("4,x"), "--chapters", "'x'", "'findings'")

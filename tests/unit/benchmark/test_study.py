@@ -1,0 +1,270 @@
+"""The benchmark of semi-active laws: the spec's checks, a quick run end to end, the
+command line and the report section.
+
+One quick benchmark (``BenchmarkSpec.quick()``, one process: about 5 s) serves every
+test that needs a result: the command line and the report section are given it in place
+of a second run (their own plumbing is what they test).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+from typing import Any
+
+import pytest
+from typer.testing import CliRunner
+
+from mrsuspension.benchmark import study as S
+from mrsuspension.benchmark.study import (
+    LAW_TABLE,
+    BenchmarkRoad,
+    BenchmarkSpec,
+    TunedOption,
+    bound_violations,
+    default_laws,
+    run_benchmark,
+)
+from mrsuspension.cli import app
+from mrsuspension.control import CONTROLLERS
+from mrsuspension.errors import ValidationError
+
+runner = CliRunner()
+
+
+@pytest.fixture(scope="module")
+def quick() -> S.BenchmarkResult:
+    return run_benchmark(BenchmarkSpec.quick(), workers=1)
+
+
+# -- the spec ---------------------------------------------------------------------------------
+def test_an_unknown_law_is_one_line_naming_the_valid_ones() -> None:
+    with pytest.raises(ValidationError) as err:
+        BenchmarkSpec(laws=("skyhook-hilo", "groundhok"))
+    text = str(err.value)
+    assert "\n" not in text
+    assert "'groundhok'" in text
+    assert "Valid:" in text
+    assert all(law in text for law in CONTROLLERS)
+
+
+def test_the_default_set_is_the_table_met_by_the_registry(monkeypatch: pytest.MonkeyPatch) -> None:
+    laws = default_laws()
+    assert laws == tuple(law for law in LAW_TABLE if law in CONTROLLERS)
+    assert {"passive", "skyhook-hilo", "inverse-hilo"} <= set(laws)
+    # a law of the table registered later joins the default set, its option found
+    monkeypatch.setitem(CONTROLLERS, "groundhook", CONTROLLERS["ideal-skyhook"])
+    assert "groundhook" in default_laws()
+    spec = BenchmarkSpec()
+    assert "groundhook" in spec.laws
+    opt = spec.tuned_option("groundhook")  # no option named in the table: the first positive one
+    assert opt.option == "skyhook_damping"
+    assert (opt.lower, opt.upper, opt.log) == pytest.approx((675.0, 67500.0, True))
+
+
+@pytest.mark.parametrize(
+    ("changes", "words"),
+    [
+        ({"laws": ()}, "at least one law"),
+        ({"tuning": {"skyhook-hilo": TunedOption("gian", 1.0, 2.0)}}, "no option 'gian'"),
+        ({"tuning": {"skyhook-hilo": TunedOption("gain", 2.0, 1.0)}}, "lower < upper"),
+        ({"tuning": {"passive": TunedOption("current", 0.0, 0.5, log=True)}}, "lower > 0"),
+        ({"vehicles": ("quarter", "bus")}, "unknown vehicle 'bus'"),
+        ({"speeds": (50.0, 400.0)}, "5-250 km/h"),
+        ({"weights": (1.0, -1.0, 0.0)}, "weights"),
+        ({"optimum_dt": 0.01}, "optimum_dt"),
+        ({"pareto": (0.5,)}, "at least two"),
+    ],
+)
+def test_bad_specs_are_refused(changes: dict[str, Any], words: str) -> None:
+    with pytest.raises(ValidationError, match=words):
+        BenchmarkSpec.quick().replace(**changes)
+
+
+def test_a_spec_from_toml_tables() -> None:
+    spec = BenchmarkSpec.from_dict(
+        {
+            "laws": ["passive", "skyhook-hilo"],
+            "tuning": {"skyhook-hilo": {"option": "gain", "lower": 1.0, "upper": 9.0}},
+            "training": {"name": "B", "kind": "iso", "iso_class": "B", "speed": 70.0},
+            "roads": [{"name": "bump", "kind": "bump", "height": 0.02}],
+            "speeds": [60.0],
+            "weights": {"rattle": 0.0},
+        }
+    )
+    assert spec.tuned_option("skyhook-hilo") == TunedOption("gain", 1.0, 9.0)
+    assert spec.training_speed == 70.0
+    assert spec.training.iso_class == "B"
+    assert spec.weights == (1.0, 1.0, 0.0)
+    assert spec.roads[0].excitation("quarter", 60.0, 1.0)["kind"] == "pulse"
+    assert spec.roads[0].excitation("full", 60.0, 1.0)["kind"] == "bump"
+    assert BenchmarkSpec.from_dict(spec.to_dict()).to_dict() == spec.to_dict()
+    with pytest.raises(ValidationError, match="rods"):
+        BenchmarkSpec.from_dict({"rods": []})
+    with pytest.raises(ValidationError, match="kind must be iso, preset or bump"):
+        BenchmarkRoad("x", "crg")
+
+
+def test_the_bound_check_reports_a_law_below_the_optimum() -> None:
+    row = {"law": "x", "road": "r", "speed": 50.0, "bounded": True, "cost": 1.5}
+    assert bound_violations([{**row, "optimum_cost": 1.4}]) == []
+    assert len(bound_violations([{**row, "optimum_cost": 1.6}])) == 1
+    # an ideal damper is outside the band: not held to it
+    assert bound_violations([{**row, "bounded": False, "optimum_cost": 1.6}]) == []
+
+
+# -- a quick run end to end -------------------------------------------------------------------
+def test_quick_run_numbers_and_the_bound(quick: S.BenchmarkResult) -> None:
+    spec = quick.spec
+    n_cases = len(spec.roads) * len(spec.speeds)
+    assert len(quick.rows) == len(spec.laws) * n_cases * len(spec.vehicles)
+    for r in quick.rows:
+        for k in ("comfort", "road_holding", "rattle", "coil_power", "cost"):
+            assert math.isfinite(r[k]), (r["law"], k)
+            assert r[k] >= 0.0, (r["law"], k)
+        assert (r["vehicle"] == "quarter") == math.isfinite(r["optimum_cost"])
+    # every optimum converged; every law through the MR damper costs at least the optimum
+    assert len(quick.optima) == n_cases
+    assert all(o["success"] for o in quick.optima)
+    for r in quick.rows:
+        if r["vehicle"] == "quarter" and r["bounded"]:
+            assert r["cost"] >= r["optimum_cost"], r
+            assert r["distance"] >= 0.0
+    assert quick.violations == []
+    # the optimum beats the passive car; the ideal skyhook is not held to the bound
+    assert all(o["cost"] < o["passive_cost"] for o in quick.optima)
+    assert {r["law"] for r in quick.rows if not r["bounded"]} == {"ideal-skyhook"}
+    # a law at 0 A costs the passive car's w_c + w_r + w_s; the skyhook hi-lo draws current
+    sky = [r for r in quick.rows if r["law"] == "skyhook-hilo"]
+    assert all(r["coil_power"] > 0.0 for r in sky)
+    tuned = quick.tuned["skyhook-hilo"]
+    assert tuned["option"] == "gain"
+    assert 0.3 <= tuned["value"] <= 30.0
+    assert tuned["evaluations"] == spec.evaluations
+    # the front: comfort better as its weight grows, road holding worse
+    front = quick.front
+    assert front is not None
+    assert front["comfort_ratio"] == sorted(front["comfort_ratio"], reverse=True)
+    assert front["road_holding_ratio"] == sorted(front["road_holding_ratio"])
+
+
+def test_result_table_frame_and_figure(quick: S.BenchmarkResult) -> None:
+    df = quick.to_pandas()
+    assert {"law", "vehicle", "comfort_ratio", "distance", "coil_power"} <= set(df.columns)
+    best = quick.best()
+    assert len(best) == len(quick.spec.roads) * len(quick.spec.speeds) * len(quick.spec.vehicles)
+    for b in best:  # the lowest cost among the laws through the MR damper
+        costs = [
+            r["cost"]
+            for r in quick.rows
+            if r["bounded"]
+            and (r["vehicle"], r["road"], r["speed"]) == (b["vehicle"], b["road"], b["speed"])
+        ]
+        assert b["cost"] == min(costs)
+        assert b["best"] != "ideal-skyhook"
+    assert "best law" in quick.best_table()
+    assert "costs at least the optimum" in quick.summary()
+    fig = quick.figure("quarter")
+    labels = fig.axes[0].get_legend_handles_labels()[1]
+    assert "optimum (Pareto front)" in labels
+    assert "skyhook-hilo" in labels
+    json.dumps(quick.to_dict(), allow_nan=False)
+
+
+# -- the command line --------------------------------------------------------------------------
+def _given(monkeypatch: pytest.MonkeyPatch, result: S.BenchmarkResult) -> list[Any]:
+    calls: list[Any] = []
+
+    def fake(spec: BenchmarkSpec, **kw: Any) -> S.BenchmarkResult:
+        calls.append((spec, kw))
+        return result
+
+    monkeypatch.setattr(S, "run_benchmark", fake)
+    return calls
+
+
+def test_cli_json_and_out(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, quick: S.BenchmarkResult
+) -> None:
+    calls = _given(monkeypatch, quick)
+    out = tmp_path / "bm"
+    res = runner.invoke(
+        app, ["benchmark", "--quick", "--json", "--out", str(out), "--workers", "1"]
+    )
+    assert res.exit_code == 0, res.output
+    data = json.loads(res.stdout)
+    assert len(data["rows"]) == len(quick.rows)
+    assert data["violations"] == []
+    assert calls[0][0] == BenchmarkSpec.quick()
+    assert calls[0][1]["workers"] == 1
+    names = sorted(p.name for p in out.iterdir() if not p.name.startswith("."))
+    assert names == [
+        "benchmark.csv",
+        "benchmark.json",
+        "best.csv",
+        "tradeoff-full.png",
+        "tradeoff-quarter.png",
+    ]
+    assert sorted(Path(f).name for f in data["files"]) == names
+    assert (out / "benchmark.csv").read_text().count("\n") == len(quick.rows) + 1
+    # plain text: the best-law table
+    res = runner.invoke(app, ["benchmark", "--quick"])
+    assert res.exit_code == 0
+    assert "best law" in res.stdout
+
+
+def test_cli_spec_file_and_errors(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, quick: S.BenchmarkResult
+) -> None:
+    calls = _given(monkeypatch, quick)
+    spec = tmp_path / "b.toml"
+    spec.write_text('laws = ["passive", "skyhook-hilo"]\nspeeds = [80.0]\nvehicles = ["quarter"]\n')
+    res = runner.invoke(app, ["benchmark", str(spec), "--json"])
+    assert res.exit_code == 0, res.output
+    assert calls[-1][0].laws == ("passive", "skyhook-hilo")
+    assert calls[-1][0].speeds == (80.0,)
+    spec.write_text('laws = ["passive", "skyhook-hi-lo"]\n')
+    res = runner.invoke(app, ["benchmark", str(spec)])
+    assert res.exit_code == 2
+    assert res.stderr.startswith("error: laws: unknown controller law 'skyhook-hi-lo'")
+    assert res.stderr.count("\n") == 1
+    res = runner.invoke(app, ["benchmark", "--workers", "0"])
+    assert res.exit_code == 2
+    assert "--workers" in res.stderr
+    # a law below the optimum: reported, exit 1
+    bad = S.BenchmarkResult(**{**quick.__dict__, "violations": ["x on r costs less"]})
+    _given(monkeypatch, bad)
+    res = runner.invoke(app, ["benchmark", "--quick"])
+    assert res.exit_code == 1
+    assert "error: bound violated: x on r costs less" in res.stderr
+
+
+# -- the report section ------------------------------------------------------------------------
+def test_report_section(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, quick: S.BenchmarkResult
+) -> None:
+    from mrsuspension.report import benchmark as B
+    from mrsuspension.report.chapters import SECTIONS
+    from mrsuspension.report.html import _TITLES
+    from mrsuspension.report.merge import PART_ORDER
+
+    assert "benchmark" in SECTIONS
+    assert "benchmark" in PART_ORDER
+    assert _TITLES["benchmark"] == "Benchmark of semi-active laws"
+    calls = _given(monkeypatch, quick)
+    body, info = B.build(tmp_path / "benchmark", True, lambda _msg: None, check=True)
+    assert calls[0][0] == B.report_spec(True) == BenchmarkSpec.quick()
+    assert "<h2 id='benchmark'>Benchmark of semi-active laws</h2>" in body
+    assert [f["number"] for f in info["figures"]] == ["BM.1", "BM.2"]
+    for f in info["figures"]:
+        assert f["layout issues"] == []
+        assert (tmp_path / "benchmark" / f["files"][0]).stat().st_size > 5000
+    assert (tmp_path / "benchmark" / "best.csv").is_file()
+    # the sentences' numbers are the rows'
+    near = min(
+        (r for r in quick.rows if r["vehicle"] == "quarter" and r["bounded"]),
+        key=lambda r: r["distance"],
+    )
+    assert f"{100 * near['distance']:.1f} %" in " ".join(info["sentences"])
+    assert "the bound holds" in body
