@@ -137,8 +137,11 @@ class TunedOption:
         return self
 
 
-#: law name -> the option the benchmark tunes and its range (the laws of the literature
-#: not yet registered take their first positive option, a decade either side of it)
+#: law name -> the option the benchmark tunes and its range (a law not listed: its first
+#: positive option, a decade either side of it). The on-off laws of the literature tune
+#: their high current, the LQ laws their force weight r (a lower r: a firmer law)
+_ONOFF = TunedOption("i_max", 0.05, 0.5, log=True)
+_LQ_R = TunedOption("w_force", 1e-8, 1e-4, log=True)
 LAW_TABLE: dict[str, TunedOption] = {
     "passive": TunedOption("current", 0.0, 0.5),
     "skyhook-hilo": TunedOption("gain", 0.3, 30.0, log=True),
@@ -150,12 +153,19 @@ LAW_TABLE: dict[str, TunedOption] = {
     "sliding-mode": TunedOption("skyhook_damping", 1000.0, 30000.0, log=True),
     "ideal-skyhook": TunedOption("skyhook_damping", 500.0, 30000.0, log=True),
     "ideal-onoff": TunedOption("damping", 500.0, 30000.0, log=True),
-    "groundhook": TunedOption(None),
-    "hybrid-skyhook-groundhook": TunedOption(None),
-    "add": TunedOption(None),
-    "sh-add": TunedOption(None),
-    "pdd": TunedOption(None),
-    "clipped-lq": TunedOption(None),
+    "skyhook-onoff": _ONOFF,
+    "groundhook": _ONOFF,
+    "groundhook-continuous": TunedOption("groundhook_damping", 500.0, 30000.0, log=True),
+    "hybrid-skyhook-groundhook": TunedOption("alpha", 0.0, 1.0),
+    "add": _ONOFF,
+    "sh-add": TunedOption("alpha", 2.0, 60.0, log=True),
+    "pdd": TunedOption("c_max", 3000.0, 30000.0, log=True),
+    "pdd-current": TunedOption("c_max", 3000.0, 30000.0, log=True),
+    "clipped-lq": _LQ_R,
+    "lq-force": _LQ_R,
+    "clipped-lqg": _LQ_R,
+    "lq-active": _LQ_R,
+    "lqg-active": _LQ_R,
 }
 
 
