@@ -1051,13 +1051,16 @@ class BenchmarkResult:
         speed = self.spec.speeds[0] if speed is None else speed
         from matplotlib.backends.backend_agg import FigureCanvasAgg
 
-        fig = Figure(figsize=(6.0, 4.5))
+        fig = Figure(figsize=(9.0, 5.0))
         FigureCanvasAgg(fig)
         ax = fig.subplots()
+        markers = "o^sDvP<>hX"  # with the 10 colours of the cycle: 23 laws stay apart
+        k = 0
         for r in self.rows:
             if r["vehicle"] == vehicle and r["road"] == road and r["speed"] == speed:
-                marker = "o" if r["bounded"] else "x"
+                marker = markers[(k // 10) % len(markers)] if r["bounded"] else "x"
                 ax.plot(r["road_holding_ratio"], r["comfort_ratio"], marker, label=r["law"])
+                k += 1
         ax.plot(1.0, 1.0, "ks", label="passive 0 A")
         front = self.front if vehicle == "quarter" and road == self.spec.roads[0].name else None
         if front is not None and speed == self.spec.speeds[0]:
@@ -1081,7 +1084,9 @@ class BenchmarkResult:
         ax.set_ylabel(f"comfort: {comfort} / passive")
         ax.set_title(f"{vehicle} car, {road}, {speed:g} km/h")
         ax.grid(True, alpha=0.3)
-        ax.legend(fontsize=7)
+        ax.legend(
+            fontsize=7, loc="center left", bbox_to_anchor=(1.02, 0.5), ncol=2 if k > 14 else 1
+        )
         fig.tight_layout()
         return fig
 
