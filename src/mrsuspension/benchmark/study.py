@@ -992,7 +992,7 @@ class BenchmarkResult:
                     f"{b['passive_cost']:.3f}",
                     f"{b['comfort_ratio']:.3f}",
                     f"{b['road_holding_ratio']:.3f}",
-                    f"+{100 * d:.1f} %" if math.isfinite(d) else "-",
+                    f"{100 * d:+.1f} %" if math.isfinite(d) else "-",
                     b["runner_up"],
                 )
             )
