@@ -154,9 +154,16 @@ def _stop_wait(limits: SafetyLimits | None) -> float:
     return lim.stroke / lim.return_rate + _SETTLE + STOP_TIMEOUT
 
 
+#: set when the loop process's run has ended and its cleanup begins: a signal then no
+#: longer raises (the safe stop is done; the cleanup keeps the recording)
+_CLEANING: list[bool] = [False]
+
+
 def _raise_interrupted(signum: int, frame: Any) -> None:
     from mrsuspension._pool import Interrupted, deliver_later, raise_is_lost
 
+    if _CLEANING[0]:
+        return
     if raise_is_lost(frame):  # e.g. inside Popen.__del__: raised there it is only printed
         deliver_later(signum)
         return
@@ -184,15 +191,35 @@ def _child(
     the recording is kept where the next run cannot remove it (``recover``'s
     ``NAME.recovered``) and one line on stderr says so.
     """
+    try:
+        code = _child_run(run, target, rig, duration, rate, out, kw, parent, death_signal, recover)
+    except KeyboardInterrupt as exc:  # landed between the run's end and the cleanup's flag
+        code = 128 + int(getattr(exc, "signum", signal.SIGINT))
+    sys.exit(code)
+
+
+def _child_run(
+    run: Callable[..., Any],
+    target: Any,
+    rig: Rig | None,
+    duration: float,
+    rate: float,
+    out: str,
+    kw: dict[str, Any],
+    parent: int | None,
+    death_signal: bool,
+    recover: str | None,
+) -> int:
+    """:func:`_child`'s work; its exit status."""
     if parent is not None:
         bind_to_parent(parent, death_signal)
-    for s in (*LOOP_SIGNALS, DEATH_SIGNAL):  # SIGINT was ignored, the others held back
-        if s == signal.SIGINT or signal.getsignal(s) != signal.SIG_IGN:
-            signal.signal(s, _raise_interrupted)
-    signal.pthread_sigmask(signal.SIG_UNBLOCK, {*LOOP_SIGNALS, DEATH_SIGNAL})
     code = 0
     held = contextlib.ExitStack()
-    try:
+    try:  # (a signal held back while starting lands at the unblock: inside the try)
+        for s in (*LOOP_SIGNALS, DEATH_SIGNAL):  # SIGINT was ignored, the others held back
+            if s == signal.SIGINT or signal.getsignal(s) != signal.SIG_IGN:
+                signal.signal(s, _raise_interrupted)
+        signal.pthread_sigmask(signal.SIG_UNBLOCK, {*LOOP_SIGNALS, DEATH_SIGNAL})
         if recover is not None:  # a staging folder: no next run may remove it meanwhile
             from mrsuspension._output import staging_in_use
 
@@ -204,11 +231,12 @@ def _child(
         print(f"error: {' '.join(str(exc).split())}", file=sys.stderr, flush=True)
         code = 2
     finally:
+        _CLEANING[0] = True  # the loop has stopped: a later signal leaves the cleanup be
         if parent is not None and os.getppid() != parent:
             with contextlib.suppress(Exception):
                 _orphaned_recording(Path(out), None if recover is None else Path(recover))
         held.close()
-    sys.exit(code)
+    return code
 
 
 def _orphaned_recording(out: Path, recover: Path | None) -> None:
