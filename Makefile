@@ -50,7 +50,7 @@ system-deps:
 # (the kernels compile beside the lint, whose mypy takes ~30 s: the warm's steps compile
 # separate kernels, ~75 s on one core, on one process per core, longest first; its lines
 # are printed when both are done)
-JOBS ?= 3
+JOBS ?= 2
 test: $(VENV)/.stamp-install system-deps
 	@log=$$(mktemp); echo "$(BIN)/mrsus cache warm (beside the lint)"; \
 	  $(BIN)/mrsus cache warm >$$log 2>&1 & warm=$$!; \
