@@ -53,7 +53,7 @@ import re
 import shutil
 import sys
 import tempfile
-from collections.abc import Iterable, Iterator, Mapping, Sequence
+from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
 from contextlib import contextmanager, suppress
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -75,6 +75,7 @@ __all__ = [
     "prepare_output_file",
     "relocate_files",
     "relocated",
+    "save_listed",
     "staging_in_use",
 ]
 
@@ -908,6 +909,27 @@ def _file_error(option: str, path: Path, foreign: Sequence[str]) -> ValidationEr
         "changed since; mrsus never replaces files it did not write: move "
         f"{'it' if len(foreign) == 1 else 'them'} or give another {option}"
     )
+
+
+def save_listed(out: Path, folder: Path, save: Callable[[Path], Iterable[str | Path]]) -> list[str]:
+    """Write with ``save(folder)`` into :func:`prepare_output`'s folder; the files as they
+    will stand under ``out`` (the ``--out`` the user gave).
+
+    An ``OSError`` while writing (a full disk, a permission) becomes one
+    :class:`ValidationError` line naming ``--out``; :func:`prepare_output` then leaves the
+    previous output as it was.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> folder = Path(tempfile.mkdtemp())
+    >>> save_listed(Path("res"), folder, lambda f: [f / "a.csv", f / "sub" / "b.png"])
+    ['res/a.csv', 'res/sub/b.png']
+    """
+    try:
+        return [str(out / Path(p).relative_to(folder)) for p in save(folder)]
+    except OSError as exc:
+        raise ValidationError(f"cannot write --out {str(out)!r}: {exc}") from None
 
 
 @contextmanager

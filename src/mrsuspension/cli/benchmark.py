@@ -53,7 +53,7 @@ def benchmark_command(
 ) -> None:
     """Tune every semi-active law on a training road and score it on other roads, speeds
     and the quarter and full car: ratios to passive and the distance to the optimum."""
-    from mrsuspension._output import check_output_folder, prepare_output
+    from mrsuspension._output import check_output_folder, prepare_output, save_listed
     from mrsuspension.benchmark.study import BenchmarkSpec, run_benchmark
     from mrsuspension.errors import ValidationError
 
@@ -81,10 +81,7 @@ def benchmark_command(
                 the_spec, workers=workers, scheduler=scheduler, progress=not as_json
             )
             if out is not None and folder is not None:
-                try:
-                    files = [str(out / p.name) for p in result.save(folder)]
-                except OSError as exc:
-                    raise ValidationError(f"cannot write --out {str(out)!r}: {exc}") from None
+                files = save_listed(out, folder, result.save)
     if as_json:
         data = result.to_dict()
         data["files"] = files

@@ -46,8 +46,7 @@ def optimize_command(
     ] = False,
 ) -> None:
     """Tune scenario fields (e.g. a controller's gains) for a weighted objective over roads."""
-    from mrsuspension._output import prepare_output
-    from mrsuspension.errors import ValidationError
+    from mrsuspension._output import prepare_output, save_listed
     from mrsuspension.optimize import OptimizationProblem, optimize
 
     with user_errors():
@@ -75,10 +74,7 @@ def optimize_command(
                 prob, max_evaluations=max_evaluations, workers=workers, progress=not as_json
             )
             if out is not None and folder is not None:
-                try:
-                    files = [str(out / p.name) for p in result.save(folder)]
-                except OSError as exc:
-                    raise ValidationError(f"cannot write --out {str(out)!r}: {exc}") from None
+                files = save_listed(out, folder, result.save)
     if as_json:
         data = result.to_dict()
         data["files"] = files
