@@ -22,12 +22,13 @@ multi-threaded BLAS, whose cost on a busy machine is why the fit limits it.
 
 A second part times the issue-15 field campaign (:func:`field_campaign`: 30 tests,
 0.1-5 Hz, 2-25 mm, 200 Hz / 1 kHz, offsets, 2 % noise, a damper far from the start):
-``identify()`` end to end with its default 8 starts (median of 3 runs), beside the
+``identify()`` end to end with its default 8 starts (median of 3 runs, ``--field-repeats``), beside the
 baseline of the issue: a plain ``least_squares`` (finite differences) on one
 mid-record cycle of raw samples per test, ``v_m`` = that cycle's peak ``|v|``, from the
 same scaled start.
 
-Run: ``python benchmarks/bench_identify.py [--tests N] [--starts S] [--json]``.
+Run: ``python benchmarks/bench_identify.py [--tests N] [--starts S] [--field-repeats R]
+[--no-field] [--json]``.
 """
 
 from __future__ import annotations
@@ -133,8 +134,11 @@ def main() -> None:
     ap.add_argument("--starts", type=int, default=8, help="multi-start count")
     ap.add_argument("--json", action="store_true", help="print one JSON object")
     ap.add_argument("--no-field", action="store_true", help="skip the issue-15 field campaign")
+    ap.add_argument("--field-repeats", type=int, default=3, help="runs of the field campaign")
     args = ap.parse_args()
-    field_out = None if args.no_field else field()
+    if args.field_repeats < 1:
+        ap.error(f"--field-repeats must be 1 or more, got {args.field_repeats}")
+    field_out = None if args.no_field else field(args.field_repeats)
 
     truth = parameters.get("wang-symmetric-low")
     rng = np.random.default_rng(1)
@@ -196,7 +200,8 @@ def main() -> None:
         return
     if field_out is not None:
         ev, base = field_out["evidence"], field_out["baseline_one_cycle"]
-        print(f"field campaign (issue 15, 30 tests): identify() median of 3 "
+        print(f"field campaign (issue 15, 30 tests): identify() median of "
+              f"{len(field_out['seconds'])} "
               f"{field_out['seconds_median']:.2f} s ({', '.join(f'{t:.2f}' for t in field_out['seconds'])});"
               f" NRMSE mean {100 * field_out['mean_nrmse']:.2f} %, max "
               f"{100 * field_out['max_nrmse']:.2f} %; {ev['starts_within_1pct']} of {ev['starts']} "

@@ -164,12 +164,13 @@ def test_benchmark_smoke() -> None:
     root = Path(__file__).resolve().parents[2]
     done = subprocess.run(
         [sys.executable, str(root / "benchmarks" / "bench_identify.py"), "--tests", "4",
-         "--starts", "1", "--json"],
+         "--starts", "1", "--field-repeats", "1", "--json"],
         capture_output=True, text=True, timeout=300,
     )  # fmt: skip
     assert done.returncode == 0, done.stderr
     data = json.loads(done.stdout)
     assert data["tests"] == 4
+    assert len(data["field"]["seconds"]) == 1  # the field campaign once (--field-repeats)
     assert set(data["ratios"]) == {
         "least_squares, finite differences",
         "minimize (L-BFGS-B) on the summed squares",
