@@ -14,6 +14,7 @@ Known offences not fixed yet are listed in :data:`KNOWN_UPWARD` and
 from __future__ import annotations
 
 import ast
+import functools
 from collections import defaultdict
 from collections.abc import Iterator
 from pathlib import Path
@@ -144,12 +145,16 @@ def _top(module: str) -> str:
     return parts[1] if len(parts) > 1 else ""
 
 
-GRAPH = _graph()
+@functools.cache
+def graph() -> dict[str, set[str]]:
+    """The package's import graph (parsed once, when a test first needs it, not at
+    collection: every pytest process collects this module)."""
+    return _graph()
 
 
 def _upward() -> set[tuple[str, str]]:
     out = set()
-    for module, targets in GRAPH.items():
+    for module, targets in graph().items():
         for target in targets:
             if LAYERS[_top(target)] > LAYERS[_top(module)]:
                 out.add((module, _top(target)))
@@ -170,7 +175,7 @@ def _cycles() -> set[frozenset[str]]:
         counter[0] += 1
         stack.append(v)
         on_stack.add(v)
-        for w in GRAPH[v]:
+        for w in graph()[v]:
             if w not in index:
                 visit(w)
                 low[v] = min(low[v], low[w])
@@ -187,14 +192,14 @@ def _cycles() -> set[frozenset[str]]:
             if len(component) > 1:
                 found.add(frozenset(component))
 
-    for v in sorted(GRAPH):
+    for v in sorted(graph()):
         if v not in index:
             visit(v)
     return found
 
 
 def test_every_top_level_module_has_a_layer() -> None:
-    missing = sorted({_top(m) for m in GRAPH} - set(LAYERS))
+    missing = sorted({_top(m) for m in graph()} - set(LAYERS))
     assert not missing, f"give these a rank in LAYERS: {missing}"
 
 
@@ -226,7 +231,7 @@ def test_controller_vehicle_and_engine_layers_have_no_exception(package: str) ->
 def test_control_and_vehicle_do_not_import_the_engine(package: str) -> None:
     users = sorted(
         m
-        for m, targets in GRAPH.items()
+        for m, targets in graph().items()
         if _top(m) == package and any(_top(t) == "engine" for t in targets)
     )
     assert not users

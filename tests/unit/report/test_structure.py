@@ -8,6 +8,7 @@ only. The registry's module names (``chapters.CHAPTERS``) count as imports of th
 from __future__ import annotations
 
 import ast
+import functools
 from pathlib import Path
 
 import pytest
@@ -46,17 +47,25 @@ def _imports(path: Path) -> set[str]:
     return {m for m in out if m in MODULES and m != me}
 
 
-GRAPH = {m: _imports(p) for m, p in MODULES.items()}
-GRAPH["mrsuspension.report.chapters"] |= {f"mrsuspension.report.{m}" for m in CHAPTERS.values()}
-REPORT = {m for m in GRAPH if m == "mrsuspension.report" or m.startswith("mrsuspension.report.")}
-CHAPTER_MODULES = {
-    m for m in REPORT if m.rsplit(".", 1)[-1][:2] == "ch" and m.rsplit(".", 1)[-1][2:].isdigit()
-}
+@functools.cache
+def _structure() -> tuple[dict[str, set[str]], set[str], set[str]]:
+    """``(GRAPH, REPORT, CHAPTER_MODULES)``: the import graph (parsed when a test first
+    needs it, not at collection: every pytest process collects this module), the report's
+    modules and its chapter modules."""
+    graph = {m: _imports(p) for m, p in MODULES.items()}
+    graph["mrsuspension.report.chapters"] |= {f"mrsuspension.report.{m}" for m in CHAPTERS.values()}
+    report = {
+        m for m in graph if m == "mrsuspension.report" or m.startswith("mrsuspension.report.")
+    }
+    chapters = {
+        m for m in report if m.rsplit(".", 1)[-1][:2] == "ch" and m.rsplit(".", 1)[-1][2:].isdigit()
+    }
+    return graph, report, chapters
 
 
 def _cycles(nodes: set[str]) -> list[list[str]]:
     """Strongly connected components with more than one module (Tarjan)."""
-    edges = {m: GRAPH[m] & nodes for m in nodes}
+    edges = {m: _structure()[0][m] & nodes for m in nodes}
     index: dict[str, int] = {}
     low: dict[str, int] = {}
     stack: list[str] = []
@@ -88,11 +97,13 @@ def _cycles(nodes: set[str]) -> list[list[str]]:
 
 
 def test_report_has_no_import_cycles() -> None:
+    _, REPORT, _ = _structure()
     assert len(REPORT) >= 15
     assert _cycles(REPORT) == []
 
 
 def test_no_chapter_imports_another() -> None:
+    GRAPH, _, CHAPTER_MODULES = _structure()
     assert {"mrsuspension.report.ch2", "mrsuspension.report.ch7"} <= CHAPTER_MODULES
     cross = sorted((a, b) for a in CHAPTER_MODULES for b in GRAPH[a] if b in CHAPTER_MODULES)
     assert cross == []
@@ -103,12 +114,14 @@ LEAVES = {"mrsuspension.report.legibility"}
 
 
 def test_toolkit_is_the_bottom_of_the_report() -> None:
+    GRAPH, REPORT, _ = _structure()
     assert GRAPH["mrsuspension.report.toolkit"] & REPORT <= LEAVES
     for leaf in LEAVES:
         assert GRAPH[leaf] & REPORT == set(), leaf
 
 
 def test_hil_does_not_import_the_report() -> None:
+    GRAPH, REPORT, _ = _structure()
     up = sorted(
         (a, b) for a in GRAPH if a.startswith("mrsuspension.hil") for b in GRAPH[a] if b in REPORT
     )
