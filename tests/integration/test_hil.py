@@ -61,13 +61,13 @@ def test_ideal_rig_reproduces_offline(rate: float) -> None:
 @pytest.mark.realtime
 def test_deadlines_at_1khz_in_process() -> None:
     sim = _skyhook()
-    result = run_hil(sim, SimulatedRig(sim.damper), duration=6.0, rate=1000.0)
+    result = run_hil(sim, SimulatedRig(sim.damper), duration=3.0, rate=1000.0)
     print(result.stats.summary())
     # deadline figures are measured by benchmarks/bench_hil.py, not asserted here (a test
     # must not fail because the shared CI machine preempted the process); what is asserted
     # is that the loop keeps its rate and accounts for every tick
     stats = result.stats
-    assert stats.ticks >= 6000
+    assert stats.ticks >= 3000
     assert 0.0 <= stats.in_deadline <= 1.0
     assert stats.misses == round((1.0 - stats.in_deadline) * stats.ticks)
     assert stats.compute_p50 < 1e-3  # typical 0.1 ms: ten times the margin
