@@ -73,7 +73,7 @@ def test_auto_applies_and_restores_everything() -> None:
 
     def helper() -> None:
         helper_started.set()
-        stop.wait(10)
+        stop.wait(300)  # alive until the test ends (set in its finally), however slow the machine
 
     th = threading.Thread(target=helper, daemon=True)
     th.start()
