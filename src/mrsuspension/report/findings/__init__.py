@@ -76,7 +76,7 @@ from mrsuspension.report.findings.checks import (
     Verdict,
     run_key,
 )
-from mrsuspension.report.findings.claims import CLAIMS, SKIPPED
+from mrsuspension.report.findings.claims import CLAIMS, SKIPPED, SWEPT_IN_FULL
 
 __all__ = [
     "ABOUT",
@@ -90,6 +90,7 @@ __all__ = [
     "SKIPPED",
     "SLIGHT",
     "STATUSES",
+    "SWEPT_IN_FULL",
     "Check",
     "Claim",
     "ClaimResult",
@@ -97,6 +98,7 @@ __all__ = [
     "Scorecard",
     "Verdict",
     "build",
+    "check_of",
     "claims_markdown",
     "evaluate",
     "history_keys",
@@ -229,6 +231,31 @@ def _status(claim: Claim, verdict: Verdict) -> tuple[str, str]:
     return status, f"{verdict.why}. Suspected cause: {cause}"
 
 
+_FULL_CHECKS: dict[str, Check] = {}
+
+
+def check_of(claim: Claim, quick: bool) -> Check:
+    """The check ``claim`` is evaluated with: its own, except in the full build for the
+    claims of :data:`SWEPT_IN_FULL`, which are checked over the admissible range of the
+    control unknowns their runs involve (``claims.common._swept``; built once).
+
+    Examples
+    --------
+    >>> claim = CLAIMS_BY_ID["6.5-rattle-space"]
+    >>> check_of(claim, quick=True) is claim.check
+    True
+    >>> len(check_of(claim, quick=False).runs) > len(claim.check.runs)
+    True
+    """
+    if quick or claim.id not in SWEPT_IN_FULL:
+        return claim.check
+    if claim.id not in _FULL_CHECKS:
+        from mrsuspension.report.findings.claims.common import _swept
+
+        _FULL_CHECKS[claim.id] = _swept(claim.check)
+    return _FULL_CHECKS[claim.id]
+
+
 def run_payloads(
     keys: Iterable[tuple[str, Unit]], workers: int | None = 1
 ) -> dict[tuple[str, Unit], Payload]:
@@ -249,14 +276,14 @@ def history_keys(quick: bool, claims: Sequence[Claim] | None = None) -> list[tup
     {'history'}
     """
     chosen = CLAIMS if claims is None else claims
-    keys = [r.key(quick) for c in chosen for r in c.check.runs.values()]
+    keys = [r.key(quick) for c in chosen for r in check_of(c, quick).runs.values()]
     return [k for k in dict.fromkeys(keys) if k[0] == "history"]
 
 
 def units(quick: bool, claims: Sequence[Claim] | None = None) -> list[Unit]:
     """The report units the claims need (``history`` runs excluded), for the report pool."""
     chosen = CLAIMS if claims is None else claims
-    keys = {r.key(quick) for c in chosen for r in c.check.runs.values()}
+    keys = {r.key(quick) for c in chosen for r in check_of(c, quick).runs.values()}
     return [u for kind, u in keys if kind == "unit"]
 
 
@@ -274,7 +301,8 @@ def evaluate(
     ----------
     quick : bool
         The report's quick settings (10 frequencies, 0.5 ms step; 0.25 ms for the inverse
-        laws), else the full report's (30 frequencies, 0.1 ms).
+        laws), else the full report's (30 frequencies, 0.1 ms; the claims of
+        :data:`SWEPT_IN_FULL` then under their sensitivity sweep, :func:`check_of`).
     claims : sequence of Claim, optional
         Default :data:`CLAIMS`.
     payloads : mapping, optional
@@ -291,7 +319,8 @@ def evaluate(
     """
     chosen = CLAIMS if claims is None else claims
     start = time.perf_counter()
-    keys = [r.key(quick) for c in chosen for r in c.check.runs.values()]
+    checks = [check_of(c, quick) for c in chosen]
+    keys = [r.key(quick) for check in checks for r in check.runs.values()]
     have: dict[tuple[str, Unit], Payload] = dict(runs or {})
     for key in dict.fromkeys(keys):
         if key[0] == "unit" and payloads is not None and key[1] in payloads:
@@ -301,10 +330,10 @@ def evaluate(
     have.update(fresh)
     cpu = sum(float(p.get("run cpu time [s]", 0.0)) for p in fresh.values())
     results = []
-    for c in chosen:
-        named = {label: have[r.key(quick)] for label, r in c.check.runs.items()}
+    for c, check in zip(chosen, checks, strict=True):
+        named = {label: have[r.key(quick)] for label, r in check.runs.items()}
         try:
-            verdict = c.check(named)
+            verdict = check(named)
         except Exception as exc:  # a broken check must not hide the others
             results.append(ClaimResult(c, False, "error", "", f"{type(exc).__name__}: {exc}"))
             continue
@@ -494,6 +523,16 @@ def html_section(card: Scorecard, csv_name: str = "findings.csv") -> str:
             if items
             else "No verdict is known to differ from the full report's.</p>"
         )
+        swept = ", ".join(
+            sorted(i for i in SWEPT_IN_FULL if i in {r.claim.id for r in card.results})
+        )
+        if swept:
+            quick_note += (
+                "<p class='meta'>The full report also checks these claims over the admissible "
+                "range of the control unknowns their runs involve (the ADFG centre 0-0.5, "
+                "sliding mode's beta 1-2), which quick mode leaves out for its cost: "
+                f"{html.escape(swept)}.</p>"
+            )
     return (
         "<h2 id='findings'>Findings scorecard</h2>"
         f"<p>{summary}.</p>"

@@ -5,7 +5,8 @@ claims that depend on the road presets or the SAR denominator), ``--id PREFIX`` 
 whose id starts with it), ``--csv PATH`` (write the rows), ``--not-held`` (print only the
 claims that do not hold), ``--sweep`` (check the chosen claims known not to hold over the
 admissible range of the control unknowns their runs involve, ``claims.common._swept``:
-the sensitivity check of the claims whose sweep costs too much for the scorecard).
+the sensitivity check the full build runs for ``findings.SWEPT_IN_FULL`` and that no
+build runs for the road claims).
 """
 
 from __future__ import annotations

@@ -1015,8 +1015,8 @@ def readings(kept: tuple[str, Check], *others: tuple[str, Check]) -> Check:
             for i, (name, v) in enumerate(verdicts)
         )
         first = verdicts[0][1]
-        if first.holds:
-            return Verdict(True, numbers)
+        if first.holds:  # a kept reading that held only under one of its own keeps its name
+            return Verdict(True, numbers, first.why, reading=first.reading)
         held = [name for name, v in verdicts[1:] if v.holds]
         if held:
             return Verdict(True, numbers, f"{kept[0]}: {first.why}", reading=held[0])

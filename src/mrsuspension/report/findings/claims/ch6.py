@@ -46,7 +46,7 @@ from mrsuspension.report.findings.checks import (
 )
 from mrsuspension.report.findings.claims.common import (
     _SM_GAIN,
-    _SWEPT_OFFLINE,
+    _SWEPT_IN_FULL,
     A4_F,
     A5_F,
     A6_F,
@@ -795,17 +795,19 @@ KNOWN: dict[str, str] = {
     "6.2-acm-vs-nominal-scm": "model: sliding mode SCM at k_d = 1 already has smaller peaks "
     "(x_s 34.9 mm, a_u 8.1 m/s^2) than ACM at k_d = 2.5 (45.2 mm, 12.6 m/s^2)",
     "6.2-frequency-kd": "model: in SCM, k_d = 2.5 lowers peak T_as by 7 % only, leaves T_dr "
-    "and raises T_au (3.33 against 2.44); the mid-range rise holds" + _SWEPT_OFFLINE,
+    "and raises T_au (3.33 against 2.44); the mid-range rise holds" + _SWEPT_IN_FULL,
     "6.3-current-levels": _SM_GAIN,
     "6.3-road-dlc": "model: on the reference presets both k_d = 2.5 laws are below passive "
     "0 A (0.118 and 0.115 against 0.137) but sliding mode's DLC is 2 % above inverse hi-lo's "
     "(the dissertation's 0.112 is 1 % below its 0.113); on none of the 347 admissible road "
     "spectra tools/identify_roads.py tried (every road DLC within 25 %) is it the lowest: "
-    "sliding / inverse hi-lo 1.01-1.03" + _SWEPT_OFFLINE,
+    "sliding / inverse hi-lo 1.01-1.03; the sweep of the ADFG centre 0-0.5 and beta 1-2 "
+    "(python -m mrsuspension.report.findings --sweep, offline: road runs) finds it not held "
+    "for any of them (the errata page)",
     "6.4.1-harmonic-mass": _SM_GAIN + "; the current stays at the limit for every mass, so "
     "a_s, a_u, x_s do not fall with m_s",
     "6.4.1-frequency-mass": "model: peak T_as and T_dr are flat over m_s (spread 1-4 %), not "
-    "rising, and peak T_au is flat; DLC falls as stated" + _SWEPT_OFFLINE,
+    "rising, and peak T_au is flat; DLC falls as stated" + _SWEPT_IN_FULL,
     "6.4.1-table": "model: not held for any admissible DTR reading: SDR_s, SAR_s, SDR_u, "
     "SAR_u and RDR hold; the DTR at 422 kg is 0.216 (peak tire force ratio) or 0.218 ((3.44) "
     "as printed) against 0.16 (30 %: at most 0.208); at 703 kg the ratio reading gives 0.139 "
@@ -820,7 +822,7 @@ KNOWN: dict[str, str] = {
     "also differ in level: SDR_s 0.60 (0.63-0.67x the printed values) and SAR_u 1.82 "
     "(1.4-1.6x; after-onset SAR denominator); SAR_s, SDR_u and RDR agree within 25 %",
     "6.5-rattle-space": "model: skyhook hi-lo ACM's peak T_dr (1.58) exceeds passive 0.1 A's "
-    "(1.53); the inverse-model laws' are lower" + _SWEPT_OFFLINE,
+    "(1.53); the inverse-model laws' are lower" + _SWEPT_IN_FULL,
     "6.5-mass-dtr": "model: not held for any admissible DTR reading: skyhook hi-lo has the "
     "smallest largest DTR over m_s under each (peak tire force ratio 0.200 against 0.216 for "
     "both inverse-model laws; (3.44) as printed 0.216 against 0.218); the inverse-model laws "

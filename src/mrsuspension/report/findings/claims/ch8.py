@@ -16,7 +16,7 @@ from mrsuspension.report.findings.checks import (
     spread,
 )
 from mrsuspension.report.findings.claims.common import (
-    _SWEPT_OFFLINE,
+    _SWEPT_IN_FULL,
     CTRL_F,
     INV_KD_F,
     M5_F,
@@ -94,5 +94,5 @@ CLAIMS: tuple[Claim, ...] = (
 KNOWN: dict[str, str] = {
     "8.2-skyhook-vs-inverse": "model: skyhook hi-lo ACM has the lowest mean DLC, but sliding "
     "mode a marginally lower mean T_as (0.798 against 0.804) and both inverse-model laws a "
-    "lower mean T_dr (0.62-0.64 against 0.96: skyhook's wheel-hop stroke)" + _SWEPT_OFFLINE,
+    "lower mean T_dr (0.62-0.64 against 0.96: skyhook's wheel-hop stroke)" + _SWEPT_IN_FULL,
 }
