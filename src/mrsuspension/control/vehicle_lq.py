@@ -61,8 +61,8 @@ Examples
 >>> law = VehicleLQ().for_vehicle(FullCar())
 >>> law.gain.shape  # 4 corners x (4 e, 3 body rates, 4 d, 4 wheel velocities)
 (4, 15)
->>> VehicleLQG().for_vehicle(HalfCar()).params().size
-368
+>>> VehicleLQG().for_vehicle(HalfCar()).params().size  # 7 + K 18 + A 81 + B 18 + L, C 54 + D 12
+244
 """
 
 from __future__ import annotations
@@ -326,10 +326,12 @@ class VehicleLQ(VehicleLaw):
 
     Parameters
     ----------
-    w_rattle, w_tire, w_force : float
-        The cost's weights per corner (module docstring; defaults
-        :data:`~mrsuspension.control.literature.LQ_WEIGHTS`): rattle [1/s^4] and tire
-        deflection [1/s^4] (>= 0), force [1/kg^2] (> 0).
+    rattle_weight, tire_weight, force_weight : float
+        The cost's weights per corner (module docstring): rattle [1/s^4] and tire
+        deflection [1/s^4] (>= 0), force [1/kg^2] (> 0); defaults ``w_rattle``, ``w_tire``,
+        ``w_force`` of :data:`~mrsuspension.control.literature.LQ_WEIGHTS` (the names
+        differ from the per-corner laws' options: one field per name on the monitor's
+        page).
     low_current, high_current : float
         Currents [A] as :class:`~mrsuspension.control.modal.ModalSkyhook` (0 and 0.5 A).
 
@@ -341,11 +343,11 @@ class VehicleLQ(VehicleLaw):
     Examples
     --------
     >>> VehicleLQ.options()
-    ('w_rattle', 'w_tire', 'w_force', 'low_current', 'high_current')
-    >>> VehicleLQ(w_force=0.0)
+    ('rattle_weight', 'tire_weight', 'force_weight', 'low_current', 'high_current')
+    >>> VehicleLQ(force_weight=0.0)
     Traceback (most recent call last):
     ...
-    mrsuspension.errors.ValidationError: w_force must be in (0, 1000] 1/kg^2; got 0 1/kg^2
+    mrsuspension.errors.ValidationError: force_weight must be in (0, 1000] 1/kg^2; got 0 1/kg^2
     """
 
     law: ClassVar[str] = "vehicle-lq"
@@ -356,16 +358,16 @@ class VehicleLQ(VehicleLaw):
     #: the quarter car's per-corner law of the same kind
     per_corner: ClassVar[str] = "clipped-lq"
 
-    w_rattle: float = LQ_WEIGHTS["w_rattle"]
-    w_tire: float = LQ_WEIGHTS["w_tire"]
-    w_force: float = LQ_WEIGHTS["w_force"]
+    rattle_weight: float = LQ_WEIGHTS["w_rattle"]
+    tire_weight: float = LQ_WEIGHTS["w_tire"]
+    force_weight: float = LQ_WEIGHTS["w_force"]
     low_current: float = 0.0
     high_current: float = 0.5
 
     def __post_init__(self) -> None:
-        check_range("w_rattle", self.w_rattle, 0.0, 1e12, unit="1/s^4")
-        check_range("w_tire", self.w_tire, 0.0, 1e12, unit="1/s^4")
-        check_range("w_force", self.w_force, 0.0, 1e3, unit="1/kg^2", low_inclusive=False)
+        check_range("rattle_weight", self.rattle_weight, 0.0, 1e12, unit="1/s^4")
+        check_range("tire_weight", self.tire_weight, 0.0, 1e12, unit="1/s^4")
+        check_range("force_weight", self.force_weight, 0.0, 1e3, unit="1/kg^2", low_inclusive=False)
         check_range("low_current", self.low_current, 0.0, None, unit="A")
         check_range("high_current", self.high_current, float(self.low_current), None, unit="A")
         self._check_noise()
@@ -394,7 +396,7 @@ class VehicleLQ(VehicleLaw):
         return out
 
     def _design(self, vehicle: Any) -> dict[str, FloatArray]:
-        k = vehicle_lq_gain(vehicle, self.w_rattle, self.w_tire, self.w_force)
+        k = vehicle_lq_gain(vehicle, self.rattle_weight, self.tire_weight, self.force_weight)
         n = k.shape[0]
         k[:, n + NB : 2 * n + NB] = 0.0  # the tire deflection is not measured
         return {"_gain": k}
@@ -417,7 +419,7 @@ class VehicleLQ(VehicleLaw):
         --------
         >>> from mrsuspension.vehicle import HalfCar
         >>> p = VehicleLQ().for_vehicle(HalfCar()).params()
-        >>> p.size, p[LP_NX]  # 5 + 2 + 2 x 9
+        >>> p.size, float(p[LP_NX])  # 5 + 2 + 2 x 9
         (25, 9.0)
         """
         head = np.zeros(LP_K)
@@ -452,42 +454,42 @@ class VehicleLQG(VehicleLQ):
 
     Parameters
     ----------
-    w_rattle, w_tire, w_force, low_current, high_current
+    rattle_weight, tire_weight, force_weight, low_current, high_current
         As :class:`VehicleLQ`.
-    road_intensity, noise_acc, noise_stroke : float
+    road_noise, accelerometer_noise, stroke_sensor_noise : float
         The road velocity's intensity [m^2/s] and the accelerometers' [(m/s^2)^2 s] and
-        stroke sensors' [m^2 s] noise intensities (> 0; defaults
-        :data:`~mrsuspension.control.literature.LQG_NOISE`).
+        stroke sensors' [m^2 s] noise intensities (> 0; defaults ``road_intensity``,
+        ``noise_acc``, ``noise_stroke`` of :data:`~mrsuspension.control.literature.LQG_NOISE`).
 
     Examples
     --------
-    >>> VehicleLQG(noise_acc=-1.0)
+    >>> VehicleLQG(accelerometer_noise=-1.0)
     Traceback (most recent call last):
     ...
-    mrsuspension.errors.ValidationError: noise_acc must be in (0, 1e+06] (m/s^2)^2 s; got -1 (m/s^2)^2 s
+    mrsuspension.errors.ValidationError: accelerometer_noise must be in (0, 1e+06] (m/s^2)^2 s; got -1 (m/s^2)^2 s
     """
 
     law: ClassVar[str] = "vehicle-lqg"
     kernel_code: ClassVar[int] = LAW_LQG
     per_corner: ClassVar[str] = "clipped-lqg"
 
-    road_intensity: float = LQG_NOISE["road_intensity"]
-    noise_acc: float = LQG_NOISE["noise_acc"]
-    noise_stroke: float = LQG_NOISE["noise_stroke"]
+    road_noise: float = LQG_NOISE["road_intensity"]
+    accelerometer_noise: float = LQG_NOISE["noise_acc"]
+    stroke_sensor_noise: float = LQG_NOISE["noise_stroke"]
 
     def _check_noise(self) -> None:
-        check_range("road_intensity", self.road_intensity, 0.0, 1.0, unit="m^2/s",
+        check_range("road_noise", self.road_noise, 0.0, 1.0, unit="m^2/s",
                     low_inclusive=False)  # fmt: skip
-        check_range("noise_acc", self.noise_acc, 0.0, 1e6, unit="(m/s^2)^2 s",
+        check_range("accelerometer_noise", self.accelerometer_noise, 0.0, 1e6, unit="(m/s^2)^2 s",
                     low_inclusive=False)  # fmt: skip
-        check_range("noise_stroke", self.noise_stroke, 0.0, 1.0, unit="m^2 s",
+        check_range("stroke_sensor_noise", self.stroke_sensor_noise, 0.0, 1.0, unit="m^2 s",
                     low_inclusive=False)  # fmt: skip
 
     def _design(self, vehicle: Any) -> dict[str, FloatArray]:
-        k = vehicle_lq_gain(vehicle, self.w_rattle, self.w_tire, self.w_force)
+        k = vehicle_lq_gain(vehicle, self.rattle_weight, self.tire_weight, self.force_weight)
         a, b, _, _ = relative_model(vehicle)
         gain, c, d = vehicle_kalman_gain(
-            vehicle, self.road_intensity, self.noise_acc, self.noise_stroke
+            vehicle, self.road_noise, self.accelerometer_noise, self.stroke_sensor_noise
         )
         return {
             "_gain": k,

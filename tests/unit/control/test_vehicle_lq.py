@@ -320,15 +320,15 @@ def test_a_scenario_names_the_law_with_its_weights() -> None:
     tables = {
         "vehicle": {"model": "half-car"},
         "excitation": {"kind": "harmonic", "frequency": 1.5, "amplitude": 0.01},
-        "controller": {"law": "vehicle-lqg", "w_force": 1e-5, "high_current": 0.4},
+        "controller": {"law": "vehicle-lqg", "force_weight": 1e-5, "high_current": 0.4},
     }
     law = Scenario.from_dict(tables).body_control
     assert isinstance(law, VehicleLQG)
-    assert law.w_force == 1e-5
+    assert law.force_weight == 1e-5
     assert law.high_current == 0.4
     assert np.allclose(law.gain, lq_design(HalfCar(), 1e2, 1e3, 1e-5).K)
     assert law.describe()["law"] == "vehicle-lqg"
-    with pytest.raises(ValidationError, match="w_force must be in"):
-        Scenario.from_dict({**tables, "controller": {"law": "vehicle-lq", "w_force": -1.0}})
+    with pytest.raises(ValidationError, match="force_weight must be in"):
+        Scenario.from_dict({**tables, "controller": {"law": "vehicle-lq", "force_weight": -1.0}})
     with pytest.raises(ValidationError, match="no gain yet"):
         VehicleLQ().params()
