@@ -1055,10 +1055,15 @@ def _build_body_control(
     if law not in LAW_PLUGINS:
         return None
     if not corners:
+        per_corner = getattr(LAW_PLUGINS[str(law)], "per_corner", None)
+        alternative = (
+            f"on the quarter car it is the per-corner law {per_corner!r}"
+            if per_corner
+            else "the quarter car's skyhook laws: skyhook-hilo, ideal-skyhook, ideal-onoff"
+        )
         raise ValidationError(
             f"[controller] law {law!r} drives a whole vehicle: it needs [vehicle] model = "
-            "'half-car' or 'full-car' (the quarter car's skyhook laws: skyhook-hilo, "
-            "ideal-skyhook, ideal-onoff)"
+            f"'half-car' or 'full-car' ({alternative})"
         )
     given = [c for c, t in corner_tables.items() if t]
     if given:

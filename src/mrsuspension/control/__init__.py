@@ -40,7 +40,8 @@ One module per family (:mod:`~mrsuspension.control.passive`,
 
 Vehicle pieces the engine calls: :mod:`~mrsuspension.control.sensing` (body velocity
 from an accelerometer, stroke sensor) and :mod:`~mrsuspension.control.modal` (modal
-skyhook for the half and full car, with hi-lo clipping per corner).
+skyhook for the half and full car, with hi-lo clipping per corner) and
+:mod:`~mrsuspension.control.vehicle_lq` (the whole-vehicle LQ and LQG laws).
 
 Examples
 --------
@@ -66,6 +67,12 @@ from mrsuspension.control.registry import (
 from mrsuspension.control.sensing import BandPassObserver, LeakyIntegrator, StrokeSensor
 from mrsuspension.control.sliding import SlidingMode
 from mrsuspension.control.user import UserLaw, law, load_law
+from mrsuspension.control.vehicle_lq import (
+    VehicleLQ,
+    VehicleLQActive,
+    VehicleLQG,
+    VehicleLQGActive,
+)
 
 __all__ = [
     "CONTROLLERS",
@@ -86,6 +93,10 @@ __all__ = [
     "SlidingMode",
     "StrokeSensor",
     "UserLaw",
+    "VehicleLQ",
+    "VehicleLQActive",
+    "VehicleLQG",
+    "VehicleLQGActive",
     "VehicleLaw",
     "controller_class",
     "law",

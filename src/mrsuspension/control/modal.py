@@ -65,6 +65,8 @@ __all__ = [
     "CORNERS_HALF",
     "LAW_CORNERS",
     "LAW_CORNER_SKYHOOK",
+    "LAW_LQ",
+    "LAW_LQG",
     "LAW_MODAL",
     "MP_SIZE",
     "CornerSkyhook",
@@ -90,8 +92,9 @@ CORNERS_HALF = ("front", "rear")
 MP_CZ, MP_CTHETA, MP_CPHI, MP_ILOW, MP_IHIGH = range(5)
 #: length of :meth:`ModalSkyhook.params`
 MP_SIZE = 5
-#: the vehicle kernel's law codes (``VehicleLaw.kernel_code``; 0: the corners' own laws)
-LAW_CORNERS, LAW_MODAL, LAW_CORNER_SKYHOOK = 0, 1, 2
+#: the vehicle kernel's law codes (``VehicleLaw.kernel_code``; 0: the corners' own laws;
+#: the whole-vehicle LQ and LQG: :mod:`mrsuspension.control.vehicle_lq`)
+LAW_CORNERS, LAW_MODAL, LAW_CORNER_SKYHOOK, LAW_LQ, LAW_LQG = 0, 1, 2, 3, 4
 
 
 # --- kernels ---------------------------------------------------------------------------
@@ -259,6 +262,8 @@ class VehicleLaw:
     law: ClassVar[str]
     kernel_code: ClassVar[int]
     uses_body_rates: ClassVar[bool] = False
+    #: an ideal actuator at every corner instead of the damper (the force applied as is)
+    active: ClassVar[bool] = False
 
     #: every law switches between two currents [A] (fields of the subclass, a dataclass)
     low_current: float
@@ -280,8 +285,20 @@ class VehicleLaw:
         return self
 
     def params(self) -> FloatArray:
-        """The kernel parameter vector (``MP_*`` layout, :data:`MP_SIZE` values)."""
+        """The kernel parameter vector (``MP_*`` layout, :data:`MP_SIZE` values or more)."""
         raise NotImplementedError
+
+    def buffer_shape(self, corners: int) -> tuple[int, int]:
+        """The shape of the vehicle kernel's law buffer (``mbuf``): 4 rows of one value per
+        corner (desired forces, stroke rates, currents, ``z_c``); a law with a state of
+        its own asks for more.
+
+        Examples
+        --------
+        >>> CornerSkyhook().buffer_shape(4)
+        (4, 4)
+        """
+        return 4, corners
 
     def describe(self) -> dict[str, Any]:
         """Plain data: ``law`` and every option.

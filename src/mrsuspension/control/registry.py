@@ -14,6 +14,12 @@ from mrsuspension.control.literature import LAWS as LITERATURE_LAWS
 from mrsuspension.control.modal import CornerSkyhook, ModalSkyhook, VehicleLaw
 from mrsuspension.control.passive import OnOffADFG, Passive
 from mrsuspension.control.sliding import SlidingMode
+from mrsuspension.control.vehicle_lq import (
+    VehicleLQ,
+    VehicleLQActive,
+    VehicleLQG,
+    VehicleLQGActive,
+)
 from mrsuspension.errors import ValidationError, unknown_name
 
 __all__ = ["CONTROLLERS", "VEHICLE_LAWS", "controller_class", "law_options", "make_controller"]
@@ -54,7 +60,17 @@ CONTROLLERS: dict[str, Any] = {
 #: Whole-vehicle laws by name (:class:`~mrsuspension.control.modal.VehicleLaw`
 #: plug-ins: a half or full car's ``[controller] law``; their fields are its keys).
 #: Registering one here is all the scenarios, the engine and the monitor's form need.
-VEHICLE_LAWS: dict[str, type[VehicleLaw]] = {cls.law: cls for cls in (ModalSkyhook, CornerSkyhook)}
+VEHICLE_LAWS: dict[str, type[VehicleLaw]] = {
+    cls.law: cls
+    for cls in (
+        ModalSkyhook,
+        CornerSkyhook,
+        VehicleLQ,
+        VehicleLQActive,
+        VehicleLQG,
+        VehicleLQGActive,
+    )
+}
 
 
 def controller_class(law: str) -> type[Controller]:

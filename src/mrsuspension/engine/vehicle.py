@@ -30,7 +30,7 @@ import numpy.typing as npt
 
 from mrsuspension._numba_cache import announce_compile
 from mrsuspension.control import Controller, Passive
-from mrsuspension.control.kernel import F_EXTERNAL
+from mrsuspension.control.kernel import F_EXTERNAL, F_TARGET
 from mrsuspension.control.modal import VehicleLaw, distribution_matrix
 from mrsuspension.control.sensing import (
     BandPassObserver,
@@ -471,10 +471,13 @@ class VehicleSimulation:
             vp[o + VX.C_BAR] = bar[i]
             vp[o + VX.C_PARTNER] = i ^ 1 if n == 4 else i  # left/right pairs of the full car
         ints = np.int64
+        force_source = np.array([a.force_source for a in ka], dtype=ints)
+        if self.body_control is not None and self.body_control.active:
+            force_source[:] = F_TARGET  # an ideal actuator at every corner: the law's force
         return VehicleArrays(
             vehicle=vp,
             corner_vehicles=_stack([a.vehicle for a in ka]),
-            force_source=np.array([a.force_source for a in ka], dtype=ints),
+            force_source=force_source,
             damper_kind=np.array([a.damper_kind for a in ka], dtype=ints),
             damper_params=_stack([a.damper_params for a in ka]),
             damper_state=_stack([a.damper_state for a in ka]),
@@ -505,7 +508,7 @@ class VehicleSimulation:
         if not isinstance(law, VehicleLaw):
             raise ValidationError(
                 "body_control must be a whole-vehicle law (mrsuspension.control.VEHICLE_LAWS: "
-                f"ModalSkyhook, CornerSkyhook); got {law!r}"
+                f"ModalSkyhook, CornerSkyhook, VehicleLQ...); got {law!r}"
             )
         law = law.for_vehicle(self.vehicle)  # e.g. gains from the car's geometry
         object.__setattr__(self, "body_control", law)
@@ -537,8 +540,10 @@ class VehicleSimulation:
     def _sensing_arrays(self, dt: float, n_steps: int | None) -> dict[str, np.ndarray]:
         """The ``sensing_*``, ``stroke_noise`` and ``modal_*`` arrays of :meth:`arrays`."""
         nc = len(self.corners)
+        law = self.body_control
+        law_params = law.params() if law is not None else np.zeros(0)
         sk = np.zeros(VX.SK_SIZE, dtype=np.int64)
-        sp = np.zeros(VX.SP_SIZE)
+        sp = np.zeros(max(VX.SP_SIZE, VX.SP_MP + law_params.size))  # a law's own params after
         sk[VX.SK_ACC_EVERY] = 1
         est = self.sensing.velocity
         if isinstance(est, LeakyIntegrator):
@@ -561,10 +566,9 @@ class VehicleSimulation:
                 for i in range(nc)
             ])  # fmt: skip
         dist = np.zeros((nc, 3))
-        law = self.body_control
         if law is not None:
             sk[VX.SK_LAW] = law.kernel_code
-            sp[VX.SP_MP :] = law.params()
+            sp[VX.SP_MP :] = law_params
         if (law is not None and law.uses_body_rates) or est is not None:
             dist = distribution_matrix(*self.vehicle.modal_positions())
         return {
@@ -573,7 +577,7 @@ class VehicleSimulation:
             "sensing_state": np.zeros((2 * nc + 1, VX.SS_WIDTH)),
             "stroke_noise": np.ascontiguousarray(noise),
             "modal_distribution": np.ascontiguousarray(dist),
-            "modal_buffer": np.zeros((4, nc)),
+            "modal_buffer": np.zeros((4, nc) if law is None else law.buffer_shape(nc)),
         }
 
     def initial_state(self, zr0: np.ndarray) -> np.ndarray:

@@ -21,8 +21,10 @@ steps and held) and the stroke sensor's reading
 (:func:`~mrsuspension.control.sensing.stroke_sensor_update`); with a vehicle-level law
 (``SK_LAW``) the corners' currents then come from
 :func:`~mrsuspension.control.modal.modal_forces` (or ``F_i = -c_s v_i``) and
-:func:`~mrsuspension.control.modal.modal_hilo`. Ideal sensing and no law leave the step
-exactly as before.
+:func:`~mrsuspension.control.modal.modal_hilo`, or from the whole-vehicle LQ and LQG's
+``F = -K x`` (:func:`~mrsuspension.control.vehicle_lq.lq_forces`: the state as seen, or
+a Kalman estimate; hi-lo on ``F_i v_d > 0``, or ``F`` itself by an ideal actuator). Ideal
+sensing and no law leave the step exactly as before.
 
 The damper kernels (:mod:`mrsuspension.dampers.kernels`) and the control laws
 (:mod:`mrsuspension.control.kernel`) are the quarter car's; the sliding-mode reference
@@ -57,8 +59,9 @@ from mrsuspension.control import kernel as CK
 from mrsuspension.control import modal as SM
 from mrsuspension.control import sensing as SN
 from mrsuspension.control import signals as SG
+from mrsuspension.control import vehicle_lq as VL
 from mrsuspension.control.kernel import EST_SHARED, F_EXTERNAL, F_MODEL, F_TARGET, P_C0, P_CS, P_MS0
-from mrsuspension.control.modal import LAW_CORNERS, LAW_MODAL
+from mrsuspension.control.modal import LAW_CORNERS, LAW_LQ, LAW_LQG, LAW_MODAL
 from mrsuspension.dampers import kernels as DK
 from mrsuspension.dampers.kernels import NO_REFCOUNT
 from mrsuspension.engine import kernel as EK
@@ -70,7 +73,7 @@ __all__ = ["check_limits", "output", "rates", "record", "run", "start", "step"]
 # the cached entry points inline the damper, shaping, controller, vehicle and engine kernels
 invalidate_if_changed(
     __file__, DK.__file__, _shaping.__file__, CK.__file__, VK.__file__, EK.__file__,
-    SM.__file__, SN.__file__, SG.__file__,
+    SM.__file__, SN.__file__, SG.__file__, VL.__file__,
 )  # fmt: skip
 
 # vp: body then corners; reciprocal masses and inertias (they leave the divisions off the
@@ -99,7 +102,8 @@ SK_SIZE = 4
 SENSE_IDEAL, SENSE_LEAKY, SENSE_BAND_PASS = 0, 1, 2
 # the law codes: one home, the laws' own (control/modal.py, VehicleLaw.kernel_code)
 # sp (float): estimator coefficients (leaky: decay, gain; band-pass: Phi, Gamma), the
-# stroke sensor's resolution [m] and rate [Hz], the law's ModalSkyhook.params()
+# stroke sensor's resolution [m] and rate [Hz], the law's params() (ModalSkyhook's
+# MP_SIZE values; the whole-vehicle LQ's more: sp then is longer than SP_SIZE)
 SP_COEF, SP_RES, SP_SFS, SP_MP = 0, 6, 7, 8
 SP_SIZE = SP_MP + SM.MP_SIZE
 # ss (2 nc + 1 rows, SS_WIDTH): row c the estimator's state (SS_VSENSE: the velocity the
@@ -248,7 +252,8 @@ def step(
     ``zr``/``zrd`` (t, t + dt/2, t + dt). ``scratch``: 5 rows of ``len(y)``; ``work``:
     ``corners x 8``. ``sk``, ``sp``, ``ss``, ``noise`` (stroke-sensor noise, ``corners x
     m``, used cyclically), ``mdist`` (the modal distribution matrix) and ``mbuf`` (``4 x
-    corners``): sensing and the vehicle-level law (``SK_*``, ``SP_*``, ``SS_*``)."""
+    corners``; the LQ laws' rows after them, ``control.vehicle_lq.MB_*``): sensing and the
+    vehicle-level law (``SK_*``, ``SP_*``: its parameters from ``SP_MP`` on, ``SS_*``)."""
     nc = int(vp[B_NC])
     n = y.size
     kind = sk[SK_KIND]
@@ -258,6 +263,7 @@ def step(
     stroke_every = sk[SK_STROKE_EVERY]
     sample_stroke = stroke_every > 0 and count % stroke_every == 0
     t = count * dt
+    law = sk[SK_LAW]
     full = False  # a corner's law reads every signal (C_SIGNALS and up): else the view only
     for c in range(nc):
         if ck[c] >= CK.C_SIGNALS:
@@ -320,9 +326,16 @@ def step(
         work[c, 4] = vd
         work[c, 5] = v_sense
         work[c, 6] = vu_seen - v_sense  # the damper velocity the controller sees
-    law = sk[SK_LAW]
+        if law == LAW_LQ:  # the state as seen: e = z_s - z_u and z_u' (control.vehicle_lq)
+            mbuf[VL.MB_X, c] = zs - zu_seen
+            mbuf[VL.MB_X, 2 * nc + VL.NB + c] = vu_seen
+        elif law == LAW_LQG:  # the measurements and the load cells
+            mbuf[VL.MB_Y, c] = est[SS_ASENSE]
+            mbuf[VL.MB_Y, nc + c] = mem[c, EK.M_AU]
+            mbuf[VL.MB_Y, 2 * nc + c] = zu_seen - zs
+            mbuf[VL.MB_U, c] = mem[c, EK.M_FD]
     # the body's rates as seen: true, or from the corners' estimates, D^T v = (J J^T)^-1 J v
-    if kind == SENSE_IDEAL or not (full or law == LAW_MODAL):
+    if kind == SENSE_IDEAL or not (full or law == LAW_MODAL or law == LAW_LQ):  # noqa: SIM109
         vz, pq, pp = y[3], y[4], y[5]
     else:
         vz = pq = pp = 0.0
@@ -352,14 +365,24 @@ def step(
     if law != LAW_CORNERS:  # hi-lo from the desired corner forces (control.modal)
         forces, vds, current, zc = mbuf[0], mbuf[1], mbuf[2], mbuf[3]
         mp = sp[SP_MP:]
-        if law == LAW_MODAL:
-            SM.modal_forces(forces, mdist, mp, vz, pq, pp)
-        else:  # per-corner skyhook F_i = -c_s v_i
+        if law < LAW_LQ:  # modal or per-corner skyhook
+            if law == LAW_MODAL:
+                SM.modal_forces(forces, mdist, mp, vz, pq, pp)
+            else:  # per-corner skyhook F_i = -c_s v_i
+                for c in range(nc):
+                    forces[c] = -mp[SM.MP_CZ] * work[c, 5]
             for c in range(nc):
-                forces[c] = -mp[SM.MP_CZ] * work[c, 5]
-        for c in range(nc):
-            vds[c] = work[c, 6]
-        SM.modal_hilo(current, zc, forces, vds, mp)
+                vds[c] = work[c, 6]
+            SM.modal_hilo(current, zc, forces, vds, mp)
+        else:  # the whole-vehicle LQ and LQG (control.vehicle_lq): F = -K x
+            VL.lq_forces(forces, mbuf, mp, nc, vz, pq, pp, law == LAW_LQG,
+                         dt if count > 0 else 0.0)  # fmt: skip
+            active = mp[VL.LP_OUTPUT] != 0.0
+            for c in range(nc):
+                vds[c] = work[c, 6]
+                z = SM.switching_condition(forces[c], vds[c])
+                zc[c] = z
+                current[c] = 0.0 if active else SM.hilo_current(z, mp[SM.MP_ILOW], mp[SM.MP_IHIGH])
         for c in range(nc):
             mem[c, EK.M_ID] = current[c]
             mem[c, EK.M_IZ] = current[c]

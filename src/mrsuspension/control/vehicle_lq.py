@@ -1,0 +1,593 @@
+"""Whole-vehicle LQ and LQG laws for the half and full car (issue 29).
+
+The per-corner laws of :mod:`~mrsuspension.control.literature` (``clipped-lq``,
+``lq-active``, ``clipped-lqg``, ``lqg-active``) give every corner its own quarter car's
+LQR. The laws here solve one LQR for the whole vehicle: the corners' damper forces from
+the body's heave, pitch and roll and every wheel, coupled through the body.
+
+**Model.** The linear half or full car of
+:meth:`~mrsuspension.vehicle.body.VehicleBody.linear_matrices` (no damping at the dampers:
+their forces are the input ``u``, one per corner, up on the body and down on the wheel;
+springs, anti-roll bars, tires and the tire damping in it). The design runs in its own
+coordinates ``q = (heave, pitch[, roll], z_u,i)`` and ``q'`` with the road at rest
+(:func:`lq_design`). The law then reads the same gain in the relative state the sensors
+give (:func:`relative_model`)::
+
+    x = (e_1..e_n, v_z, q, p, d_1..d_n, z_u,1'..z_u,n')
+
+``e_i = z_s,i - z_u,i`` (the body over the wheel at corner ``i``: minus the stroke), the
+body's heave velocity and pitch and roll rates (``p`` = 0 on the half car: the layout is
+the same for both cars), the tire deflections ``d_i = z_u,i - z_r,i`` and the wheels'
+velocities; the disturbance is the road's velocity at every wheel. (Absolute heave, pitch
+and roll are not states of the law: no sensor gives them, and under a road-velocity
+disturbance they are integrators no damper force can hold, so the relative state is the
+one the per-corner law uses, ``literature.quarter_car_model``, at every corner.) The
+full car has one position more than velocities in this state: the road's twist (warp)
+``w . (e + d)``, with ``w . T = 0``, which moves only with the road (no force changes
+it); the gain is mapped with the least-squares inverse, so that the law does not respond
+to it (zero gain on the warp direction).
+
+**Cost.** ``integral(sum_i (z_s,i''^2 + w_rattle e_i^2 + w_tire d_i^2 + w_force u_i^2)) dt``:
+the body's acceleration **at the corners** (not Wk-weighted), the rattle and the tire
+deflection at every corner, the force: the sum of the quarter-car costs of ``lq_gain``
+with the same default weights (:data:`~mrsuspension.control.literature.LQ_WEIGHTS`), so
+the two are comparable, and on a decoupled half car (``HalfCar.from_quarter_car``) the
+whole-vehicle gain is the quarter-car gain at every corner. (Heave, pitch and roll
+accelerations would need weights in other units, m/s^2 against rad/s^2, with no
+counterpart in the quarter-car cost.) Solved by :func:`scipy.linalg.solve_continuous_are`
+as ``lq_gain``.
+
+**Laws.** Each step the desired corner forces ``F = -K x_seen``: the strokes and wheel
+velocities as sensed (the stroke sensor where ``[sensing]`` has one) and the body rates
+as modal skyhook sees them (true, or from the corners' velocity estimates through the
+distribution matrix). ``vehicle-lq`` drops the tire deflection's gain (no sensor, as
+``clipped-lq``) and switches each corner hi-lo, high when ``F_i v_d > 0`` (the force has
+the sign the damper can give: :func:`~mrsuspension.control.modal.modal_hilo`);
+``vehicle-lq-active`` applies ``F`` by an ideal actuator at every corner (a reference,
+and the closed-form check: the linear car then responds as ``A - B K``). ``vehicle-lqg``
+and ``vehicle-lqg-active``: the full-state gain (tire deflection too) on a Kalman-Bucy
+estimate from every corner's body and wheel accelerometers and stroke sensor, with the
+dampers' forces (load cells) as the input (:func:`vehicle_kalman_gain`; the per-corner
+``kalman_gain`` on the vehicle), integrated by Euler at every step. A target force tracked
+through the damper's inverse model (as ``lq-force``) is not offered.
+
+On the quarter car these laws are the per-corner ones: ``clipped-lq``, ``lq-active``,
+``clipped-lqg``, ``lqg-active`` (:meth:`VehicleLQ.for_vehicle` refuses a quarter car,
+naming its law).
+
+Examples
+--------
+>>> from mrsuspension.vehicle import FullCar, HalfCar
+>>> law = VehicleLQ().for_vehicle(FullCar())
+>>> law.gain.shape  # 4 corners x (4 e, 3 body rates, 4 d, 4 wheel velocities)
+(4, 15)
+>>> VehicleLQG().for_vehicle(HalfCar()).params().size  # 7 + K 18 + A 81 + B 18 + L, C 54 + D 12
+244
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any, ClassVar, NamedTuple
+
+import numpy as np
+import numpy.typing as npt
+from numba import njit
+
+from mrsuspension.control.literature import LQ_WEIGHTS, LQG_NOISE
+from mrsuspension.control.modal import LAW_LQ, LAW_LQG, MP_IHIGH, MP_ILOW, MP_SIZE, VehicleLaw
+from mrsuspension.errors import ValidationError, check_range
+
+__all__ = [
+    "LP_K",
+    "LP_NX",
+    "LP_OUTPUT",
+    "MB_DX",
+    "MB_ROWS",
+    "MB_U",
+    "MB_X",
+    "MB_Y",
+    "NB",
+    "LQDesign",
+    "VehicleLQ",
+    "VehicleLQActive",
+    "VehicleLQG",
+    "VehicleLQGActive",
+    "lq_design",
+    "lq_forces",
+    "relative_model",
+    "vehicle_kalman_gain",
+    "vehicle_lq_gain",
+]
+
+FloatArray = npt.NDArray[np.float64]
+
+#: body rates in the law's state: heave velocity, pitch and roll rates (roll 0 on the
+#: half car)
+NB = 3
+# the kernel parameters after the MP_* layout (control.modal): output (0 hi-lo, 1 an
+# ideal actuator), the state size nx, then K (corners x nx, row-major) and, for the LQG,
+# A (nx x nx), B (nx x corners), L (nx x 3 corners), C (3 corners x nx), D (3 corners x
+# corners)
+LP_OUTPUT, LP_NX, LP_K = MP_SIZE, MP_SIZE + 1, MP_SIZE + 2
+#: the vehicle-law buffer's rows (``mbuf``) the LQ laws use beside the 4 of control.modal:
+#: the state the gain multiplies (LQ: as seen; LQG: the estimate), the measurements (then
+#: the innovation), the dampers' forces, the estimate's rates
+MB_X, MB_Y, MB_U, MB_DX = 4, 5, 6, 7
+MB_ROWS = 8
+
+
+# --- models ----------------------------------------------------------------------------
+
+
+def _body_and_wheels(vehicle: Any) -> tuple[Any, FloatArray, FloatArray, int, int]:
+    """``(linear model, T, D, nb, n)``: ``z_s = T q_b``, ``x_d = D q``."""
+    lin = vehicle.linear_matrices(0.0)
+    t = vehicle.body_transform()
+    n, nb = t.shape
+    d = np.hstack([-t, np.eye(n)])
+    return lin, t, d, nb, n
+
+
+def relative_model(vehicle: Any) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
+    """``(A, B, E, T)`` of the vehicle in the law's relative state ``x' = A x + B u + E z_r'``.
+
+    ``x = (e_i, v_z, q, p, d_i, z_u,i')`` (module docstring; ``3 n + 3`` values for ``n``
+    corners, the roll rate's row and column zero on the half car), ``u`` the corners'
+    damper forces (up on the body) [N], ``z_r'`` every wheel's road velocity [m/s];
+    ``T`` (corners x 3) the body's motion at the corners, ``z_s,i' = T_i (v_z, q, p)``.
+    Built from :meth:`~mrsuspension.vehicle.body.VehicleBody.linear_matrices`: with
+    ``x_d = D q``, ``K = D^T S D + K_tire``, the forces on ``q`` are ``D^T S e - K_road d
+    - C q' + C_road z_r' - D^T u``.
+
+    Examples
+    --------
+    >>> from mrsuspension.vehicle import HalfCar
+    >>> a, b, e, t = relative_model(HalfCar())
+    >>> a.shape, b.shape, e.shape, t.shape
+    ((9, 9), (9, 2), (9, 2), (2, 3))
+    """
+    lin, t, d, nb, n = _body_and_wheels(vehicle)
+    minv = np.linalg.inv(lin.M)
+    # D^T S from K - K_tire = D^T S D (D has full row rank)
+    k_susp = lin.K - np.pad(np.diag(vehicle.tire_stiffnesses), ((nb, 0), (nb, 0)))
+    dts = k_susp @ d.T @ np.linalg.inv(d @ d.T)
+    nx = 3 * n + NB
+    ie = np.arange(n)  # e
+    iv = np.concatenate([n + np.arange(nb), n + NB + n + np.arange(n)])  # q' = (v_b, v_u)
+    idd = n + NB + np.arange(n)  # d
+    a = np.zeros((nx, nx))
+    b = np.zeros((nx, n))
+    e = np.zeros((nx, n))
+    a[np.ix_(ie, iv)] = -d  # e' = z_s' - z_u' = -x_d'
+    a[np.ix_(idd, iv[nb:])] = np.eye(n)  # d' = z_u' - z_r'
+    e[idd] = -np.eye(n)
+    a[np.ix_(iv, ie)] = minv @ dts
+    a[np.ix_(iv, idd)] = -minv @ lin.K_road
+    a[np.ix_(iv, iv)] = -minv @ lin.C
+    b[iv] = -minv @ d.T
+    e[iv] = minv @ lin.C_road
+    t3 = np.zeros((n, NB))
+    t3[:, :nb] = t
+    return a, b, e, t3
+
+
+class LQDesign(NamedTuple):
+    """The whole-vehicle LQR (:func:`lq_design`): the problem in the design coordinates
+    ``(q, q')`` (road at rest), its solution, and the gain in the law's state."""
+
+    #: ``x_a' = A x_a + B u``, ``x_a = (q, q')``
+    A: FloatArray
+    B: FloatArray
+    #: the cost ``x^T Q x + 2 x^T N u + u^T R u``
+    Q: FloatArray
+    R: FloatArray
+    N: FloatArray
+    #: the Riccati solution and the gain ``u = -K_a x_a``
+    P: FloatArray
+    K_design: FloatArray
+    #: ``x = H x_a`` (the law's state with the road at rest) and the gain ``K = K_a H^+``
+    H: FloatArray
+    K: FloatArray
+
+
+def lq_design(vehicle: Any, w_rattle: float, w_tire: float, w_force: float) -> LQDesign:
+    """The whole-vehicle LQR of ``vehicle`` (module docstring: model, cost, mapping).
+
+    In ``x_a = (q, q')``, ``q = (heave, pitch[, roll], z_u,i)`` of
+    :meth:`~mrsuspension.vehicle.body.VehicleBody.linear_matrices` with the road at rest:
+    the corners' body accelerations ``T q_b'' = C x_a + D u`` give ``Q = C^T C +
+    w_rattle (D_x^T D_x) + w_tire (S^T S)``, ``N = C^T D``, ``R = D^T D + w_force I``
+    (``x_d = D_x q``, ``z_u = S q``), solved by :func:`scipy.linalg.solve_continuous_are`.
+    The gain in the law's state ``x`` (:func:`relative_model`) is ``K = K_a H^+`` with
+    ``x = H x_a``: exact on the half car (``H`` square), the least-squares inverse on the
+    full car (no gain on the road's twist).
+
+    Examples
+    --------
+    >>> from mrsuspension.vehicle import HalfCar
+    >>> d = lq_design(HalfCar(), **LQ_WEIGHTS)
+    >>> d.K_design.shape, d.K.shape
+    ((2, 8), (2, 9))
+    """
+    import scipy.linalg  # (not at import: the CLI starts without scipy)
+
+    lin, t, dx, nb, n = _body_and_wheels(vehicle)
+    nq = nb + n
+    minv = np.linalg.inv(lin.M)
+    a = np.zeros((2 * nq, 2 * nq))
+    a[:nq, nq:] = np.eye(nq)
+    a[nq:, :nq] = -minv @ lin.K
+    a[nq:, nq:] = -minv @ lin.C
+    b = np.zeros((2 * nq, n))
+    b[nq:] = -minv @ dx.T
+    c = t @ a[nq : nq + nb]  # the corners' body accelerations
+    dd = t @ b[nq : nq + nb]
+    sel = np.hstack([np.zeros((n, nb)), np.eye(n)])  # z_u = tire deflection (road at rest)
+    q = c.T @ c
+    q[:nq, :nq] += w_rattle * dx.T @ dx + w_tire * sel.T @ sel
+    r = dd.T @ dd + w_force * np.eye(n)
+    nn = c.T @ dd
+    p = scipy.linalg.solve_continuous_are(a, b, q, r, s=nn)
+    k_a = np.linalg.solve(r, b.T @ p + nn.T)
+    # x = H x_a: e = -x_d, body rates, d = z_u, wheel velocities (the law's layout)
+    nx = 3 * n + NB
+    h = np.zeros((nx, 2 * nq))
+    h[:n, :nq] = -dx
+    h[n : n + nb, nq : nq + nb] = np.eye(nb)
+    h[n + NB : n + NB + n, :nq] = sel
+    h[n + NB + n :, nq + nb :] = np.eye(n)
+    k = k_a @ np.linalg.pinv(h)
+    k[:, n + nb : n + NB] = 0.0  # the half car's roll rate: none
+    return LQDesign(a, b, q, r, nn, p, k_a, h, k)
+
+
+def vehicle_lq_gain(
+    vehicle: Any,
+    w_rattle: float = LQ_WEIGHTS["w_rattle"],
+    w_tire: float = LQ_WEIGHTS["w_tire"],
+    w_force: float = LQ_WEIGHTS["w_force"],
+) -> FloatArray:
+    """The whole-vehicle LQ gain ``K`` (corners x ``3 n + 3``) in the law's state:
+    :func:`lq_design`'s ``K``.
+
+    Examples
+    --------
+    >>> from mrsuspension.vehicle import HalfCar
+    >>> k = vehicle_lq_gain(HalfCar())
+    >>> bool(k[0, 2] > 0.0)  # a positive gain on the heave velocity: skyhook-like
+    True
+    """
+    return lq_design(vehicle, w_rattle, w_tire, w_force).K
+
+
+def _measurements(a: FloatArray, b: FloatArray, t3: FloatArray) -> tuple[FloatArray, FloatArray]:
+    """``(C, D)`` of ``y = (z_s,i'', z_u,i'', x_d,i) = C x + D u`` (3 n rows)."""
+    n = t3.shape[0]
+    vb = slice(n, n + NB)
+    vu = slice(2 * n + NB, 3 * n + NB)
+    c = np.vstack([t3 @ a[vb], a[vu], np.hstack([-np.eye(n), np.zeros((n, 2 * n + NB))])])
+    d = np.vstack([t3 @ b[vb], b[vu], np.zeros((n, n))])
+    return c, d
+
+
+def vehicle_kalman_gain(
+    vehicle: Any,
+    road_intensity: float = LQG_NOISE["road_intensity"],
+    noise_acc: float = LQG_NOISE["noise_acc"],
+    noise_stroke: float = LQG_NOISE["noise_stroke"],
+) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """``(L, C, D)``: the steady Kalman-Bucy gain of :func:`relative_model` measured by
+    every corner's body and wheel accelerometers and stroke sensor, and the measurement
+    model ``y = (z_s,i'', z_u,i'', x_d,i) = C x + D u``.
+
+    As :func:`~mrsuspension.control.literature.kalman_gain` at every corner: the road's
+    velocity at every wheel white and independent (intensity ``road_intensity``),
+    measurement noise ``noise_acc`` (both accelerometers) and ``noise_stroke``; the
+    roll-rate state of the half car (no roll) is left out of the solve.
+
+    Examples
+    --------
+    >>> from mrsuspension.vehicle import FullCar
+    >>> gain, c, d = vehicle_kalman_gain(FullCar())
+    >>> gain.shape, c.shape, d.shape
+    ((15, 12), (12, 15), (12, 4))
+    """
+    import scipy.linalg  # (not at import: the CLI starts without scipy)
+
+    a, b, e, t3 = relative_model(vehicle)
+    c, d = _measurements(a, b, t3)
+    n = t3.shape[0]
+    keep = np.ones(a.shape[0], dtype=bool)
+    if not np.any(t3[:, 2]):  # no roll: its state is neither driven nor seen
+        keep[n + 2] = False
+    ak, ck, ek = a[np.ix_(keep, keep)], c[:, keep], e[keep]
+    v = np.diag([noise_acc] * (2 * n) + [noise_stroke] * n)
+    p = scipy.linalg.solve_continuous_are(ak.T, ck.T, road_intensity * (ek @ ek.T), v)
+    gain = np.zeros((a.shape[0], 3 * n))
+    gain[keep] = p @ ck.T @ np.linalg.inv(v)
+    return gain, c, d
+
+
+# --- the laws ------------------------------------------------------------------------
+
+
+def _quarter_car_refused(law: str, per_corner: str) -> ValidationError:
+    return ValidationError(
+        f"law {law!r} drives a half or full car (its body's heave, pitch and roll); on the "
+        f"quarter car it is the per-corner law {per_corner!r}"
+    )
+
+
+@dataclass(frozen=True)
+class VehicleLQ(VehicleLaw):
+    """Whole-vehicle clipped LQ: ``F = -K x_seen`` (tire deflection's gain dropped), hi-lo
+    per corner (high when ``F_i v_d > 0``).
+
+    Parameters
+    ----------
+    rattle_weight, tire_weight, force_weight : float
+        The cost's weights per corner (module docstring): rattle [1/s^4] and tire
+        deflection [1/s^4] (>= 0), force [1/kg^2] (> 0); defaults ``w_rattle``, ``w_tire``,
+        ``w_force`` of :data:`~mrsuspension.control.literature.LQ_WEIGHTS` (the names
+        differ from the per-corner laws' options: one field per name on the monitor's
+        page).
+    low_current, high_current : float
+        Currents [A] as :class:`~mrsuspension.control.modal.ModalSkyhook` (0 and 0.5 A).
+
+    Notes
+    -----
+    :meth:`for_vehicle` solves the gain for the car it drives (:attr:`gain`, not an
+    option); :meth:`params` needs it.
+
+    Examples
+    --------
+    >>> VehicleLQ.options()
+    ('rattle_weight', 'tire_weight', 'force_weight', 'low_current', 'high_current')
+    >>> VehicleLQ(force_weight=0.0)
+    Traceback (most recent call last):
+    ...
+    mrsuspension.errors.ValidationError: force_weight must be in (0, 1000] 1/kg^2; got 0 1/kg^2
+    """
+
+    law: ClassVar[str] = "vehicle-lq"
+    kernel_code: ClassVar[int] = LAW_LQ
+    uses_body_rates: ClassVar[bool] = True
+    #: an ideal actuator at every corner instead of the damper (the ``-active`` laws)
+    active: ClassVar[bool] = False
+    #: the quarter car's per-corner law of the same kind
+    per_corner: ClassVar[str] = "clipped-lq"
+
+    rattle_weight: float = LQ_WEIGHTS["w_rattle"]
+    tire_weight: float = LQ_WEIGHTS["w_tire"]
+    force_weight: float = LQ_WEIGHTS["w_force"]
+    low_current: float = 0.0
+    high_current: float = 0.5
+
+    def __post_init__(self) -> None:
+        check_range("rattle_weight", self.rattle_weight, 0.0, 1e12, unit="1/s^4")
+        check_range("tire_weight", self.tire_weight, 0.0, 1e12, unit="1/s^4")
+        check_range("force_weight", self.force_weight, 0.0, 1e3, unit="1/kg^2", low_inclusive=False)
+        check_range("low_current", self.low_current, 0.0, None, unit="A")
+        check_range("high_current", self.high_current, float(self.low_current), None, unit="A")
+        self._check_noise()
+
+    def _check_noise(self) -> None:
+        """(The LQG's noise intensities.)"""
+
+    @property
+    def gain(self) -> FloatArray:
+        """The applied gain ``K`` (corners x ``3 n + 3``; :meth:`for_vehicle` sets it)."""
+        k = self.__dict__.get("_gain")
+        if k is None:
+            raise ValidationError(
+                f"law {self.law!r} has no gain yet: attach it to a half or full car "
+                "(for_vehicle) for its Riccati solve"
+            )
+        return np.asarray(k)
+
+    def for_vehicle(self, vehicle: Any) -> VehicleLQ:
+        """This law with its gain for ``vehicle`` (a half or full car)."""
+        if not hasattr(vehicle, "body_transform"):
+            raise _quarter_car_refused(self.law, self.per_corner)
+        out = type(self)(**{k: getattr(self, k) for k in self.options()})
+        for key, value in out._design(vehicle).items():
+            object.__setattr__(out, key, value)
+        return out
+
+    def _design(self, vehicle: Any) -> dict[str, FloatArray]:
+        k = vehicle_lq_gain(vehicle, self.rattle_weight, self.tire_weight, self.force_weight)
+        n = k.shape[0]
+        k[:, n + NB : 2 * n + NB] = 0.0  # the tire deflection is not measured
+        return {"_gain": k}
+
+    def state_size(self) -> int:
+        """Values of the law's state in the kernel (``nx = 3 n + 3``)."""
+        return int(self.gain.shape[1])
+
+    def buffer_shape(self, corners: int) -> tuple[int, int]:
+        """The shape of the vehicle kernel's law buffer (``mbuf``) for this law."""
+        return MB_ROWS, max(corners, self.state_size())
+
+    def _tail(self) -> list[FloatArray]:
+        return [self.gain]
+
+    def params(self) -> FloatArray:
+        """The kernel parameter vector: the ``MP_*`` layout (currents), then ``LP_*``.
+
+        Examples
+        --------
+        >>> from mrsuspension.vehicle import HalfCar
+        >>> p = VehicleLQ().for_vehicle(HalfCar()).params()
+        >>> p.size, float(p[LP_NX])  # 5 + 2 + 2 x 9
+        (25, 9.0)
+        """
+        head = np.zeros(LP_K)
+        head[MP_ILOW], head[MP_IHIGH] = self.low_current, self.high_current
+        head[LP_OUTPUT] = 1.0 if self.active else 0.0
+        head[LP_NX] = self.state_size()
+        return np.concatenate([head, *(np.ravel(m) for m in self._tail())])
+
+
+@dataclass(frozen=True)
+class VehicleLQActive(VehicleLQ):
+    """:class:`VehicleLQ`'s force ``F = -K x_seen`` applied by an ideal actuator at every
+    corner (a reference, not a damper; no current): the linear car responds as ``A - B
+    K``.
+
+    Examples
+    --------
+    >>> VehicleLQActive().law
+    'vehicle-lq-active'
+    """
+
+    law: ClassVar[str] = "vehicle-lq-active"
+    active: ClassVar[bool] = True
+    per_corner: ClassVar[str] = "lq-active"
+
+
+@dataclass(frozen=True)
+class VehicleLQG(VehicleLQ):
+    """Whole-vehicle clipped LQG: the full-state gain (tire deflection too) on a
+    Kalman-Bucy estimate from every corner's body and wheel accelerometers and stroke
+    sensor, the dampers' forces as the input; hi-lo per corner as :class:`VehicleLQ`.
+
+    Parameters
+    ----------
+    rattle_weight, tire_weight, force_weight, low_current, high_current
+        As :class:`VehicleLQ`.
+    road_noise, accelerometer_noise, stroke_sensor_noise : float
+        The road velocity's intensity [m^2/s] and the accelerometers' [(m/s^2)^2 s] and
+        stroke sensors' [m^2 s] noise intensities (> 0; defaults ``road_intensity``,
+        ``noise_acc``, ``noise_stroke`` of :data:`~mrsuspension.control.literature.LQG_NOISE`).
+
+    Examples
+    --------
+    >>> VehicleLQG(accelerometer_noise=-1.0)
+    Traceback (most recent call last):
+    ...
+    mrsuspension.errors.ValidationError: accelerometer_noise must be in (0, 1e+06] (m/s^2)^2 s; got -1 (m/s^2)^2 s
+    """
+
+    law: ClassVar[str] = "vehicle-lqg"
+    kernel_code: ClassVar[int] = LAW_LQG
+    per_corner: ClassVar[str] = "clipped-lqg"
+
+    road_noise: float = LQG_NOISE["road_intensity"]
+    accelerometer_noise: float = LQG_NOISE["noise_acc"]
+    stroke_sensor_noise: float = LQG_NOISE["noise_stroke"]
+
+    def _check_noise(self) -> None:
+        check_range("road_noise", self.road_noise, 0.0, 1.0, unit="m^2/s",
+                    low_inclusive=False)  # fmt: skip
+        check_range("accelerometer_noise", self.accelerometer_noise, 0.0, 1e6, unit="(m/s^2)^2 s",
+                    low_inclusive=False)  # fmt: skip
+        check_range("stroke_sensor_noise", self.stroke_sensor_noise, 0.0, 1.0, unit="m^2 s",
+                    low_inclusive=False)  # fmt: skip
+
+    def _design(self, vehicle: Any) -> dict[str, FloatArray]:
+        k = vehicle_lq_gain(vehicle, self.rattle_weight, self.tire_weight, self.force_weight)
+        a, b, _, _ = relative_model(vehicle)
+        gain, c, d = vehicle_kalman_gain(
+            vehicle, self.road_noise, self.accelerometer_noise, self.stroke_sensor_noise
+        )
+        return {
+            "_gain": k,
+            "_model": np.hstack([a, b]),
+            "_kalman": gain,
+            "_sensors": np.hstack([c, d]),
+        }
+
+    @property
+    def estimator(self) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray, FloatArray]:
+        """``(A, B, L, C, D)`` of the estimate (:func:`relative_model`,
+        :func:`vehicle_kalman_gain`)."""
+        self.gain  # noqa: B018 (raises without a vehicle)
+        nx = self.state_size()
+        model, sensors = self.__dict__["_model"], self.__dict__["_sensors"]
+        return (model[:, :nx], model[:, nx:], self.__dict__["_kalman"], sensors[:, :nx],
+                sensors[:, nx:])  # fmt: skip
+
+    def _tail(self) -> list[FloatArray]:
+        return [self.gain, *self.estimator]
+
+
+@dataclass(frozen=True)
+class VehicleLQGActive(VehicleLQG):
+    """:class:`VehicleLQG`'s force ``-K x_hat`` by an ideal actuator at every corner (a
+    reference, and the check that the estimate converges).
+
+    Examples
+    --------
+    >>> VehicleLQGActive().law
+    'vehicle-lqg-active'
+    """
+
+    law: ClassVar[str] = "vehicle-lqg-active"
+    active: ClassVar[bool] = True
+    per_corner: ClassVar[str] = "lqg-active"
+
+
+# --- kernel ----------------------------------------------------------------------------
+
+
+@njit(cache=True, inline="always")
+def lq_forces(
+    forces: np.ndarray,
+    mbuf: np.ndarray,
+    mp: np.ndarray,
+    nc: int,
+    vz: float,
+    q: float,
+    p: float,
+    estimate: bool,
+    dt: float,
+) -> None:
+    """Write the corners' desired forces ``F = -K x`` [N] into ``forces``.
+
+    ``mbuf[MB_X]`` holds the state: as seen (the strokes and wheel velocities written by
+    the vehicle step; the body rates ``vz, q, p`` here), or with ``estimate`` the Kalman
+    estimate, advanced by Euler over ``dt`` [s] from the measurements ``mbuf[MB_Y]`` and
+    the dampers' forces ``mbuf[MB_U]``: ``x' = A x + B u + L (y - C x - D u)`` (the
+    innovation replaces ``y``, the rates go to ``mbuf[MB_DX]``). ``mp``:
+    :meth:`VehicleLQ.params`.
+    """
+    nx = int(mp[LP_NX])
+    x = mbuf[MB_X]
+    if estimate:
+        y = mbuf[MB_Y]
+        u = mbuf[MB_U]
+        rate = mbuf[MB_DX]
+        ny = 3 * nc
+        oa = LP_K + nc * nx
+        ob = oa + nx * nx
+        ol = ob + nx * nc
+        oc = ol + nx * ny
+        od = oc + ny * nx
+        for i in range(ny):  # the innovation y - C x - D u
+            v = y[i]
+            for j in range(nx):
+                v -= mp[oc + i * nx + j] * x[j]
+            for j in range(nc):
+                v -= mp[od + i * nc + j] * u[j]
+            y[i] = v
+        for i in range(nx):
+            v = 0.0
+            for j in range(nx):
+                v += mp[oa + i * nx + j] * x[j]
+            for j in range(nc):
+                v += mp[ob + i * nc + j] * u[j]
+            for j in range(ny):
+                v += mp[ol + i * ny + j] * y[j]
+            rate[i] = v
+        for i in range(nx):
+            x[i] += dt * rate[i]
+    else:
+        x[nc] = vz
+        x[nc + 1] = q
+        x[nc + 2] = p
+    for c in range(nc):
+        f = 0.0
+        for j in range(nx):
+            f -= mp[LP_K + c * nx + j] * x[j]
+        forces[c] = f
