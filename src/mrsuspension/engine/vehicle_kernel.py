@@ -23,7 +23,8 @@ steps and held) and the stroke sensor's reading
 :func:`~mrsuspension.control.modal.modal_forces` (or ``F_i = -c_s v_i``) and
 :func:`~mrsuspension.control.modal.modal_hilo`, or from the whole-vehicle LQ and LQG's
 ``F = -K x`` (:func:`~mrsuspension.control.vehicle_lq.lq_forces`: the state as seen, or
-a Kalman estimate; hi-lo on ``F_i v_d > 0``, or ``F`` itself by an ideal actuator). Ideal
+a Kalman estimate; hi-lo on Dyke's ``(F_i - F_d) F_d > 0``, or ``F`` itself by an ideal
+actuator). Ideal
 sensing and no law leave the step exactly as before.
 
 The damper kernels (:mod:`mrsuspension.dampers.kernels`) and the control laws
@@ -380,7 +381,11 @@ def step(
             active = mp[VL.LP_OUTPUT] != 0.0
             for c in range(nc):
                 vds[c] = work[c, 6]
-                z = SM.switching_condition(forces[c], vds[c])
+                # Dyke et al.'s clipped-optimal rule, as the per-corner clipped-lq: high when
+                # (F_i - F_d) F_d > 0 (the load cell's force, the previous step's, below the
+                # desired one in magnitude and of its sign)
+                fd = mem[c, EK.M_FD]
+                z = -(forces[c] - fd) * fd
                 zc[c] = z
                 current[c] = 0.0 if active else SM.hilo_current(z, mp[SM.MP_ILOW], mp[SM.MP_IHIGH])
         for c in range(nc):
