@@ -141,6 +141,55 @@ _RING_SECONDS = 10.0
 
 
 # -- helpers --------------------------------------------------------------------------------
+def check_drives_damper(sim: Any, corner: str | None = None) -> None:
+    """Refuse a run whose law at the rig does not command the damper's current.
+
+    An ideal force (``ideal-*``, ``*-force`` through no inverse), an ideal actuator
+    (``lq-active``, ``vehicle-lq-active``, ...) or a whole-vehicle law that puts ideal
+    actuators at the corners would leave the rig at 0 A while the run looked controlled.
+
+    Raises
+    ------
+    ValidationError
+        One line naming the law and what a HiL run accepts.
+
+    Examples
+    --------
+    >>> from mrsuspension.engine import Simulation
+    >>> from mrsuspension.control import make_controller
+    >>> from mrsuspension.excitation import Harmonic
+    >>> def run(law):
+    ...     return Simulation(Harmonic(1.5, 0.025), controller=make_controller(law))
+    >>> check_drives_damper(run("skyhook-hilo"))
+    >>> check_drives_damper(run("ideal-skyhook"))
+    Traceback (most recent call last):
+    ...
+    mrsuspension.errors.ValidationError: controller law 'ideal-skyhook' does not command the damper's current (an ideal force or actuator): the rig would be sent 0 A. A HiL run needs a law that drives the MR damper (e.g. skyhook-hilo, inverse-hilo, sliding-mode)
+    """
+    hint = (
+        "the rig would be sent 0 A. A HiL run needs a law that drives the MR damper "
+        "(e.g. skyhook-hilo, inverse-hilo, sliding-mode)"
+    )
+    if has_corners(sim):
+        body = getattr(sim, "body_control", None)
+        if body is not None and getattr(body, "active", False):
+            name = body.describe().get("law", type(body).__name__)
+            raise ValidationError(
+                f"whole-vehicle law {name!r} drives ideal actuators, not the dampers; {hint}"
+            )
+        if body is not None:
+            return  # the whole-vehicle law sets every corner's current
+        law = sim.corner_simulation(check_corner(sim, corner)).controller
+    else:
+        law = sim.controller
+    if not law.drives_damper:
+        name = law.describe().get("law", type(law).__name__)
+        raise ValidationError(
+            f"controller law {name!r} does not command the damper's current (an ideal force "
+            f"or actuator): {hint}"
+        )
+
+
 def _simulation_of(target: Any) -> Any:
     """The one run of ``target``: a quarter car's :class:`Simulation`, or a half or full
     car's :class:`~mrsuspension.engine.vehicle.VehicleSimulation` (the scenario's
@@ -293,6 +342,8 @@ def run_hil(
             check_range("duration", duration, 0.0, MAX_DURATION, unit="s", low_inclusive=False)
         )
         check_recording_memory(duration, rate)  # before the child starts
+        if not isinstance(target, str | Path):  # a scenario file is read in the child
+            check_drives_damper(_simulation_of(target), corner)
         return _process._run_in_process(
             run_hil, target, rig, duration, rate, Path(out), recover, model_dt=model_dt, limits=limits,
             startup=startup, driver=driver, realtime=realtime, isolate=isolate,
@@ -309,6 +360,7 @@ def run_hil(
         raise ValidationError(
             f"corner = {corner!r}: a quarter-car run has no corners (half and full cars do)"
         )
+    check_drives_damper(sim, corner)
     limits = limits or SafetyLimits()
     startup = startup if startup is not None else StartUp()
     rate = float(check_range("rate", rate, 1.0, 100000.0, unit="Hz"))

@@ -73,3 +73,55 @@ def test_check_corner() -> None:
         "--corner = 'rear' is not a corner of this full car; valid: front_left, "
         "front_right, rear_left, rear_right",
     )
+
+
+def _full_car(**kw: object) -> object:
+    from mrsuspension.engine.vehicle import VehicleSimulation
+    from mrsuspension.excitation import Harmonic, WheelRoads
+    from mrsuspension.vehicle import FullCar
+
+    return VehicleSimulation(FullCar(), WheelRoads.in_phase(Harmonic(1.5, 0.01), "full-car"), **kw)
+
+
+@pytest.mark.parametrize(
+    ("what", "fragment"),
+    [
+        ("ideal-skyhook", "controller law 'ideal-skyhook' does not command the damper's current"),
+        ("lq-active", "controller law 'lq-active' does not command the damper's current"),
+        ("vehicle-lq-active", "whole-vehicle law 'vehicle-lq-active' drives ideal actuators"),
+    ],
+)
+def test_a_law_that_does_not_drive_the_damper_is_refused_before_the_run(
+    tmp_path: Path, what: str, fragment: str
+) -> None:
+    """An ideal force or actuator at the rig would leave it at 0 A while the run looked
+    controlled: refused with one line before anything starts or is written (in the process
+    mode, in the parent)."""
+    from mrsuspension.control import make_controller
+    from mrsuspension.control.vehicle_lq import VehicleLQActive
+    from mrsuspension.hil import run_hil
+
+    if what == "vehicle-lq-active":
+        sim = _full_car(body_control=VehicleLQActive())
+    else:
+        sim = _full_car(controllers={"rear_left": make_controller(what)})
+    out = tmp_path / "rec"
+    for process in (False, True):
+        raises_validation(
+            lambda p=process: run_hil(sim, corner="rear_left", duration=0.1, out=out, process=p),
+            fragment,
+            "the rig would be sent 0 A",
+        )
+    assert not out.exists()
+
+
+def test_laws_that_drive_the_damper_pass_the_check() -> None:
+    from mrsuspension.control import make_controller
+    from mrsuspension.control.modal import ModalSkyhook
+    from mrsuspension.hil.loop import check_drives_damper
+
+    check_drives_damper(_full_car(), "rear_left")
+    check_drives_damper(_full_car(body_control=ModalSkyhook()), "rear_left")
+    elsewhere = _full_car(controllers={"front_left": make_controller("ideal-skyhook")})
+    check_drives_damper(elsewhere, "rear_left")  # the rig's corner drives its damper
+    raises_validation(lambda: check_drives_damper(elsewhere, "front_left"), "ideal-skyhook")
