@@ -7,6 +7,7 @@ inverse-model laws), the figures' own scenarios.
 
 from __future__ import annotations
 
+from functools import cache
 from typing import Any
 
 import numpy as np
@@ -20,7 +21,12 @@ from mrsuspension.report.findings.claims import _RULE_GAINS
 
 
 def _history(number: str, label: str, **controller: Any) -> dict[str, Any]:
-    run = fig(number, label, kind="history", controller=controller)
+    return _run(number, label, tuple(sorted(controller.items())))
+
+
+@cache
+def _run(number: str, label: str, controller: tuple[tuple[str, Any], ...]) -> dict[str, Any]:
+    run = fig(number, label, kind="history", controller=dict(controller))
     return run_history(run.unit(quick=True))
 
 
@@ -67,6 +73,37 @@ def test_beta_is_the_smallest_covering_the_studied_masses() -> None:
     assert 0.35 <= float(np.mean(acm["i_d"]) / np.mean(scm["i_d"])) <= 0.65  # 0.56
     v = np.asarray(acm["v_r"])
     assert float(np.max(np.asarray(acm["i_d"])[v < 0.0])) > 0.4  # 0.48 A
+
+
+def test_sliding_rebound_peak_is_the_inverse_at_the_hysteron_zero() -> None:
+    """The Fig 6.4/6.7 rebound peak (0.48 A; the dissertation's Fig 6.7: about 0.15 A) is
+    the inverse model (2.16) saturated from the passive hysteron's zero crossing on: early
+    in rebound F_h passes through zero (its upper branch, v_h = sgn(a_d) k4 v_m, keeps it
+    positive down to v_d = k4 v_m, about -0.03 m/s) while the sliding-mode target stays at
+    2-3.5 kN, so C = |F_c| / (k_d |F_h|) falls from infinity and i_z = i_max until C drops
+    below C_i(i_max); the peak i_max M_p M_c is the stretch's last sample (docs/errata.md,
+    "The rebound peak checked against the equations"). F_h is the controller's own, from
+    z_c = -F_h F_c (3.35)."""
+    from mrsuspension.dampers import kernels as DK
+    from mrsuspension.dampers.wang import WangSymmetric
+
+    h = _history("6.4", "sliding mode ACM", beta=BETA_COVERING)
+    v, i_d = np.asarray(h["v_r"]), np.asarray(h["i_d"])
+    fc, zc = np.asarray(h["F*"]), np.asarray(h["z_c"])
+    k = int(np.flatnonzero(v < 0.0)[np.argmax(i_d[v < 0.0])])
+    assert i_d[k] > 0.4  # 0.49 A
+    assert -0.15 < v[k] < 0.0  # early rebound (the peak rebound velocity is -0.4 m/s)
+    assert fc[k] < -1500.0  # the target: -2.4 to -3.4 kN over the stretch
+    start = int(np.flatnonzero(zc[:k] >= 0.0)[-1]) + 1  # where F_h took F_c's sign
+    assert np.all(np.sign(fc[start - 1 : k + 1]) == -1.0)  # ... F_c kept its sign: F_h's zero
+    fh = -zc[start : k + 1] / fc[start : k + 1]
+    assert abs(fh[0]) < 60.0  # F_h just past zero (4 N at v_d = -0.029 m/s)
+    p = WangSymmetric(force_gain=2.5)._vector()
+    c = np.abs(fc[start : k + 1]) / (2.5 * np.abs(fh))
+    assert np.all(c > 0.98 * DK.current_gain(p, 0.5))  # beyond the damper's reach all along
+    assert k - start >= 50  # 105 ms at i_z = i_max
+    # the dissertation's 0.15 A would need |F_c| below C_i(0.15) k_d |F_h| all along
+    assert np.all(c > 1.4 * DK.current_gain(p, 0.15))
 
 
 _POLICIES = {

@@ -534,8 +534,9 @@ _SM_GAIN = (
     "peaks at 0.48 A (the dissertation: 0.15 A) for every beta in 1.0-2.0 (and eps up to 5 "
     "m/s, phi 0): the peak is the inverse model's saturation where the hysteron force F_h "
     "changes sign early in rebound (C = |F_c| / (k_d |F_h|) unbounded as F_h -> 0 while the "
-    "skyhook reference still asks for about 1 kN), so i_d = i_max M_p M_c, not the switching "
-    "gain K (the errata page)"
+    "sliding-mode target is 2-3.4 kN), so i_d = i_max M_p M_c, not the switching gain K; "
+    "checked term by term against (2.3)-(3.35), and no reading of the inverse (2.17), the "
+    "sign of K or the CM units moves it below 0.46 A (the errata page)"
 )
 _DTR_STATIC = (
     "our DTR over the sprung mass is the static-load change alone (141 kg g / 6406 N = "
