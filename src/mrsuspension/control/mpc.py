@@ -71,6 +71,7 @@ Examples
 
 from __future__ import annotations
 
+import functools
 import importlib.util
 import math
 from typing import Any
@@ -324,6 +325,15 @@ _Z44 = tuple((0.0, 0.0, 0.0, 0.0) for _ in range(4))
 _Z4 = (0.0, 0.0, 0.0, 0.0)
 
 
+@functools.cache
+def _default_model() -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]:
+    """``A``, ``B`` of the default :class:`~mrsuspension.vehicle.QuarterCar`."""
+    from mrsuspension.vehicle import QuarterCar
+
+    a, b, _ = quarter_car_model(QuarterCar())
+    return a, b[:, 0]
+
+
 def _mpc_for_plant(plant: Any, **options: Any) -> dict[str, Any]:
     """The model ``A``, ``B`` (:func:`~mrsuspension.control.literature.quarter_car_model`)
     from the plant where both are zeros (their defaults); checks that OSQP is installed
@@ -352,11 +362,8 @@ def _target(
     if time < memory[1]:
         return float(memory[0])
     horizon, sample, w_rattle, w_tire, w_force, c_min, c_max = o
-    if not np.any(B):
-        raise ValidationError(
-            "control law 'mpc': no model (A, B are zeros): attach it to a plant "
-            "(law.for_plant(quarter_car)), as Simulation does"
-        )
+    if not np.any(B):  # not attached to a plant (UserLaw.cost()): the default quarter car
+        A, B = _default_model()
     n = int(horizon)
     qp = _cached(A, B, n, sample, w_rattle, w_tire, w_force)
     # the tire deflection from the wheel's row of the model, z_u'' = A_3 x + B_3 F_d
@@ -405,7 +412,9 @@ def mpc(
     (the module docstring), held until the next solve; a target force through the
     inverse model.
 
-    ``A``, ``B``: the plant's model (``for_plant``: each corner its own) unless given. Defaults: ``N`` = 10, ``T_s`` = 2 ms
+    ``A``, ``B``: the plant's model (``for_plant``: each corner its own) unless given
+    (zeros, the law not attached to a plant, as in :meth:`~mrsuspension.control.user.UserLaw.cost`: the default
+    :class:`~mrsuspension.vehicle.QuarterCar`'s). Defaults: ``N`` = 10, ``T_s`` = 2 ms
     (a 20 ms horizon; the terminal cost carries the rest), the LQ weights of
     :data:`~mrsuspension.control.literature.LQ_WEIGHTS`, the band of :func:`pdd`.
     """
