@@ -16,7 +16,7 @@ first force of its solution until the next solve:
   solution of the same sampled cost. With the band inactive the first force is then
   exactly the sampled-data LQR's ``-K_d x``, and ``K_d`` tends to the continuous
   ``lq_gain`` as ``T_s`` tends to 0 (``tests/unit/control/test_mpc.py``: relative
-  difference 1.6e-2 at 2 ms, 8e-5 at 10 us).
+  difference 3.5e-2 at 2 ms, 1.9e-4 at 10 us).
 * **Constraint**: the damper's force band. A damper gives (model reference, section 1:
   up-positive, ``v_d = z_u' - z_s'``, the force up on the body has the sign of ``v_d``)
   a force between its passive force at ``i_min`` and at ``i_max``. Convexified as a
@@ -29,8 +29,10 @@ first force of its solution until the next solve:
   a variable with its sign fixed, as Giorgetti et al.'s mode sequence does, makes the
   constraints state-dependent and the QP infeasible when the predicted sign is wrong.)
   ``c_min``, ``c_max``: the dissertation's damper's viscous range at 0 and 0.5 A, the
-  Bingham fit ``bingham-wang-low`` (2043 and 2043 + 17139 x 0.5 N s/m, as :func:`pdd`);
-  the yield force is left out (a Bingham damper's band is wider, not narrower).
+  Bingham fit ``bingham-wang-low`` (2043 and 2043 + 17139 x 0.5 N s/m, as
+  :func:`~mrsuspension.control.literature.pdd`); its yield force is left out (the
+  damper's least force lies above ``c_min v_d`` by the yield force at ``i_min``: a
+  target below it gets ``i_min``).
 * **State**: ``z_s - z_u = -x_d``, ``z_s'`` and ``z_u'`` as measured; the tire
   deflection ``z_u - z_r`` (not measured: the road is unknown) from the wheel's equation
   of motion, ``m_u z_u'' = k_s (z_s - z_u) - k_t (z_u - z_r) - c_t (z_u' - z_r') - F_d``,
@@ -45,15 +47,17 @@ force (``|F*| > |F_d|``), else ``i_min`` (the clipped-LQ rule of
 
 How it runs. OSQP is a compiled library called from Python, not from numba: the laws run
 on the :func:`~mrsuspension.control.user.law` "Python path" (a ctypes callback at every
-engine step). Between solves a call returns the held force (about 5 us); the QP is set up
+engine step). Between solves a call returns the held force (about 8 us); the QP is set up
 once per plant and options in a process (:func:`problem`: condensed, ``N`` forces as the
 variables, scaled to kN) and each solve updates it (``update(q, l, u)``) and warm-starts it
 from the previous solution shifted (``warm_start(x)``). The law's memory (one per corner)
 holds the held force, the next solve's time and the previous solution, so the corners of
-a car share a QP of the same plant and never each other's state. Measured on the default
-quarter car, ISO C at 72 km/h, ``N`` = 10, ``T_s`` = 2 ms: 40-60 us per solve, about
-0.1 s of CPU per simulated second at the engine's 0.5 ms step (0.03 s per simulated
-second for ``lq-force``'s whole run), see ``docs/control-laws.md``.
+a car share a QP of the same plant and never each other's state. Measured (CPU time, a
+shared 2-core machine at a load average of 10-12), ``N`` = 10, ``T_s`` = 2 ms: 80-110 us
+per solve (about 34 OSQP iterations), 8 us per held step; per simulated second 0.054 s
+on the quarter car at the engine's 0.5 ms step (``lq-force``: 0.0008 s) and 0.34 s on
+the full car at 0.2 ms (four corners; ``lq-force``: 0.008 s), see
+``docs/control-laws.md``.
 
 Examples
 --------
@@ -157,6 +161,9 @@ class MPCProblem:
         The terminal weight: the discrete Riccati solution (4 x 4).
     gain : ndarray
         ``K_d`` (4,): the sampled-data LQR, the first move with the band inactive.
+    solves, iterations, unfinished : int
+        Solves so far, OSQP's iterations in them, and the solves it stopped at
+        ``max_iter`` (their last iterate, clipped to the bounds, is used).
     """
 
     def __init__(
@@ -224,8 +231,7 @@ class MPCProblem:
             np.zeros(n),
             **_SETTINGS,
         )
-        self.solves = 0
-        self.iterations = 0
+        self.solves = self.iterations = self.unfinished = 0
 
     def stroke_rates(self, x: npt.ArrayLike, forces: npt.ArrayLike) -> npt.NDArray[np.float64]:
         """The predicted ``v_d`` [m/s] at the horizon's samples ``k = 0..N-1`` from the
@@ -248,8 +254,12 @@ class MPCProblem:
         OSQP does not finish (``max_iter``) returns its last iterate clipped to the bounds.
         """
         n = self.horizon
-        lo = np.broadcast_to(np.asarray(lower, dtype=float) / _FORCE_UNIT, (n,))
-        hi = np.broadcast_to(np.asarray(upper, dtype=float) / _FORCE_UNIT, (n,))
+        lo = np.asarray(lower, dtype=float) / _FORCE_UNIT
+        hi = np.asarray(upper, dtype=float) / _FORCE_UNIT
+        if lo.ndim == 0:
+            lo = np.full(n, float(lo))
+        if hi.ndim == 0:
+            hi = np.full(n, float(hi))
         self._solver.update(q=self._q_of_x @ np.asarray(x, dtype=float), l=lo, u=hi)
         if warm is not None:
             self._solver.warm_start(x=np.asarray(warm, dtype=float) / _FORCE_UNIT)
@@ -257,9 +267,12 @@ class MPCProblem:
         self.solves += 1
         self.iterations += int(res.info.iter)
         u = res.x
-        if u is None or not np.all(np.isfinite(u)):
-            u = np.clip(np.zeros(n), lo, hi)
-        return np.clip(u, lo, hi) * _FORCE_UNIT
+        if res.info.status_val != 1:  # OSQP_SOLVED
+            self.unfinished += 1
+            if u is None or not np.all(np.isfinite(u)):
+                u = np.zeros(n)
+        out: npt.NDArray[np.float64] = np.minimum(np.maximum(u, lo), hi) * _FORCE_UNIT
+        return out
 
     def first_move(self, x: npt.ArrayLike, lower: float, upper: float) -> float:
         """The first force [N] of :meth:`solve` with the same bounds at every sample."""
@@ -378,8 +391,8 @@ def _target(
     shifted[-1] = previous[-1]
     v = qp.stroke_rates(x, shifted)
     v[0] = v_d  # the first sample's band: the measured stroke rate
-    lo = np.minimum(c_min * v, c_max * v)
-    hi = np.maximum(c_min * v, c_max * v)
+    a, b = c_min * v, c_max * v
+    lo, hi = np.minimum(a, b), np.maximum(a, b)
     u = qp.solve(x, lo, hi, warm=shifted)
     memory[2 : 2 + n] = u
     memory[0] = u[0]
@@ -416,7 +429,7 @@ def mpc(
     (zeros, the law not attached to a plant, as in :meth:`~mrsuspension.control.user.UserLaw.cost`: the default
     :class:`~mrsuspension.vehicle.QuarterCar`'s). Defaults: ``N`` = 10, ``T_s`` = 2 ms
     (a 20 ms horizon; the terminal cost carries the rest), the LQ weights of
-    :data:`~mrsuspension.control.literature.LQ_WEIGHTS`, the band of :func:`pdd`.
+    :data:`~mrsuspension.control.literature.LQ_WEIGHTS`, the band of :func:`~mrsuspension.control.literature.pdd`.
     """
     o = (horizon, sample, w_rattle, w_tire, w_force, c_min, c_max)
     return _target(x_d, v_d, z_s_dot, z_u_dot, z_u_ddot, F_d, time, memory, o, A, B)
