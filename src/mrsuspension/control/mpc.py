@@ -426,10 +426,12 @@ def mpc(
     inverse model.
 
     ``A``, ``B``: the plant's model (``for_plant``: each corner its own) unless given
-    (zeros, the law not attached to a plant, as in :meth:`~mrsuspension.control.user.UserLaw.cost`: the default
+    (zeros, the law not attached to a plant, as in
+    :meth:`~mrsuspension.control.user.UserLaw.cost`: the default
     :class:`~mrsuspension.vehicle.QuarterCar`'s). Defaults: ``N`` = 10, ``T_s`` = 2 ms
     (a 20 ms horizon; the terminal cost carries the rest), the LQ weights of
-    :data:`~mrsuspension.control.literature.LQ_WEIGHTS`, the band of :func:`~mrsuspension.control.literature.pdd`.
+    :data:`~mrsuspension.control.literature.LQ_WEIGHTS`, the band of
+    :func:`~mrsuspension.control.literature.pdd`.
     """
     o = (horizon, sample, w_rattle, w_tire, w_force, c_min, c_max)
     return _target(x_d, v_d, z_s_dot, z_u_dot, z_u_ddot, F_d, time, memory, o, A, B)
