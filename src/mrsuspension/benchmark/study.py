@@ -166,6 +166,8 @@ LAW_TABLE: dict[str, TunedOption] = {
     "clipped-lqg": _LQ_R,
     "lq-active": _LQ_R,
     "lqg-active": _LQ_R,
+    "mpc": _LQ_R,
+    "mpc-hilo": _LQ_R,
 }
 
 

@@ -21,7 +21,8 @@ law                   class                                             seed
 
 The literature's benchmark laws (groundhook, hybrid skyhook-groundhook, ADD, SH-ADD,
 PDD, clipped-optimal LQ: ``add``, ``sh-add``, ``clipped-lq``...) are registered too, written
-with :func:`law` in :mod:`~mrsuspension.control.literature`.
+with :func:`law` in :mod:`~mrsuspension.control.literature`, and semi-active MPC with OSQP
+(``mpc``, ``mpc-hilo``) in :mod:`~mrsuspension.control.mpc`.
 
 Laws of your own: :func:`law` makes a plain Python function of the measured signals
 (:mod:`~mrsuspension.control.signals`) a controller (:mod:`~mrsuspension.control.user`;

@@ -12,6 +12,7 @@ from mrsuspension.control.ideal import IdealOnOff, IdealSkyhook
 from mrsuspension.control.inverse import InverseHiLo
 from mrsuspension.control.literature import LAWS as LITERATURE_LAWS
 from mrsuspension.control.modal import CornerSkyhook, ModalSkyhook, VehicleLaw
+from mrsuspension.control.mpc import LAWS as MPC_LAWS
 from mrsuspension.control.passive import OnOffADFG, Passive
 from mrsuspension.control.sliding import SlidingMode
 from mrsuspension.control.vehicle_lq import (
@@ -54,6 +55,7 @@ CONTROLLERS: dict[str, Any] = {
     "ideal-skyhook": IdealSkyhook,
     "ideal-onoff": IdealOnOff,
     **LITERATURE_LAWS,  # the literature's benchmark laws (control/literature.py)
+    **MPC_LAWS,  # semi-active MPC with OSQP (control/mpc.py)
 }
 
 
