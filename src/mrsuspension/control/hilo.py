@@ -35,8 +35,10 @@ class HiLo(Shaped):
     ==========  =====================  ===============
 
     Defaults (Chapter 4): n = 2, k_c = 3, 10, 10, 300 for policies I-IV, p_c = 0,
-    xi_c = 10, xi = 4.5, ADFG centre 0.1; ``mode="SCM"`` (p = 1, default) or ``"ACM"``
-    (p = 0).
+    xi_c = 10 on z_c in SI units, xi = 4.5, ADFG centre 0.5 ((2.3) as printed);
+    ``mode="SCM"`` (p = 1, default) or ``"ACM"`` (p = 0). Section 4.3.1's figures read as
+    the dissertation describes them with z_c in centimetre units, ``xi_c = 1e5`` here
+    (``docs/errata.md``, "The hi-lo policies checked against the equations").
 
     Examples
     --------

@@ -6,6 +6,7 @@ model, with the suspected cause (assembled in :mod:`mrsuspension.report.findings
 
 from __future__ import annotations
 
+from mrsuspension.control.hilo import POLICY_LAWS
 from mrsuspension.report.findings.checks import (
     CONSIDERABLY,
     GAMMA,
@@ -36,11 +37,13 @@ from mrsuspension.report.findings.checks import (
     psd_mean,
     ratio,
     readings,
+    retabled,
     road_current_std,
     spread,
     within,
 )
 from mrsuspension.report.findings.claims.common import (
+    _RULE_GAINS,
     _SWEPT_IN_FULL,
     A4_F,
     A4_P,
@@ -89,12 +92,50 @@ from mrsuspension.report.findings.claims.common import (
     _phase_ratio,
     _road_levels,
     _road_sensitivity,
-    _rule_gain_sensitivity,
     _sub,
     _swept,
 )
 
 __all__ = ["CLAIMS", "KNOWN"]
+
+
+#: The CM smoothing of section 4.3.1 (xi_c = 10) read on the condition function z_c in
+#: centimetre units (z_s', v_d in cm/s, x_d in cm): xi_c z_c 1e4 times the SI value, which
+#: is xi_c = 1e5 on the SI z_c of the code (M_c depends on the product only). The model
+#: reference's SI reading (the default) leaves policies III and IV at M_c = 0.47-0.53 (they
+#: never switch) and every peak i_d at 0.22-0.37 A; in centimetres the CM switches as the
+#: text describes and each policy's peak i_d is its peak i_z, 0.45-0.5 A at the stated
+#: gains (docs/errata.md, "The hi-lo policies checked against the equations")
+XI_C_CM_UNITS = 10.0 * 1e4
+_CM_UNITS = "z_c in cm units (section 3.3's CM switches: xi_c = 10 on z_c x 1e4)"
+
+
+def _cm_units(check: Check) -> Check:
+    """``check`` with every hi-lo policy's CM read on z_c in centimetre units."""
+    for law in POLICY_LAWS.values():
+        check = retabled(check, "z_c cm", law, controller={"xi_c": XI_C_CM_UNITS})
+    return check
+
+
+#: Fig 4.4: each policy's peak drive current is 0.4-0.5 A
+_PEAK_CURRENT = within(peak("i_d"), POL_T, 0.4, 0.5 + 1e-9, 0.5)
+
+
+def _policy_readings(check: Check) -> Check:
+    """A Figs 4.4/4.5 policy check at the stated gains (kept), at the gains by the stated
+    rule (:data:`_RULE_GAINS`) and with the CM on z_c in centimetre units
+    (:data:`XI_C_CM_UNITS`) at the stated gains."""
+    rule = check
+    for law, gain in _RULE_GAINS.items():
+        rule = retabled(rule, f"k_c {gain:g}", law, controller={"gain": gain})
+    name = "gains by the stated rule (peak i_d 0.49 A: k_c = " + ", ".join(
+        f"{g:g}" for g in _RULE_GAINS.values()
+    )
+    return readings(
+        ("stated gains k_c = 3, 10, 10, 300", check),
+        (name + ")", rule),
+        (_CM_UNITS, _cm_units(check)),
+    )
 
 
 def _hysteresis_transients(hysteretic: Run, mean: Run, scheme: str = "") -> Check:
@@ -253,7 +294,7 @@ CLAIMS: tuple[Claim, ...] = (
         'the scheme I based upon "skyhook" modulation of the current yields significantly '
         "lower resonant acceleration responses",
         "Fig 4.5 (SCM): peak T_as of policy I is at most 0.85 times that of II, III and IV.",
-        _rule_gain_sensitivity(
+        _policy_readings(
             compare(
                 fpeak("T_as"), _sub(POL_F, "I"), _sub(POL_F, "II", "III", "IV"), "<", CONSIDERABLY
             )
@@ -283,7 +324,7 @@ CLAIMS: tuple[Claim, ...] = (
         "majority of the frequency range.",
         "Fig 4.5: the DLC of policies I and IV is below that of II and III at more than half "
         "of the grid frequencies.",
-        _rule_gain_sensitivity(
+        _policy_readings(
             all_of(
                 fraction("DLC", _one(POL_F, "I"), _sub(POL_F, "II", "III"), "<"),
                 fraction("DLC", _one(POL_F, "IV"), _sub(POL_F, "II", "III"), "<"),
@@ -305,7 +346,7 @@ CLAIMS: tuple[Claim, ...] = (
         "relative smooth variations in the drive current and damping force",
         "Fig 4.4 (2.5 cm, 1.5 Hz): policy I has the smallest share of i_d and of F_d above 5 Hz "
         "of the four policies.",
-        _rule_gain_sensitivity(
+        _policy_readings(
             all_of(
                 *(
                     compare(hf_fraction(s), _sub(POL_T, "I"), _sub(POL_T, "II", "III", "IV"), "<")
@@ -321,7 +362,7 @@ CLAIMS: tuple[Claim, ...] = (
         "deflection response causes large variations in F_d and i_d near the switching "
         "instants.",
         "Fig 4.4: policy IV has the largest max |di_d/dt| and max |dF_d/dt| of the four policies.",
-        _rule_gain_sensitivity(
+        _policy_readings(
             all_of(
                 *(
                     compare(max_rate(s), _sub(POL_T, "IV"), _sub(POL_T, "I", "II", "III"), ">")
@@ -336,7 +377,7 @@ CLAIMS: tuple[Claim, ...] = (
         "but cause high frequency oscillations around the switching, which are more evident "
         "in the unsprung mass acceleration response",
         "Fig 4.4: the share of a_u above 5 Hz is larger with policies II and III than with I.",
-        _rule_gain_sensitivity(
+        _policy_readings(
             compare(hf_fraction("a_u"), _sub(POL_T, "II", "III"), _sub(POL_T, "I"), ">")
         ),
     ),
@@ -346,7 +387,10 @@ CLAIMS: tuple[Claim, ...] = (
         "to ensure identical peak value of the drive current about ($i_d=i_H=0.5$ A) under "
         "selected excitation magnitude",
         "Fig 4.4 (2.5 cm, 1.5 Hz): each policy's peak drive current is 0.4-0.5 A.",
-        _swept(within(peak("i_d"), POL_T, 0.4, 0.5 + 1e-9, 0.5)),
+        readings(
+            ("stated gains k_c = 3, 10, 10, 300", _swept(_PEAK_CURRENT)),
+            (_CM_UNITS, _cm_units(_PEAK_CURRENT)),
+        ),
     ),
     # ---------------------------------------------------------------- 4.3.2 SCM / ACM
     Claim(
@@ -1197,7 +1241,7 @@ CLAIMS: tuple[Claim, ...] = (
         "when compared to those of other control synthesis formulated in the study",
         "Fig 4.5: policy I has the lowest mean T_as, DLC and T_dr over the grid of the four "
         "policies.",
-        _rule_gain_sensitivity(
+        _policy_readings(
             all_of(
                 *(
                     compare(
@@ -1283,18 +1327,14 @@ CLAIMS: tuple[Claim, ...] = (
 KNOWN: dict[str, str] = {
     "4.3.1-policy-i-resonance": "model: policies II and III damp the body mode as well as I "
     "(peak T_as about 1.7-1.8 for I, II, III); the k_c = 10 relative-velocity laws reach "
-    "0.29-0.36 A, close to policy I's 0.37 A",
+    "0.29-0.36 A, close to policy I's 0.37 A; with z_c in cm units I 1.68 against II 1.63",
     "4.3.1-dlc-i-iv": "model: policy IV's DLC is below II's and III's at only about a third "
-    "of the frequencies (I's holds); IV's current stays low (0.22 A peak)",
+    "of the frequencies (I's holds); IV's current stays low (0.22 A peak); with z_c in cm "
+    "units (IV's peak 0.45 A) at 42 %",
     "4.3.1-policy-i-smooth": "model: policy I's current has the largest high-frequency share "
     "(0.22 against 0.10-0.17): with k_c |z_s'|^2 the current follows the body velocity, "
-    "which carries the wheel-hop ripple",
-    "4.3.1-ii-iii-oscillation": "model: the relative-velocity laws II and III give the "
-    "smoothest wheel acceleration (share above 5 Hz 0.13 against I's 0.35)",
-    "4.3.1-peak-current": "model: with k_c = 3, 10, 10, 300 the peak currents at 2.5 cm / "
-    "1.5 Hz are 0.37, 0.36, 0.29, 0.22 A, not about 0.5 A; the stated rule needs k_c = 4.2, "
-    "18, 26, 1100 in our model (about 0.5 A, 0.375 A or more, from 3.0, 11, 16, 710: "
-    "the errata page); the other policy claims are checked at those gains too",
+    "which carries the wheel-hop ripple; with z_c in cm units I's F_d is the smoothest "
+    "(0.095) but its i_d (0.375) not, II's is 0.352",
     "4.3.2-compression-peaks": "reading: ACM's compression peaks exceed SCM's as stated, but "
     "by 10-44 % (x_r 44 %), more than 'slightly' (25 %)",
     "4.3.2-acm-majority": "reading: ACM's DLC is below passive 0.1 A's at exactly half of the "
@@ -1320,6 +1360,6 @@ KNOWN: dict[str, str] = {
     "(1.5, 1.9, 2.3 kN for k_c = 0.5, 1.5, 3): the damper is not saturated in rebound at "
     "the 3.5 cm pulse",
     "4.6-skyhook-best-policy": "model: policy I has the lowest mean T_as and DLC but the "
-    "policies II and III the lowest mean T_dr (0.77 against I's 0.90): I's wheel-hop stroke "
-    "is larger (4.3.1-tdr-i-iv-wheel-hop)",
+    "policies II and III the lowest mean T_dr (0.77 against I's 0.90; with z_c in cm units "
+    "II 0.80 against I's 0.89): I's wheel-hop stroke is larger (4.3.1-tdr-i-iv-wheel-hop)",
 }
