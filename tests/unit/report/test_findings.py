@@ -222,8 +222,11 @@ def test_dtr_readings_differ_over_the_mass_only() -> None:
     assert got["3.44"] == pytest.approx((w0 - w) / w0)  # the static-load change, 0.216
     assert got["dynamic"] == pytest.approx(0.0, abs=1e-12)
     assert got["ratio"] == pytest.approx(5000.0 / w - 5000.0 / w0)
+    assert got["peak"] == pytest.approx((w0 - w) / (w0 + 5000.0))  # over the nominal peak
     same_mass = {"peak_tire_force": w0 + 4000.0, "static load [N]": w0}
-    assert len({round(F.dtr_of(nominal, same_mass, r), 12) for r in F.DTR_READINGS}) == 1
+    by_load = [r for r in F.DTR_READINGS if r != "peak"]  # the readings over a static load
+    assert len({round(F.dtr_of(nominal, same_mass, r), 12) for r in by_load}) == 1
+    assert F.dtr_of(nominal, same_mass, "peak") == pytest.approx(1000.0 / (w0 + 5000.0))
     with pytest.raises(ValidationError, match="DTR reading"):
         F.dtr_of(nominal, light, "static")
 
