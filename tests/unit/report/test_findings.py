@@ -222,10 +222,37 @@ def test_dtr_readings_differ_over_the_mass_only() -> None:
     assert got["3.44"] == pytest.approx((w0 - w) / w0)  # the static-load change, 0.216
     assert got["dynamic"] == pytest.approx(0.0, abs=1e-12)
     assert got["ratio"] == pytest.approx(5000.0 / w - 5000.0 / w0)
+    assert got["peak"] == pytest.approx((w0 - w) / (w0 + 5000.0))  # over the nominal peak
     same_mass = {"peak_tire_force": w0 + 4000.0, "static load [N]": w0}
-    assert len({round(F.dtr_of(nominal, same_mass, r), 12) for r in F.DTR_READINGS}) == 1
+    by_load = [r for r in F.DTR_READINGS if r != "peak"]  # the readings over a static load
+    assert len({round(F.dtr_of(nominal, same_mass, r), 12) for r in by_load}) == 1
+    assert F.dtr_of(nominal, same_mass, "peak") == pytest.approx(1000.0 / (w0 + 5000.0))
     with pytest.raises(ValidationError, match="DTR reading"):
         F.dtr_of(nominal, light, "static")
+
+
+def test_no_larger_reads_ties_and_controlled_peak_skips_the_first_stroke() -> None:
+    ms = {"x": lambda g: g["r"]["x"]}
+    groups = {"A": {"r": _A}, "B": {"r": _B}, "C": {"r": _A}}
+    pay = {"A: r": {"x": 1.0}, "B: r": {"x": 1.005}, "C: r": {"x": 1.2}}
+    assert not F.no_larger(ms, groups, "A")(pay).holds  # a tie with B: smaller than C only
+    assert F.no_larger(ms, groups, "A", against="any")(pay).holds
+    v = F.no_larger(ms, groups, "A", tie=0.001)(pay)
+    assert v.holds
+    assert "A 1" in v.numbers
+    worse = F.no_larger(ms, groups, "A")({**pay, "B: r": {"x": 0.9}})
+    assert not worse.holds
+    assert "x: A 1 > B 0.9" in worse.why
+    with pytest.raises(ValidationError, match="against"):
+        F.no_larger(ms, groups, "A", against="all")
+    m = F.controlled_peak("a_s")
+    assert (
+        m({"v_r": [0.0, 0.0, 0.5, 0.2, -0.3, 0.1], "a_s": [0.0, 7.0, 9.0, 1.0, 2.0, -4.0]}) == 4.0
+    )
+    with pytest.raises(ValidationError, match="never ends"):
+        m({"v_r": [0.0, 0.5], "a_s": [1.0, 2.0]})
+    with pytest.raises(ValidationError, match="no compression stroke"):
+        m({"v_r": [0.0, -0.5], "a_s": [1.0, 2.0]})
 
 
 def _claim(check: F.Check) -> Claim:
