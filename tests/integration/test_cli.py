@@ -224,3 +224,26 @@ def test_reproduce_prints_plain_progress_lines_in_a_log(
     assert "0 s  report: 1/2 chapter 2" in err.splitlines()
     assert "\r" not in err
     assert "report written to" in out
+
+
+def test_loops_that_cannot_be_written_give_one_line_and_keep_the_old_output(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """A full disk while writing --out: one ``error: cannot write --out`` line, exit 2, and
+    the previous output left as it was."""
+    from mrsuspension import characterisation
+
+    out = tmp_path / "loops"
+    assert run("damper", "loops", "--currents", "0", "--out", str(out), "--json")[0] == 0
+    before = sorted(p.name for p in out.iterdir())
+
+    def full(*args: object, **kwargs: object) -> list[Path]:
+        raise OSError(28, "No space left on device")
+
+    monkeypatch.setattr(characterisation.CharacterisationResult, "save", full)
+    code, _, err = run("damper", "loops", "--currents", "0", "--out", str(out), "--force")
+    assert code == 2
+    assert "cannot write --out" in err
+    assert "No space left on device" in err
+    assert "Traceback" not in err
+    assert sorted(p.name for p in out.iterdir()) == before

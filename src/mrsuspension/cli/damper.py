@@ -8,7 +8,7 @@ from typing import Annotated, Any
 
 import typer
 
-from mrsuspension._output import check_output_folder, prepare_output
+from mrsuspension._output import check_output_folder, prepare_output, save_listed
 from mrsuspension.cli.errors import user_errors
 from mrsuspension.errors import ValidationError, check_range
 
@@ -261,8 +261,9 @@ def damper_loops(
         files = []
         with prepare_output(out, "damper loops", force=force) as folder:
             if out is not None and folder is not None:
-                written = [*result.save(folder), _plot_result(result, folder / "loops.png")]
-                files = [str(out / Path(p).relative_to(folder)) for p in written]
+                files = save_listed(
+                    out, folder, lambda f: [*result.save(f), _plot_result(result, f / "loops.png")]
+                )
     _echo_characterisation(result, files, as_json)
 
 
@@ -341,7 +342,7 @@ def damper_matrix(
         with prepare_output(out, "damper matrix", force=force) as folder:  # before the tests
             result = characterise(m, progress=not as_json)
             if out is not None and folder is not None:
-                files = [str(out / Path(p).relative_to(folder)) for p in result.save(folder)]
+                files = save_listed(out, folder, result.save)
     _echo_characterisation(result, files, as_json)
 
 
