@@ -530,21 +530,51 @@ def _scenario(
     return tables
 
 
+#: the full car's corners (its measures ``DLC.<corner>``, ``rms_stroke.<corner>``)
+FULL_CAR_CORNERS = ("front_left", "front_right", "rear_left", "rear_right")
+
+
+def _objective_weights(vehicle: str, weights: tuple[float, float, float]) -> dict[str, float]:
+    """The tuning objective's measure weights: the benchmark cost's terms on ``vehicle``.
+
+    Quarter car: the Wk rms body acceleration, the DLC and the rms stroke. Full car: the
+    seat's ISO 2631-1 total value, and each corner's DLC and rms stroke at a quarter of the
+    weight (their mean, as the scoring takes it).
+    """
+    w_c, w_r, w_s = weights
+    if vehicle == "quarter":
+        pairs = [("wk_rms_body_acceleration", w_c), ("DLC", w_r), ("rms_stroke", w_s)]
+    else:
+        pairs = [("seat_total", w_c)]
+        pairs += [(f"DLC.{c}", w_r / len(FULL_CAR_CORNERS)) for c in FULL_CAR_CORNERS]
+        pairs += [(f"rms_stroke.{c}", w_s / len(FULL_CAR_CORNERS)) for c in FULL_CAR_CORNERS]
+    return {k: w for k, w in pairs if w > 0.0}
+
+
 def _tune_task(
     task: tuple[
-        str, TunedOption, dict[str, Any], tuple[float, float, float], int, int, int, int | None
+        str,
+        TunedOption,
+        dict[str, Any],
+        tuple[float, float, float],
+        int,
+        int,
+        int,
+        int | None,
+        str,
     ],
 ) -> dict[str, Any]:
-    """Tune one law's option on the training road (the optimiser's Python API)."""
+    """Tune one law's option on the training road on one vehicle (the optimiser's API)."""
     from mrsuspension.optimize import OptimizationProblem, optimize
 
-    law, opt, excitation, weights, evaluations, population, seed, workers = task
+    law, opt, excitation, weights, evaluations, population, seed, workers, vehicle = task
     assert opt.option is not None
-    w_c, w_r, w_s = weights
+    base: dict[str, Any] = {"vehicle": {"model": "full-car"}} if vehicle == "full" else {}
     problem = OptimizationProblem.from_dict(
         {
+            **base,
             "controller": {"law": law},
-            "simulation": {"dt": ENGINE_DT["quarter"], "duration": excitation.pop("duration")},
+            "simulation": {"dt": ENGINE_DT[vehicle], "duration": excitation.pop("duration")},
             "problem": {"population": population, "seed": seed, "name": law},
             "parameters": [
                 {
@@ -555,22 +585,13 @@ def _tune_task(
                 }
             ],
             "roads": [excitation],
-            "objective": {
-                "weights": {
-                    k: w
-                    for k, w in (
-                        ("wk_rms_body_acceleration", w_c),
-                        ("DLC", w_r),
-                        ("rms_stroke", w_s),
-                    )
-                    if w > 0.0
-                }
-            },
+            "objective": {"weights": _objective_weights(vehicle, weights)},
         }
     )
     result = optimize(problem, max_evaluations=evaluations, workers=workers, progress=False)
     return {
         "law": law,
+        "vehicle": vehicle,
         "option": opt.option,
         "value": result.best[f"controller.{opt.option}"],
         "objective": result.objective,
@@ -602,6 +623,8 @@ def _score_task(task: tuple[str, str, dict[str, Any]]) -> dict[str, float] | Non
             "road_holding": float(np.std(tire) / np.mean(tire)),
             "rattle": float(np.std(np.asarray(res.x_d))),
             "coil_power": COIL_RESISTANCE * float(np.mean(i * i)),
+            # the damper's peak-velocity estimate: the optimum's band covers its range
+            "peak_velocity_max": float(np.max(np.asarray(res.v_m))),
         }
     assert isinstance(res, VehicleResult)
     corners = [k.split(".", 1)[1] for k in res if k.startswith("F_T.")]
@@ -627,17 +650,40 @@ def _road_object(excitation: Mapping[str, Any], duration: float) -> Any:
     return s.runs()[0].excitation
 
 
+def engine_peak_velocity_floor() -> float:
+    """The lower clamp ``v_min`` [m/s] of the engine damper's peak-velocity estimator."""
+    from mrsuspension.dampers import WangSymmetric
+
+    return float(getattr(WangSymmetric().estimator, "v_min", 1e-3))
+
+
 def _optimum_task(
     task: tuple[
-        str, float, dict[str, Any], float, float, tuple[float, float, float], tuple[float, ...]
+        str,
+        float,
+        dict[str, Any],
+        float,
+        float,
+        tuple[float, float, float],
+        tuple[float, ...],
+        tuple[float, float],
     ],
 ) -> dict[str, Any]:
-    """The semi-active optimum of one road record (and its Pareto front when asked)."""
+    """The semi-active optimum of one road record (and its Pareto front when asked).
+
+    Over :class:`~mrsuspension.benchmark.band.MREnvelopeBand` with the given range of
+    ``v_m``: every force the engine's hysteretic damper can give.
+    """
+    from mrsuspension.benchmark.band import MREnvelopeBand
     from mrsuspension.benchmark.optimum import BenchmarkProblem, Weights, pareto_front
 
-    road, speed, excitation, duration, dt, weights, pareto = task
+    road, speed, excitation, duration, dt, weights, pareto, vm_range = task
     problem = BenchmarkProblem(
-        _road_object(excitation, duration), duration=duration, dt=dt, weights=Weights(*weights)
+        _road_object(excitation, duration),
+        duration=duration,
+        dt=dt,
+        weights=Weights(*weights),
+        band=MREnvelopeBand(vm_range),
     )
     best = problem.solve()
     passive = problem.passive()
@@ -649,11 +695,13 @@ def _optimum_task(
         "success": best.success,
         "iterations": best.iterations,
         "passive_cost": passive.cost,
+        "peak_velocity_range": list(vm_range),
         **{
             f"{k}_ratio": math.sqrt(best.mean_squares[k] / passive.mean_squares[k])
             for k in ("comfort", "road_holding", "rattle")
         },
         "mean_current": float(np.nanmean(best.current)) if best.current is not None else math.nan,
+        "band_violation": best.band_violation(problem.band),
     }
     if pareto:
         front = pareto_front(problem, pareto)
@@ -744,38 +792,69 @@ def _run(
     progress: bool | Callable[[str], None],
     start: float,
 ) -> BenchmarkResult:
-    # 1. tune every law on the training road (the quarter car)
-    training = {
-        **spec.training.excitation("quarter", spec.training_speed, spec.duration),
-        "name": spec.training.name,
-        "duration": spec.duration,
-    }
-    tasks = [
-        (
-            law,
-            spec.tuned_option(law),
-            dict(training),
-            spec.weights,
-            spec.evaluations,
-            spec.population,
-            spec.seed,
-            1 if client is not None else workers,
-        )
-        for law in spec.laws
-    ]
-    tuned: dict[str, dict[str, Any]] = {}
+    # 1. tune every law on the training road, on each vehicle
+    tasks = []
+    for vehicle in spec.vehicles:
+        training = {
+            **spec.training.excitation(vehicle, spec.training_speed, spec.duration),
+            "name": spec.training.name,
+            "duration": spec.duration,
+        }
+        tasks += [
+            (
+                law,
+                spec.tuned_option(law),
+                dict(training),
+                spec.weights,
+                spec.evaluations,
+                spec.population,
+                spec.seed,
+                1 if client is not None else workers,
+                vehicle,
+            )
+            for law in spec.laws
+        ]
+    tuned: dict[str, dict[str, dict[str, Any]]] = {v: {} for v in spec.vehicles}
     if client is not None:
-        _say(progress, f"tuning {len(tasks)} laws on {spec.training.name} (Dask)")
+        _say(progress, f"tuning {len(tasks)} laws and vehicles on {spec.training.name} (Dask)")
         for row in _map(_tune_task, tasks, workers, client):
-            tuned[row["law"]] = row
+            tuned[row["vehicle"]][row["law"]] = row
     else:
         for k, task in enumerate(tasks):
-            _say(progress, f"tuning {task[0]} ({k + 1}/{len(tasks)}) on {spec.training.name}")
-            tuned[task[0]] = _tune_task(task)
-    # 2. the optima on the quarter car
+            _say(
+                progress,
+                f"tuning {task[0]} on the {task[8]} car ({k + 1}/{len(tasks)}) on "
+                f"{spec.training.name}",
+            )
+            row = _tune_task(task)
+            tuned[task[8]][task[0]] = row
+    # 2. score every law (and the passive car at 0 A) on every road, speed and vehicle
     cases = [(road, speed) for road in spec.roads for speed in spec.speeds]
+    runs: list[tuple[str, str, dict[str, Any]]] = []
+    keys: list[tuple[str, str, str, float]] = []
+    for vehicle in spec.vehicles:
+        for road, speed in cases:
+            exc = road.excitation(vehicle, speed, spec.duration)
+            for law in (None, *spec.laws):
+                if law is None:
+                    tables = _scenario("passive", {"current": 0.0}, vehicle, exc, spec.duration)
+                else:
+                    t = tuned[vehicle][law]
+                    tables = _scenario(law, {t["option"]: t["value"]}, vehicle, exc, spec.duration)
+                runs.append((vehicle, road.name, tables))
+                keys.append((law or "", vehicle, road.name, speed))
+    _say(progress, f"scoring {len(runs)} runs")
+    scored = _map(_score_task, runs, workers, client)
+    # 3. the optima on the quarter car, over every force the engine's damper gave: its
+    # band covers the peak-velocity estimate of every quarter-car run on the record
     optima: dict[tuple[str, float], dict[str, Any]] = {}
     if "quarter" in spec.vehicles:
+        floor = engine_peak_velocity_floor()
+        top: dict[tuple[str, float], float] = {}
+        for (_law, vehicle, road_name, speed), m in zip(keys, scored, strict=True):
+            if vehicle == "quarter" and m is not None:
+                key = (road_name, speed)
+                top[key] = max(top.get(key, floor), float(m["peak_velocity_max"]))
         _say(progress, f"solving {len(cases)} optima (quarter car, {spec.optimum_dt * 1e3:g} ms)")
         opt_tasks = [
             (
@@ -786,38 +865,24 @@ def _run(
                 spec.optimum_dt,
                 spec.weights,
                 spec.pareto if k == 0 else (),
+                (floor, max(top.get((road.name, speed), floor), 1.001 * floor)),
             )
             for k, (road, speed) in enumerate(cases)
         ]
         for row in _map(_optimum_task, opt_tasks, workers, client):
             optima[(row["road"], row["speed"])] = row
-    # 3. score every law (and the passive car at 0 A) on every road, speed and vehicle
-    runs: list[tuple[str, str, dict[str, Any]]] = []
-    keys: list[tuple[str, str, str, float]] = []
-    for vehicle in spec.vehicles:
-        for road, speed in cases:
-            exc = road.excitation(vehicle, speed, spec.duration)
-            for law in (None, *spec.laws):
-                if law is None:
-                    tables = _scenario("passive", {"current": 0.0}, vehicle, exc, spec.duration)
-                else:
-                    opt = {tuned[law]["option"]: tuned[law]["value"]}
-                    tables = _scenario(law, opt, vehicle, exc, spec.duration)
-                runs.append((vehicle, road.name, tables))
-                keys.append((law or "", vehicle, road.name, speed))
-    _say(progress, f"scoring {len(runs)} runs")
-    scored = _map(_score_task, runs, workers, client)
     rows = _rows(spec, tuned, optima, keys, scored)
     violations = bound_violations(rows)
     front = next((o["front"] for o in optima.values() if "front" in o), None)
     return BenchmarkResult(
         spec=spec,
         rows=rows,
-        tuned=tuned,
+        tuned=tuned.get("quarter", {}),
         optima=list(optima.values()),
         front=front,
         violations=violations,
         run_time=time.perf_counter() - start,
+        tuned_full=tuned.get("full", {}),
     )
 
 
@@ -844,7 +909,7 @@ def bound_violations(rows: Sequence[Mapping[str, Any]]) -> list[str]:
 
 def _rows(
     spec: BenchmarkSpec,
-    tuned: Mapping[str, Mapping[str, Any]],
+    tuned: Mapping[str, Mapping[str, Mapping[str, Any]]],
     optima: Mapping[tuple[str, float], Mapping[str, Any]],
     keys: Sequence[tuple[str, str, str, float]],
     scored: Sequence[Mapping[str, float] | None],
@@ -879,8 +944,8 @@ def _rows(
                 "vehicle": vehicle,
                 "road": road,
                 "speed": speed,
-                "option": tuned[law]["option"],
-                "value": tuned[law]["value"],
+                "option": tuned[vehicle][law]["option"],
+                "value": tuned[vehicle][law]["value"],
                 "bounded": drives_damper(law),
                 **{
                     k: (m[k] if m is not None else nan)
@@ -888,6 +953,9 @@ def _rows(
                 },
                 **{f"{k}_ratio": v for k, v in ratios.items()},
                 "cost": cost,
+                "peak_velocity_max": (
+                    float(m.get("peak_velocity_max", nan)) if m is not None else nan
+                ),
                 "optimum_cost": j_opt,
                 "distance": cost / j_opt - 1.0 if math.isfinite(j_opt) else nan,
             }
@@ -906,10 +974,14 @@ class BenchmarkResult:
         One per law, vehicle, road and speed: the tuned ``option`` and ``value``,
         ``comfort`` [m/s^2], ``road_holding`` (DLC), ``rattle`` [m], ``coil_power`` [W],
         their ``*_ratio`` to the passive car (0 A), ``cost`` (the benchmark cost),
+        ``peak_velocity_max`` (the damper's largest ``v_m`` [m/s]; quarter car),
         ``optimum_cost`` and ``distance`` (``cost / optimum_cost - 1``; quarter car),
         ``bounded`` (the law drives the MR damper: held to the bound).
     tuned : dict
-        Law -> the tuning's ``option``, ``value``, ``objective``, ``evaluations``.
+        Law -> the tuning's ``option``, ``value``, ``objective``, ``evaluations`` on the
+        quarter car (the quarter car's rows use it).
+    tuned_full : dict
+        The same on the full car (the full car's rows use it; empty without the full car).
     optima : list of dict
         Per road and speed: the optimum's ``cost``, ``status``, ratios to its passive car.
     front : dict or None
@@ -927,6 +999,7 @@ class BenchmarkResult:
     front: dict[str, list[float]] | None
     violations: list[str]
     run_time: float
+    tuned_full: dict[str, dict[str, Any]] = field(default_factory=dict)
 
     def to_pandas(self) -> pd.DataFrame:
         """The rows as a DataFrame."""
@@ -1007,6 +1080,10 @@ class BenchmarkResult:
         tuned = ", ".join(
             f"{law} {t['option']} = {t['value']:.4g}" for law, t in self.tuned.items()
         )
+        if self.tuned_full:
+            tuned += "; on the full car: " + ", ".join(
+                f"{law} {t['option']} = {t['value']:.4g}" for law, t in self.tuned_full.items()
+            )
         check = (
             "every law that drives the MR damper costs at least the optimum"
             if not self.violations
@@ -1029,6 +1106,7 @@ class BenchmarkResult:
                     "rows": self.rows,
                     "best": self.best(),
                     "tuned": self.tuned,
+                    "tuned_full": self.tuned_full,
                     "optima": self.optima,
                     "front": self.front,
                     "violations": self.violations,

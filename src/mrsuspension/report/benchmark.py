@@ -206,6 +206,11 @@ def build(
             figures.append(entry)
             bodies.append(body)
     tuned = ", ".join(f"{law}: {t['option']} = {t['value']:.4g}" for law, t in result.tuned.items())
+    tuned_full = getattr(result, "tuned_full", {})
+    if tuned_full:
+        tuned = f"on the quarter car {tuned}; on the full car " + ", ".join(
+            f"{law}: {t['option']} = {t['value']:.4g}" for law, t in tuned_full.items()
+        )
     best_rows = [
         {
             "vehicle": b["vehicle"],
@@ -226,13 +231,14 @@ def build(
     body = (
         head + "<p>Every law tuned by the optimiser (one option each, "
         f"{spec.evaluations} candidates) on {html.escape(spec.training.name)} at "
-        f"{spec.training_speed:g} km/h on the quarter car, then scored on "
+        f"{spec.training_speed:g} km/h on each vehicle, then scored on "
         f"{len(spec.roads)} roads at {', '.join(f'{s:g}' for s in spec.speeds)} km/h on the "
         "quarter car and the full car (the law at every corner). The cost is "
         f"J = {w[0]:g} r_c<sup>2</sup> + {w[1]:g} r_r<sup>2</sup> + {w[2]:g} r_s<sup>2</sup> "
         "of the ratios to the passive car at 0 A (comfort, DLC, rms stroke; the passive car "
         f"costs {sum(w):g}), the objective of the semi-active optimum "
-        f"(<a href='{doc('benchmark')}'>benchmark</a>), which bounds it from below on the "
+        f"(<a href='{doc('benchmark')}'>benchmark</a>) over every force the engine's "
+        "hysteretic damper can give, which bounds it from below on the "
         f'quarter car. Tuned ("passive": the damper at the best constant current): '
         f"{html.escape(tuned)}.</p>"
         + "<p>"

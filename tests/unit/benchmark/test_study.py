@@ -117,6 +117,13 @@ def test_the_bound_check_reports_a_law_below_the_optimum() -> None:
     assert len(bound_violations([{**row, "optimum_cost": 1.6}])) == 1
     # an ideal damper is outside the band: not held to it
     assert bound_violations([{**row, "bounded": False, "optimum_cost": 1.6}]) == []
+    # within the solver's tolerance (BOUND_TOLERANCE, relative) is not a violation
+    tol = S.BOUND_TOLERANCE
+    assert bound_violations([{**row, "optimum_cost": 1.5 / (1.0 - 0.5 * tol)}]) == []
+    (text,) = bound_violations([{**row, "optimum_cost": 1.5 / (1.0 - 2.0 * tol)}])
+    assert text.startswith("x on r at 50 km/h costs 1.5000, below the optimum's 1.50")
+    # no optimum (the full car, a failed solve): nothing to hold it to
+    assert bound_violations([{**row, "optimum_cost": math.nan}]) == []
 
 
 # -- a quick run end to end -------------------------------------------------------------------
@@ -147,6 +154,20 @@ def test_quick_run_numbers_and_the_bound(quick: S.BenchmarkResult) -> None:
     assert tuned["option"] == "gain"
     assert 0.3 <= tuned["value"] <= 30.0
     assert tuned["evaluations"] == spec.evaluations
+    # each vehicle's rows use the law tuned on that vehicle (issue 29: the full car's own)
+    assert set(quick.tuned_full) == set(spec.laws)
+    for r in quick.rows:
+        t = (quick.tuned if r["vehicle"] == "quarter" else quick.tuned_full)[r["law"]]
+        assert (t["vehicle"], r["option"], r["value"]) == (r["vehicle"], t["option"], t["value"])
+    assert quick.tuned_full["skyhook-hilo"]["value"] != tuned["value"]
+    # each optimum's band covers the v_m of every quarter-car run on its record
+    for o in quick.optima:
+        lo, hi = o["peak_velocity_range"]
+        assert lo == S.engine_peak_velocity_floor()
+        vms = [r["peak_velocity_max"] for r in quick.rows
+               if r["vehicle"] == "quarter" and r["road"] == o["road"]]  # fmt: skip
+        assert max(vms) <= hi
+        assert o["band_violation"] < 1e-3  # [N]
     # the front: comfort better as its weight grows, road holding worse
     front = quick.front
     assert front is not None
