@@ -111,7 +111,11 @@ def sentences(result: Any) -> list[str]:
     if result.violations:
         out.append("The bound is violated, an error to look at: " + "; ".join(result.violations))
     else:
-        out.append("No law that drives the MR damper beats the optimum (the bound holds).")
+        out.append(
+            "No law that drives the MR damper beats the optimum by more than its record's "
+            "model gap (the bound holds within the difference between the engine's damper "
+            "and the band's model)."
+        )
     ideal = [r for r in result.rows if not r["bounded"] and math.isfinite(r["distance"])]
     below = [r for r in ideal if r["distance"] < 0.0]
     if ideal:

@@ -234,7 +234,7 @@ def test_result_table_frame_and_figure(quick: S.BenchmarkResult) -> None:
         assert b["cost"] == min(costs)
         assert b["best"] != "ideal-skyhook"
     assert "best law" in quick.best_table()
-    assert "costs at least the optimum" in quick.summary()
+    assert "by more than its record's tolerance" in quick.summary()
     fig = quick.figure("quarter")
     labels = fig.axes[0].get_legend_handles_labels()[1]
     assert "optimum (Pareto front)" in labels
