@@ -83,8 +83,8 @@ __all__ = [
     "BenchmarkSpec",
     "TunedOption",
     "bound_violations",
-    "model_gap",
     "default_laws",
+    "model_gap",
     "run_benchmark",
 ]
 
