@@ -13,7 +13,8 @@ numbers of a 10 s ISO 8608 class C record at 50 km/h.
 * :func:`replay` - the optimal force re-simulated with the toolkit's engine;
 * :class:`HalfCarProblem` - the same on the half car (a damper per axle, the rear wheel
   on the front wheel's road later);
-* :class:`MRBand`, :class:`LinearBand`, :class:`ActiveBand` - force bands;
+* :class:`MRBand`, :class:`MREnvelopeBand`, :class:`LinearBand`, :class:`ActiveBand` - force
+  bands;
 * :func:`~mrsuspension.benchmark.model.wk_state_space` - the Wk weighting as a state-space
   system;
 * :func:`run_benchmark`, :class:`BenchmarkSpec` - the benchmark of semi-active laws: each
@@ -28,7 +29,7 @@ check (:mod:`mrsuspension.studies`).
 
 from __future__ import annotations
 
-from mrsuspension.benchmark.band import ActiveBand, ForceBand, LinearBand, MRBand
+from mrsuspension.benchmark.band import ActiveBand, ForceBand, LinearBand, MRBand, MREnvelopeBand
 from mrsuspension.benchmark.halfcar import HalfCarOptimum, HalfCarProblem
 from mrsuspension.benchmark.model import wk_state_space
 from mrsuspension.benchmark.optimum import (
@@ -65,6 +66,7 @@ __all__ = [
     "HalfCarProblem",
     "LinearBand",
     "MRBand",
+    "MREnvelopeBand",
     "OptimumResult",
     "ParetoFront",
     "Trajectory",

@@ -18,6 +18,10 @@ At ``v_d = 0`` the band is the single force 0 whatever ``u``.
 
 * :class:`MRBand` - the dissertation's MR damper (the mean model of eq. (2.15) at a fixed
   peak velocity) between two currents;
+* :class:`MREnvelopeBand` - every force the *hysteretic* damper of the engine can give at
+  ``v_d``: the envelope over both hysteresis branches (``sgn(a_d) = +-1``), a range of
+  peak velocities ``v_m`` and the currents ``i_min`` to ``i_max`` (not dissipative near
+  ``v_d = 0``: the hysteresis loop); the benchmark's bound;
 * :class:`LinearBand` - ``c_min v_d <= F <= c_max v_d`` (an ideal variable damper);
 * :class:`ActiveBand` - any force of magnitude up to ``max_force`` (not dissipative: an
   active actuator, the linear-quadratic reference).
@@ -44,7 +48,14 @@ import numpy.typing as npt
 from mrsuspension.dampers import WangSymmetric
 from mrsuspension.errors import ValidationError, check_range
 
-__all__ = ["DEFAULT_PEAK_VELOCITY", "ActiveBand", "ForceBand", "LinearBand", "MRBand"]
+__all__ = [
+    "DEFAULT_PEAK_VELOCITY",
+    "ActiveBand",
+    "ForceBand",
+    "LinearBand",
+    "MRBand",
+    "MREnvelopeBand",
+]
 
 #: Peak velocity [m/s] of the default :class:`MRBand`: about sqrt(2) times the rms damper
 #: velocity of the passive car (0 A) on an ISO 8608 class C road at 50 km/h (0.23 m/s
@@ -225,6 +236,221 @@ class MRBand:
             "band": "mr",
             "damper": self.damper.describe(),
             "peak_velocity": self.peak_velocity,
+            "min_current": self.min_current,
+            "max_current": self.max_current,
+        }
+
+
+def _envelope_grid(points: int, top: float) -> np.ndarray:
+    """Velocities [m/s] of the envelope's table: 0, and ``points`` each side from 1e-5 m/s
+    to ``top`` (geometric: the hysteresis acts at velocities of a few cm/s)."""
+    side = np.geomspace(1e-5, top, points)
+    return np.concatenate([-side[::-1], [0.0], side])
+
+
+@dataclass(frozen=True)
+class MREnvelopeBand:
+    """Every force the hysteretic MR damper can give at ``v_d``: the benchmark's bound.
+
+    The engine's damper is the symmetric model (2.15) *with* hysteresis: its force at
+    ``v_d`` depends on the branch ``sgn(a_d)`` (the velocity shift ``v_h = sgn(a_d) k4
+    v_m``), on the peak-velocity estimate ``v_m`` (a function of the record's history) and
+    on the current. This band is the set of all of them::
+
+        F_lo(v_d) = min F(v_d, i, s, v_m),   F_hi(v_d) = max F(v_d, i, s, v_m)
+        over  i in [i_min, i_max],  s = sgn(a_d) in {-1, +1},  v_m in [v_m,lo, v_m,hi]
+
+        F = F_lo(v_d) + u (F_hi(v_d) - F_lo(v_d)),   0 <= u <= 1
+
+    so a force the engine's damper produces at ``v_d`` (any current, either branch, a
+    ``v_m`` in the range) is a force of the band, and the optimum over this band is a
+    lower bound for every current sequence into that damper whose ``v_m`` stays in the
+    range. It is a relaxation: the band lets the optimum pick the branch freely, where the
+    damper's branch follows the sign of its acceleration; near ``v_d = 0`` it holds forces
+    of either sign (the hysteresis loop: about +-880 N at 0.5 A and v_m up to 0.35 m/s), so the band is not
+    dissipative there.
+
+    The edges are increasing in ``v_d``. They are tabulated on a velocity grid
+    (``points`` velocities each side of 0, geometric from 1e-5 m/s to ``top``) with the
+    extrema over ``v_m`` taken on ``vm_points`` values of the range, and interpolated
+    linearly *outward*: the table's lower edge at a grid velocity is the exact edge at the
+    grid velocity below it (the upper: above it), so between grid points the band contains
+    the exact envelope. Beyond ``+-top`` the edges are held (numpy) or extended linearly
+    (CasADi); damper velocities stay far below the default 10 m/s.
+
+    Parameters
+    ----------
+    peak_velocity_range : (float, float)
+        ``(v_m,lo, v_m,hi)`` [m/s]: the estimator's range on the record (the benchmark
+        takes its clamp's ``v_min`` and the largest ``v_m`` of the runs it scores).
+    damper : WangSymmetric, optional
+        The damper (default: the dissertation's, ``wang-symmetric-low``, with hysteresis);
+        its ``hysteresis=False`` gives the mean model's envelope over ``v_m`` alone.
+    min_current, max_current : float
+        ``i_min`` and ``i_max`` [A] (0 and 0.5 A).
+    points, vm_points : int
+        Grid sizes (see above).
+    top : float
+        The velocity grid's end [m/s].
+
+    Examples
+    --------
+    >>> band = MREnvelopeBand((0.001, 0.35))
+    >>> lo, hi = band.edges(np.array([-0.2, 0.0, 0.2]))
+    >>> np.round(lo), np.round(hi)
+    (array([-2376., -884., 372.]), array([-372., 884., 2376.]))
+    >>> mean = MRBand()  # the mean model at v_m = 0.3 m/s lies inside
+    >>> bool(np.all(band.contains(mean.force(np.linspace(-1, 1, 9), 0.7), np.linspace(-1, 1, 9))))
+    True
+    """
+
+    peak_velocity_range: tuple[float, float] = (1e-3, DEFAULT_PEAK_VELOCITY)
+    damper: WangSymmetric = field(default_factory=WangSymmetric)
+    min_current: float = 0.0
+    max_current: float = 0.5
+    points: int = 1000
+    vm_points: int = 241
+    top: float = 10.0
+    semi_active: ClassVar[bool] = False
+    _table: tuple[np.ndarray, np.ndarray, np.ndarray] = field(init=False, repr=False, compare=False)
+    _funs: dict[int, Any] = field(init=False, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.damper, WangSymmetric) or type(self.damper).__name__ != (
+            "WangSymmetric"
+        ):
+            raise ValidationError(
+                f"MREnvelopeBand needs a WangSymmetric damper (the symmetric model (2.15)); "
+                f"got {type(self.damper).__name__}"
+            )
+        rng = np.asarray(self.peak_velocity_range, dtype=float)
+        if rng.shape != (2,) or not np.all(np.isfinite(rng)):
+            raise ValidationError(
+                f"peak_velocity_range must be two numbers (v_m,lo, v_m,hi) [m/s]; got "
+                f"{self.peak_velocity_range!r}"
+            )
+        lo_vm = float(check_range("peak_velocity_range low", rng[0], 1e-4, 5.0, unit="m/s"))
+        hi_vm = float(check_range("peak_velocity_range high", rng[1], lo_vm, 5.0, unit="m/s"))
+        object.__setattr__(self, "peak_velocity_range", (lo_vm, hi_vm))
+        i_top = self.damper.max_current
+        i0 = float(check_range("min_current", self.min_current, 0.0, i_top, unit="A"))
+        i1 = float(check_range("max_current", self.max_current, 0.0, i_top, unit="A"))
+        if i1 <= i0:
+            raise ValidationError(f"max_current must be > min_current ({i0:g} A); got {i1:g} A")
+        object.__setattr__(self, "min_current", i0)
+        object.__setattr__(self, "max_current", i1)
+        for name, low in (("points", 10), ("vm_points", 2)):
+            value = getattr(self, name)
+            if not isinstance(value, int) or value < low:
+                raise ValidationError(f"{name} must be an integer >= {low}; got {value!r}")
+        check_range("top", self.top, 0.1, 100.0, unit="m/s")
+        grid = _envelope_grid(self.points, float(self.top))
+        vms = np.linspace(lo_vm, hi_vm, self.vm_points)
+        lo, hi = self.exact_edges(grid, vms)
+        # outward: the exact lower edge one grid point below, the upper one above
+        lo_out = np.concatenate([[lo[0]], lo[:-1]])
+        hi_out = np.concatenate([hi[1:], [hi[-1]]])
+        object.__setattr__(self, "_table", (grid, lo_out, hi_out))
+        object.__setattr__(self, "_funs", {})
+
+    def exact_edges(
+        self, v: npt.ArrayLike, vms: npt.ArrayLike | None = None
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """The envelope at ``v`` [m/s] over the branches, the currents and ``vms`` [m/s]
+        (default: the range's ends and ``vm_points`` values between), untabulated."""
+        vv = np.asarray(v, dtype=float)
+        if vms is None:
+            vms = np.linspace(*self.peak_velocity_range, self.vm_points)
+        vm = np.asarray(vms, dtype=float).reshape((1,) * vv.ndim + (-1,))
+        p = self.damper.values
+        k4 = p["k4"] if self.damper.hysteresis else 0.0
+        ft = self.damper.force_gain * p["F0"] * (1.0 + np.exp(p["a1"] * vm))  # (2.7)
+        half_alpha = 0.5 * p["a0"] / (1.0 + p["k0"] * vm)  # (2.11)
+        rise = 1.0 + p["k1"] * np.exp(-p["a4"] * vm) * np.abs(vv[..., None])  # (2.10)
+        h_lo = np.full(vv.shape, np.inf)
+        h_hi = np.full(vv.shape, -np.inf)
+        for s in (-1.0, 1.0):  # the branches, v_h = sgn(a_d) k4 v_m (2.13)
+            h = ft * np.tanh(half_alpha * (vv[..., None] + s * k4 * vm)) * rise
+            h_lo = np.minimum(h_lo, h.min(axis=-1))
+            h_hi = np.maximum(h_hi, h.max(axis=-1))
+        from scipy.special import expit
+
+        # C_i of (2.9) in numpy (the damper's compiled kernel costs a load here)
+        c_lo, c_hi = (
+            1.0
+            + p["k2"] * (float(expit(p["a2"] * (i + p["I0"]))) - float(expit(p["a2"] * p["I0"])))
+            for i in (self.min_current, self.max_current)
+        )
+        # F = C_i F_h with C_i in [c_lo, c_hi] > 0: the extremes at the ends
+        lo = np.minimum(c_lo * h_lo, c_hi * h_lo)
+        hi = np.maximum(c_lo * h_hi, c_hi * h_hi)
+        return lo, hi
+
+    @property
+    def bounds(self) -> tuple[float, float]:
+        """``(0, 1)``: from the lowest force to the highest."""
+        return 0.0, 1.0
+
+    @property
+    def passive(self) -> float:
+        """0 (the lowest force; the passive car is :attr:`passive_band`'s)."""
+        return 0.0
+
+    @property
+    def passive_band(self) -> MRBand:
+        """The band whose passive setting is the reference passive car (the scales): the
+        mean model at ``i_min`` at :data:`DEFAULT_PEAK_VELOCITY`, as with :class:`MRBand`."""
+        mean = WangSymmetric(
+            self.damper.parameters, hysteresis=False, force_gain=self.damper.force_gain
+        )
+        return MRBand(mean, DEFAULT_PEAK_VELOCITY, self.min_current, self.max_current)
+
+    def _casadi_edges(self, n: int, ops: Any) -> tuple[Any, Any]:
+        if n not in self._funs:
+            grid, lo, hi = self._table
+            self._funs[n] = (
+                ops.interpolant("band_lo", "linear", [grid], lo).map(n),
+                ops.interpolant("band_hi", "linear", [grid], hi).map(n),
+            )
+        return self._funs[n]
+
+    def force(self, v: Any, u: Any, ops: Any = np) -> Any:
+        """``F(v_d, u)`` [N] (numpy arrays, or a casadi column vector with ``ops=casadi``)."""
+        if ops is np or not hasattr(ops, "interpolant"):
+            lo, hi = self.edges(v)
+            return lo + np.asarray(u, dtype=float) * (hi - lo)
+        f_lo, f_hi = self._casadi_edges(int(v.shape[0]), ops)
+        lo = f_lo(v.T).T
+        hi = f_hi(v.T).T
+        return lo + u * (hi - lo)
+
+    def edges(self, v: npt.ArrayLike) -> tuple[np.ndarray, np.ndarray]:
+        """``(lowest, highest)`` force [N] at ``v`` [m/s] (the outward table)."""
+        grid, lo, hi = self._table
+        vv = np.asarray(v, dtype=float)
+        return np.interp(vv, grid, lo), np.interp(vv, grid, hi)
+
+    def coordinate(self, force: npt.ArrayLike, v: npt.ArrayLike) -> np.ndarray:
+        """The band coordinate ``u`` of ``force`` [N] at ``v`` [m/s], clipped to [0, 1]."""
+        lo, hi = self.edges(v)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            u = (np.asarray(force, dtype=float) - lo) / (hi - lo)
+        return np.asarray(np.clip(np.nan_to_num(u, nan=0.0), 0.0, 1.0), dtype=float)
+
+    def contains(self, force: npt.ArrayLike, v: npt.ArrayLike, tol: float = 1e-9) -> np.ndarray:
+        """Whether each ``force`` [N] at ``v`` [m/s] is in the band (to ``tol`` relative to
+        the band's width there)."""
+        lo, hi = self.edges(v)
+        f = np.asarray(force, dtype=float)
+        slack = tol * (hi - lo)
+        return np.asarray((f >= lo - slack) & (f <= hi + slack))
+
+    def describe(self) -> dict[str, Any]:
+        """Plain-data description."""
+        return {
+            "band": "mr-envelope",
+            "damper": self.damper.describe(),
+            "peak_velocity_range": list(self.peak_velocity_range),
             "min_current": self.min_current,
             "max_current": self.max_current,
         }

@@ -405,22 +405,24 @@ class BenchmarkProblem:
         u: float,
         label: str,
         scaled: bool = True,
+        band: ForceBand | None = None,
     ) -> Trajectory:
         """March the trapezoidal rule; the force of each interval solves ``F = g(F)``.
 
         With ``target`` None the band at coordinate ``u``; else the band's force nearest
-        to ``target(z_s'_mid, v_mid)`` (the request clipped into the band).
+        to ``target(z_s'_mid, v_mid)`` (the request clipped into the band). ``band``:
+        another band than the problem's.
         """
         from scipy.optimize import brentq
 
-        d, band, n = self.discrete, self.band, self.n
+        d, n = self.discrete, self.n
+        band = self.band if band is None else band
         r = self.road_samples
         x = np.empty((12, n + 1))
         x[:, 0] = self.x0
         forces = np.empty(n)
         us = np.empty(n)
         lo_u, hi_u = band.bounds
-        semi = band.semi_active
         for k in range(n):
             base = d.p @ x[:, k] + d.r @ r[:, k] + d.s @ r[:, k + 1]
             v_a = 0.5 * (x[3, k] - x[1, k] + base[3] - base[1])
@@ -441,12 +443,10 @@ class BenchmarkProblem:
             v = v_a + v_b * f
             if target is None:
                 us[k] = u
-            elif semi:
+            else:  # every band is affine in u (an ActiveBand's u is the force: f0 0, f1 1)
                 f0, f1 = float(band.force(v, 0.0)), float(band.force(v, 1.0))
                 us[k] = (f - f0) / (f1 - f0) if f1 != f0 else lo_u
                 us[k] = min(max(us[k], lo_u), hi_u)
-            else:
-                us[k] = f
             x[:, k + 1] = base + d.q * f
         return self._trajectory(label, x, forces, us, scaled=scaled)
 
@@ -454,10 +454,13 @@ class BenchmarkProblem:
         """The band at a fixed coordinate ``u`` (default: its passive setting).
 
         For an :class:`MRBand` ``u = 0`` is the damper at ``i_min``, ``u = 1`` at ``i_max``.
+        A band with a ``passive_band`` (:class:`~mrsuspension.benchmark.band.MREnvelopeBand`)
+        takes the passive car (``u`` None: the scales' reference) from that band.
         """
         if u is None:
             if self._passive is None:
-                run = self._simulate(None, self.band.passive, "passive", scaled=False)
+                ref = getattr(self.band, "passive_band", self.band)
+                run = self._simulate(None, ref.passive, "passive", scaled=False, band=ref)
                 if self._scales is None:
                     ms = run.mean_squares
                     self._scales = (
@@ -624,7 +627,10 @@ class BenchmarkProblem:
         n = self.n
         sx, sf = nlp["sx"], nlp["sf"]
         ulo, uhi = self.band.bounds
-        u0 = np.clip(np.nan_to_num(start.u, nan=self.band.passive), ulo, uhi)
+        if hasattr(self.band, "coordinate"):  # the start's force in this band's coordinate
+            u0 = self.band.coordinate(start.force, start.interval_velocity)
+        else:
+            u0 = np.clip(np.nan_to_num(start.u, nan=self.band.passive), ulo, uhi)
         z0 = np.concatenate([(start.states / sx[:, None]).ravel(order="F"), start.force / sf, u0])
         s = self.scales
         coeff = [w / (s[j] * s[j]) for j, w in enumerate(self.weights.vector)]

@@ -111,7 +111,11 @@ def sentences(result: Any) -> list[str]:
     if result.violations:
         out.append("The bound is violated, an error to look at: " + "; ".join(result.violations))
     else:
-        out.append("No law that drives the MR damper beats the optimum (the bound holds).")
+        out.append(
+            "No law that drives the MR damper beats the optimum by more than its record's "
+            "model gap (the bound holds within the difference between the engine's damper "
+            "and the band's model)."
+        )
     ideal = [r for r in result.rows if not r["bounded"] and math.isfinite(r["distance"])]
     below = [r for r in ideal if r["distance"] < 0.0]
     if ideal:
@@ -206,6 +210,11 @@ def build(
             figures.append(entry)
             bodies.append(body)
     tuned = ", ".join(f"{law}: {t['option']} = {t['value']:.4g}" for law, t in result.tuned.items())
+    tuned_full = getattr(result, "tuned_full", {})
+    if tuned_full:
+        tuned = f"on the quarter car {tuned}; on the full car " + ", ".join(
+            f"{law}: {t['option']} = {t['value']:.4g}" for law, t in tuned_full.items()
+        )
     best_rows = [
         {
             "vehicle": b["vehicle"],
@@ -226,13 +235,14 @@ def build(
     body = (
         head + "<p>Every law tuned by the optimiser (one option each, "
         f"{spec.evaluations} candidates) on {html.escape(spec.training.name)} at "
-        f"{spec.training_speed:g} km/h on the quarter car, then scored on "
+        f"{spec.training_speed:g} km/h on each vehicle, then scored on "
         f"{len(spec.roads)} roads at {', '.join(f'{s:g}' for s in spec.speeds)} km/h on the "
         "quarter car and the full car (the law at every corner). The cost is "
         f"J = {w[0]:g} r_c<sup>2</sup> + {w[1]:g} r_r<sup>2</sup> + {w[2]:g} r_s<sup>2</sup> "
         "of the ratios to the passive car at 0 A (comfort, DLC, rms stroke; the passive car "
         f"costs {sum(w):g}), the objective of the semi-active optimum "
-        f"(<a href='{doc('benchmark')}'>benchmark</a>), which bounds it from below on the "
+        f"(<a href='{doc('benchmark')}'>benchmark</a>) over every force the engine's "
+        "hysteretic damper can give, which bounds it from below on the "
         f'quarter car. Tuned ("passive": the damper at the best constant current): '
         f"{html.escape(tuned)}.</p>"
         + "<p>"

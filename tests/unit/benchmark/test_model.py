@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from mrsuspension.benchmark import ActiveBand, LinearBand, MRBand, wk_state_space
+from mrsuspension.benchmark import ActiveBand, LinearBand, MRBand, MREnvelopeBand, wk_state_space
 from mrsuspension.benchmark.model import linear_quarter_car, trapezoidal
 from mrsuspension.dampers import WangSymmetric
 from mrsuspension.errors import ValidationError
@@ -99,6 +99,70 @@ def test_mr_band_is_the_damper_models_mean_curve() -> None:
     assert np.isnan(band.current([0.0], [0.0])[0])
 
 
+def test_envelope_band_holds_every_force_of_the_hysteretic_damper() -> None:
+    """Any current, either branch, any v_m of the range: inside the band; the table is
+    outward of the exact envelope, which it meets at the grid's velocities."""
+    vm_range = (0.01, 0.4)
+    band = MREnvelopeBand(vm_range)
+    damper = WangSymmetric()  # with hysteresis: the engine's
+    rng = np.random.default_rng(3)
+    n = 4000
+    v = rng.choice([-1.0, 1.0], n) * 10.0 ** rng.uniform(-5.0, 0.0, n)
+    sgn_a = rng.choice([-1.0, 1.0], n)
+    vm = rng.uniform(*vm_range, n)
+    i = rng.uniform(0.0, 0.5, n)
+    f = damper.force(0.0, v, sgn_a, i, peak_velocity=vm)
+    assert np.all(band.contains(f, v, tol=0.0))
+    # the hysteresis makes forces against the velocity near v_d = 0 (the band holds them)
+    assert np.any(f * v < 0.0)
+    lo, hi = band.edges(v)
+    ex_lo, ex_hi = band.exact_edges(v)
+    assert np.all(lo <= ex_lo + 1e-9)
+    assert np.all(hi >= ex_hi - 1e-9)
+    assert np.all(hi - lo <= (ex_hi - ex_lo) * 1.02 + 1.0)  # outward by little
+    # the top edge: 0.5 A at the range's top v_m, the larger of the two branches
+    vv = np.array([0.3])
+    top = [damper.force(0.0, vv, s, 0.5, peak_velocity=vm_range[1])[0] for s in (-1, 1)]
+    assert band.exact_edges(vv)[1][0] == pytest.approx(max(top), rel=1e-9)
+    # the mean model's band at v_m in the range lies inside; the band is not dissipative
+    mean = MRBand(peak_velocity=0.3)
+    w = np.linspace(-0.8, 0.8, 81)
+    for u in (0.0, 1.0):
+        assert np.all(band.contains(mean.force(w, u), w))
+    assert band.edges([0.0])[0][0] < 0.0 < band.edges([0.0])[1][0]
+    assert np.array_equal(band.passive_band.force(w, 0.0), MRBand().force(w, 0.0))
+    u = band.coordinate(band.force(w, 0.25), w)
+    assert np.allclose(u[w != 0.0], 0.25)
+
+
+def test_envelope_band_holds_the_engines_damper_force_in_closed_loop() -> None:
+    """Recorded runs (0 A, 0.5 A, a hi-lo law) over a bump: the engine's force against the
+    band of the record's v_m range, at every sample; the fixed-v_m mean band misses most."""
+    from mrsuspension.benchmark.study import (
+        BenchmarkRoad,
+        _scenario,
+        engine_peak_velocity_floor,
+    )
+    from mrsuspension.engine.simulate import run_quietly
+    from mrsuspension.scenario import Scenario
+
+    exc = BenchmarkRoad("bump", "bump", height=0.03, length=0.5).excitation("quarter", 100.0, 2.0)
+    runs = []
+    for law, opt in (("passive", {"current": 0.0}), ("passive", {"current": 0.5}),
+                     ("skyhook-hilo", {"gain": 8.0})):  # fmt: skip
+        scenario = Scenario.from_dict(_scenario(law, opt, "quarter", exc, 2.0))
+        runs.append(run_quietly(scenario.runs()[0], scenario.settings))
+    top = max(float(np.max(r.v_m)) for r in runs)
+    band = MREnvelopeBand((engine_peak_velocity_floor(), top))
+    mean = MRBand()
+    for r in runs:
+        v, f = np.asarray(r.v_d), np.asarray(r.F_d)
+        inside = np.mean(band.contains(f, v, tol=0.0))
+        assert inside >= 0.999, inside
+        lo, hi = mean.edges(v)
+        assert np.mean((f >= lo) & (f <= hi)) < 0.5  # the band of issue 29 missed them
+
+
 def test_bands_refuse_bad_inputs() -> None:
     with pytest.raises(ValidationError, match="max_current must be > min_current"):
         MRBand(min_current=0.3, max_current=0.2)
@@ -108,3 +172,9 @@ def test_bands_refuse_bad_inputs() -> None:
         LinearBand(3000.0, 1000.0)
     with pytest.raises(ValidationError, match="max_force must be > 0 N"):
         ActiveBand(0.0)
+    with pytest.raises(ValidationError, match="peak_velocity_range high"):
+        MREnvelopeBand((0.3, 0.1))
+    with pytest.raises(ValidationError, match="two numbers"):
+        MREnvelopeBand((0.3,))  # type: ignore[arg-type]
+    with pytest.raises(ValidationError, match="WangSymmetric"):
+        MREnvelopeBand(damper=object())  # type: ignore[arg-type]
