@@ -73,6 +73,7 @@ from mrsuspension.control.vehicle_lq import (
     VehicleLQActive,
     VehicleLQG,
     VehicleLQGActive,
+    VehicleMPC,
 )
 
 __all__ = [
@@ -98,6 +99,7 @@ __all__ = [
     "VehicleLQActive",
     "VehicleLQG",
     "VehicleLQGActive",
+    "VehicleMPC",
     "VehicleLaw",
     "controller_class",
     "law",

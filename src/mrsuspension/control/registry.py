@@ -20,6 +20,7 @@ from mrsuspension.control.vehicle_lq import (
     VehicleLQActive,
     VehicleLQG,
     VehicleLQGActive,
+    VehicleMPC,
 )
 from mrsuspension.errors import ValidationError, unknown_name
 
@@ -71,6 +72,7 @@ VEHICLE_LAWS: dict[str, type[VehicleLaw]] = {
         VehicleLQActive,
         VehicleLQG,
         VehicleLQGActive,
+        VehicleMPC,
     )
 }
 
