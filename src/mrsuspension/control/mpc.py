@@ -93,7 +93,11 @@ __all__ = [
     "LAWS",
     "MEMORY",
     "CondensedMPC",
-    "MPCProblem", "mpc", "mpc_hilo", "problem"]
+    "MPCProblem",
+    "mpc",
+    "mpc_hilo",
+    "problem",
+]
 
 #: the longest horizon [samples] (the law's memory holds a solution of this length)
 HORIZON_MAX = 50

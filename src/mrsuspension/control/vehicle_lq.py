@@ -896,7 +896,7 @@ def mpc_forces(
     for c in range(nc):
         mbuf[MB_VD, c] = vd[c]
     addr = np.int64(mp[LP_K + nc * nx])
-    out = CK.call_law(addr, mbuf[MB_X:], forces[:nc])  # type: ignore[call-arg]
+    out: float = CK.call_law(addr, mbuf[MB_X:], forces[:nc])  # type: ignore[call-arg]
     if not math.isfinite(out):
         for c in range(nc):
             forces[c] = math.nan

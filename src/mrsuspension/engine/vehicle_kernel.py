@@ -327,7 +327,7 @@ def step(
         work[c, 4] = vd
         work[c, 5] = v_sense
         work[c, 6] = vu_seen - v_sense  # the damper velocity the controller sees
-        if law == LAW_LQ or law == LAW_MPC:  # noqa: PLR1714
+        if law == LAW_LQ or law == LAW_MPC:  # noqa: SIM109 (numba: plain comparisons)
             # the state as seen: e = z_s - z_u and z_u' (control.vehicle_lq)
             mbuf[VL.MB_X, c] = zs - zu_seen
             mbuf[VL.MB_X, 2 * nc + VL.NB + c] = vu_seen
@@ -337,8 +337,10 @@ def step(
             mbuf[VL.MB_Y, 2 * nc + c] = zu_seen - zs
             mbuf[VL.MB_U, c] = mem[c, EK.M_FD]
     # the body's rates as seen: true, or from the corners' estimates, D^T v = (J J^T)^-1 J v
-    seen = law == LAW_MODAL or law == LAW_LQ or law == LAW_MPC  # noqa: PLR1714
-    if kind == SENSE_IDEAL or not (full or seen):
+    seen = full  # rates from the estimates: a corner law reading every signal, or these laws
+    if law == LAW_MODAL or law == LAW_LQ or law == LAW_MPC:  # noqa: SIM109 (numba: no tuple)
+        seen = True
+    if kind == SENSE_IDEAL or not seen:
         vz, pq, pp = y[3], y[4], y[5]
     else:
         vz = pq = pp = 0.0

@@ -99,7 +99,8 @@ def test_every_force_lies_in_its_corners_band_and_a_zero_width_band_is_c_v_d(ful
     np.testing.assert_allclose(upper[0], np.maximum(2043.0 * vd, 10613.0 * vd))
     assert np.all(lower[1:] <= upper[1:])
     u = pr.solve(x, lower, upper)
-    assert np.all(lower - 1e-9 <= u) and np.all(u <= upper + 1e-9)
+    assert np.all(lower - 1e-9 <= u)
+    assert np.all(u <= upper + 1e-9)
     assert np.all(u[0] * vd > 0.0)  # dissipative: the sign of v_d
     unconstrained = pr.solve(x, -1e9, 1e9)[0]
     assert not np.allclose(unconstrained, u[0], rtol=0.01)  # the band is active
