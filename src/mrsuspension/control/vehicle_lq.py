@@ -54,8 +54,15 @@ dampers' forces (load cells) as the input (:func:`vehicle_kalman_gain`; the per-
 ``kalman_gain`` on the vehicle), integrated by Euler at every step. A target force tracked
 through the damper's inverse model (as ``lq-force``) is not offered.
 
+``vehicle-mpc`` (:class:`VehicleMPC`): the per-corner ``mpc`` over the whole car. Every
+``T_s`` one QP (:class:`VehicleMPCProblem`: this module's design model and LQ cost,
+sampled, ``N`` samples, a Riccati terminal cost, one force per corner per sample in the
+viscous band at its predicted stroke rate) solved by OSQP in Python through a ctypes
+entry the compiled step calls (:func:`mpc_forces`), the first forces held until the next
+solve, hi-lo by Dyke's rule as ``vehicle-lq``.
+
 On the quarter car these laws are the per-corner ones: ``clipped-lq``, ``lq-active``,
-``clipped-lqg``, ``lqg-active`` (:meth:`VehicleLQ.for_vehicle` refuses a quarter car,
+``clipped-lqg``, ``lqg-active``, ``mpc-hilo`` (:meth:`VehicleLQ.for_vehicle` refuses a quarter car,
 naming its law).
 
 Examples

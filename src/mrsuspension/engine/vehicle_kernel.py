@@ -23,8 +23,9 @@ steps and held) and the stroke sensor's reading
 :func:`~mrsuspension.control.modal.modal_forces` (or ``F_i = -c_s v_i``) and
 :func:`~mrsuspension.control.modal.modal_hilo`, or from the whole-vehicle LQ and LQG's
 ``F = -K x`` (:func:`~mrsuspension.control.vehicle_lq.lq_forces`: the state as seen, or
-a Kalman estimate; hi-lo on Dyke's ``(F_i - F_d) F_d > 0``, or ``F`` itself by an ideal
-actuator). Ideal
+a Kalman estimate; or ``vehicle-mpc``'s QP through its entry,
+:func:`~mrsuspension.control.vehicle_lq.mpc_forces`, held between solves; hi-lo on
+Dyke's ``(F_i - F_d) F_d > 0``, or ``F`` itself by an ideal actuator). Ideal
 sensing and no law leave the step exactly as before.
 
 The damper kernels (:mod:`mrsuspension.dampers.kernels`) and the control laws
