@@ -74,6 +74,7 @@ from mrsuspension.control.vehicle_lq import (
     VehicleLQG,
     VehicleLQGActive,
     VehicleMPC,
+    VehicleMPCActive,
 )
 
 __all__ = [
@@ -101,6 +102,7 @@ __all__ = [
     "VehicleLQGActive",
     "VehicleLaw",
     "VehicleMPC",
+    "VehicleMPCActive",
     "controller_class",
     "law",
     "law_options",

@@ -21,6 +21,7 @@ from mrsuspension.control.vehicle_lq import (
     VehicleLQG,
     VehicleLQGActive,
     VehicleMPC,
+    VehicleMPCActive,
 )
 from mrsuspension.errors import ValidationError, unknown_name
 
@@ -73,6 +74,7 @@ VEHICLE_LAWS: dict[str, type[VehicleLaw]] = {
         VehicleLQG,
         VehicleLQGActive,
         VehicleMPC,
+        VehicleMPCActive,
     )
 }
 

@@ -118,6 +118,7 @@ __all__ = [
     "VehicleLQG",
     "VehicleLQGActive",
     "VehicleMPC",
+    "VehicleMPCActive",
     "VehicleMPCProblem",
     "lq_design",
     "lq_forces",
@@ -799,6 +800,24 @@ class VehicleMPC(VehicleLQ):
     def _tail(self) -> list[FloatArray]:
         qp = self.problem()
         return [self.gain, np.array([float(qp.address), self.sample_time])]
+
+
+@dataclass(frozen=True)
+class VehicleMPCActive(VehicleMPC):
+    """:class:`VehicleMPC`'s forces applied by an ideal actuator at every corner (no
+    current): the QP's forces as they are. With the band (default: the damper's viscous
+    range) that is an ideal semi-active damper following the MPC, the reference of what
+    force tracking could give; with ``band_low`` = ``band_high`` = 0 no force at all.
+
+    Examples
+    --------
+    >>> VehicleMPCActive().law, VehicleMPCActive.per_corner
+    ('vehicle-mpc-active', 'mpc')
+    """
+
+    law: ClassVar[str] = "vehicle-mpc-active"
+    active: ClassVar[bool] = True
+    per_corner: ClassVar[str] = "mpc"
 
 
 # --- kernel ----------------------------------------------------------------------------
