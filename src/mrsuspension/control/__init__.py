@@ -73,6 +73,8 @@ from mrsuspension.control.vehicle_lq import (
     VehicleLQActive,
     VehicleLQG,
     VehicleLQGActive,
+    VehicleMPC,
+    VehicleMPCActive,
 )
 
 __all__ = [
@@ -99,6 +101,8 @@ __all__ = [
     "VehicleLQG",
     "VehicleLQGActive",
     "VehicleLaw",
+    "VehicleMPC",
+    "VehicleMPCActive",
     "controller_class",
     "law",
     "law_options",

@@ -68,6 +68,7 @@ __all__ = [
     "LAW_LQ",
     "LAW_LQG",
     "LAW_MODAL",
+    "LAW_MPC",
     "MP_SIZE",
     "CornerSkyhook",
     "ModalSkyhook",
@@ -93,8 +94,8 @@ MP_CZ, MP_CTHETA, MP_CPHI, MP_ILOW, MP_IHIGH = range(5)
 #: length of :meth:`ModalSkyhook.params`
 MP_SIZE = 5
 #: the vehicle kernel's law codes (``VehicleLaw.kernel_code``; 0: the corners' own laws;
-#: the whole-vehicle LQ and LQG: :mod:`mrsuspension.control.vehicle_lq`)
-LAW_CORNERS, LAW_MODAL, LAW_CORNER_SKYHOOK, LAW_LQ, LAW_LQG = 0, 1, 2, 3, 4
+#: the whole-vehicle LQ, LQG and MPC: :mod:`mrsuspension.control.vehicle_lq`)
+LAW_CORNERS, LAW_MODAL, LAW_CORNER_SKYHOOK, LAW_LQ, LAW_LQG, LAW_MPC = 0, 1, 2, 3, 4, 5
 
 
 # --- kernels ---------------------------------------------------------------------------

@@ -88,7 +88,16 @@ from mrsuspension.control.literature import LQ_WEIGHTS, quarter_car_model
 from mrsuspension.control.user import law
 from mrsuspension.errors import ValidationError
 
-__all__ = ["HORIZON_MAX", "LAWS", "MEMORY", "MPCProblem", "mpc", "mpc_hilo", "problem"]
+__all__ = [
+    "HORIZON_MAX",
+    "LAWS",
+    "MEMORY",
+    "CondensedMPC",
+    "MPCProblem",
+    "mpc",
+    "mpc_hilo",
+    "problem",
+]
 
 #: the longest horizon [samples] (the law's memory holds a solution of this length)
 HORIZON_MAX = 50
@@ -118,26 +127,173 @@ def _require_osqp() -> None:
 def _sampled(
     a: npt.NDArray[np.float64], b: npt.NDArray[np.float64], m: npt.NDArray[np.float64], ts: float
 ) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64], npt.NDArray[np.float64]]:
-    """``(A_d, B_d, M_d)``: the zero-order-hold model and the cost weight ``M`` (5 x 5, on
-    ``(x, u)``) integrated over one sample with ``u`` held (Van Loan 1978)."""
+    """``(A_d, B_d, M_d)``: the zero-order-hold model of ``x' = A x + B u`` (``n`` states,
+    ``m`` inputs) and the cost weight ``M`` (``n + m`` square, on ``(x, u)``) integrated
+    over one sample with ``u`` held (Van Loan 1978)."""
     import scipy.linalg
 
     n = a.shape[0]
-    f = np.zeros((n + 1, n + 1))
+    nu = b.shape[1]
+    f = np.zeros((n + nu, n + nu))
     f[:n, :n] = a
     f[:n, n:] = b
-    big = np.zeros((2 * (n + 1), 2 * (n + 1)))
-    big[: n + 1, : n + 1] = -f.T
-    big[: n + 1, n + 1 :] = m
-    big[n + 1 :, n + 1 :] = f
+    w = n + nu
+    big = np.zeros((2 * w, 2 * w))
+    big[:w, :w] = -f.T
+    big[:w, w:] = m
+    big[w:, w:] = f
     e = scipy.linalg.expm(big * ts)
-    phi = e[n + 1 :, n + 1 :]
-    md = phi.T @ e[: n + 1, n + 1 :]
+    phi = e[w:, w:]
+    md = phi.T @ e[:w, w:]
     return phi[:n, :n], phi[:n, n:], 0.5 * (md + md.T)
 
 
-class MPCProblem:
-    """The condensed QP of one plant's semi-active MPC, set up once in OSQP.
+class CondensedMPC:
+    """The condensed QP of a sampled linear plant's MPC with boxes on the inputs, set up
+    once in OSQP: the per-corner :class:`MPCProblem` and the whole-vehicle law
+    (:class:`~mrsuspension.control.vehicle_lq.VehicleMPC`).
+
+    ``x_{k+1} = A_d x_k + B_d u_k`` (``n`` states, ``m`` inputs), the cost
+    ``sum_{k<N} (x_k, u_k)^T M_d (x_k, u_k) + x_N^T P x_N`` with ``P`` the discrete
+    Riccati solution of the same stage cost: with the boxes inactive the first move is the
+    sampled-data LQR's ``-K_d x``. The variables are the ``N m`` inputs (sample by sample,
+    in kN); the constraint matrix is the identity, so a solve updates only the linear cost
+    and the bounds.
+
+    Parameters
+    ----------
+    a_d, b_d : ndarray
+        The sampled model (``n x n``, ``n x m``).
+    m_d : ndarray
+        The sampled stage cost's weight on ``(x, u)`` (``n + m`` square).
+    horizon : int
+        ``N``, samples in the horizon.
+    rates : ndarray
+        The rows ``S`` (``r x n``) of the outputs :meth:`stroke_rates` predicts,
+        ``S x_k`` [m/s] (the dampers' stroke rates).
+
+    Attributes
+    ----------
+    a_d, b_d, m_d : ndarray
+        As given.
+    p : ndarray
+        The terminal weight: the discrete Riccati solution (``n x n``).
+    gain_matrix : ndarray
+        ``K_d`` (``m x n``): the sampled-data LQR, the first move with the boxes inactive.
+    solves, iterations, unfinished : int
+        Solves so far, OSQP's iterations in them, and the solves it stopped at
+        ``max_iter`` (their last iterate, clipped to the bounds, is used).
+    """
+
+    def __init__(
+        self,
+        a_d: npt.NDArray[np.float64],
+        b_d: npt.NDArray[np.float64],
+        m_d: npt.NDArray[np.float64],
+        horizon: int,
+        rates: npt.NDArray[np.float64],
+    ) -> None:
+        import scipy.linalg
+        import scipy.sparse
+
+        _require_osqp()
+        import osqp
+
+        self.a_d, self.b_d, self.m_d = a_d, b_d, m_d
+        nx, nu = b_d.shape
+        n = int(horizon)
+        self.horizon, self.inputs = n, nu
+        q, r, s = m_d[:nx, :nx], m_d[nx:, nx:], m_d[:nx, nx:]
+        self.p = scipy.linalg.solve_discrete_are(a_d, b_d, q, r, s=s)
+        bp = b_d.T @ self.p
+        self.gain_matrix = np.linalg.solve(r + bp @ b_d, bp @ a_d + s.T)
+        # x_k = Sx[k] x_0 + Su[k] U, k = 0..N (U: u_0, u_1, ... each m values)
+        nv = n * nu
+        sx = np.zeros((n + 1, nx, nx))
+        su = np.zeros((n + 1, nx, nv))
+        sx[0] = np.eye(nx)
+        for k in range(n):
+            sx[k + 1] = a_d @ sx[k]
+            su[k + 1] = a_d @ su[k]
+            su[k + 1][:, k * nu : (k + 1) * nu] = b_d
+        # J = sum_k (x_k, u_k)^T M_d (x_k, u_k) + x_N^T P x_N = U^T H U + 2 x_0^T F U + c
+        h = np.zeros((nv, nv))
+        f = np.zeros((nx, nv))
+        for k in range(n):
+            ek = np.zeros((nu, nv))
+            ek[:, k * nu : (k + 1) * nu] = np.eye(nu)
+            zu = np.vstack([su[k], ek])  # (x_k, u_k) = Zx x_0 + Zu U
+            zx = np.vstack([sx[k], np.zeros((nu, nx))])
+            h += zu.T @ m_d @ zu
+            f += zx.T @ m_d @ zu
+        h += su[n].T @ self.p @ su[n]
+        f += sx[n].T @ self.p @ su[n]
+        h = 0.5 * (h + h.T) * _FORCE_UNIT**2
+        f = f * _FORCE_UNIT
+        scale = 1.0 / float(np.mean(np.diag(h)))  # the cost's scale near 1
+        self._q_of_x = 2.0 * scale * f.T  # q = G x_0 (N m x n)
+        # the rates S x_k at k = 0..N-1: Vx x_0 + Vu U [m/s], U in kN
+        sel = np.atleast_2d(np.asarray(rates, dtype=float))
+        nr = sel.shape[0]
+        self._vx = np.einsum("ij,kjl->kil", sel, sx[:n]).reshape(n * nr, nx)
+        self._vu = np.einsum("ij,kjl->kil", sel, su[:n]).reshape(n * nr, nv) * _FORCE_UNIT
+        self._solver = osqp.OSQP()
+        self._solver.setup(
+            scipy.sparse.csc_matrix(np.triu(2.0 * scale * h)),
+            np.zeros(nv),
+            scipy.sparse.identity(nv, format="csc"),
+            np.zeros(nv),
+            np.zeros(nv),
+            **_SETTINGS,
+        )
+        self.solves = self.iterations = self.unfinished = 0
+
+    def stroke_rates(self, x: npt.ArrayLike, forces: npt.ArrayLike) -> npt.NDArray[np.float64]:
+        """The predicted rates ``S x_k`` [m/s] at the horizon's samples ``k = 0..N-1``
+        (sample by sample, ``r`` values each) from the state ``x`` and the inputs
+        ``forces`` [N] (``N m`` values, sample by sample)."""
+        out: npt.NDArray[np.float64] = self._vx @ np.asarray(x, dtype=float)
+        out += self._vu @ (np.ravel(np.asarray(forces, dtype=float)) / _FORCE_UNIT)
+        return out
+
+    def solve(
+        self,
+        x: npt.ArrayLike,
+        lower: npt.ArrayLike,
+        upper: npt.ArrayLike,
+        warm: npt.ArrayLike | None = None,
+    ) -> npt.NDArray[np.float64]:
+        """The optimal inputs [N] over the horizon from state ``x`` (``N m`` values, sample
+        by sample), each within its bounds ``lower <= u <= upper`` [N] (numbers or ``N m``
+        values).
+
+        ``warm``: inputs [N] to start OSQP from (default: its previous solution). A solve
+        OSQP does not finish (``max_iter``) returns its last iterate clipped to the bounds.
+        """
+        nv = self.horizon * self.inputs
+        lo = np.ravel(np.asarray(lower, dtype=float)) / _FORCE_UNIT
+        hi = np.ravel(np.asarray(upper, dtype=float)) / _FORCE_UNIT
+        if lo.size == 1:
+            lo = np.full(nv, float(lo[0]))
+        if hi.size == 1:
+            hi = np.full(nv, float(hi[0]))
+        self._solver.update(q=self._q_of_x @ np.asarray(x, dtype=float), l=lo, u=hi)
+        if warm is not None:
+            self._solver.warm_start(x=np.ravel(np.asarray(warm, dtype=float)) / _FORCE_UNIT)
+        res = self._solver.solve(raise_error=False)
+        self.solves += 1
+        self.iterations += int(res.info.iter)
+        u = res.x
+        if res.info.status_val != 1:  # OSQP_SOLVED
+            self.unfinished += 1
+            if u is None or not np.all(np.isfinite(u)):
+                u = np.zeros(nv)
+        out: npt.NDArray[np.float64] = np.minimum(np.maximum(u, lo), hi) * _FORCE_UNIT
+        return out
+
+
+class MPCProblem(CondensedMPC):
+    """The condensed QP of one quarter car's semi-active MPC, set up once in OSQP.
 
     Parameters
     ----------
@@ -162,8 +318,7 @@ class MPCProblem:
     gain : ndarray
         ``K_d`` (4,): the sampled-data LQR, the first move with the band inactive.
     solves, iterations, unfinished : int
-        Solves so far, OSQP's iterations in them, and the solves it stopped at
-        ``max_iter`` (their last iterate, clipped to the bounds, is used).
+        As :class:`CondensedMPC`.
     """
 
     def __init__(
@@ -176,103 +331,16 @@ class MPCProblem:
         w_tire: float = LQ_WEIGHTS["w_tire"],
         w_force: float = LQ_WEIGHTS["w_force"],
     ) -> None:
-        import scipy.linalg
-        import scipy.sparse
-
-        _require_osqp()
-        import osqp
-
         a = np.asarray(a, dtype=float).reshape(4, 4)
         b = np.asarray(b, dtype=float).reshape(4, 1)
-        n = int(horizon)
-        self.horizon, self.sample = n, float(sample)
+        self.sample = float(sample)
         # the continuous cost z_s''^2 + w_r x_1^2 + w_t x_3^2 + w_f u^2 on (x, u)
         cd = np.concatenate([a[1], b[1]])
         m = np.outer(cd, cd) + np.diag([w_rattle, 0.0, w_tire, 0.0, w_force])
-        self.a_d, self.b_d, self.m_d = _sampled(a, b, m, self.sample)
-        q, r, s = self.m_d[:4, :4], self.m_d[4:, 4:], self.m_d[:4, 4:]
-        self.p = scipy.linalg.solve_discrete_are(self.a_d, self.b_d, q, r, s=s)
-        bp = self.b_d.T @ self.p
-        self.gain = np.linalg.solve(r + bp @ self.b_d, bp @ self.a_d + s.T)[0]
-        # x_k = Sx[k] x_0 + Su[k] U, k = 0..N
-        sx = np.zeros((n + 1, 4, 4))
-        su = np.zeros((n + 1, 4, n))
-        sx[0] = np.eye(4)
-        for k in range(n):
-            sx[k + 1] = self.a_d @ sx[k]
-            su[k + 1] = self.a_d @ su[k]
-            su[k + 1][:, k] = self.b_d[:, 0]
-        # J = sum_k (x_k, u_k)^T M_d (x_k, u_k) + x_N^T P x_N = U^T H U + 2 x_0^T F U + c
-        h = np.zeros((n, n))
-        f = np.zeros((4, n))
-        for k in range(n):
-            ek = np.zeros(n)
-            ek[k] = 1.0
-            zu = np.vstack([su[k], ek])  # (x_k, u_k) = Zx x_0 + Zu U
-            zx = np.vstack([sx[k], np.zeros((1, 4))])
-            h += zu.T @ self.m_d @ zu
-            f += zx.T @ self.m_d @ zu
-        h += su[n].T @ self.p @ su[n]
-        f += sx[n].T @ self.p @ su[n]
-        h = 0.5 * (h + h.T) * _FORCE_UNIT**2
-        f = f * _FORCE_UNIT
-        scale = 1.0 / float(np.mean(np.diag(h)))  # the cost's scale near 1
-        self._q_of_x = 2.0 * scale * f.T  # q = G x_0 (N x 4)
-        # v_d,k = z_u' - z_s' at k = 0..N-1: Vx x_0 + Vu U [m/s], U in kN
-        sel = np.array([0.0, -1.0, 0.0, 1.0])
-        self._vx = np.einsum("j,kjl->kl", sel, sx[:n])
-        self._vu = np.einsum("j,kjl->kl", sel, su[:n]) * _FORCE_UNIT
-        self._solver = osqp.OSQP()
-        self._solver.setup(
-            scipy.sparse.csc_matrix(np.triu(2.0 * scale * h)),
-            np.zeros(n),
-            scipy.sparse.identity(n, format="csc"),
-            np.zeros(n),
-            np.zeros(n),
-            **_SETTINGS,
-        )
-        self.solves = self.iterations = self.unfinished = 0
-
-    def stroke_rates(self, x: npt.ArrayLike, forces: npt.ArrayLike) -> npt.NDArray[np.float64]:
-        """The predicted ``v_d`` [m/s] at the horizon's samples ``k = 0..N-1`` from the
-        state ``x`` and the forces ``forces`` [N] (``N`` values)."""
-        out: npt.NDArray[np.float64] = self._vx @ np.asarray(x, dtype=float)
-        out += self._vu @ (np.asarray(forces, dtype=float) / _FORCE_UNIT)
-        return out
-
-    def solve(
-        self,
-        x: npt.ArrayLike,
-        lower: npt.ArrayLike,
-        upper: npt.ArrayLike,
-        warm: npt.ArrayLike | None = None,
-    ) -> npt.NDArray[np.float64]:
-        """The optimal forces [N] over the horizon from state ``x``, each within its
-        bounds ``lower[k] <= u_k <= upper[k]`` [N] (numbers or ``N`` values).
-
-        ``warm``: forces [N] to start OSQP from (default: its previous solution). A solve
-        OSQP does not finish (``max_iter``) returns its last iterate clipped to the bounds.
-        """
-        n = self.horizon
-        lo = np.asarray(lower, dtype=float) / _FORCE_UNIT
-        hi = np.asarray(upper, dtype=float) / _FORCE_UNIT
-        if lo.ndim == 0:
-            lo = np.full(n, float(lo))
-        if hi.ndim == 0:
-            hi = np.full(n, float(hi))
-        self._solver.update(q=self._q_of_x @ np.asarray(x, dtype=float), l=lo, u=hi)
-        if warm is not None:
-            self._solver.warm_start(x=np.asarray(warm, dtype=float) / _FORCE_UNIT)
-        res = self._solver.solve(raise_error=False)
-        self.solves += 1
-        self.iterations += int(res.info.iter)
-        u = res.x
-        if res.info.status_val != 1:  # OSQP_SOLVED
-            self.unfinished += 1
-            if u is None or not np.all(np.isfinite(u)):
-                u = np.zeros(n)
-        out: npt.NDArray[np.float64] = np.minimum(np.maximum(u, lo), hi) * _FORCE_UNIT
-        return out
+        a_d, b_d, m_d = _sampled(a, b, m, self.sample)
+        # v_d = z_u' - z_s'
+        super().__init__(a_d, b_d, m_d, horizon, np.array([[0.0, -1.0, 0.0, 1.0]]))
+        self.gain = self.gain_matrix[0]
 
     def first_move(self, x: npt.ArrayLike, lower: float, upper: float) -> float:
         """The first force [N] of :meth:`solve` with the same bounds at every sample."""

@@ -20,6 +20,8 @@ from mrsuspension.control.vehicle_lq import (
     VehicleLQActive,
     VehicleLQG,
     VehicleLQGActive,
+    VehicleMPC,
+    VehicleMPCActive,
 )
 from mrsuspension.errors import ValidationError, unknown_name
 
@@ -71,6 +73,8 @@ VEHICLE_LAWS: dict[str, type[VehicleLaw]] = {
         VehicleLQActive,
         VehicleLQG,
         VehicleLQGActive,
+        VehicleMPC,
+        VehicleMPCActive,
     )
 }
 

@@ -54,8 +54,15 @@ dampers' forces (load cells) as the input (:func:`vehicle_kalman_gain`; the per-
 ``kalman_gain`` on the vehicle), integrated by Euler at every step. A target force tracked
 through the damper's inverse model (as ``lq-force``) is not offered.
 
+``vehicle-mpc`` (:class:`VehicleMPC`): the per-corner ``mpc`` over the whole car. Every
+``T_s`` one QP (:class:`VehicleMPCProblem`: this module's design model and LQ cost,
+sampled, ``N`` samples, a Riccati terminal cost, one force per corner per sample in the
+viscous band at its predicted stroke rate) solved by OSQP in Python through a ctypes
+entry the compiled step calls (:func:`mpc_forces`), the first forces held until the next
+solve, hi-lo by Dyke's rule as ``vehicle-lq``.
+
 On the quarter car these laws are the per-corner ones: ``clipped-lq``, ``lq-active``,
-``clipped-lqg``, ``lqg-active`` (:meth:`VehicleLQ.for_vehicle` refuses a quarter car,
+``clipped-lqg``, ``lqg-active``, ``mpc-hilo`` (:meth:`VehicleLQ.for_vehicle` refuses a quarter car,
 naming its law).
 
 Examples
@@ -70,6 +77,8 @@ Examples
 
 from __future__ import annotations
 
+import ctypes
+import math
 from dataclasses import dataclass
 from typing import Any, ClassVar, NamedTuple
 
@@ -77,8 +86,17 @@ import numpy as np
 import numpy.typing as npt
 from numba import njit
 
+from mrsuspension.control import kernel as CK
 from mrsuspension.control.literature import LQ_WEIGHTS, LQG_NOISE
-from mrsuspension.control.modal import LAW_LQ, LAW_LQG, MP_IHIGH, MP_ILOW, MP_SIZE, VehicleLaw
+from mrsuspension.control.modal import (
+    LAW_LQ,
+    LAW_LQG,
+    LAW_MPC,
+    MP_IHIGH,
+    MP_ILOW,
+    MP_SIZE,
+    VehicleLaw,
+)
 from mrsuspension.errors import ValidationError, check_range
 
 __all__ = [
@@ -86,8 +104,11 @@ __all__ = [
     "LP_NX",
     "LP_OUTPUT",
     "MB_DX",
+    "MB_HOLD",
+    "MB_PLAN",
     "MB_ROWS",
     "MB_U",
+    "MB_VD",
     "MB_X",
     "MB_Y",
     "NB",
@@ -96,8 +117,12 @@ __all__ = [
     "VehicleLQActive",
     "VehicleLQG",
     "VehicleLQGActive",
+    "VehicleMPC",
+    "VehicleMPCActive",
+    "VehicleMPCProblem",
     "lq_design",
     "lq_forces",
+    "mpc_forces",
     "relative_model",
     "vehicle_kalman_gain",
     "vehicle_lq_gain",
@@ -118,6 +143,11 @@ LP_OUTPUT, LP_NX, LP_K = MP_SIZE, MP_SIZE + 1, MP_SIZE + 2
 #: the innovation), the dampers' forces, the estimate's rates
 MB_X, MB_Y, MB_U, MB_DX = 4, 5, 6, 7
 MB_ROWS = 8
+#: ``vehicle-mpc``'s use of the buffer (:func:`mpc_forces`): ``mbuf[MB_X, nx]`` the time
+#: [s]; ``mbuf[MB_HOLD, 0]`` the next solve's time [s]; ``mbuf[MB_VD]`` the corners' stroke
+#: rates as seen [m/s]; ``mbuf[MB_PLAN + k]`` the previous solution's forces [N] at
+#: sample ``k`` (``N`` rows)
+MB_HOLD, MB_VD, MB_PLAN = MB_Y, MB_U, MB_ROWS
 
 
 # --- models ----------------------------------------------------------------------------
@@ -531,7 +561,274 @@ class VehicleLQGActive(VehicleLQG):
     per_corner: ClassVar[str] = "lqg-active"
 
 
+class VehicleMPCProblem:
+    """The whole-vehicle semi-active MPC's QP in this process, and its entry.
+
+    The model is :func:`lq_design`'s ``(A, B)`` in ``x_a = (q, q')`` (the relative model
+    of :func:`relative_model` on the states it can reach, ``A H = H A_a``, ``B = H B_a``;
+    the state the law reads is mapped by ``x_a = H^+ x`` as the LQ law's gain, so the twist
+    of the road gets no response), zero-order-hold sampled at ``T_s`` with the LQ cost
+    ``[[Q, N], [N^T, R]]`` integrated exactly over the sample (Van Loan), the terminal
+    weight the discrete Riccati solution: :class:`~mrsuspension.control.mpc.CondensedMPC`
+    with one force per corner per sample. The band on each force is the viscous band of
+    :mod:`~mrsuspension.control.mpc` at the corner's stroke rate (``v_d = x_d' = D_x
+    q'``): measured at the first sample, predicted at the later ones from the state and
+    the previous solution shifted by a sample.
+
+    ``address`` is a C entry ``double f(double *buffer, double *forces, int64 corners)``
+    (a ctypes callback into Python, as a user law's Python path,
+    :mod:`~mrsuspension.control.user`) that :func:`mpc_forces` calls with the law's
+    buffer from row ``MB_X`` on and the forces' row.
+
+    Parameters
+    ----------
+    design : LQDesign
+        :func:`lq_design` of the car.
+    horizon : int
+        ``N`` [samples].
+    sample : float
+        ``T_s`` [s].
+    c_min, c_max : float
+        The band's damping [N s/m] (``c_min v_d <= F <= c_max v_d`` for ``v_d > 0``).
+    law : str
+        The law's name (for a failure's report).
+
+    Attributes
+    ----------
+    qp : CondensedMPC
+        The QP in ``x_a`` (``qp.gain_matrix``: the sampled-data LQR ``K_d`` in ``x_a``).
+    gain : ndarray
+        ``K_d H^+`` (corners x ``nx``): the first move with the band inactive.
+    """
+
+    def __init__(
+        self, design: LQDesign, horizon: int, sample: float, c_min: float, c_max: float,
+        law: str = "vehicle-mpc",
+    ) -> None:  # fmt: skip
+        from mrsuspension.control import mpc
+        from mrsuspension.control.user import _CTYPES_ENTRY, LawEntry, _checked
+
+        n = design.B.shape[1]
+        nq = design.A.shape[0] // 2
+        self.corners, self.horizon, self.sample = n, int(horizon), float(sample)
+        self.c_min, self.c_max, self.law = float(c_min), float(c_max), law
+        self.nx = design.H.shape[0]
+        cost = np.block([[design.Q, design.N], [design.N.T, design.R]])
+        a_d, b_d, m_d = mpc._sampled(design.A, design.B, cost, self.sample)
+        # the strokes x_d = D_x q: their rates D_x q' (D_x = -H's first n rows)
+        rates = np.hstack([np.zeros((n, nq)), -design.H[:n, :nq]])
+        self.qp = mpc.CondensedMPC(a_d, b_d, m_d, self.horizon, rates)
+        self.h_pinv = np.linalg.pinv(design.H)
+        self.gain = self.qp.gain_matrix @ self.h_pinv
+        self._entry = _CTYPES_ENTRY(self._call)
+        self.entry = _checked(
+            LawEntry(int(ctypes.cast(self._entry, ctypes.c_void_p).value or 0), "python", 0.0,
+                     "", self._entry)
+        )  # fmt: skip
+        self.address = self.entry.address
+
+    def band(
+        self, x: npt.ArrayLike, stroke_rates: npt.ArrayLike, previous: npt.ArrayLike
+    ) -> tuple[FloatArray, FloatArray]:
+        """``(lower, upper)`` [N] (``N x n``): the viscous band at every sample and corner,
+        ``v_d`` the measured ``stroke_rates`` at the first sample and predicted from ``x``
+        and ``previous`` (``N x n`` forces [N], already shifted) at the later ones."""
+        xa = self.h_pinv @ np.asarray(x, dtype=float)
+        v = self.qp.stroke_rates(xa, previous).reshape(self.horizon, self.corners)
+        v[0] = stroke_rates
+        a, b = self.c_min * v, self.c_max * v
+        return np.minimum(a, b), np.maximum(a, b)
+
+    def solve(
+        self,
+        x: npt.ArrayLike,
+        lower: npt.ArrayLike,
+        upper: npt.ArrayLike,
+        warm: npt.ArrayLike | None = None,
+    ) -> FloatArray:
+        """The optimal forces [N] (``N x n``: sample by sample, corner by corner) from the
+        law's state ``x`` (``nx`` values, mapped by ``H^+``) within ``lower <= F <= upper``
+        [N] (numbers or ``N x n``)."""
+        xa = self.h_pinv @ np.asarray(x, dtype=float)
+        u = self.qp.solve(xa, lower, upper, warm=warm)
+        return u.reshape(self.horizon, self.corners)
+
+    def step(self, x: npt.ArrayLike, stroke_rates: npt.ArrayLike, plan: FloatArray) -> FloatArray:
+        """One solve from ``x`` with the band at ``stroke_rates`` [m/s]; ``plan`` (``N x
+        n``, the previous solution [N]) is replaced by the new one; returns its first
+        forces [N]."""
+        shifted = np.empty_like(plan)
+        shifted[:-1] = plan[1:]
+        shifted[-1] = plan[-1]
+        lower, upper = self.band(x, stroke_rates, shifted)
+        plan[:] = self.solve(x, lower, upper, warm=shifted)
+        return plan[0]
+
+    def _call(self, s: Any, o: Any, n: int) -> float:
+        """The entry: read the buffer (rows ``MB_X`` on), solve, write the forces and the
+        next solve's time. An exception is kept for the engine (the forces NaN)."""
+        from mrsuspension.control.user import FAILED
+
+        try:
+            nx, nc, nh = self.nx, self.corners, self.horizon
+            rows = MB_PLAN - MB_X + nh
+            buf = np.ctypeslib.as_array(s, (rows, nx + 1))
+            forces = np.ctypeslib.as_array(o, (n,))
+            t = float(buf[0, nx])
+            plan = buf[MB_PLAN - MB_X :, :nc]
+            if t == 0.0:  # a new run: no previous solution
+                plan[:] = 0.0
+            forces[:nc] = self.step(buf[0, :nx], buf[MB_VD - MB_X, :nc], plan)
+            buf[MB_HOLD - MB_X, 0] = (math.floor(t / self.sample + 1e-9) + 1.0) * self.sample
+            return 0.0
+        except BaseException as exc:
+            FAILED.append((self.law, exc))
+            return math.nan
+
+
+#: one QP and entry per car and options in this process (kept: a run holds its address)
+_MPC_PROBLEMS: dict[tuple[Any, ...], VehicleMPCProblem] = {}
+
+
+@dataclass(frozen=True)
+class VehicleMPC(VehicleLQ):
+    """Whole-vehicle semi-active MPC: every ``T_s`` the first forces of the whole car's QP
+    (:class:`VehicleMPCProblem`: the LQ cost of :func:`lq_design`, ``N`` samples, one
+    force per corner per sample in the viscous band at its predicted stroke rate), held
+    until the next solve; hi-lo per corner by Dyke's rule as :class:`VehicleLQ`.
+
+    Parameters
+    ----------
+    rattle_weight, tire_weight, force_weight, low_current, high_current
+        As :class:`VehicleLQ`.
+    horizon_samples : float
+        ``N``, a whole number in 1 to :data:`~mrsuspension.control.mpc.HORIZON_MAX`
+        (default 10).
+    sample_time : float
+        ``T_s`` [s] in [1e-4, 0.05] (default 2 ms).
+    band_low, band_high : float
+        The band's damping ``c_min``, ``c_max`` [N s/m] (defaults those of ``mpc``: the
+        dissertation's damper at 0 and 0.5 A, 2043 and 10613 N s/m). (The names differ
+        from the per-corner ``mpc``'s ``horizon``, ``sample``, ``c_min``, ``c_max``: one
+        field per name on the monitor's page.)
+
+    Notes
+    -----
+    The state is :class:`VehicleLQ`'s as seen (the tire deflection 0: not measured). The
+    QP runs in Python (OSQP) through a ctypes entry the compiled step calls at each
+    solve; between solves the step holds the forces without calling it.
+
+    Examples
+    --------
+    >>> VehicleMPC(band_low=3000.0, band_high=2000.0)
+    Traceback (most recent call last):
+    ...
+    mrsuspension.errors.ValidationError: band_low must be <= band_high (the band's damping at i_min and i_max) [N s/m]; got band_low 3000, band_high 2000
+    >>> from mrsuspension.vehicle import FullCar
+    >>> law = VehicleMPC().for_vehicle(FullCar())
+    >>> law.problem().gain.shape  # the sampled-data LQR: 4 corners x 15
+    (4, 15)
+    """
+
+    law: ClassVar[str] = "vehicle-mpc"
+    kernel_code: ClassVar[int] = LAW_MPC
+    per_corner: ClassVar[str] = "mpc-hilo"
+
+    horizon_samples: float = 10.0
+    sample_time: float = 2e-3
+    band_low: float = 2043.0
+    band_high: float = 10613.0
+
+    def __post_init__(self) -> None:
+        from mrsuspension.control.mpc import HORIZON_MAX
+
+        super().__post_init__()
+        check_range("horizon_samples", self.horizon_samples, 1.0, float(HORIZON_MAX),
+                    unit="samples")  # fmt: skip
+        if self.horizon_samples != math.floor(self.horizon_samples):
+            raise ValidationError(
+                f"horizon_samples N must be a whole number of samples in [1, {HORIZON_MAX}]; "
+                f"got {self.horizon_samples:g}"
+            )
+        check_range("sample_time", self.sample_time, 1e-4, 0.05, unit="s")
+        check_range("band_low", self.band_low, 0.0, 1e7, unit="N s/m")
+        check_range("band_high", self.band_high, 0.0, 1e7, unit="N s/m")
+        if self.band_low > self.band_high:
+            raise ValidationError(
+                "band_low must be <= band_high (the band's damping at i_min and i_max) "
+                f"[N s/m]; got band_low {self.band_low:g}, band_high {self.band_high:g}"
+            )
+
+    def _design(self, vehicle: Any) -> dict[str, FloatArray]:
+        from mrsuspension.control.mpc import _require_osqp
+
+        _require_osqp()  # before a run, not in it
+        d = lq_design(vehicle, self.rattle_weight, self.tire_weight, self.force_weight)
+        return {"_gain": d.K, "_lq": np.concatenate([np.ravel(m) for m in d]),
+                "_lq_shape": np.array([d.A.shape[0], d.B.shape[1], d.H.shape[0]], float)}  # fmt: skip
+
+    def design(self) -> LQDesign:
+        """The attached car's :func:`lq_design` (kept flat in the law: it pickles)."""
+        self.gain  # noqa: B018 (raises without a vehicle)
+        na, nc, nx = (int(v) for v in self.__dict__["_lq_shape"])
+        shapes = [(na, na), (na, nc), (na, na), (nc, nc), (na, nc), (na, na), (nc, na),
+                  (nx, na), (nc, nx)]  # fmt: skip
+        flat, out, at = self.__dict__["_lq"], [], 0
+        for shape in shapes:
+            size = shape[0] * shape[1]
+            out.append(flat[at : at + size].reshape(shape))
+            at += size
+        return LQDesign(*out)
+
+    def problem(self) -> VehicleMPCProblem:
+        """The QP and its entry in this process (built once per car and options)."""
+        d = self.design()
+        key = (self.__dict__["_lq"].tobytes(), self.horizon_samples, self.sample_time,
+               self.band_low, self.band_high, self.law)  # fmt: skip
+        got = _MPC_PROBLEMS.get(key)
+        if got is None:
+            got = VehicleMPCProblem(d, int(self.horizon_samples), self.sample_time,
+                                    self.band_low, self.band_high, self.law)  # fmt: skip
+            _MPC_PROBLEMS[key] = got
+        return got
+
+    def buffer_shape(self, corners: int) -> tuple[int, int]:
+        """The law buffer: :class:`VehicleLQ`'s rows, the time after the state, and
+        ``N`` rows of the previous solution (``MB_PLAN``)."""
+        return MB_PLAN + int(self.horizon_samples), self.state_size() + 1
+
+    def _tail(self) -> list[FloatArray]:
+        qp = self.problem()
+        return [self.gain, np.array([float(qp.address), self.sample_time])]
+
+
+@dataclass(frozen=True)
+class VehicleMPCActive(VehicleMPC):
+    """:class:`VehicleMPC`'s forces applied by an ideal actuator at every corner (no
+    current): the QP's forces as they are. With the band (default: the damper's viscous
+    range) that is an ideal semi-active damper following the MPC, the reference of what
+    force tracking could give; with ``band_low`` = ``band_high`` = 0 no force at all.
+
+    Examples
+    --------
+    >>> VehicleMPCActive().law, VehicleMPCActive.per_corner
+    ('vehicle-mpc-active', 'mpc')
+    """
+
+    law: ClassVar[str] = "vehicle-mpc-active"
+    active: ClassVar[bool] = True
+    per_corner: ClassVar[str] = "mpc"
+
+
 # --- kernel ----------------------------------------------------------------------------
+
+
+@njit(cache=True, inline="always")
+def _seen_rates(x: np.ndarray, nc: int, vz: float, q: float, p: float) -> None:
+    """The body's rates as seen into the state ``x`` (after the ``nc`` strokes)."""
+    x[nc] = vz
+    x[nc + 1] = q
+    x[nc + 2] = p
 
 
 @njit(cache=True, inline="always")
@@ -586,11 +883,46 @@ def lq_forces(
         for i in range(nx):
             x[i] += dt * rate[i]
     else:
-        x[nc] = vz
-        x[nc + 1] = q
-        x[nc + 2] = p
+        _seen_rates(x, nc, vz, q, p)
     for c in range(nc):
         f = 0.0
         for j in range(nx):
             f -= mp[LP_K + c * nx + j] * x[j]
         forces[c] = f
+
+
+@njit(cache=True, inline="always")
+def mpc_forces(
+    forces: np.ndarray,
+    mbuf: np.ndarray,
+    mp: np.ndarray,
+    nc: int,
+    vz: float,
+    q: float,
+    p: float,
+    vd: np.ndarray,
+    t: float,
+) -> None:
+    """``vehicle-mpc``'s forces [N] into ``forces``: held, or at a solve (``t`` [s] at or
+    past the next solve's time ``mbuf[MB_HOLD, 0]``) from the law's entry.
+
+    The state ``mbuf[MB_X]`` as :func:`lq_forces` sees it (the strokes and wheel
+    velocities written by the vehicle step, the body rates here), the time after it, the
+    corners' stroke rates ``vd`` [m/s] into ``mbuf[MB_VD]``; the entry (its address after
+    ``K`` in ``mp``: :meth:`VehicleMPC.params`) solves and writes the forces, the plan
+    and the next solve's time (:class:`VehicleMPCProblem`). An entry that failed (not a
+    finite return) leaves the forces NaN.
+    """
+    nx = int(mp[LP_NX])
+    x = mbuf[MB_X]
+    _seen_rates(x, nc, vz, q, p)
+    if t < mbuf[MB_HOLD, 0]:
+        return
+    x[nx] = t
+    for c in range(nc):
+        mbuf[MB_VD, c] = vd[c]
+    addr = np.int64(mp[LP_K + nc * nx])
+    out: float = CK.call_law(addr, mbuf[MB_X:], forces[:nc])  # type: ignore[call-arg]
+    if not math.isfinite(out):
+        for c in range(nc):
+            forces[c] = math.nan

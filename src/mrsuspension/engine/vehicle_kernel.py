@@ -23,8 +23,9 @@ steps and held) and the stroke sensor's reading
 :func:`~mrsuspension.control.modal.modal_forces` (or ``F_i = -c_s v_i``) and
 :func:`~mrsuspension.control.modal.modal_hilo`, or from the whole-vehicle LQ and LQG's
 ``F = -K x`` (:func:`~mrsuspension.control.vehicle_lq.lq_forces`: the state as seen, or
-a Kalman estimate; hi-lo on Dyke's ``(F_i - F_d) F_d > 0``, or ``F`` itself by an ideal
-actuator). Ideal
+a Kalman estimate; or ``vehicle-mpc``'s QP through its entry,
+:func:`~mrsuspension.control.vehicle_lq.mpc_forces`, held between solves; hi-lo on
+Dyke's ``(F_i - F_d) F_d > 0``, or ``F`` itself by an ideal actuator). Ideal
 sensing and no law leave the step exactly as before.
 
 The damper kernels (:mod:`mrsuspension.dampers.kernels`) and the control laws
@@ -62,7 +63,7 @@ from mrsuspension.control import sensing as SN
 from mrsuspension.control import signals as SG
 from mrsuspension.control import vehicle_lq as VL
 from mrsuspension.control.kernel import EST_SHARED, F_EXTERNAL, F_MODEL, F_TARGET, P_C0, P_CS, P_MS0
-from mrsuspension.control.modal import LAW_CORNERS, LAW_LQ, LAW_LQG, LAW_MODAL
+from mrsuspension.control.modal import LAW_CORNERS, LAW_LQ, LAW_LQG, LAW_MODAL, LAW_MPC
 from mrsuspension.dampers import kernels as DK
 from mrsuspension.dampers.kernels import NO_REFCOUNT
 from mrsuspension.engine import kernel as EK
@@ -327,7 +328,8 @@ def step(
         work[c, 4] = vd
         work[c, 5] = v_sense
         work[c, 6] = vu_seen - v_sense  # the damper velocity the controller sees
-        if law == LAW_LQ:  # the state as seen: e = z_s - z_u and z_u' (control.vehicle_lq)
+        if law == LAW_LQ or law == LAW_MPC:  # noqa: SIM109 (numba: plain comparisons)
+            # the state as seen: e = z_s - z_u and z_u' (control.vehicle_lq)
             mbuf[VL.MB_X, c] = zs - zu_seen
             mbuf[VL.MB_X, 2 * nc + VL.NB + c] = vu_seen
         elif law == LAW_LQG:  # the measurements and the load cells
@@ -336,7 +338,10 @@ def step(
             mbuf[VL.MB_Y, 2 * nc + c] = zu_seen - zs
             mbuf[VL.MB_U, c] = mem[c, EK.M_FD]
     # the body's rates as seen: true, or from the corners' estimates, D^T v = (J J^T)^-1 J v
-    if kind == SENSE_IDEAL or not (full or law == LAW_MODAL or law == LAW_LQ):  # noqa: SIM109
+    seen = full  # rates from the estimates: a corner law reading every signal, or these laws
+    if law == LAW_MODAL or law == LAW_LQ or law == LAW_MPC:  # noqa: SIM109 (numba: no tuple)
+        seen = True
+    if kind == SENSE_IDEAL or not seen:
         vz, pq, pp = y[3], y[4], y[5]
     else:
         vz = pq = pp = 0.0
@@ -375,12 +380,16 @@ def step(
             for c in range(nc):
                 vds[c] = work[c, 6]
             SM.modal_hilo(current, zc, forces, vds, mp)
-        else:  # the whole-vehicle LQ and LQG (control.vehicle_lq): F = -K x
-            VL.lq_forces(forces, mbuf, mp, nc, vz, pq, pp, law == LAW_LQG,
-                         dt if count > 0 else 0.0)  # fmt: skip
-            active = mp[VL.LP_OUTPUT] != 0.0
+        else:  # the whole-vehicle LQ, LQG and MPC (control.vehicle_lq): F = -K x, or the QP's
             for c in range(nc):
                 vds[c] = work[c, 6]
+            if law == LAW_MPC:
+                VL.mpc_forces(forces, mbuf, mp, nc, vz, pq, pp, vds, t)
+            else:
+                VL.lq_forces(forces, mbuf, mp, nc, vz, pq, pp, law == LAW_LQG,
+                             dt if count > 0 else 0.0)  # fmt: skip
+            active = mp[VL.LP_OUTPUT] != 0.0
+            for c in range(nc):
                 # Dyke et al.'s clipped-optimal rule, as the per-corner clipped-lq: high when
                 # (F_i - F_d) F_d > 0 (the load cell's force, the previous step's, below the
                 # desired one in magnitude and of its sign)
@@ -388,6 +397,8 @@ def step(
                 z = -(forces[c] - fd) * fd
                 zc[c] = z
                 current[c] = 0.0 if active else SM.hilo_current(z, mp[SM.MP_ILOW], mp[SM.MP_IHIGH])
+                if z != z:  # a law that failed (its forces NaN): the run stops at the check
+                    current[c] = z
         for c in range(nc):
             mem[c, EK.M_ID] = current[c]
             mem[c, EK.M_IZ] = current[c]
