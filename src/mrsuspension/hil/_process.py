@@ -303,9 +303,18 @@ def _start(proc: multiprocessing.process.BaseProcess) -> None:
     try:
         proc.start()
     finally:
-        signal.pthread_sigmask(signal.SIG_SETMASK, mask)
-        for s, handler in previous.items():
-            signal.signal(s, handler if handler is not None else signal.SIG_DFL)
+        try:
+            # SIGINT's handler back before the unblock: a Ctrl-C to the process group
+            # while the child started is pending here too, and would be discarded if
+            # SIGINT were still ignored at the unblock (the child then ended with 130 and
+            # this process reported a failed start instead of the interruption)
+            sigint = previous[signal.SIGINT]
+            signal.signal(signal.SIGINT, sigint if sigint is not None else signal.SIG_DFL)
+            signal.pthread_sigmask(signal.SIG_SETMASK, mask)
+        finally:
+            for s in (signal.SIGTERM, signal.SIGHUP):
+                handler = previous[s]
+                signal.signal(s, handler if handler is not None else signal.SIG_DFL)
     if held:
         signal.raise_signal(held[0])
 
