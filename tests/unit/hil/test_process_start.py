@@ -23,8 +23,13 @@ def test_a_ctrl_c_while_the_loop_process_starts_reaches_the_caller() -> None:
         def start(self) -> None:  # the group's Ctrl-C, during the start
             os.kill(os.getpid(), signal.SIGINT)
 
-    before = {s: signal.getsignal(s) for s in _process.LOOP_SIGNALS}
-    with pytest.raises(KeyboardInterrupt):
-        _process._start(Starting())  # type: ignore[arg-type]
-    assert {s: signal.getsignal(s) for s in _process.LOOP_SIGNALS} == before
-    assert not signal.pthread_sigmask(signal.SIG_BLOCK, set()) & set(_process.LOOP_SIGNALS)
+    # the caller's Ctrl-C handler (a pytest-xdist worker ignores SIGINT)
+    outer = signal.signal(signal.SIGINT, signal.default_int_handler)
+    try:
+        before = {s: signal.getsignal(s) for s in _process.LOOP_SIGNALS}
+        with pytest.raises(KeyboardInterrupt):
+            _process._start(Starting())  # type: ignore[arg-type]
+        assert {s: signal.getsignal(s) for s in _process.LOOP_SIGNALS} == before
+        assert not signal.pthread_sigmask(signal.SIG_BLOCK, set()) & set(_process.LOOP_SIGNALS)
+    finally:
+        signal.signal(signal.SIGINT, outer)
