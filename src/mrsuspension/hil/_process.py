@@ -364,6 +364,13 @@ def _run_in_process(
         )
         raise
     code = proc.exitcode
+    if code is not None and code - 128 in LOOP_SIGNALS and not (out / META_FILE).exists():
+        # stopped by a Ctrl-C, SIGTERM or SIGHUP before its run began: a signal to the
+        # process group whose copy here was lost (taken by another thread while SIGINT was
+        # ignored for the child's start): the run was interrupted, not failed
+        from mrsuspension._pool import Interrupted
+
+        raise Interrupted(code - 128)
     if code == 2 and not (out / META_FILE).exists():
         raise MRSuspensionError("the HiL loop process could not start the run (see above)")
     try:
