@@ -103,6 +103,15 @@ def _sorted_edges(band: Any, v: npt.ArrayLike) -> tuple[np.ndarray, np.ndarray]:
     return np.minimum(a, b), np.maximum(a, b)
 
 
+def _check_symmetric(damper: Any, band: str) -> None:
+    """Refuse a damper other than the symmetric model (2.15) the bands are written for."""
+    if not isinstance(damper, WangSymmetric) or type(damper).__name__ != "WangSymmetric":
+        raise ValidationError(
+            f"{band} needs a WangSymmetric damper (the symmetric model (2.15)); got "
+            f"{type(damper).__name__}"
+        )
+
+
 @dataclass(frozen=True)
 class MRBand:
     """The MR damper's band: the mean model (2.15) at a fixed peak velocity, i_min to i_max.
@@ -152,13 +161,7 @@ class MRBand:
     _gains: tuple[float, float] = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
-        if not isinstance(self.damper, WangSymmetric) or type(self.damper).__name__ != (
-            "WangSymmetric"
-        ):
-            raise ValidationError(
-                f"MRBand needs a WangSymmetric damper (the symmetric model (2.15)); got "
-                f"{type(self.damper).__name__}"
-            )
+        _check_symmetric(self.damper, "MRBand")
         vm = float(check_range("peak_velocity", self.peak_velocity, 1e-3, 0.75, unit="m/s"))
         object.__setattr__(self, "peak_velocity", vm)
         i_top = self.damper.max_current
@@ -316,13 +319,7 @@ class MREnvelopeBand:
     _funs: dict[int, Any] = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
-        if not isinstance(self.damper, WangSymmetric) or type(self.damper).__name__ != (
-            "WangSymmetric"
-        ):
-            raise ValidationError(
-                f"MREnvelopeBand needs a WangSymmetric damper (the symmetric model (2.15)); "
-                f"got {type(self.damper).__name__}"
-            )
+        _check_symmetric(self.damper, "MREnvelopeBand")
         rng = np.asarray(self.peak_velocity_range, dtype=float)
         if rng.shape != (2,) or not np.all(np.isfinite(rng)):
             raise ValidationError(
