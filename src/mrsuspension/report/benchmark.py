@@ -98,8 +98,8 @@ def sentences(result: Any) -> list[str]:
         near = min(quarter, key=lambda r: r["distance"])
         far = max(quarter, key=lambda r: r["distance"])
         out.append(
-            f"Every law that drives the MR damper costs {100 * near['distance']:.1f} % to "
-            f"{100 * far['distance']:.1f} % more than the optimum of the same road record: the "
+            f"The laws that drive the MR damper cost from {100 * near['distance']:+.1f} % to "
+            f"{100 * far['distance']:+.1f} % against the optimum of the same road record: the "
             f"nearest is {near['law']} on {near['road']} at {near['speed']:g} km/h, the "
             f"farthest {far['law']} on {far['road']} at {far['speed']:g} km/h."
         )
@@ -241,9 +241,16 @@ def build(
         f"J = {w[0]:g} r_c<sup>2</sup> + {w[1]:g} r_r<sup>2</sup> + {w[2]:g} r_s<sup>2</sup> "
         "of the ratios to the passive car at 0 A (comfort, DLC, rms stroke; the passive car "
         f"costs {sum(w):g}), the objective of the semi-active optimum "
-        f"(<a href='{doc('benchmark')}'>benchmark</a>) over every force the engine's "
-        "hysteretic damper can give, which bounds it from below on the "
-        f'quarter car. Tuned ("passive": the damper at the best constant current): '
+        f"(<a href='{doc('benchmark')}'>benchmark</a>) over the MR damper's force band "
+        + (
+            "(every force the engine's hysteretic damper can give), which bounds it from "
+            "below on the quarter car"
+            if spec.band == "envelope"
+            else "(the damper model at a fixed peak velocity of 0.3 m/s), a bound of that "
+            "model held within each record's measured model gap (the engine's passive car "
+            "against the model's)"
+        )
+        + '. Tuned ("passive": the damper at the best constant current): '
         f"{html.escape(tuned)}.</p>"
         + "<p>"
         + " ".join(html.escape(s) for s in text)
