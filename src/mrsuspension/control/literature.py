@@ -69,6 +69,7 @@ import numpy as np
 import numpy.typing as npt
 from numba import njit
 
+from mrsuspension.control.modal import clipped_optimal_condition
 from mrsuspension.control.user import law
 
 __all__ = [
@@ -381,7 +382,7 @@ def clipped_lq(
     magnitude and of its sign, else ``i_min`` (Dyke et al.'s voltage rule).
     """
     fc = -(K[0, 0] * (-x_d) + K[0, 1] * z_s_dot + K[0, 3] * z_u_dot)
-    return i_max if (fc - F_d) * F_d > 0.0 else i_min
+    return i_max if clipped_optimal_condition(fc, F_d) < 0.0 else i_min
 
 
 @law(output="force", for_plant=_lq_for_plant, options=_LQ)
@@ -572,7 +573,7 @@ def clipped_lqg(
     own, unless given.
     """
     fc = _lqg_force(z_s_ddot, z_u_ddot, x_d, F_d, time, memory, K, L, A, B)
-    return i_max if (fc - F_d) * F_d > 0.0 else i_min
+    return i_max if clipped_optimal_condition(fc, F_d) < 0.0 else i_min
 
 
 @law(output="active", for_plant=_lqg_for_plant, options=_LQG, memory=5)

@@ -157,6 +157,22 @@ def switching_condition(force: float, vd: float) -> float:
 
 
 @njit(cache=True, inline="always")
+def clipped_optimal_condition(force: float, measured: float) -> float:
+    """Dyke et al.'s (1996) clipped-optimal ``z_c = -(F - F_d) F_d``: negative (high
+    current) when the damper's measured force ``F_d`` [N] (the load cell) is below the
+    desired ``F`` [N] in magnitude and of its sign.
+
+    Examples
+    --------
+    >>> clipped_optimal_condition(300.0, 200.0), clipped_optimal_condition(100.0, 200.0)
+    (-20000.0, 20000.0)
+    >>> clipped_optimal_condition(-300.0, 200.0)  # the other sign: low
+    100000.0
+    """
+    return -(force - measured) * measured
+
+
+@njit(cache=True, inline="always")
 def hilo_current(zc: float, low: float, high: float) -> float:
     """``high`` [A] when ``zc < 0`` (the force is achievable), else ``low`` [A].
 

@@ -390,11 +390,9 @@ def step(
                              dt if count > 0 else 0.0)  # fmt: skip
             active = mp[VL.LP_OUTPUT] != 0.0
             for c in range(nc):
-                # Dyke et al.'s clipped-optimal rule, as the per-corner clipped-lq: high when
-                # (F_i - F_d) F_d > 0 (the load cell's force, the previous step's, below the
-                # desired one in magnitude and of its sign)
-                fd = mem[c, EK.M_FD]
-                z = -(forces[c] - fd) * fd
+                # Dyke et al.'s clipped-optimal rule, as the per-corner clipped-lq (the load
+                # cell's force: the previous step's)
+                z = SM.clipped_optimal_condition(forces[c], mem[c, EK.M_FD])
                 zc[c] = z
                 current[c] = 0.0 if active else SM.hilo_current(z, mp[SM.MP_ILOW], mp[SM.MP_IHIGH])
                 if z != z:  # a law that failed (its forces NaN): the run stops at the check
