@@ -91,6 +91,11 @@ __all__ = [
 VEHICLES = ("quarter", "full")
 #: the engine's step per vehicle [s] (the full car's stiffest corner needs <= 0.235 ms)
 ENGINE_DT = {"quarter": 5e-4, "full": 2e-4}
+#: every run is recorded at every step: a hi-lo law can switch its current from one step to
+#: the next, and a record taking one step in two samples only one of its phases (its
+#: measures alias: ``mpc-hilo``'s Wk rms on the bump at 50 km/h is 0.223 m/s^2 from a 1 kHz
+#: record of 0.5 ms steps and 0.380 m/s^2 from every step)
+OUTPUT_RATE = {vehicle: 1.0 / dt for vehicle, dt in ENGINE_DT.items()}
 #: ``(w_c, w_r, w_s)``: comfort, road holding, rattle space (the optimum's default weights)
 DEFAULT_WEIGHTS = (1.0, 1.0, 0.1)
 #: a cost this far below the optimum's (relative) is a violation of the bound: the
@@ -554,7 +559,11 @@ def _scenario(
     tables: dict[str, Any] = {
         "controller": {"law": law, **options},
         "excitation": dict(excitation),
-        "simulation": {"duration": duration, "dt": ENGINE_DT[vehicle]},
+        "simulation": {
+            "duration": duration,
+            "dt": ENGINE_DT[vehicle],
+            "output_rate": OUTPUT_RATE[vehicle],
+        },
     }
     if vehicle == "full":
         tables["vehicle"] = {"model": "full-car"}
@@ -605,7 +614,11 @@ def _tune_task(
         {
             **base,
             "controller": {"law": law},
-            "simulation": {"dt": ENGINE_DT[vehicle], "duration": excitation.pop("duration")},
+            "simulation": {
+                "dt": ENGINE_DT[vehicle],
+                "output_rate": OUTPUT_RATE[vehicle],
+                "duration": excitation.pop("duration"),
+            },
             "problem": {"population": population, "seed": seed, "name": law},
             "parameters": [
                 {
