@@ -354,6 +354,7 @@ def test_runs_are_scored_from_every_step_not_an_aliased_record() -> None:
     full = S._score_task(("quarter", "mpc-hilo", tables))
     half_tables = {**tables, "simulation": {**tables["simulation"], "output_rate": 1000.0}}
     half = S._score_task(("quarter", "mpc-hilo", half_tables))
-    assert full is not None and half is not None
+    assert full is not None
+    assert half is not None
     assert half["comfort"] < 0.8 * full["comfort"], (half, full)  # the alias the rate avoids
     assert half["road_holding"] == pytest.approx(full["road_holding"], rel=0.02)

@@ -229,26 +229,60 @@ def test_lq_through_an_ideal_actuator_matches_the_closed_form_lqr_response() -> 
 
 
 # -- the literature's ranking (Savaresi & Spelta 2007) -----------------------------------
-def _transmissibility(law: str, f: float, amp: float = 0.005) -> float:
-    """rms z_s'' / rms z_r'' in the steady state of a sine road (the switched linear
-    damper is homogeneous: the ratio does not depend on the amplitude while the tire
-    holds the road)."""
+#: the body-motion band of the ranking's measures [Hz]: an ideal two-state damper switched by
+#: ADD or SH-ADD chatters at the step rate (5 kHz at 0.1 ms), an artefact of its infinite
+#: bandwidth that a record of one step in ten would alias into the band
+BODY_BAND = 30.0
+
+
+def _body_rms(result: Any, since: float, rate: float) -> tuple[np.ndarray, np.ndarray, float]:
+    """One-sided power of z_s'' after ``since`` [s] by frequency, its frequencies [Hz] and
+    its mean, from a record of every step."""
+    t = np.asarray(result.time)
+    a = np.asarray(result["z_s_ddot"])[t >= since]
+    power = np.abs(np.fft.rfft(a - a.mean())) ** 2 * 2.0 / a.size**2
+    f = np.fft.rfftfreq(a.size, 1.0 / rate)
+    return power, f, float(a.mean())
+
+
+@functools.cache
+def _transmissibility(law: str, f: float, alpha: float | None = None, amp: float = 0.005) -> float:
+    """rms z_s'' (below 30 Hz) / rms z_r'' in the steady state of a sine road (the switched
+    linear damper is homogeneous: the ratio does not depend on the amplitude while the tire
+    holds the road), recorded at every step."""
     cycles = max(8, int(np.ceil(3.0 * f)))
     seconds = (cycles + max(4, int(2 * f))) / f
-    r = _run(make_controller(law), f, ideal_damper(), seconds)
-    a = _steady(r, "z_s_ddot", cycles / f)
-    return float(np.sqrt(np.mean(a**2))) / ((2 * np.pi * f) ** 2 * amp / np.sqrt(2.0))
+    options = {} if alpha is None else {"alpha": alpha}
+    r = Simulation(
+        Harmonic(f, amp), controller=make_controller(law, **options), damper=ideal_damper()
+    ).run(seconds, output_rate=1e4)
+    power, freq, mean = _body_rms(r, seconds - cycles / f, 1e4)
+    rms = float(np.sqrt(power[freq < BODY_BAND].sum() + mean**2))
+    return rms / ((2 * np.pi * f) ** 2 * amp / np.sqrt(2.0))
 
 
 def test_skyhook_wins_below_the_body_resonance_and_add_above() -> None:
-    """Body resonance 1.6 Hz: skyhook below ADD at 0.8 and 1.3 Hz (1.25 vs 1.51, 1.40 vs
-    2.26), ADD below skyhook at 3 and 5 Hz (0.44 vs 0.53, 0.20 vs 0.34)."""
+    """Body resonance 1.6 Hz: skyhook below ADD at 0.8 and 1.3 Hz (1.25 vs 1.47, 1.40 vs
+    2.10), ADD below skyhook at 3 and 5 Hz (0.40 vs 0.52, 0.20 vs 0.33)."""
     for f in (0.8, 1.3):
         sh, add = _transmissibility("skyhook-onoff", f), _transmissibility("add", f)
         assert sh < 0.9 * add, (f, sh, add)
     for f in (3.0, 5.0):
         sh, add = _transmissibility("skyhook-onoff", f), _transmissibility("add", f)
         assert add < 0.9 * sh, (f, sh, add)
+
+
+def test_sh_add_is_within_a_few_per_cent_of_the_better_of_skyhook_and_add() -> None:
+    """Savaresi & Spelta 2007 on sines: SH-ADD (alpha 8 rad/s) against the better of skyhook
+    and ADD at each frequency; measured over 14 frequencies of 0.5-15 Hz +1 to +11 % (mean
+    +5.4 %); here five of them, 1.3 Hz and 5 Hz the worst (+11 %, +9 %)."""
+    ratios = []
+    for f in (0.8, 1.3, 2.5, 5.0, 8.0):
+        best = min(_transmissibility("skyhook-onoff", f), _transmissibility("add", f))
+        ratios.append(_transmissibility("sh-add", f, 8.0) / best)
+    assert max(ratios) < 1.13, ratios
+    assert float(np.mean(ratios)) < 1.08, ratios
+    assert min(ratios) > 0.95, ratios  # a mix, not a better law than both
 
 
 # -- every corner of the full car ----------------------------------------------------------
@@ -288,15 +322,15 @@ def test_a_scenario_names_a_literature_law_with_its_gain_matrix() -> None:
 
 
 def test_sh_add_is_near_the_better_of_skyhook_and_add_on_a_road() -> None:
-    """ISO 8608 class C road at 72 km/h (60 s), an ideal two-state damper of 300 and
-    3000 N s/m (2.6 and 26 % of critical): SH-ADD (alpha 25 rad/s) within 10 % of the
-    better of skyhook and ADD in every band from 1.2 to 15 Hz (measured: +4, +8, +3, +9,
-    0 %), +10 % at 0.5-1.2 Hz, and lowest overall (1.194 m/s^2 against skyhook's 1.214
-    and ADD's 1.650). (With the dissertation's range, 2043-10613 N s/m, it is not:
-    docs/control-laws.md.)"""
+    """ISO 8608 class C road at 72 km/h (30 s), an ideal two-state damper of 300 and
+    3000 N s/m (2.6 and 26 % of critical), recorded at every step: SH-ADD (alpha 15 rad/s)
+    within 12 % of the better of skyhook and ADD in every band from 1.2 to 15 Hz (measured:
+    +5, -1, +5, +9, +2 %), +22 % at 0.5-1.2 Hz, and lowest overall (1.166 m/s^2 against
+    skyhook's 1.204 and ADD's 1.633). (With the dissertation's range, 2043-10613
+    N s/m, it is +24 to +51 % below 2 Hz: docs/control-laws.md.)"""
     from mrsuspension.excitation.road import iso8608
 
-    road = iso8608("C", length=1200.0, seed=3, speed_kmh=72.0)
+    road = iso8608("C", length=620.0, seed=3, speed_kmh=72.0)
     damper = Bingham(
         parameters={"fc_a": 0.0, "fc_b": 0.0, "c0_a": 300.0, "c0_b": 2700.0 / HI, "f0": 0.0}
     )
@@ -304,22 +338,18 @@ def test_sh_add_is_near_the_better_of_skyhook_and_add_on_a_road() -> None:
 
     def band_rms(law: str, **options: float) -> np.ndarray:
         r = Simulation(road, controller=make_controller(law, **options), damper=damper).run(
-            60.0, output_rate=200.0
+            30.0, output_rate=1e4
         )
-        t = np.asarray(r.time)
-        a = np.asarray(r["z_s_ddot"])[t >= 2.0]
-        a = a - a.mean()
-        power = np.abs(np.fft.rfft(a)) ** 2 * 2.0 / a.size**2
-        f = np.fft.rfftfreq(a.size, 1.0 / 200.0)
+        power, f, _ = _body_rms(r, 2.0, 1e4)
         return np.array([np.sqrt(power[(f >= lo) & (f < hi)].sum()) for lo, hi in bands])
 
-    sh, add_, mix = band_rms("skyhook-onoff"), band_rms("add"), band_rms("sh-add", alpha=25.0)
+    sh, add_, mix = band_rms("skyhook-onoff"), band_rms("add"), band_rms("sh-add", alpha=15.0)
     best = np.minimum(sh, add_)
     assert sh[0] < add_[0]  # skyhook below the resonance, ADD above it
     assert sh[1] < add_[1]
     assert np.all(add_[2:5] < sh[2:5])
-    assert np.all(mix[1:6] < 1.1 * best[1:6]), mix / best
-    assert mix[0] < 1.15 * best[0], mix / best
+    assert np.all(mix[1:6] < 1.12 * best[1:6]), mix / best
+    assert mix[0] < 1.3 * best[0], mix / best
     assert mix[6] < best[6], mix / best
 
 
