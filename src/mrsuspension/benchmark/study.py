@@ -1287,19 +1287,23 @@ class BenchmarkResult:
 
     def summary(self) -> str:
         """The best-law table, the tuned options, the bound check and the time taken."""
-        tuned = ", ".join(
-            f"{law} {t['option']} = {t['value']:.4g}" for law, t in self.tuned.items()
-        )
-        if self.tuned_full:
-            tuned += "; on the full car: " + ", ".join(
-                f"{law} {t['option']} = {t['value']:.4g}" for law, t in self.tuned_full.items()
+        parts = []
+        for vehicle, tuned_on in (("quarter", self.tuned), ("full", self.tuned_full)):
+            if tuned_on:  # a spec without the quarter car tunes nothing on it
+                text = ", ".join(
+                    f"{law} {t['option']} = {t['value']:.4g}" for law, t in tuned_on.items()
+                )
+                parts.append(text if vehicle == "quarter" else f"on the full car: {text}")
+        tuned = "; ".join(parts)
+        if self.violations:
+            check = "BOUND VIOLATED: " + "; ".join(self.violations)
+        elif not self.optima:
+            check = "no optimum (it is the quarter car's): no law held to the bound"
+        else:
+            check = (
+                "no law that drives the MR damper costs less than the optimum by more than "
+                "its record's tolerance (the model gap)"
             )
-        check = (
-            "no law that drives the MR damper costs less than the optimum by more than its "
-            "record's tolerance (the model gap)"
-            if not self.violations
-            else "BOUND VIOLATED: " + "; ".join(self.violations)
-        )
         return (
             f"{self.best_table()}\n\ntuned on {self.spec.training.name} at "
             f"{self.spec.training_speed:g} km/h: {tuned}\n{check}\n"

@@ -285,6 +285,10 @@ def test_a_whole_vehicle_law_on_the_full_car_only(quick: S.BenchmarkResult) -> N
     assert {r["vehicle"] for r in quick.rows if r["law"] == "skyhook-hilo"} == {"quarter", "full"}
     # in the summary's tuned options, the full car's figure and the JSON
     assert "vehicle-lq force_weight" in quick.summary().split("on the full car:")[1]
+    # a spec of the full car alone: nothing tuned on the quarter car, no optimum
+    alone = S.BenchmarkResult(**{**quick.__dict__, "tuned": {}, "optima": []}).summary()
+    assert "50 km/h: on the full car: passive current = " in alone
+    assert "no optimum (it is the quarter car's): no law held to the bound" in alone
     labels = quick.figure("full").axes[0].get_legend_handles_labels()[1]
     assert "vehicle-lq" in labels
     data = json.loads(json.dumps(quick.to_dict(), allow_nan=False))
