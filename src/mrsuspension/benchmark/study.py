@@ -44,7 +44,12 @@ the MR band) are scored but not held to the bound.
 The law set is a list of names; :data:`LAW_TABLE` says which option of each is tuned and
 over which range (a law it does not list: its first positive numeric option, a decade
 either side of its default). The default set is the table's laws registered in
-:data:`~mrsuspension.control.CONTROLLERS` at call time.
+:data:`~mrsuspension.control.CONTROLLERS` or
+:data:`~mrsuspension.control.registry.VEHICLE_LAWS` at call time. A per-corner law
+(``CONTROLLERS``) runs on every vehicle of the spec (on the full car at every corner); a
+whole-vehicle law (``VEHICLE_LAWS``: ``vehicle-lq``, ``modal-skyhook``, ..., from the
+body's heave, pitch and roll) is tuned and scored on the full car only: the quarter car
+has no rows of it.
 
 Examples
 --------
@@ -108,6 +113,21 @@ BOUND_TOLERANCE = 1e-3
 BANDS = ("mean", "envelope")
 
 
+def _law_options(law: str) -> list[Any]:
+    """The options of a per-corner law (:func:`~mrsuspension.control.registry.law_options`)
+    or of a whole-vehicle law (its dataclass fields, unbounded: the law checks them)."""
+    from mrsuspension.control.base import ControlOption
+    from mrsuspension.control.registry import VEHICLE_LAWS, law_options
+
+    cls = VEHICLE_LAWS.get(law)
+    if cls is None:
+        return list(law_options(law))
+    return [
+        ControlOption(f.name, f.default if f.default is not dataclasses.MISSING else None)
+        for f in dataclasses.fields(cls)  # type: ignore[arg-type]
+    ]
+
+
 @dataclass(frozen=True)
 class TunedOption:
     """The option of a law the benchmark tunes, and its search range.
@@ -123,9 +143,7 @@ class TunedOption:
 
     def resolve(self, law: str) -> TunedOption:
         """The option and range for ``law`` (checked against the law's options)."""
-        from mrsuspension.control.registry import law_options
-
-        options = {o.name: o for o in law_options(law) if o.shape is None}
+        options = {o.name: o for o in _law_options(law) if o.shape is None}
         if self.option is None:
             for o in options.values():
                 d = o.default
@@ -158,9 +176,16 @@ class TunedOption:
 
 #: law name -> the option the benchmark tunes and its range (a law not listed: its first
 #: positive option, a decade either side of it). The on-off laws of the literature tune
-#: their high current, the LQ laws their force weight r (a lower r: a firmer law)
+#: their high current, the LQ laws their force weight r (a lower r: a firmer law; two
+#: decades either side of the default 1e-6 1/kg^2, ``LQ_WEIGHTS``). The whole-vehicle
+#: laws (full car only) likewise: the LQ, LQG and MPC laws their ``force_weight``; the two
+#: skyhook laws their ``high_current``, since their gains set only the sign of each
+#: corner's desired force (hi-lo: ``corner-skyhook``'s ``damping`` scales every corner's
+#: force alike and changes nothing, ``modal-skyhook``'s three gains only by their ratios)
 _ONOFF = TunedOption("i_max", 0.05, 0.5, log=True)
 _LQ_R = TunedOption("w_force", 1e-8, 1e-4, log=True)
+_VEHICLE_R = TunedOption("force_weight", 1e-8, 1e-4, log=True)
+_VEHICLE_HIGH = TunedOption("high_current", 0.05, 0.5, log=True)
 LAW_TABLE: dict[str, TunedOption] = {
     "passive": TunedOption("current", 0.0, 0.5),
     "skyhook-hilo": TunedOption("gain", 0.3, 30.0, log=True),
@@ -187,21 +212,65 @@ LAW_TABLE: dict[str, TunedOption] = {
     "lqg-active": _LQ_R,
     "mpc": _LQ_R,
     "mpc-hilo": _LQ_R,
+    # whole-vehicle laws (VEHICLE_LAWS): the full car only
+    "modal-skyhook": _VEHICLE_HIGH,
+    "corner-skyhook": _VEHICLE_HIGH,
+    "vehicle-lq": _VEHICLE_R,
+    "vehicle-lq-active": _VEHICLE_R,
+    "vehicle-lqg": _VEHICLE_R,
+    "vehicle-lqg-active": _VEHICLE_R,
+    "vehicle-mpc": _VEHICLE_R,
+    "vehicle-mpc-active": _VEHICLE_R,
 }
 
 
-def default_laws() -> tuple[str, ...]:
-    """The default law set: :data:`LAW_TABLE`'s laws that are registered now."""
-    from mrsuspension.control import CONTROLLERS
+def is_vehicle_law(law: str) -> bool:
+    """Whether ``law`` is a whole-vehicle law (full car only; not a per-corner law).
 
-    return tuple(name for name in LAW_TABLE if name in CONTROLLERS)
+    Examples
+    --------
+    >>> is_vehicle_law("vehicle-lq"), is_vehicle_law("clipped-lq")
+    (True, False)
+    """
+    from mrsuspension.control.registry import VEHICLE_LAWS
+
+    return law in VEHICLE_LAWS
+
+
+def _registered() -> list[str]:
+    """Every law a spec may name: the per-corner and the whole-vehicle laws."""
+    from mrsuspension.control import CONTROLLERS
+    from mrsuspension.control.registry import VEHICLE_LAWS
+
+    return [*CONTROLLERS, *VEHICLE_LAWS]
+
+
+def default_laws() -> tuple[str, ...]:
+    """The default law set: :data:`LAW_TABLE`'s laws that are registered now (per-corner
+    laws and whole-vehicle laws)."""
+    registered = set(_registered())
+    return tuple(name for name in LAW_TABLE if name in registered)
 
 
 def drives_damper(law: str) -> bool:
-    """Whether ``law`` acts through the MR damper (held to the optimum's bound)."""
-    from mrsuspension.control import kernel as CK
-    from mrsuspension.control.registry import controller_class
+    """Whether ``law`` acts through the MR damper (held to the optimum's bound, counted as
+    best law).
 
+    A per-corner law whose force source is the damper model; a whole-vehicle law that is
+    not ``active`` (an ideal actuator at every corner: the ``-active`` references).
+
+    Examples
+    --------
+    >>> drives_damper("vehicle-lq"), drives_damper("vehicle-lq-active")
+    (True, False)
+    >>> drives_damper("skyhook-hilo"), drives_damper("ideal-skyhook")
+    (True, False)
+    """
+    from mrsuspension.control import kernel as CK
+    from mrsuspension.control.registry import VEHICLE_LAWS, controller_class
+
+    if law in VEHICLE_LAWS:
+        return not VEHICLE_LAWS[law].active
     return bool(getattr(controller_class(law), "force_source", CK.F_MODEL) == CK.F_MODEL)
 
 
@@ -306,7 +375,11 @@ class BenchmarkSpec:
     Parameters
     ----------
     laws : tuple of str
-        Registered law names (default: :func:`default_laws`).
+        Registered law names (default: :func:`default_laws`): per-corner laws
+        (:data:`~mrsuspension.control.CONTROLLERS`, run on every vehicle) and whole-vehicle
+        laws (:data:`~mrsuspension.control.registry.VEHICLE_LAWS`, run on the full car
+        only: a spec naming one without ``"full"`` in ``vehicles`` is refused; the
+        default set on the quarter car alone leaves them out).
     tuning : dict
         Law name -> :class:`TunedOption` over :data:`LAW_TABLE` (a law in neither: its
         first positive option).
@@ -355,15 +428,15 @@ class BenchmarkSpec:
     band: str = "mean"
 
     def __post_init__(self) -> None:
-        from mrsuspension.control import CONTROLLERS
         from mrsuspension.errors import unknown_name
 
         laws = tuple(self.laws)
         if not laws:
             raise ValidationError("laws: give at least one law name")
+        registered = _registered()
         for law in laws:
-            if law not in CONTROLLERS:
-                raise ValidationError(f"laws: {unknown_name('controller law', law, CONTROLLERS)}")
+            if law not in registered:
+                raise ValidationError(f"laws: {unknown_name('controller law', law, registered)}")
         object.__setattr__(self, "laws", laws)
         for law in self.tuning:
             if law not in laws:
@@ -385,6 +458,21 @@ class BenchmarkSpec:
                 )
         if not self.vehicles:
             raise ValidationError("vehicles: give quarter and/or full")
+        if "full" not in self.vehicles:
+            if laws == default_laws():  # the default set on the quarter car alone
+                laws = tuple(law for law in laws if not is_vehicle_law(law))
+            from mrsuspension.control.registry import VEHICLE_LAWS
+
+            for law in laws:
+                if is_vehicle_law(law):
+                    per_corner = getattr(VEHICLE_LAWS[law], "per_corner", None)
+                    instead = f"name its per-corner law {per_corner!r}" if per_corner else "drop it"
+                    raise ValidationError(
+                        f"laws: {law!r} is a whole-vehicle law (the body's heave, pitch and "
+                        'roll): it needs the full car; add "full" to vehicles (got '
+                        f"{', '.join(self.vehicles)}), or {instead}"
+                    )
+        object.__setattr__(self, "laws", laws)
         w = tuple(float(x) for x in self.weights)
         if len(w) != 3 or min(w) < 0.0 or sum(w) <= 0.0:
             raise ValidationError(
@@ -427,7 +515,7 @@ class BenchmarkSpec:
         """A small set that runs in seconds (the tests and the quick report)."""
         laws = tuple(
             law
-            for law in ("passive", "skyhook-hilo", "inverse-hilo", "ideal-skyhook")
+            for law in ("passive", "skyhook-hilo", "inverse-hilo", "ideal-skyhook", "vehicle-lq")
             if law in default_laws()
         )
         return cls(
@@ -904,6 +992,7 @@ def _run(
                 vehicle,
             )
             for law in spec.laws
+            if vehicle == "full" or not is_vehicle_law(law)
         ]
     tuned: dict[str, dict[str, dict[str, Any]]] = {v: {} for v in spec.vehicles}
     if client is not None:
@@ -927,6 +1016,8 @@ def _run(
         for road, speed in cases:
             exc = road.excitation(vehicle, speed, spec.duration)
             for law in (None, *spec.laws):
+                if law is not None and vehicle != "full" and is_vehicle_law(law):
+                    continue  # a whole-vehicle law: the full car only
                 if law is None:
                     tables = _scenario("passive", {"current": 0.0}, vehicle, exc, spec.duration)
                 else:
@@ -1099,6 +1190,8 @@ class BenchmarkResult:
         quarter car (the quarter car's rows use it).
     tuned_full : dict
         The same on the full car (the full car's rows use it; empty without the full car).
+        The whole-vehicle laws are tuned and scored on the full car only: they are here
+        and in the full car's rows, not in :attr:`tuned` nor the quarter car's rows.
     optima : list of dict
         Per road and speed: the optimum's ``cost``, ``status``, ratios to its passive car.
     front : dict or None
@@ -1194,19 +1287,23 @@ class BenchmarkResult:
 
     def summary(self) -> str:
         """The best-law table, the tuned options, the bound check and the time taken."""
-        tuned = ", ".join(
-            f"{law} {t['option']} = {t['value']:.4g}" for law, t in self.tuned.items()
-        )
-        if self.tuned_full:
-            tuned += "; on the full car: " + ", ".join(
-                f"{law} {t['option']} = {t['value']:.4g}" for law, t in self.tuned_full.items()
+        parts = []
+        for vehicle, tuned_on in (("quarter", self.tuned), ("full", self.tuned_full)):
+            if tuned_on:  # a spec without the quarter car tunes nothing on it
+                text = ", ".join(
+                    f"{law} {t['option']} = {t['value']:.4g}" for law, t in tuned_on.items()
+                )
+                parts.append(text if vehicle == "quarter" else f"on the full car: {text}")
+        tuned = "; ".join(parts)
+        if self.violations:
+            check = "BOUND VIOLATED: " + "; ".join(self.violations)
+        elif not self.optima:
+            check = "no optimum (it is the quarter car's): no law held to the bound"
+        else:
+            check = (
+                "no law that drives the MR damper costs less than the optimum by more than "
+                "its record's tolerance (the model gap)"
             )
-        check = (
-            "no law that drives the MR damper costs less than the optimum by more than its "
-            "record's tolerance (the model gap)"
-            if not self.violations
-            else "BOUND VIOLATED: " + "; ".join(self.violations)
-        )
         return (
             f"{self.best_table()}\n\ntuned on {self.spec.training.name} at "
             f"{self.spec.training_speed:g} km/h: {tuned}\n{check}\n"
@@ -1250,7 +1347,7 @@ class BenchmarkResult:
         fig = Figure(figsize=(9.0, 5.0))
         FigureCanvasAgg(fig)
         ax = fig.subplots()
-        markers = "o^sDvP<>hX"  # with the 10 colours of the cycle: 23 laws stay apart
+        markers = "o^sDvP<>hX"  # with the 10 colours of the cycle: 33 laws stay apart
         k = 0
         for r in self.rows:
             if r["vehicle"] == vehicle and r["road"] == road and r["speed"] == speed:

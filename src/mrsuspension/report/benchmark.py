@@ -197,8 +197,12 @@ def build(
             "tables": [],
             "skipped": str(exc),
         }
-    rows = [
-        {k: (round(v, 4) if isinstance(v, float) else v) for k, v in r.items()} for r in result.rows
+    rows = [  # the tuned value to 4 digits (an LQ law's force weight is about 1e-6)
+        {
+            k: (float(f"{v:.4g}") if k == "value" else round(v, 4)) if isinstance(v, float) else v
+            for k, v in r.items()
+        }
+        for r in result.rows
     ]
     best = result.best()
     write_csv(folder / "benchmark.csv", rows)
@@ -237,7 +241,8 @@ def build(
         f"{spec.evaluations} candidates) on {html.escape(spec.training.name)} at "
         f"{spec.training_speed:g} km/h on each vehicle, then scored on "
         f"{len(spec.roads)} roads at {', '.join(f'{s:g}' for s in spec.speeds)} km/h on the "
-        "quarter car and the full car (the law at every corner). The cost is "
+        "quarter car and the full car (the law at every corner; the whole-vehicle laws, "
+        "from the body's heave, pitch and roll, on the full car only). The cost is "
         f"J = {w[0]:g} r_c<sup>2</sup> + {w[1]:g} r_r<sup>2</sup> + {w[2]:g} r_s<sup>2</sup> "
         "of the ratios to the passive car at 0 A (comfort, DLC, rms stroke; the passive car "
         f"costs {sum(w):g}), the objective of the semi-active optimum "

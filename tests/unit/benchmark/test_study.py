@@ -28,6 +28,7 @@ from mrsuspension.benchmark.study import (
 )
 from mrsuspension.cli import app
 from mrsuspension.control import CONTROLLERS
+from mrsuspension.control.registry import VEHICLE_LAWS
 from mrsuspension.errors import ValidationError
 
 runner = CliRunner()
@@ -46,17 +47,21 @@ def test_an_unknown_law_is_one_line_naming_the_valid_ones() -> None:
     assert "\n" not in text
     assert "'groundhok'" in text
     assert "Valid:" in text
-    assert all(law in text for law in CONTROLLERS)
+    assert all(law in text for law in (*CONTROLLERS, *VEHICLE_LAWS))
 
 
 def test_the_default_set_is_the_table_met_by_the_registry(monkeypatch: pytest.MonkeyPatch) -> None:
     laws = default_laws()
-    assert laws == tuple(law for law in LAW_TABLE if law in CONTROLLERS)
-    # every registered law is benchmarked (issue 29: "every law"), each with a valid option
-    assert set(laws) == set(CONTROLLERS), set(CONTROLLERS) - set(laws)
+    registered = {*CONTROLLERS, *VEHICLE_LAWS}
+    assert laws == tuple(law for law in LAW_TABLE if law in registered)
+    # every registered law is benchmarked (issue 29: "every law", the whole-vehicle laws
+    # too), each with a valid option
+    assert set(laws) == registered, registered - set(laws)
     spec = BenchmarkSpec()
     for law in laws:
         assert spec.tuned_option(law).option is not None
+    assert spec.tuned_option("vehicle-lq") == TunedOption("force_weight", 1e-8, 1e-4, log=True)
+    assert spec.tuned_option("corner-skyhook").option == "high_current"
     # a law of the table registered later joins the default set, its option found
     monkeypatch.setitem(LAW_TABLE, "my-law", TunedOption(None))
     monkeypatch.setitem(CONTROLLERS, "my-law", CONTROLLERS["ideal-skyhook"])
@@ -85,6 +90,37 @@ def test_the_default_set_is_the_table_met_by_the_registry(monkeypatch: pytest.Mo
 def test_bad_specs_are_refused(changes: dict[str, Any], words: str) -> None:
     with pytest.raises(ValidationError, match=words):
         BenchmarkSpec.quick().replace(**changes)
+
+
+def test_a_whole_vehicle_law_needs_the_full_car() -> None:
+    # named with the quarter car alone: one line naming the law and the full car
+    with pytest.raises(ValidationError) as err:
+        BenchmarkSpec(laws=("passive", "vehicle-lq"), vehicles=("quarter",))
+    text = str(err.value)
+    assert "\n" not in text
+    assert text.startswith("laws: 'vehicle-lq' is a whole-vehicle law")
+    assert "needs the full car" in text
+    assert "'clipped-lq'" in text  # its per-corner law
+    with pytest.raises(ValidationError, match="'modal-skyhook' is a whole-vehicle law"):
+        BenchmarkSpec.from_dict({"laws": ["modal-skyhook"], "vehicles": ["quarter"]})
+    # the default set on the quarter car alone leaves them out; per-corner laws stay
+    quarter = BenchmarkSpec(vehicles=("quarter",)).laws
+    assert quarter == tuple(law for law in default_laws() if law not in VEHICLE_LAWS)
+    assert "clipped-lq" in quarter
+    # the full car alone takes them
+    assert BenchmarkSpec(laws=("vehicle-lq",), vehicles=("full",)).laws == ("vehicle-lq",)
+
+
+def test_which_laws_drive_the_damper() -> None:
+    """The ``-active`` whole-vehicle laws are ideal actuators: references, not held to the
+    bound nor best law; the others switch the MR damper's current."""
+    assert S.drives_damper("vehicle-lq") is True
+    assert S.drives_damper("vehicle-lq-active") is False
+    for law, cls in VEHICLE_LAWS.items():
+        assert S.drives_damper(law) is (not cls.active), law
+        assert S.drives_damper(law) is (not law.endswith("-active")), law
+    assert S.drives_damper("clipped-lq") is True
+    assert S.drives_damper("lq-active") is False
 
 
 def test_a_spec_from_toml_tables() -> None:
@@ -172,7 +208,8 @@ def test_the_optimum_task_model_gap_and_the_envelope_band() -> None:
 def test_quick_run_numbers_and_the_bound(quick: S.BenchmarkResult) -> None:
     spec = quick.spec
     n_cases = len(spec.roads) * len(spec.speeds)
-    assert len(quick.rows) == len(spec.laws) * n_cases * len(spec.vehicles)
+    corner_laws = [law for law in spec.laws if not S.is_vehicle_law(law)]
+    assert len(quick.rows) == (len(corner_laws) * len(spec.vehicles) + 1) * n_cases
     for r in quick.rows:
         for k in ("comfort", "road_holding", "rattle", "coil_power", "cost"):
             assert math.isfinite(r[k]), (r["law"], k)
@@ -198,6 +235,7 @@ def test_quick_run_numbers_and_the_bound(quick: S.BenchmarkResult) -> None:
     assert tuned["evaluations"] == spec.evaluations
     # each vehicle's rows use the law tuned on that vehicle (issue 29: the full car's own)
     assert set(quick.tuned_full) == set(spec.laws)
+    assert set(quick.tuned) == set(corner_laws)
     for r in quick.rows:
         t = (quick.tuned if r["vehicle"] == "quarter" else quick.tuned_full)[r["law"]]
         assert (t["vehicle"], r["option"], r["value"]) == (r["vehicle"], t["option"], t["value"])
@@ -217,6 +255,46 @@ def test_quick_run_numbers_and_the_bound(quick: S.BenchmarkResult) -> None:
     assert front is not None
     assert front["comfort_ratio"] == sorted(front["comfort_ratio"], reverse=True)
     assert front["road_holding_ratio"] == sorted(front["road_holding_ratio"])
+
+
+def test_a_whole_vehicle_law_on_the_full_car_only(quick: S.BenchmarkResult) -> None:
+    """The quick set's ``vehicle-lq`` beside per-corner laws on both vehicles: tuned on the
+    full car, scored there only (the quarter car has no row of it, not a NaN row)."""
+    spec = quick.spec
+    assert "vehicle-lq" in spec.laws
+    assert set(spec.vehicles) == {"quarter", "full"}
+    mine = [r for r in quick.rows if r["law"] == "vehicle-lq"]
+    assert {r["vehicle"] for r in mine} == {"full"}
+    assert len(mine) == len(spec.roads) * len(spec.speeds)
+    assert "vehicle-lq" not in quick.tuned
+    tuned = quick.tuned_full["vehicle-lq"]
+    assert (tuned["vehicle"], tuned["option"]) == ("full", "force_weight")
+    assert 1e-8 <= tuned["value"] <= 1e-4
+    assert tuned["evaluations"] == spec.evaluations
+    for r in mine:
+        assert (r["option"], r["value"]) == ("force_weight", tuned["value"])
+        assert r["bounded"]
+        for k in ("comfort", "road_holding", "rattle", "cost"):
+            assert math.isfinite(r[k]), (r, k)
+            assert r[k] > 0.0, (r, k)
+        assert r["coil_power"] > 0.0  # it switches the dampers' current
+        assert math.isnan(r["optimum_cost"])  # no optimum on the full car
+        # the law acts: not the passive car's numbers
+        assert r["cost"] != pytest.approx(sum(spec.weights), rel=1e-6)
+    # a per-corner law keeps running on both vehicles
+    assert {r["vehicle"] for r in quick.rows if r["law"] == "skyhook-hilo"} == {"quarter", "full"}
+    # in the summary's tuned options, the full car's figure and the JSON
+    assert "vehicle-lq force_weight" in quick.summary().split("on the full car:")[1]
+    # a spec of the full car alone: nothing tuned on the quarter car, no optimum
+    alone = S.BenchmarkResult(**{**quick.__dict__, "tuned": {}, "optima": []}).summary()
+    assert "50 km/h: on the full car: passive current = " in alone
+    assert "no optimum (it is the quarter car's): no law held to the bound" in alone
+    labels = quick.figure("full").axes[0].get_legend_handles_labels()[1]
+    assert "vehicle-lq" in labels
+    data = json.loads(json.dumps(quick.to_dict(), allow_nan=False))
+    assert "vehicle-lq" in data["tuned_full"]
+    assert "vehicle-lq" not in data["tuned"]
+    assert {r["vehicle"] for r in data["rows"] if r["law"] == "vehicle-lq"} == {"full"}
 
 
 def test_result_table_frame_and_figure(quick: S.BenchmarkResult) -> None:
