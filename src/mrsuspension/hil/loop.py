@@ -190,6 +190,31 @@ def check_drives_damper(sim: Any, corner: str | None = None) -> None:
         )
 
 
+def _capped(sim: Any, current: float) -> Any:
+    """``sim`` with its ``max_current`` lowered to ``current`` [A] (the safety limit); a
+    whole-vehicle law's ``high_current`` above it is lowered with it, as a per-corner law's
+    demand is clipped at ``max_current``.
+
+    Examples
+    --------
+    >>> from mrsuspension.control import VehicleLQ
+    >>> from mrsuspension.engine.vehicle import VehicleSimulation
+    >>> from mrsuspension.excitation.wheels import WheelRoads
+    >>> from mrsuspension.vehicle import FullCar
+    >>> car = FullCar()
+    >>> road = WheelRoads.two_track("C", (car.wheelbase, car.front_track), length=20.0)
+    >>> sim = VehicleSimulation(car, road, body_control=VehicleLQ())
+    >>> capped = _capped(sim, 0.3)
+    >>> capped.max_current, capped.body_control.high_current
+    (0.3, 0.3)
+    """
+    changes: dict[str, Any] = {"max_current": current}
+    body = getattr(sim, "body_control", None)
+    if body is not None and getattr(body, "high_current", 0.0) > current:
+        changes["body_control"] = dataclasses.replace(body, high_current=current)
+    return dataclasses.replace(sim, **changes)
+
+
 def _simulation_of(target: Any) -> Any:
     """The one run of ``target``: a quarter car's :class:`Simulation`, or a half or full
     car's :class:`~mrsuspension.engine.vehicle.VehicleSimulation` (the scenario's
@@ -369,7 +394,7 @@ def run_hil(
     )
     check_recording_memory(duration, rate)
     if cap_current and sim.max_current > limits.current:
-        sim = dataclasses.replace(sim, max_current=limits.current)
+        sim = _capped(sim, limits.current)
     rig = rig if rig is not None else _default_rig(sim, corner)
     if not realtime and not isinstance(rig, SimulatedRig):
         raise ValidationError(

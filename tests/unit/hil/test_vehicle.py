@@ -125,3 +125,23 @@ def test_laws_that_drive_the_damper_pass_the_check() -> None:
     elsewhere = _full_car(controllers={"front_left": make_controller("ideal-skyhook")})
     check_drives_damper(elsewhere, "rear_left")  # the rig's corner drives its damper
     raises_validation(lambda: check_drives_damper(elsewhere, "front_left"), "ideal-skyhook")
+
+
+@pytest.mark.parametrize("law", ["vehicle-lq", "modal-skyhook"])
+def test_a_whole_vehicle_law_runs_in_the_loop_capped_at_the_safety_current(law: str) -> None:
+    """The loop lowers the car's ``max_current`` to the safety limit (0.3 A by default); a
+    whole-vehicle law's default ``high_current`` (0.5 A) was then refused and no whole-vehicle
+    law could run in the loop. Its high current is capped with it, as a per-corner law's
+    demand is clipped, and no tick sends more than the limit."""
+    from mrsuspension.control.registry import VEHICLE_LAWS
+    from mrsuspension.hil import SafetyLimits, run_hil
+
+    body = VEHICLE_LAWS[law]()
+    assert body.high_current > SafetyLimits().current
+    result = run_hil(
+        _full_car(body_control=body), corner="rear_left", duration=0.3, realtime="unpaced"
+    )
+    assert result.reason == "completed", result.reason
+    demand = np.asarray(result.recording["i_d"])
+    assert demand.max() <= SafetyLimits().current + 1e-12
+    assert demand.max() > 0.0  # the law does drive the rig's damper
