@@ -51,19 +51,25 @@ and the closed-form check: the linear car then responds as ``A - B K``). ``vehic
 and ``vehicle-lqg-active``: the full-state gain (tire deflection too) on a Kalman-Bucy
 estimate from every corner's body and wheel accelerometers and stroke sensor, with the
 dampers' forces (load cells) as the input (:func:`vehicle_kalman_gain`; the per-corner
-``kalman_gain`` on the vehicle), integrated by Euler at every step. A target force tracked
-through the damper's inverse model (as ``lq-force``) is not offered.
+``kalman_gain`` on the vehicle), integrated by Euler at every step. ``vehicle-lq-force``,
+``vehicle-lqg-force`` (and ``vehicle-mpc-force`` below): the same forces tracked through
+every corner's inverse damper model, as ``lq-force`` (``control.kernel.track_force``: the
+hysteretic inverse at the stroke rate the law sees, the current clipped to
+``[low_current, high_current]``; the ``wang-symmetric`` damper at every corner). The
+output is one flag in the parameters (``LP_OUTPUT``: ``OUT_HILO``, ``OUT_ACTIVE``,
+``OUT_FORCE``).
 
 ``vehicle-mpc`` (:class:`VehicleMPC`): the per-corner ``mpc`` over the whole car. Every
 ``T_s`` one QP (:class:`VehicleMPCProblem`: this module's design model and LQ cost,
 sampled, ``N`` samples, a Riccati terminal cost, one force per corner per sample in the
 viscous band at its predicted stroke rate) solved by OSQP in Python through a ctypes
 entry the compiled step calls (:func:`mpc_forces`), the first forces held until the next
-solve, hi-lo by Dyke's rule as ``vehicle-lq``.
+solve, hi-lo by Dyke's rule as ``vehicle-lq`` (``vehicle-mpc-force``: through the inverse
+model at every step; ``vehicle-mpc-active``: by an ideal actuator).
 
 On the quarter car these laws are the per-corner ones: ``clipped-lq``, ``lq-active``,
-``clipped-lqg``, ``lqg-active``, ``mpc-hilo`` (:meth:`VehicleLQ.for_vehicle` refuses a quarter car,
-naming its law).
+``clipped-lqg``, ``lqg-active``, ``mpc-hilo``, ``lq-force``, ``mpc``
+(:meth:`VehicleLQ.for_vehicle` refuses a quarter car, naming its law).
 
 Examples
 --------

@@ -25,7 +25,9 @@ steps and held) and the stroke sensor's reading
 ``F = -K x`` (:func:`~mrsuspension.control.vehicle_lq.lq_forces`: the state as seen, or
 a Kalman estimate; or ``vehicle-mpc``'s QP through its entry,
 :func:`~mrsuspension.control.vehicle_lq.mpc_forces`, held between solves; hi-lo on
-Dyke's ``(F_i - F_d) F_d > 0``, or ``F`` itself by an ideal actuator). Ideal
+Dyke's ``(F_i - F_d) F_d > 0``, a continuous current from each corner's inverse damper
+model, :func:`~mrsuspension.control.kernel.track_force`, or ``F`` itself by an ideal
+actuator). Ideal
 sensing and no law leave the step exactly as before.
 
 The damper kernels (:mod:`mrsuspension.dampers.kernels`) and the control laws
