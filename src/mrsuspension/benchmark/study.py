@@ -217,10 +217,13 @@ LAW_TABLE: dict[str, TunedOption] = {
     "corner-skyhook": _VEHICLE_HIGH,
     "vehicle-lq": _VEHICLE_R,
     "vehicle-lq-active": _VEHICLE_R,
+    "vehicle-lq-force": _VEHICLE_R,
     "vehicle-lqg": _VEHICLE_R,
     "vehicle-lqg-active": _VEHICLE_R,
+    "vehicle-lqg-force": _VEHICLE_R,
     "vehicle-mpc": _VEHICLE_R,
     "vehicle-mpc-active": _VEHICLE_R,
+    "vehicle-mpc-force": _VEHICLE_R,
 }
 
 

@@ -71,10 +71,13 @@ from mrsuspension.control.user import UserLaw, law, load_law
 from mrsuspension.control.vehicle_lq import (
     VehicleLQ,
     VehicleLQActive,
+    VehicleLQForce,
     VehicleLQG,
     VehicleLQGActive,
+    VehicleLQGForce,
     VehicleMPC,
     VehicleMPCActive,
+    VehicleMPCForce,
 )
 
 __all__ = [
@@ -98,11 +101,14 @@ __all__ = [
     "UserLaw",
     "VehicleLQ",
     "VehicleLQActive",
+    "VehicleLQForce",
     "VehicleLQG",
     "VehicleLQGActive",
+    "VehicleLQGForce",
     "VehicleLaw",
     "VehicleMPC",
     "VehicleMPCActive",
+    "VehicleMPCForce",
     "controller_class",
     "law",
     "law_options",

@@ -79,6 +79,7 @@ __all__ = [
     "control",
     "ideal_force",
     "needs_reference",
+    "track_force",
     "user_control",
 ]
 
@@ -362,7 +363,32 @@ def user_control(
         return min(max(out, 0.0), imax), out, nan, nan
     if ck == C_USER_ACTIVE:
         return 0.0, 0.0, nan, out
-    sa = DK.sign(ad) * cp[P_INV_HYST]
-    fh = DK.passive_hysteron_memo(dp, memo, sig[3] - sig[1], sa, vm)
-    iz = DK.wang_inverse_from(dp, out, fh, imax)
+    iz, fh = track_force(dp, memo, out, sig[3] - sig[1], ad, cp[P_INV_HYST], vm, imax)
     return min(max(iz, 0.0), imax), iz, fh * out, out
+
+
+@njit(cache=True, **INLINED)
+def track_force(
+    dp: np.ndarray,
+    memo: np.ndarray,
+    target: float,
+    vd: float,
+    ad: float,
+    hysteretic: float,
+    vm: float,
+    imax: float,
+) -> tuple[float, float]:
+    """``(i_z, F_h)``: the current [A] in ``[0, imax]`` at which the damper's inverse model
+    gives the target force ``target`` [N] at the stroke rate ``vd`` [m/s], and the
+    passive hysteron ``F_h`` there (the condition ``z_c = F_h F*``).
+
+    A target force tracked through the inverse model (model reference, section 2.3), as
+    ``C_USER_FORCE`` and the whole-vehicle ``-force`` laws
+    (:mod:`~mrsuspension.control.vehicle_lq`) do: the branch from the sign of the previous
+    step's damper acceleration ``ad`` times ``hysteretic`` (1: the hysteretic inverse
+    model, 0: the mean one, ``P_INV_HYST``), the v_m terms kept in ``memo``
+    (:func:`~mrsuspension.dampers.kernels.passive_hysteron_memo`).
+    """
+    sa = DK.sign(ad) * hysteretic
+    fh = DK.passive_hysteron_memo(dp, memo, vd, sa, vm)
+    return DK.wang_inverse_from(dp, target, fh, imax), fh

@@ -281,6 +281,9 @@ class VehicleLaw:
     uses_body_rates: ClassVar[bool] = False
     #: an ideal actuator at every corner instead of the damper (the force applied as is)
     active: ClassVar[bool] = False
+    #: every corner's current from its damper's inverse model (the engine then refuses a
+    #: damper that is not ``wang-symmetric``, as for a corner law that uses the inverse)
+    needs_inverse: ClassVar[bool] = False
 
     #: every law switches between two currents [A] (fields of the subclass, a dataclass)
     low_current: float

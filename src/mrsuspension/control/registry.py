@@ -18,10 +18,13 @@ from mrsuspension.control.sliding import SlidingMode
 from mrsuspension.control.vehicle_lq import (
     VehicleLQ,
     VehicleLQActive,
+    VehicleLQForce,
     VehicleLQG,
     VehicleLQGActive,
+    VehicleLQGForce,
     VehicleMPC,
     VehicleMPCActive,
+    VehicleMPCForce,
 )
 from mrsuspension.errors import ValidationError, unknown_name
 
@@ -71,10 +74,13 @@ VEHICLE_LAWS: dict[str, type[VehicleLaw]] = {
         CornerSkyhook,
         VehicleLQ,
         VehicleLQActive,
+        VehicleLQForce,
         VehicleLQG,
         VehicleLQGActive,
+        VehicleLQGForce,
         VehicleMPC,
         VehicleMPCActive,
+        VehicleMPCForce,
     )
 }
 

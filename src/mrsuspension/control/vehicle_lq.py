@@ -51,19 +51,25 @@ and the closed-form check: the linear car then responds as ``A - B K``). ``vehic
 and ``vehicle-lqg-active``: the full-state gain (tire deflection too) on a Kalman-Bucy
 estimate from every corner's body and wheel accelerometers and stroke sensor, with the
 dampers' forces (load cells) as the input (:func:`vehicle_kalman_gain`; the per-corner
-``kalman_gain`` on the vehicle), integrated by Euler at every step. A target force tracked
-through the damper's inverse model (as ``lq-force``) is not offered.
+``kalman_gain`` on the vehicle), integrated by Euler at every step. ``vehicle-lq-force``,
+``vehicle-lqg-force`` (and ``vehicle-mpc-force`` below): the same forces tracked through
+every corner's inverse damper model, as ``lq-force`` (``control.kernel.track_force``: the
+hysteretic inverse at the stroke rate the law sees, the current clipped to
+``[low_current, high_current]``; the ``wang-symmetric`` damper at every corner). The
+output is one flag in the parameters (``LP_OUTPUT``: ``OUT_HILO``, ``OUT_ACTIVE``,
+``OUT_FORCE``).
 
 ``vehicle-mpc`` (:class:`VehicleMPC`): the per-corner ``mpc`` over the whole car. Every
 ``T_s`` one QP (:class:`VehicleMPCProblem`: this module's design model and LQ cost,
 sampled, ``N`` samples, a Riccati terminal cost, one force per corner per sample in the
 viscous band at its predicted stroke rate) solved by OSQP in Python through a ctypes
 entry the compiled step calls (:func:`mpc_forces`), the first forces held until the next
-solve, hi-lo by Dyke's rule as ``vehicle-lq``.
+solve, hi-lo by Dyke's rule as ``vehicle-lq`` (``vehicle-mpc-force``: through the inverse
+model at every step; ``vehicle-mpc-active``: by an ideal actuator).
 
 On the quarter car these laws are the per-corner ones: ``clipped-lq``, ``lq-active``,
-``clipped-lqg``, ``lqg-active``, ``mpc-hilo`` (:meth:`VehicleLQ.for_vehicle` refuses a quarter car,
-naming its law).
+``clipped-lqg``, ``lqg-active``, ``mpc-hilo``, ``lq-force``, ``mpc``
+(:meth:`VehicleLQ.for_vehicle` refuses a quarter car, naming its law).
 
 Examples
 --------
@@ -112,13 +118,19 @@ __all__ = [
     "MB_X",
     "MB_Y",
     "NB",
+    "OUT_ACTIVE",
+    "OUT_FORCE",
+    "OUT_HILO",
     "LQDesign",
     "VehicleLQ",
     "VehicleLQActive",
+    "VehicleLQForce",
     "VehicleLQG",
     "VehicleLQGActive",
+    "VehicleLQGForce",
     "VehicleMPC",
     "VehicleMPCActive",
+    "VehicleMPCForce",
     "VehicleMPCProblem",
     "lq_design",
     "lq_forces",
@@ -133,11 +145,14 @@ FloatArray = npt.NDArray[np.float64]
 #: body rates in the law's state: heave velocity, pitch and roll rates (roll 0 on the
 #: half car)
 NB = 3
-# the kernel parameters after the MP_* layout (control.modal): output (0 hi-lo, 1 an
-# ideal actuator), the state size nx, then K (corners x nx, row-major) and, for the LQG,
-# A (nx x nx), B (nx x corners), L (nx x 3 corners), C (3 corners x nx), D (3 corners x
-# corners)
+# the kernel parameters after the MP_* layout (control.modal): output (OUT_*), the state
+# size nx, then K (corners x nx, row-major) and, for the LQG, A (nx x nx), B (nx x
+# corners), L (nx x 3 corners), C (3 corners x nx), D (3 corners x corners)
 LP_OUTPUT, LP_NX, LP_K = MP_SIZE, MP_SIZE + 1, MP_SIZE + 2
+#: the output (``params()[LP_OUTPUT]``): hi-lo by Dyke's rule, an ideal actuator (the
+#: ``-active`` laws), or the force tracked through every corner's inverse model (the
+#: ``-force`` laws: a continuous current)
+OUT_HILO, OUT_ACTIVE, OUT_FORCE = 0.0, 1.0, 2.0
 #: the vehicle-law buffer's rows (``mbuf``) the LQ laws use beside the 4 of control.modal:
 #: the state the gain multiplies (LQ: as seen; LQG: the estimate), the measurements (then
 #: the innovation), the dampers' forces, the estimate's rates
@@ -457,7 +472,9 @@ class VehicleLQ(VehicleLaw):
         """
         head = np.zeros(LP_K)
         head[MP_ILOW], head[MP_IHIGH] = self.low_current, self.high_current
-        head[LP_OUTPUT] = 1.0 if self.active else 0.0
+        head[LP_OUTPUT] = (
+            OUT_ACTIVE if self.active else OUT_FORCE if self.needs_inverse else OUT_HILO
+        )
         head[LP_NX] = self.state_size()
         return np.concatenate([head, *(np.ravel(m) for m in self._tail())])
 
@@ -477,6 +494,25 @@ class VehicleLQActive(VehicleLQ):
     law: ClassVar[str] = "vehicle-lq-active"
     active: ClassVar[bool] = True
     per_corner: ClassVar[str] = "lq-active"
+
+
+@dataclass(frozen=True)
+class VehicleLQForce(VehicleLQ):
+    """:class:`VehicleLQ`'s force ``F = -K x_seen`` tracked through every corner's inverse
+    damper model, as the per-corner ``lq-force``: the continuous current at which the
+    corner's damper gives ``F_i`` at its stroke rate (the hysteretic inverse, the branch
+    from the sign of the previous step's damper acceleration), clipped to
+    ``[low_current, high_current]``; needs the ``wang-symmetric`` damper at every corner.
+
+    Examples
+    --------
+    >>> VehicleLQForce().law, VehicleLQForce.per_corner, VehicleLQForce.needs_inverse
+    ('vehicle-lq-force', 'lq-force', True)
+    """
+
+    law: ClassVar[str] = "vehicle-lq-force"
+    needs_inverse: ClassVar[bool] = True
+    per_corner: ClassVar[str] = "lq-force"
 
 
 @dataclass(frozen=True)
@@ -559,6 +595,23 @@ class VehicleLQGActive(VehicleLQG):
     law: ClassVar[str] = "vehicle-lqg-active"
     active: ClassVar[bool] = True
     per_corner: ClassVar[str] = "lqg-active"
+
+
+@dataclass(frozen=True)
+class VehicleLQGForce(VehicleLQG):
+    """:class:`VehicleLQG`'s force ``-K x_hat`` tracked through every corner's inverse
+    damper model, as :class:`VehicleLQForce` (the per-corner laws have no LQG through the
+    inverse: ``per_corner`` names ``lq-force``).
+
+    Examples
+    --------
+    >>> VehicleLQGForce().law, VehicleLQGForce.per_corner
+    ('vehicle-lqg-force', 'lq-force')
+    """
+
+    law: ClassVar[str] = "vehicle-lqg-force"
+    needs_inverse: ClassVar[bool] = True
+    per_corner: ClassVar[str] = "lq-force"
 
 
 class VehicleMPCProblem:
@@ -817,6 +870,23 @@ class VehicleMPCActive(VehicleMPC):
 
     law: ClassVar[str] = "vehicle-mpc-active"
     active: ClassVar[bool] = True
+    per_corner: ClassVar[str] = "mpc"
+
+
+@dataclass(frozen=True)
+class VehicleMPCForce(VehicleMPC):
+    """:class:`VehicleMPC`'s held forces tracked through every corner's inverse damper
+    model, as :class:`VehicleLQForce` (the per-corner ``mpc``: its first force through the
+    inverse model). The inverse runs at every step on the held force.
+
+    Examples
+    --------
+    >>> VehicleMPCForce().law, VehicleMPCForce.per_corner
+    ('vehicle-mpc-force', 'mpc')
+    """
+
+    law: ClassVar[str] = "vehicle-mpc-force"
+    needs_inverse: ClassVar[bool] = True
     per_corner: ClassVar[str] = "mpc"
 
 

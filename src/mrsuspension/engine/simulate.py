@@ -50,6 +50,7 @@ __all__ = [
     "Simulation",
     "SimulationDiverged",
     "Stepper",
+    "check_inverse_damper",
     "measure_many",
     "measures_of",
     "run_many",
@@ -87,6 +88,32 @@ def road_grid(
 
 _STATE_NAMES = ("z_s", "z_s_dot", "z_u", "z_u_dot", "z_s0", "z_s0_dot")
 _STATE_UNITS = ("m", "m/s", "m", "m/s", "m", "m/s")
+
+
+def check_inverse_damper(law: str, damper: DamperModel, where: str = "") -> None:
+    """Refuse a damper the inverse model does not describe, for law ``law`` that uses it.
+
+    The inverse model (model reference, section 2.3) is the dissertation's symmetric
+    damper's: ``wang-symmetric`` without the asymmetric terms (``k5 = k6 = 0``).
+    ``where`` (e.g. ``" at corner fl"``) follows the damper's name in the message.
+
+    Examples
+    --------
+    >>> from mrsuspension.dampers import make_damper
+    >>> check_inverse_damper("inverse-hilo", make_damper("linear"))
+    Traceback (most recent call last):
+    ...
+    mrsuspension.errors.ValidationError: controller 'inverse-hilo' uses the inverse model (model reference, section 2.3) and needs the 'wang-symmetric' damper model; got 'linear'
+    """
+    symmetric_wang = isinstance(damper, WangSymmetric) and (
+        damper.values.get("k5", 0.0) == 0.0 and damper.values.get("k6", 0.0) == 0.0
+    )
+    if not symmetric_wang:
+        raise ValidationError(
+            f"controller {law!r} uses the inverse model (model reference, "
+            "section 2.3) and needs the 'wang-symmetric' damper model; "
+            f"got {damper.name!r}{where}"
+        )
 
 
 @dataclass(frozen=True)
@@ -142,15 +169,8 @@ class Simulation:
             )
         object.__setattr__(self, "controller", attached)
         check_range("max_current", self.max_current, 0.0, self.damper.max_current, unit="A")
-        symmetric_wang = isinstance(self.damper, WangSymmetric) and (
-            self.damper.values.get("k5", 0.0) == 0.0 and self.damper.values.get("k6", 0.0) == 0.0
-        )
-        if self.controller.needs_inverse and not symmetric_wang:
-            raise ValidationError(
-                f"controller {self.controller.law!r} uses the inverse model (model reference, "
-                "section 2.3) and needs the 'wang-symmetric' damper model; "
-                f"got {self.damper.name!r}"
-            )
+        if self.controller.needs_inverse:
+            check_inverse_damper(self.controller.law, self.damper)
 
     def _check_types(self) -> None:
         """Each argument is the object it names (a name string points to its factory)."""

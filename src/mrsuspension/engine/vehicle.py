@@ -58,7 +58,7 @@ from mrsuspension.engine.settings import (
     check_step,
     run_settings,
 )
-from mrsuspension.engine.simulate import Reducer, Simulation, _in_kernel
+from mrsuspension.engine.simulate import Reducer, Simulation, _in_kernel, check_inverse_damper
 from mrsuspension.engine.vehicle_result import (
     BODY_COLUMNS,
     BODY_MEASURES,
@@ -512,6 +512,9 @@ class VehicleSimulation:
             )
         law = law.for_vehicle(self.vehicle)  # e.g. gains from the car's geometry
         object.__setattr__(self, "body_control", law)
+        if law.needs_inverse:  # every corner's damper through its inverse model
+            for c, sim in zip(self.corners, self.__dict__["_corners"], strict=True):
+                check_inverse_damper(law.law, sim.damper, f" at corner {c}")
         busy = [
             c for c, k in zip(self.corners, controllers, strict=True) if not isinstance(k, Passive)
         ]

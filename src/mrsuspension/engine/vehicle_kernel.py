@@ -25,7 +25,9 @@ steps and held) and the stroke sensor's reading
 ``F = -K x`` (:func:`~mrsuspension.control.vehicle_lq.lq_forces`: the state as seen, or
 a Kalman estimate; or ``vehicle-mpc``'s QP through its entry,
 :func:`~mrsuspension.control.vehicle_lq.mpc_forces`, held between solves; hi-lo on
-Dyke's ``(F_i - F_d) F_d > 0``, or ``F`` itself by an ideal actuator). Ideal
+Dyke's ``(F_i - F_d) F_d > 0``, a continuous current from each corner's inverse damper
+model, :func:`~mrsuspension.control.kernel.track_force`, or ``F`` itself by an ideal
+actuator). Ideal
 sensing and no law leave the step exactly as before.
 
 The damper kernels (:mod:`mrsuspension.dampers.kernels`) and the control laws
@@ -388,13 +390,23 @@ def step(
             else:
                 VL.lq_forces(forces, mbuf, mp, nc, vz, pq, pp, law == LAW_LQG,
                              dt if count > 0 else 0.0)  # fmt: skip
-            active = mp[VL.LP_OUTPUT] != 0.0
+            out = mp[VL.LP_OUTPUT]
+            low, high = mp[SM.MP_ILOW], mp[SM.MP_IHIGH]
             for c in range(nc):
-                # Dyke et al.'s clipped-optimal rule, as the per-corner clipped-lq (the load
-                # cell's force: the previous step's)
-                z = SM.clipped_optimal_condition(forces[c], mem[c, EK.M_FD])
+                if out == VL.OUT_FORCE:  # through the corner's inverse model, as lq-force
+                    i, fh = CK.track_force(
+                        dp[c], mem[c, EK.M_PH : EK.M_PH + DK.PH_SIZE], forces[c], vds[c],
+                        mem[c, EK.M_AD], 1.0, mem[c, EK.M_VM], high,
+                    )  # fmt: skip
+                    z = fh * forces[c]
+                    i = min(max(i, low), high)
+                else:
+                    # Dyke et al.'s clipped-optimal rule, as the per-corner clipped-lq (the
+                    # load cell's force: the previous step's)
+                    z = SM.clipped_optimal_condition(forces[c], mem[c, EK.M_FD])
+                    i = 0.0 if out == VL.OUT_ACTIVE else SM.hilo_current(z, low, high)
                 zc[c] = z
-                current[c] = 0.0 if active else SM.hilo_current(z, mp[SM.MP_ILOW], mp[SM.MP_IHIGH])
+                current[c] = i
                 if z != z:  # a law that failed (its forces NaN): the run stops at the check
                     current[c] = z
         for c in range(nc):
