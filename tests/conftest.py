@@ -143,3 +143,31 @@ def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item
                 f"{item.nodeid} is marked realtime: add {path} to REALTIME_FILES "
                 "(tests/conftest.py) and to the realtime run of `make test` (Makefile)"
             )
+
+
+@pytest.fixture(autouse=True)
+def _signal_handlers_come_back():  # type: ignore[no-untyped-def]
+    """A test that leaves SIGINT, SIGTERM or SIGHUP handled otherwise than it found them,
+    or the signal mask changed, fails, and they are put back: a later test in the same
+    worker (a HiL loop stopped by Ctrl-C) would otherwise see the signal ignored. Found:
+    ``mrsus hil rig-emulator`` refusing bad input in-process left its SIGTERM handler."""
+    import signal
+    import threading
+
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    watched = (signal.SIGINT, signal.SIGTERM, signal.SIGHUP)
+    before = {s: signal.getsignal(s) for s in watched}
+    mask = signal.pthread_sigmask(signal.SIG_BLOCK, ())
+    yield
+    after = {s: signal.getsignal(s) for s in watched}
+    changed = [signal.Signals(s).name for s in watched if after[s] != before[s]]
+    for s in watched:
+        if after[s] != before[s]:
+            signal.signal(s, before[s] if before[s] is not None else signal.SIG_DFL)
+    now = signal.pthread_sigmask(signal.SIG_SETMASK, mask)
+    if now != mask:
+        changed.append(f"mask {sorted(int(s) for s in now)}")
+    if changed:
+        pytest.fail(f"the test left {', '.join(changed)} changed (put back)", pytrace=False)

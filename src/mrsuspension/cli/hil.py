@@ -734,11 +734,6 @@ def rig_emulator_command(
     def interrupt(_signum: int, _frame: Any) -> None:
         raise KeyboardInterrupt
 
-    # stop cleanly on Ctrl-C even when started with SIGINT ignored (a background job of
-    # a script), and on SIGTERM
-    signal.signal(signal.SIGINT, signal.default_int_handler)
-    signal.signal(signal.SIGTERM, interrupt)
-
     with user_errors():
         check_port("--port", port, any_free=True)
         check_host("--host", host)
@@ -751,8 +746,18 @@ def rig_emulator_command(
         def ready(bound: int) -> None:
             typer.echo(f"rig emulator ({spec}, {damper}) listening on udp://{host}:{bound}")
 
-        counts = serve_rig(
-            served, host=host, port=port, rate=rate, drop=drop, delay=delay, ready=ready,
-            heartbeat=heartbeat, watchdog=watchdog, realtime=realtime, log=typer.echo,
-        )  # fmt: skip
+        # stop cleanly on Ctrl-C even when started with SIGINT ignored (a background job of
+        # a script), and on SIGTERM; the handlers the caller had come back at the end (a
+        # call in a longer-lived process, e.g. a test, keeps its own)
+        previous = {s: signal.getsignal(s) for s in (signal.SIGINT, signal.SIGTERM)}
+        signal.signal(signal.SIGINT, signal.default_int_handler)
+        signal.signal(signal.SIGTERM, interrupt)
+        try:
+            counts = serve_rig(
+                served, host=host, port=port, rate=rate, drop=drop, delay=delay, ready=ready,
+                heartbeat=heartbeat, watchdog=watchdog, realtime=realtime, log=typer.echo,
+            )  # fmt: skip
+        finally:
+            for s, handler in previous.items():
+                signal.signal(s, handler if handler is not None else signal.SIG_DFL)
     typer.echo("stopped: " + ", ".join(f"{k} {v}" for k, v in counts.items()))

@@ -357,11 +357,16 @@ def _run_in_process(
         proc.join()
     except BaseException as exc:  # Ctrl-C, SIGTERM, SIGHUP here: stop the loop the safe way
         signum = int(getattr(exc, "signum", signal.SIGINT))
+        hup: Any = None
         if threading.current_thread() is threading.main_thread():
-            signal.signal(signal.SIGHUP, signal.SIG_IGN)  # the stop is bounded: let it end
-        _stop_loop(
-            proc, (out / META_FILE).exists(), wait=_stop_wait(kw.get("limits")), signum=signum
-        )
+            hup = signal.signal(signal.SIGHUP, signal.SIG_IGN)  # the stop is bounded: let it end
+        try:
+            _stop_loop(
+                proc, (out / META_FILE).exists(), wait=_stop_wait(kw.get("limits")), signum=signum
+            )
+        finally:
+            if hup is not None:  # the caller's handler back (a Python session goes on)
+                signal.signal(signal.SIGHUP, hup)
         raise
     code = proc.exitcode
     if code is not None and code - 128 in LOOP_SIGNALS and not (out / META_FILE).exists():
