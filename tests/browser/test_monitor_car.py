@@ -102,7 +102,7 @@ def test_full_car_modal_skyhook_band_pass_sensing(served: tuple[str, Any], brows
     page.fill("#corner", "-1")
     page.click("#start")
     page.wait_for_function(
-        "() => document.getElementById('error').textContent.length > 0", timeout=10000
+        "() => document.getElementById('error').textContent.length > 0", timeout=30000
     )
     error = page.text_content("#error") or ""
     print(f"refused: {error}")
@@ -149,14 +149,14 @@ def test_full_car_modal_skyhook_band_pass_sensing(served: tuple[str, Any], brows
         "() => { const c = document.querySelectorAll('#plots canvas')[10];"
         " const d = c.getContext('2d').getImageData(0, 30, c.width, c.height - 30).data;"
         " let n = 0; for (let i = 3; i < d.length; i += 4) if (d[i]) n++; return n > 100; }",
-        timeout=10000,
+        timeout=30000,
     )
 
     # a live change is a quarter car's: refused, the run goes on
     page.click("#apply")
     page.wait_for_function(
         "() => document.getElementById('error').textContent.includes('quarter-car')",
-        timeout=10000,
+        timeout=30000,
     )
     assert _status(server)["applied"] == 0
 
