@@ -49,11 +49,9 @@ system-deps:
 # then the tests that keep 1 kHz deadlines (marker `realtime`) run alone on a quiet machine
 # (the kernels compile beside the lint, whose mypy takes ~30 s: the warm's steps compile
 # separate kernels, ~75 s on one core, on one process per core, longest first; its lines
-# are printed when both are done). Three workers on two cores: many integration tests wait
-# (HiL runs in real time, subprocesses, the browser), and a third worker fills those waits
-# (main phase 341 s against 359-365 s with two, measured 2026-11-27); the browser tests'
-# waits allow 30 s for that load
-JOBS ?= 3
+# are printed when both are done). Three workers on two cores were measured (2026-11-27):
+# the main phase took 341 s once and 386 s once, against 359-365 s with two: no gain
+JOBS ?= 2
 test: $(VENV)/.stamp-install system-deps
 	@log=$$(mktemp); echo "$(BIN)/mrsus cache warm (beside the lint)"; \
 	  $(BIN)/mrsus cache warm >$$log 2>&1 & warm=$$!; \
