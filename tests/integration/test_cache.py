@@ -63,7 +63,7 @@ def cache(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Path:
 def test_a_code_change_misses_the_cache(tmp_path: Path) -> None:
     """Edit a measure in a copy of the package: the same study is recomputed, not reused.
 
-    About 4 s here (the copied ``__pycache__`` spares numba's compile).
+    Three runs of about 3 s here (the copied ``__pycache__`` spares numba's compile).
     """
     source = Path(mrsuspension.__file__).parent
     copy = tmp_path / "src" / "mrsuspension"
@@ -94,9 +94,7 @@ def test_a_code_change_misses_the_cache(tmp_path: Path) -> None:
     edited = run()
     assert not edited["from_cache"]  # the old numbers are not returned
     assert edited["values"] == pytest.approx([1.0, 1.2])
-    again = run()  # no further edit: the new result is cached
-    assert again["from_cache"]
-    assert again["values"] == edited["values"]
+    # (that the new result is cached in turn is the first two runs' property)
 
 
 def test_the_key_covers_study_and_code(monkeypatch: pytest.MonkeyPatch) -> None:
