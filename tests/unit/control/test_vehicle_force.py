@@ -8,7 +8,7 @@ issue 29): ``vehicle-lq-force``, ``vehicle-lqg-force``, ``vehicle-mpc-force``.
 * the closed loop is finite, its current continuous (many levels strictly between the
   low and high currents), its comfort printed beside ``vehicle-lq`` and passive 0 A;
 * a damper other than the symmetric ``wang-symmetric`` at any corner is refused in one
-  line, as for the per-corner inverse-model laws; the quarter car names the per-corner law.
+  line, as for the per-corner inverse-model laws; the quarter car names the per-corner law (tests/unit/control/test_vehicle_lq.py).
 """
 
 from __future__ import annotations
@@ -32,7 +32,7 @@ from mrsuspension.dampers import make_damper
 from mrsuspension.engine.vehicle import VehicleSimulation
 from mrsuspension.errors import ValidationError
 from mrsuspension.excitation.wheels import WheelRoads
-from mrsuspension.vehicle import FullCar, QuarterCar
+from mrsuspension.vehicle import FullCar
 
 DT = 2e-4  # s; every step recorded (the inputs of step r's law are row r - 1's)
 FORCE_LAWS = ("vehicle-lq-force", "vehicle-lqg-force", "vehicle-mpc-force")
@@ -134,13 +134,3 @@ def test_a_damper_without_the_inverse_model_is_refused_in_one_line(
     # the hi-lo law of the same kind drives any damper
     hilo = law.removesuffix("-force")
     VehicleSimulation(car, road, dampers=given, body_control=VEHICLE_LAWS[hilo]())
-
-
-@pytest.mark.parametrize(
-    ("law", "per_corner"),
-    [("vehicle-lq-force", "lq-force"), ("vehicle-lqg-force", "lq-force"),
-     ("vehicle-mpc-force", "mpc")],
-)  # fmt: skip
-def test_the_quarter_car_is_refused_naming_the_per_corner_law(law: str, per_corner: str) -> None:
-    with pytest.raises(ValidationError, match=f"per-corner law '{per_corner}'"):
-        VEHICLE_LAWS[law]().for_vehicle(QuarterCar())

@@ -300,9 +300,13 @@ def test_vehicle_lq_and_lqg_ride_the_iso_c_road(iso_c_runs: dict[str, Any]) -> N
 @pytest.mark.parametrize(
     ("law", "per_corner"),
     [("vehicle-lq", "clipped-lq"), ("vehicle-lq-active", "lq-active"),
-     ("vehicle-lqg", "clipped-lqg"), ("vehicle-lqg-active", "lqg-active")],
+     ("vehicle-lqg", "clipped-lqg"), ("vehicle-lqg-active", "lqg-active"),
+     ("vehicle-mpc", "mpc-hilo"), ("vehicle-mpc-active", "mpc"),
+     ("vehicle-lq-force", "lq-force"), ("vehicle-lqg-force", "lq-force"),
+     ("vehicle-mpc-force", "mpc")],
 )  # fmt: skip
 def test_the_quarter_car_is_refused_naming_the_per_corner_law(law: str, per_corner: str) -> None:
+    """Every whole-vehicle law (LQ, LQG and MPC; hi-lo, -active and -force)."""
     from mrsuspension.scenario import Scenario
 
     with pytest.raises(ValidationError, match=f"per-corner law '{per_corner}'"):

@@ -40,7 +40,7 @@ from mrsuspension.engine.vehicle import VehicleSimulation
 from mrsuspension.errors import MRSuspensionError, ValidationError
 from mrsuspension.excitation import Harmonic
 from mrsuspension.excitation.wheels import WheelRoads
-from mrsuspension.vehicle import FullCar, HalfCar, QuarterCar
+from mrsuspension.vehicle import FullCar, HalfCar
 
 
 @pytest.fixture(scope="module")
@@ -201,23 +201,7 @@ def test_a_failing_solve_stops_the_run_and_is_raised(monkeypatch: pytest.MonkeyP
         sim.run(0.05, dt=2e-4)
 
 
-# -- options, the quarter car, scenarios ------------------------------------------------------
-@pytest.mark.parametrize(
-    ("law", "per_corner"), [("vehicle-mpc", "mpc-hilo"), ("vehicle-mpc-active", "mpc")]
-)
-def test_the_quarter_car_is_refused_naming_the_per_corner_law(law: str, per_corner: str) -> None:
-    from mrsuspension.scenario import Scenario
-
-    with pytest.raises(ValidationError, match=f"per-corner law '{per_corner}'"):
-        VEHICLE_LAWS[law]().for_vehicle(QuarterCar())
-    tables = {
-        "excitation": {"kind": "harmonic", "frequency": 1.5, "amplitude": 0.01},
-        "controller": {"law": law},
-    }
-    with pytest.raises(ValidationError, match=f"per-corner law '{per_corner}'"):
-        Scenario.from_dict(tables)
-
-
+# -- options, scenarios (the quarter car: test_vehicle_lq.py) ------------------------------------------------------
 @pytest.mark.parametrize(
     ("options", "words"),
     [({"horizon_samples": 2.5}, "horizon_samples N must be a whole number"),
