@@ -647,9 +647,17 @@ def _scenario(
     excitation: Mapping[str, Any],
     duration: float,
 ) -> dict[str, Any]:
-    tables: dict[str, Any] = {
+    return {
         "controller": {"law": law, **options},
         "excitation": dict(excitation),
+        **_run_tables(vehicle, duration),
+    }
+
+
+def _run_tables(vehicle: str, duration: float) -> dict[str, Any]:
+    """The ``[simulation]`` (and the full car's ``[vehicle]``) table of every benchmark run,
+    scored or tuned: the vehicle's engine step, every step recorded (:data:`OUTPUT_RATE`)."""
+    tables: dict[str, Any] = {
         "simulation": {
             "duration": duration,
             "dt": ENGINE_DT[vehicle],
@@ -700,16 +708,10 @@ def _tune_task(
 
     law, opt, excitation, weights, evaluations, population, seed, workers, vehicle = task
     assert opt.option is not None
-    base: dict[str, Any] = {"vehicle": {"model": "full-car"}} if vehicle == "full" else {}
     problem = OptimizationProblem.from_dict(
         {
-            **base,
+            **_run_tables(vehicle, excitation.pop("duration")),
             "controller": {"law": law},
-            "simulation": {
-                "dt": ENGINE_DT[vehicle],
-                "output_rate": OUTPUT_RATE[vehicle],
-                "duration": excitation.pop("duration"),
-            },
             "problem": {"population": population, "seed": seed, "name": law},
             "parameters": [
                 {
