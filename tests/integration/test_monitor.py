@@ -15,7 +15,9 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from typer.testing import CliRunner
 
+from mrsuspension.cli import app
 from mrsuspension.monitor.loadtest import measure
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -28,14 +30,15 @@ MRSUS = [sys.executable, "-m", "mrsuspension.cli"]
 def test_deadlines_with_a_page_attached() -> None:
     """Issue 7: with a client consuming frames at >= 20 Hz the loop keeps its deadlines.
 
-    Unmonitored and monitored runs alternate (same scenario, rig, rate and minutes). On a
+    An unmonitored and a monitored run (same scenario, rig, rate and seconds; the phase
+    runs alone, so one pair: two were 10 s more of the CI's serial phase). On a
     shared machine the misses are the OS's release lateness, so the monitored miss rate
     is held against the unmonitored one; on a quiet machine (load average < 0.5) also
     against the HiL bound (90 % in deadline, docs/hil.md).
     """
     pytest.importorskip("websockets")
     quiet = os.getloadavg()[0] < 0.5
-    d = measure(duration=3.0, rate=1000.0, rig="simulated", pairs=2)
+    d = measure(duration=3.0, rate=1000.0, rig="simulated", pairs=1)  # run alone: one pair
     for kind in ("plain", "monitored"):
         for r in d[kind]:
             print(kind, json.dumps(r))
@@ -186,8 +189,11 @@ def test_hil_run_monitor_exits_0_when_the_attached_run_completes() -> None:
     ],
 )
 def test_cli_refuses_bad_options(args: list[str], fragment: str) -> None:
-    res = subprocess.run([*MRSUS, *args], capture_output=True, text=True, timeout=60)
-    assert res.returncode == 2, res.stderr
+    # in-process (a refusal starts nothing; the real process's exit codes are the other
+    # tests' here): a process each took 1.4 s of CPU, imports mostly
+    res = CliRunner().invoke(app, args)
+    assert res.exception is None or isinstance(res.exception, SystemExit), res.exception
+    assert res.exit_code == 2, res.stderr
     assert fragment in res.stderr
 
 
