@@ -26,7 +26,7 @@ import numpy as np
 
 from mrsuspension._jsonsafe import to_jsonable as _clean
 from mrsuspension.engine.simulate import DEFAULT_DT, Simulation
-from mrsuspension.hil.loop import HilResult, run_hil
+from mrsuspension.hil.loop import HilResult, _capped, run_hil
 from mrsuspension.hil.rig import Rig
 from mrsuspension.hil.safety import SafetyLimits, StartUp
 from mrsuspension.hil.vehicle import check_corner, has_corners
@@ -166,8 +166,8 @@ def validate(
     vehicle = has_corners(sim)
     if vehicle:
         corner = check_corner(sim, corner)
-    if sim.max_current > limits.current:
-        sim = dataclasses.replace(sim, max_current=limits.current)
+    if sim.max_current > limits.current:  # both runs at the loop's current limit
+        sim = _capped(sim, limits.current)
     out_dir = Path(out) if out is not None else None
     if out_dir is not None:
         out_dir.mkdir(parents=True, exist_ok=True)
