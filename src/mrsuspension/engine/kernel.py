@@ -105,7 +105,15 @@ M_PH = 13  # first of DK.PH_SIZE slots: the control laws' memo of the damper's v
 #: first of SG.NS slots: the signals the law saw at the last control sample
 #: (:mod:`mrsuspension.control.signals`)
 M_SIG = M_PH + DK.PH_SIZE
-MEM_SIZE = M_SIG + SG.NS
+#: the drive current's chatter (:func:`note_current`): the previous step's current [A],
+#: its last change [A] (0 when smaller than :data:`CHATTER_CURRENT`) and the count of
+#: steps whose change reversed the one before (a current that alternates at the step rate)
+M_IPREV = M_SIG + SG.NS
+M_DI = M_IPREV + 1
+M_NREV = M_IPREV + 2
+MEM_SIZE = M_IPREV + 3
+#: a change of the drive current [A] that counts towards its chatter (1 % of 0.5 A)
+CHATTER_CURRENT = 0.005
 
 SCRATCH_SIZE = 6 * NY  # work space of the callers (rates of start())
 
@@ -212,6 +220,50 @@ def apply_control(
 
 
 @njit(cache=True, **INLINED)
+def chatter(i: float, previous: float, change: float, count: float) -> tuple[float, float]:
+    """This step's change of the drive current and the updated count of reversals.
+
+    ``i``: this step's current (the law's, final) [A]; ``previous``: the step before's;
+    ``change``: the step before's change (0 when it was at most :data:`CHATTER_CURRENT`);
+    ``count``: the steps so far whose change reversed the step before's. A change of
+    more than :data:`CHATTER_CURRENT` opposite to ``change`` adds one. A law that
+    alternates its current at every step counts about one per step; a record that keeps
+    one step in several then aliases it (:func:`~mrsuspension.engine.result.warn_if_aliased`).
+    The callers keep the state in ``mem[M_IPREV]``, ``mem[M_DI]``, ``mem[M_NREV]``
+    (:func:`note_current`).
+
+    Examples
+    --------
+    >>> chatter(0.5, 0.0, -0.5, 3.0)  # up after a step down: a reversal
+    (0.5, 4.0)
+    >>> chatter(0.501, 0.5, 0.5, 4.0)  # 1 mA: no change, and the alternation is broken
+    (0.0, 4.0)
+    """
+    d = i - previous
+    if abs(d) > CHATTER_CURRENT:
+        return d, count + 1.0 if d * change < 0.0 else count
+    return 0.0, count
+
+
+@njit(cache=True, **INLINED)
+def note_current(mem: np.ndarray) -> None:
+    """:func:`chatter` on a quarter-car ``mem`` (after the law set ``mem[M_ID]``).
+
+    Examples
+    --------
+    >>> mem = np.zeros(MEM_SIZE)
+    >>> for i in (0.0, 0.5, 0.0, 0.5, 0.5, 0.0):
+    ...     mem[M_ID] = i
+    ...     note_current(mem)
+    >>> float(mem[M_NREV])  # 0 -> 0.5 -> 0 -> 0.5 reverses twice; then held, then down
+    2.0
+    """
+    i = mem[M_ID]
+    mem[M_DI], mem[M_NREV] = chatter(i, mem[M_IPREV], mem[M_DI], mem[M_NREV])
+    mem[M_IPREV] = i
+
+
+@njit(cache=True, **INLINED)
 def step(
     y: np.ndarray,
     dt: float,
@@ -260,6 +312,7 @@ def step(
         apply_control(ck, cp, vp, dp, sig, ad, vm, mem)
     else:
         apply_control(ck, cp, vp, dp, y, ad, vm, mem)
+    note_current(mem)
     reference = CK.needs_reference(ck)
     # classical RK4 in scalars; the four stages and the evaluation at the new state share
     # one call site of accelerations() (small inlined code, short compile). k_j is
@@ -384,6 +437,9 @@ def start(
     """
     mem[M_PH + DK.PH_FT] = 0.0
     mem[M_STEP] = 0.0
+    mem[M_IPREV] = mem[M_ID]  # the chatter count of this run (note_current)
+    mem[M_DI] = 0.0
+    mem[M_NREV] = 0.0
     if fk == F_TARGET:  # an ideal actuator starts with no force (the law acts from step 1)
         mem[M_TARGET] = 0.0
     for q in range(SG.NS):  # the quarter car's pitch, roll and corner stay 0

@@ -28,6 +28,7 @@ from mrsuspension.engine.result import (
     SimulationDiverged,
     SimulationResult,
     VelocityClampWarning,
+    warn_if_aliased,
     warn_if_clamped,
 )
 from mrsuspension.engine.settings import (
@@ -279,7 +280,7 @@ class Simulation:
         >>> from mrsuspension.excitation import Harmonic
         >>> a = Simulation(Harmonic(1.0, 0.01)).kernel_arrays(1e-4)
         >>> a.controller_params.size, a.memory.size
-        (18, 41)
+        (18, 44)
         """
         dt = self.check_dt(dt) if check_stability else check_step(dt)
         kern = self.damper.kernel(dt)
@@ -364,6 +365,7 @@ class Simulation:
             raise self.divergence(status, k * dt, idx, value, dt)
         result = self.result_from_record(plan.time(), rec, dt)
         warn_if_clamped(result)
+        warn_if_aliased(a.memory[EK.M_NREV], n, decimate, dt)
         return result
 
     def record_values(self, plan: RunPlan) -> float:

@@ -48,7 +48,7 @@ from mrsuspension.engine import vehicle_kernel as VX
 from mrsuspension.engine.kernel import N_ACC
 from mrsuspension.engine.lanes import ROAD_CHUNK
 from mrsuspension.engine.reduced import finish, new_accumulators, reduction_of
-from mrsuspension.engine.result import SIGNALS, SimulationDiverged
+from mrsuspension.engine.result import SIGNALS, SimulationDiverged, warn_if_aliased
 from mrsuspension.engine.settings import (
     DEFAULT_DT,
     RK4_LIMIT,
@@ -443,7 +443,7 @@ class VehicleSimulation:
         >>> sim = VehicleSimulation(FullCar(), WheelRoads.in_phase(Harmonic(2.0, 0.01), "full-car"))
         >>> a = sim.arrays(1e-4)
         >>> a.memory.shape, a.corner_vehicles.shape
-        ((4, 41), (4, 8))
+        ((4, 44), (4, 8))
         """
         car = self.vehicle
         n = len(car.corners)
@@ -825,6 +825,9 @@ class VehicleSimulation:
             if status != VX.D_OK:
                 raise self._divergence(status, k * dt, idx, value, dt)
             first += steps
+        for c, name in enumerate(self.corners):  # a corner's current that chatters
+            if warn_if_aliased(a.memory[c, EK.M_NREV], n, decimate, dt, f" at {name}"):
+                break
 
     def record_values(self, plan: RunPlan) -> float:
         """Floats a run of ``plan`` allocates: the record and every wheel's road (sampled

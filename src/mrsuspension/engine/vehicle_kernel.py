@@ -424,6 +424,12 @@ def step(
             mem[c, EK.M_IZ] = current[c]
             mem[c, EK.M_ZC] = zc[c]
             mem[c, EK.M_TARGET] = forces[c]
+    for c in range(nc):  # every corner's final current: its chatter count
+        i = mem[c, EK.M_ID]
+        mem[c, EK.M_DI], mem[c, EK.M_NREV] = EK.chatter(
+            i, mem[c, EK.M_IPREV], mem[c, EK.M_DI], mem[c, EK.M_NREV]
+        )
+        mem[c, EK.M_IPREV] = i
     yt = scratch[0]
     k = scratch[1]
     acc = scratch[2]
@@ -474,6 +480,9 @@ def start(
     """
     for c in range(int(vp[B_NC])):
         mem[c, EK.M_PH + DK.PH_FT] = 0.0
+        mem[c, EK.M_IPREV] = mem[c, EK.M_ID]  # the chatter count of this run
+        mem[c, EK.M_DI] = 0.0
+        mem[c, EK.M_NREV] = 0.0
         if fk[c] == F_TARGET:  # an ideal actuator starts with no force
             mem[c, EK.M_TARGET] = 0.0
         o = B_SIZE + c * CORNER_SIZE

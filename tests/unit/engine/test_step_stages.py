@@ -53,6 +53,14 @@ def reference_step(y: np.ndarray, road: list[tuple[float, float]], a: KernelArra
         mem[EK.M_PH : EK.M_PH + DK.PH_SIZE],
     )  # fmt: skip
     mem[EK.M_ID], mem[EK.M_IZ], mem[EK.M_ZC], mem[EK.M_TARGET] = i_d, i_z, z_c, target
+    # the current's chatter count (tests/unit/engine/test_aliasing.py), in Python
+    change = i_d - mem[EK.M_IPREV]
+    if abs(change) > EK.CHATTER_CURRENT:
+        mem[EK.M_NREV] += 1.0 if change * mem[EK.M_DI] < 0.0 else 0.0
+        mem[EK.M_DI] = change
+    else:
+        mem[EK.M_DI] = 0.0
+    mem[EK.M_IPREV] = i_d
     reference = a.controller_kind == CK.C_SLIDING
 
     def f(state: np.ndarray, zr: float, zrd: float) -> tuple[np.ndarray, float, float]:
