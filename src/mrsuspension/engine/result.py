@@ -22,6 +22,7 @@ if TYPE_CHECKING:
     from mrsuspension.measures import RoadPeak
 
 __all__ = [
+    "ALIAS_WARN_FRACTION",
     "CLAMP_WARN_FRACTION",
     "CURRENT_MEASURES",
     "MEASURES_BY_KIND",
