@@ -425,11 +425,11 @@ def step(
             mem[c, EK.M_ZC] = zc[c]
             mem[c, EK.M_TARGET] = forces[c]
     for c in range(nc):  # every corner's final current: its chatter count
-        i = mem[c, EK.M_ID]
+        final = mem[c, EK.M_ID]
         mem[c, EK.M_DI], mem[c, EK.M_NREV] = EK.chatter(
-            i, mem[c, EK.M_IPREV], mem[c, EK.M_DI], mem[c, EK.M_NREV]
+            final, mem[c, EK.M_IPREV], mem[c, EK.M_DI], mem[c, EK.M_NREV]
         )
-        mem[c, EK.M_IPREV] = i
+        mem[c, EK.M_IPREV] = final
     yt = scratch[0]
     k = scratch[1]
     acc = scratch[2]

@@ -38,8 +38,8 @@ def _run(sim, output_rate: float) -> tuple[object, list[str]]:  # type: ignore[n
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         result = sim.run(2.0, dt=DT, output_rate=output_rate)
-    # by name: the doctests (--import-mode=importlib) may import engine/result.py again,
-    # and the engine then warns with the other copy's class
+    # by name, not identity: a second copy of engine/result.py (the doctests' import, before
+    # the root conftest.py) gave the engine's warning another class
     said = [w for w in caught if w.category.__name__ == AliasedRecordWarning.__name__]
     return result, [str(w.message) for w in said]
 
