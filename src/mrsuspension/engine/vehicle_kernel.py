@@ -424,7 +424,9 @@ def step(
             mem[c, EK.M_IZ] = current[c]
             mem[c, EK.M_ZC] = zc[c]
             mem[c, EK.M_TARGET] = forces[c]
-    for c in range(nc):  # every corner's final current: its chatter count
+    # every corner's final current: its chatter count (EK.note_current's three lines on
+    # the row's slots; note_current(mem[c]) on a row view measured 10 % slower per step)
+    for c in range(nc):
         final = mem[c, EK.M_ID]
         mem[c, EK.M_DI], mem[c, EK.M_NREV] = EK.chatter(
             final, mem[c, EK.M_IPREV], mem[c, EK.M_DI], mem[c, EK.M_NREV]
